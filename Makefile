@@ -1,0 +1,45 @@
+# RoboRacer Arena. Every target creates/updates .venv itself; only python3, pip, cargo
+# and a C compiler are assumed.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+export VIRTUAL_ENV := $(abspath $(VENV))
+export PATH := $(abspath $(BIN)):$(PATH)
+# Where the public track data lives (see ../shared/track-sources/SOURCES.md).
+export ROBORACER_ARENA_SOURCES ?= $(abspath ../shared/track-sources)
+
+.PHONY: demo test test-rust test-python bench lint develop release clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install -q --upgrade pip "maturin>=1.7,<2"
+
+# Dev-profile build (dependencies at opt-level 3) plus runtime and test dependencies.
+develop: $(BIN)/python
+	$(BIN)/maturin develop -q --extras test,video
+
+# Optimised build for benchmarks.
+release: $(BIN)/python
+	$(BIN)/maturin develop -q --release --extras test,video
+
+demo: develop
+	$(BIN)/python -m roboracer_arena.demo --out out/demo
+
+test: test-rust test-python
+
+test-rust:
+	cargo test -p arena_core --quiet
+
+test-python: develop
+	$(BIN)/python -m pytest -q
+
+bench: release
+	cargo bench -p arena_core --quiet -- --quick
+	$(BIN)/roboracer-arena bench all --json out/bench.json
+
+lint: develop
+	cargo clippy -p arena_core -p arena_py --quiet -- -D warnings
+	cargo fmt --all -- --check
+
+clean:
+	rm -rf $(VENV) target out

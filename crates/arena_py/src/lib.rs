@@ -1,0 +1,15 @@
+//! `roboracer_arena._core`: thin pyo3 bindings over `arena_core`, one file per core
+//! module. No logic lives here: extract inputs, release the GIL, call the core, map errors.
+
+use pyo3::prelude::*;
+
+mod errors;
+mod grid;
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    errors::register(m)?;
+    grid::register(m)?;
+    Ok(())
+}

@@ -1,0 +1,39 @@
+"""RoboRacer Arena: any ROS occupancy map to a physics-ready 3D environment.
+
+Public API (each name is documented where it is defined):
+
+* :func:`load_map`, :func:`build_environment` -- map to USD stage and physics geometry
+* :class:`TrackSpec`, :func:`generate_track` -- requirements to a validated map
+* :func:`parse_request` -- natural-language request to a ``TrackSpec``
+* ``gymnasium.make("RoboRacerArena-v0", track=...)`` -- simulation
+"""
+
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+from . import errors
+from ._core import __version__
+from .spec import TrackSpec
+
+# Heavier submodules load on first use so `import roboracer_arena` stays fast and a
+# user who only parses requests never imports pxr or gymnasium.
+_LAZY = {
+    "load_map": "roboracer_arena.maps",
+    "build_environment": "roboracer_arena.builder",
+    "BuildConfig": "roboracer_arena.config",
+    "BuildReport": "roboracer_arena.builder",
+    "generate_track": "roboracer_arena.generate",
+    "parse_request": "roboracer_arena.parse",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'roboracer_arena' has no attribute {name!r}")
+    return getattr(import_module(module), name)
+
+
+__all__ = ["errors", "TrackSpec", "__version__", *_LAZY]

@@ -1,0 +1,57 @@
+"""``roboracer-arena`` command line. One module per subcommand in this package; each
+exposes ``register(subparsers)`` which adds its parser and sets ``func``.
+
+Exit codes: 0 success, 2 bad input (any :class:`~roboracer_arena.errors.ArenaError`),
+3 request rejected by the screen, 4 generation failure, 1 unexpected internal error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from importlib import import_module
+from typing import Sequence
+
+from .. import __version__
+from ..errors import ArenaError
+
+# Subcommand modules, in the order `--help` lists them.
+COMMANDS: list[str] = ["bench"]
+
+EXIT_OK, EXIT_INTERNAL, EXIT_BAD_INPUT, EXIT_REJECTED, EXIT_GENERATION_FAILURE = 0, 1, 2, 3, 4
+
+
+def make_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="roboracer-arena",
+        description=(
+            "Any ROS occupancy map to a physics-ready 3D environment, requirement-generated "
+            "tracks, and fast parallel RoboRacer simulation."
+        ),
+        epilog="Run 'roboracer-arena COMMAND --help' for the options of a command.",
+    )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name in COMMANDS:
+        import_module(f"{__name__}.{name}").register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = make_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return EXIT_BAD_INPUT
+    try:
+        return int(args.func(args) or 0)
+    except ArenaError as e:
+        print(f"roboracer-arena {args.command}: error: {e}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,49 @@
+"""Typed exceptions. Every error the package raises on purpose derives from
+:class:`ArenaError`; the CLI maps them to exit codes and one-line messages.
+
+The classes raised by the Rust core are defined there and re-exported here, so
+``except roboracer_arena.errors.MapFormatError`` catches them wherever they come from.
+"""
+
+from __future__ import annotations
+
+from ._core import (
+    ArenaError,
+    CorridorError,
+    InvalidArgumentError,
+    MapFormatError,
+    MapIOError,
+    SimulationError,
+    SpecError,
+)
+
+
+class ConfigError(ArenaError):
+    """A configuration file or value (BuildConfig, VehicleConfig, ...) is invalid."""
+
+
+class RequestParseError(ArenaError):
+    """A natural-language request could not be turned into a TrackSpec."""
+
+
+class BackendError(ArenaError):
+    """A parser backend (e.g. an Ollama server) failed: down, missing model, timeout."""
+
+
+class GroundingError(ArenaError):
+    """A parser produced a value that cannot be traced to the request (an invention)."""
+
+
+__all__ = [
+    "ArenaError",
+    "BackendError",
+    "ConfigError",
+    "CorridorError",
+    "GroundingError",
+    "InvalidArgumentError",
+    "MapFormatError",
+    "MapIOError",
+    "RequestParseError",
+    "SimulationError",
+    "SpecError",
+]

@@ -1,0 +1,134 @@
+"""The typed 12-field track specification (the paper's ``S``).
+
+Every field has an indoor default, chosen for a typical RoboRacer venue (a sports hall
+or corridor in a university building) and the 1:10 car; the reason for each default is
+in the field's description. Values are SI (metres). Parsers fill only the fields a
+request states; the rest keep these defaults.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+
+from .errors import SpecError
+
+FeatureName = Literal["hairpin", "chicane", "sweeper"]
+Direction = Literal["clockwise", "counterclockwise"]
+
+
+class TrackSpec(BaseModel):
+    """A requirement specification for one closed racing corridor."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+    name: str = Field(
+        "generated-track",
+        min_length=1,
+        max_length=120,
+        description="Track name; default is a neutral placeholder so unnamed requests still get a stable id.",
+    )
+    lap_length_m: float = Field(
+        60.0,
+        gt=0,
+        description="Centreline lap length (m). 60 m is a typical RoboRacer competition lap in a sports hall.",
+    )
+    corridor_width_m: float = Field(
+        1.5,
+        gt=0,
+        description=(
+            "Free corridor width between walls (m). 1.5 m lets two 0.3 m-wide cars pass, as on"
+            " most RoboRacer tracks, and gives the paper's pitch p = 2.15 m with the default walls."
+        ),
+    )
+    hall_x_m: float = Field(20.0, gt=0, description="Hall length (m). A 20 m x 15 m hall is the paper's reference venue.")
+    hall_y_m: float = Field(15.0, gt=0, description="Hall width (m). A 20 m x 15 m hall is the paper's reference venue.")
+    direction: Direction = Field(
+        "counterclockwise",
+        description="Driving direction seen from above; counter-clockwise is the mathematical positive sense and the convention of F1TENTH maps.",
+    )
+    hairpins: int = Field(0, ge=0, description="Number of hairpins (~180 deg turns). 0: none unless requested.")
+    chicanes: int = Field(0, ge=0, description="Number of chicanes (opposite-sense turn pairs). 0: none unless requested.")
+    sweepers: int = Field(0, ge=0, description="Number of sweepers (long, large-radius turns). 0: none unless requested.")
+    feature_order: list[FeatureName] = Field(
+        default_factory=list,
+        description="Order of named features along the lap; empty (any order) unless the request orders them.",
+    )
+    min_radius_m: float = Field(
+        0.0,
+        ge=0,
+        description="Requested minimum centreline radius (m); 0 means unstated, the constructor then uses max(0.9 m, 0.75 w).",
+    )
+    longest_straight_m: float = Field(
+        0.0,
+        ge=0,
+        description="Required longest straight (m); 0 means unstated (no requirement).",
+    )
+
+    @field_validator("name")
+    @classmethod
+    def _name_is_printable(cls, v: str) -> str:
+        if not v.strip() or any(ord(c) < 32 for c in v):
+            raise ValueError("name must be non-blank printable text")
+        return v.strip()
+
+    @model_validator(mode="after")
+    def _order_matches_counts(self) -> "TrackSpec":
+        if self.feature_order:
+            for feat, count in (("hairpin", self.hairpins), ("chicane", self.chicanes), ("sweeper", self.sweepers)):
+                listed = self.feature_order.count(feat)
+                if listed != count:
+                    raise ValueError(
+                        f"feature_order lists {listed} {feat}(s) but {feat}s = {count}; "
+                        "the order must name every requested feature exactly once"
+                    )
+        return self
+
+    # -- conveniences -----------------------------------------------------------------
+    @property
+    def feature_count(self) -> int:
+        return self.hairpins + self.chicanes + self.sweepers
+
+    @classmethod
+    def json_schema(cls) -> dict:
+        """JSON schema of the 12 fields (used for schema-constrained LLM output)."""
+        return cls.model_json_schema()
+
+    @classmethod
+    def from_file(cls, path: str | Path) -> "TrackSpec":
+        """Load a spec from a JSON file; errors name the file and the offending field."""
+        p = Path(path)
+        try:
+            text = p.read_text(encoding="utf-8")
+        except OSError as e:
+            raise SpecError(f"{p}: cannot read spec file: {e.strerror or e}") from e
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as e:
+            raise SpecError(f"{p}: not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from e
+        return cls.from_dict(data, source=str(p))
+
+    @classmethod
+    def from_dict(cls, data: object, source: str = "spec") -> "TrackSpec":
+        """Validate a mapping, raising :class:`SpecError` that names the field."""
+        if not isinstance(data, dict):
+            raise SpecError(f"{source}: a spec must be a JSON object, got {type(data).__name__}")
+        try:
+            return cls.model_validate(data)
+        except ValidationError as e:
+            raise SpecError(f"{source}: {format_validation_error(e)}") from e
+
+
+def format_validation_error(e: ValidationError) -> str:
+    """One line per problem: ``field: message (got value)``."""
+    parts = []
+    for err in e.errors():
+        loc = ".".join(str(x) for x in err["loc"]) or "(spec)"
+        value = err.get("input")
+        shown = "" if isinstance(value, dict) else f" (got {value!r})"
+        parts.append(f"{loc}: {err['msg']}{shown}")
+    return "; ".join(parts)
+
