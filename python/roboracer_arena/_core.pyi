@@ -15,3 +15,13 @@ class SimulationError(ArenaError): ...
 
 def distance_transform(feature: npt.NDArray[np.bool_]) -> npt.NDArray[np.float32]:
     """Exact Euclidean distance (cells) from every cell to the nearest True cell."""
+
+# --- generate (requirements → track): rasteriser, screen, lattice, validator ---------
+def rasterise_centreline(
+    xy: npt.NDArray[np.float64],
+    widths: npt.NDArray[np.float64],
+    resolution: float = 0.05,
+    wall_thickness: float = 0.15,
+    margin: float = 0.5,
+) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]]:
+    """Eq. 3 with per-vertex full widths; returns (data (H, W) uint8, origin (x, y, yaw))."""

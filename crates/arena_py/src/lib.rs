@@ -4,6 +4,7 @@
 use pyo3::prelude::*;
 
 mod errors;
+mod generate;
 mod grid;
 
 #[pymodule]
@@ -11,5 +12,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     errors::register(m)?;
     grid::register(m)?;
+    generate::register(m)?;
     Ok(())
 }

@@ -6,6 +6,7 @@
 
 pub mod edt;
 pub mod flood;
+pub mod rasterise;
 
 /// Occupancy value of a free cell (ROS map_saver convention).
 pub const FREE: u8 = 254;
