@@ -1,1 +1,9 @@
-//! See the crate docs; filled in by the generate work.
+//! Requirements → track: the spec as the core sees it, the admissibility screen
+//! (Eqs. 1–2), the lattice constructor (growth, rounding) and the bounded generate loop
+//! (Algorithm 1).
+
+pub mod construct;
+pub mod lattice;
+pub mod rounding;
+pub mod screen;
+pub mod spec;

@@ -1,0 +1,142 @@
+//! The core's view of a `TrackSpec` (validated in Python by pydantic, passed as JSON) and
+//! of the constructor's own constants.
+
+use crate::error::{ArenaError, Result};
+use crate::track::features::FeatureKind;
+use serde::{Deserialize, Serialize};
+
+/// The 12-field requirement specification (SI units). See `roboracer_arena.spec`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Spec {
+    pub name: String,
+    pub lap_length_m: f64,
+    pub corridor_width_m: f64,
+    pub hall_x_m: f64,
+    pub hall_y_m: f64,
+    pub direction: String,
+    pub hairpins: u32,
+    pub chicanes: u32,
+    pub sweepers: u32,
+    #[serde(default)]
+    pub feature_order: Vec<FeatureKind>,
+    #[serde(default)]
+    pub min_radius_m: f64,
+    #[serde(default)]
+    pub longest_straight_m: f64,
+}
+
+impl Spec {
+    /// Parse the JSON produced by `TrackSpec.model_dump_json()`.
+    pub fn from_json(text: &str) -> Result<Spec> {
+        let s: Spec = serde_json::from_str(text).map_err(|e| ArenaError::Spec(format!("spec JSON: {e}")))?;
+        for (name, v) in [
+            ("lap_length_m", s.lap_length_m),
+            ("corridor_width_m", s.corridor_width_m),
+            ("hall_x_m", s.hall_x_m),
+            ("hall_y_m", s.hall_y_m),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(ArenaError::Spec(format!("{name}: must be a positive finite number (got {v})")));
+            }
+        }
+        if !(s.min_radius_m.is_finite() && s.min_radius_m >= 0.0) {
+            return Err(ArenaError::Spec(format!("min_radius_m: must be ≥ 0 (got {})", s.min_radius_m)));
+        }
+        if !(s.longest_straight_m.is_finite() && s.longest_straight_m >= 0.0) {
+            return Err(ArenaError::Spec(format!("longest_straight_m: must be ≥ 0 (got {})", s.longest_straight_m)));
+        }
+        if s.direction != "clockwise" && s.direction != "counterclockwise" {
+            return Err(ArenaError::Spec(format!("direction: must be clockwise or counterclockwise (got {:?})", s.direction)));
+        }
+        Ok(s)
+    }
+
+    pub fn clockwise(&self) -> bool {
+        self.direction == "clockwise"
+    }
+
+    pub fn target(&self, kind: FeatureKind) -> u32 {
+        match kind {
+            FeatureKind::Hairpin => self.hairpins,
+            FeatureKind::Chicane => self.chicanes,
+            FeatureKind::Sweeper => self.sweepers,
+        }
+    }
+}
+
+/// The constructor's constants (not part of the request). Defaults are the paper's:
+/// `p = w + 2 t_w + d_c = 2.15 m` at the default 1.5 m width, `m_h = 0.5 m`, Δ = 0.05 m.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+pub struct ConstructorConfig {
+    /// Wall thickness t_w (m): one air-duct radius.
+    pub wall_thickness_m: f64,
+    /// Inter-corridor clearance d_c (m) between the walls of neighbouring passes.
+    pub clearance_m: f64,
+    /// Hall margin m_h (m) kept free on every side of the hall.
+    pub hall_margin_m: f64,
+    /// Raster resolution Δ (m per cell).
+    pub resolution_m: f64,
+    /// Unknown border (m) around the outer wall of the written map.
+    pub map_margin_m: f64,
+    /// Candidate cap of Algorithm 1.
+    pub max_candidates: u32,
+}
+
+impl Default for ConstructorConfig {
+    fn default() -> Self {
+        ConstructorConfig {
+            wall_thickness_m: 0.15,
+            clearance_m: 0.35,
+            hall_margin_m: 0.5,
+            resolution_m: 0.05,
+            map_margin_m: 0.25,
+            max_candidates: 800,
+        }
+    }
+}
+
+impl ConstructorConfig {
+    pub fn from_json(text: &str) -> Result<ConstructorConfig> {
+        let c: ConstructorConfig =
+            serde_json::from_str(text).map_err(|e| ArenaError::invalid(format!("constructor config JSON: {e}")))?;
+        for (name, v) in [
+            ("wall_thickness_m", c.wall_thickness_m),
+            ("resolution_m", c.resolution_m),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(ArenaError::invalid(format!("constructor config {name}: must be > 0 (got {v})")));
+            }
+        }
+        for (name, v) in [("clearance_m", c.clearance_m), ("hall_margin_m", c.hall_margin_m), ("map_margin_m", c.map_margin_m)] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(ArenaError::invalid(format!("constructor config {name}: must be ≥ 0 (got {v})")));
+            }
+        }
+        Ok(c)
+    }
+}
+
+/// Derived geometry shared by the screen, the constructor and the validator.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Derived {
+    /// r_min (Eq. 1).
+    pub r_min: f64,
+    /// Pitch p (Eq. 1).
+    pub pitch: f64,
+    /// L_max (Eq. 1).
+    pub l_max: f64,
+    /// Lattice pitch lower bound s_min = max(p, 2 r_min).
+    pub s_min: f64,
+    /// Ordinary-corner radius r_c = s_min / 2 (≥ r_min).
+    pub corner_radius: f64,
+}
+
+pub fn derive(spec: &Spec, cfg: &ConstructorConfig) -> Derived {
+    let w = spec.corridor_width_m;
+    let r_min = if spec.min_radius_m > 0.0 { spec.min_radius_m } else { (0.75 * w).max(0.9) };
+    let pitch = w + 2.0 * cfg.wall_thickness_m + cfg.clearance_m;
+    let m = cfg.hall_margin_m;
+    let l_max = ((spec.hall_x_m - 2.0 * m).max(0.0) * (spec.hall_y_m - 2.0 * m).max(0.0)) / pitch;
+    let s_min = pitch.max(2.0 * r_min);
+    Derived { r_min, pitch, l_max, s_min, corner_radius: s_min / 2.0 }
+}

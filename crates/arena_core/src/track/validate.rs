@@ -1,0 +1,150 @@
+//! The raster validator: every acceptance test of the paper, measured on the occupancy
+//! grid (never on the analytic curve). Each check reports its measured value, its bound
+//! and pass/fail, so a report explains itself.
+
+use super::features::{analyse_closed_curve, is_cyclic_order, self_clearance, FeatureKind};
+use super::metrics::measure_raster;
+use crate::generate::spec::{derive, ConstructorConfig, Spec};
+use crate::grid::OccupancyGrid;
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// Lap length tolerance (relative) and width tolerance (relative), from the paper.
+pub const LAP_TOLERANCE: f64 = 0.03;
+pub const WIDTH_TOLERANCE: f64 = 0.05;
+
+/// One acceptance test.
+#[derive(Debug, Clone, Serialize)]
+pub struct Check {
+    pub name: String,
+    pub measured: String,
+    pub bound: String,
+    pub passed: bool,
+}
+
+/// Detected feature in the driving direction, for reports and previews.
+#[derive(Debug, Clone, Serialize)]
+pub struct FeatureAt {
+    pub kind: FeatureKind,
+    pub at_m: f64,
+    pub x: f64,
+    pub y: f64,
+}
+
+/// The validator's verdict on one map.
+#[derive(Debug, Clone, Serialize)]
+pub struct ValidationReport {
+    pub valid: bool,
+    pub checks: Vec<Check>,
+    pub features: Vec<FeatureAt>,
+    /// Measured centreline in the driving direction (map metres).
+    #[serde(skip)]
+    pub centreline: Vec<[f64; 2]>,
+}
+
+impl ValidationReport {
+    pub fn failed(&self) -> Vec<&Check> {
+        self.checks.iter().filter(|c| !c.passed).collect()
+    }
+}
+
+fn check(name: &str, measured: String, bound: String, passed: bool) -> Check {
+    Check { name: name.into(), measured, bound, passed }
+}
+
+/// Validate a map against a spec. Never panics on odd maps: a map without a closed
+/// corridor yields a report whose topology check fails.
+pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> ValidationReport {
+    let d = derive(spec, cfg);
+    let res = g.resolution;
+    let mut checks = Vec::new();
+    let t = match measure_raster(g) {
+        Ok(t) => t,
+        Err(e) => {
+            checks.push(check("corridor", format!("{e}"), "one closed corridor".into(), false));
+            return ValidationReport { valid: false, checks, features: vec![], centreline: vec![] };
+        }
+    };
+    checks.push(check(
+        "corridor",
+        format!("{} free component(s)", t.corridor_components),
+        "exactly 1".into(),
+        t.corridor_components == 1,
+    ));
+    checks.push(check("infield", format!("{} enclosed region(s)", t.infields), "exactly 1".into(), t.infields == 1));
+
+    let mut line = t.centreline.clone();
+    if spec.clockwise() {
+        line.reverse();
+    }
+    let a = analyse_closed_curve(&line, d.corner_radius);
+    let l = spec.lap_length_m;
+    checks.push(check(
+        "lap_length",
+        format!("{:.2} m", a.length_m),
+        format!("{:.2} m ± 3 % [{:.2}, {:.2}]", l, l * (1.0 - LAP_TOLERANCE), l * (1.0 + LAP_TOLERANCE)),
+        (a.length_m - l).abs() <= LAP_TOLERANCE * l,
+    ));
+    let w = spec.corridor_width_m;
+    let min_local = t.widths.iter().cloned().fold(f64::INFINITY, f64::min);
+    checks.push(check(
+        "width",
+        format!("{:.3} m mean (local min {:.3} m)", t.mean_width_m, min_local),
+        format!("{w:.3} m ± 5 %"),
+        (t.mean_width_m - w).abs() <= WIDTH_TOLERANCE * w,
+    ));
+    // Raster tolerance on radius: curvature from a staircase centreline is good to ~5 %
+    // plus a cell.
+    let r_bound = d.r_min * 0.95 - res;
+    checks.push(check(
+        "min_radius",
+        format!("{:.2} m", a.min_radius_m),
+        format!("≥ {:.2} m (r_min {:.2} m − 5 % − Δ)", r_bound, d.r_min),
+        a.min_radius_m >= r_bound,
+    ));
+    for kind in [FeatureKind::Hairpin, FeatureKind::Chicane, FeatureKind::Sweeper] {
+        let (got, want) = (a.count(kind), spec.target(kind) as usize);
+        checks.push(check(&format!("{}s", kind.name()), format!("{got}"), format!("= {want}"), got == want));
+    }
+    if !spec.feature_order.is_empty() {
+        let got: Vec<&str> = a.order().iter().map(|k| k.name()).collect();
+        let want: Vec<&str> = spec.feature_order.iter().map(|k| k.name()).collect();
+        checks.push(check(
+            "feature_order",
+            got.join(", "),
+            format!("cyclic rotation of [{}]", want.join(", ")),
+            is_cyclic_order(&a.order(), &spec.feature_order),
+        ));
+    }
+    if spec.longest_straight_m > 0.0 {
+        let want = spec.longest_straight_m;
+        checks.push(check(
+            "longest_straight",
+            format!("{:.2} m", a.longest_straight_m),
+            format!("≥ {:.2} m (requested {want:.2} m − 5 %)", 0.95 * want),
+            a.longest_straight_m >= 0.95 * want,
+        ));
+    }
+    // Non-local passes must keep the pitch p apart (centreline to centreline); arcs closer
+    // than π p / 2 along the lap are local (a hairpin of radius p/2 is still legal).
+    let clearance = self_clearance(&line, PI * d.pitch / 2.0, 0.1);
+    let c_bound = d.pitch * 0.97 - res;
+    checks.push(check(
+        "self_clearance",
+        if clearance.is_finite() { format!("{clearance:.2} m") } else { "no non-local passes".into() },
+        format!("≥ {c_bound:.2} m (p = {:.2} m − 3 % − Δ)", d.pitch),
+        clearance >= c_bound,
+    ));
+    let (ux, uy) = (spec.hall_x_m - 2.0 * cfg.hall_margin_m, spec.hall_y_m - 2.0 * cfg.hall_margin_m);
+    let [ex, ey] = t.extent_m;
+    let fits = (ex <= ux + res && ey <= uy + res) || (ey <= ux + res && ex <= uy + res);
+    checks.push(check(
+        "hall_fit",
+        format!("{ex:.2} × {ey:.2} m"),
+        format!("within {ux:.2} × {uy:.2} m in either orientation (hall − 2 m_h)"),
+        fits,
+    ));
+    let valid = checks.iter().all(|c| c.passed);
+    let features = a.features.iter().map(|f| FeatureAt { kind: f.kind, at_m: f.at_m, x: f.x, y: f.y }).collect();
+    ValidationReport { valid, checks, features, centreline: line }
+}
