@@ -5,6 +5,10 @@ use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods}
 use pyo3::prelude::*;
 
 use crate::errors::IntoPyResult;
+use arena_core::generate::construct::{self, Outcome};
+use arena_core::generate::spec::{ConstructorConfig, Spec};
+use arena_core::grid::OccupancyGrid;
+use arena_core::track::{features, validate};
 
 type MapTuple<'py> = (Bound<'py, PyArray2<u8>>, (f64, f64, f64));
 
@@ -44,7 +48,109 @@ fn rasterise_centreline<'py>(
     Ok(grid_to_py(py, g))
 }
 
+fn parse(spec_json: &str, config_json: &str) -> PyResult<(Spec, ConstructorConfig)> {
+    Ok((Spec::from_json(spec_json).py()?, ConstructorConfig::from_json(config_json).py()?))
+}
+
+fn to_json<T: serde::Serialize>(v: &T) -> String {
+    serde_json::to_string(v).expect("plain data serialises")
+}
+
+fn line_to_py<'py>(py: Python<'py>, line: &[[f64; 2]]) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = line.iter().flat_map(|p| [p[0], p[1]]).collect();
+    let arr = numpy::ndarray::Array2::from_shape_vec((line.len(), 2), flat).expect("shape matches");
+    PyArray2::from_owned_array(py, arr)
+}
+
+/// The admissibility screen (Eqs. 1–2) as JSON: passed, violations and every quantity.
+#[pyfunction]
+fn screen(spec_json: &str, config_json: &str) -> PyResult<String> {
+    let (spec, cfg) = parse(spec_json, config_json)?;
+    Ok(to_json(&arena_core::generate::screen::screen(&spec, &cfg)))
+}
+
+/// Derived geometry (r_min, pitch, L_max, s_min, corner radius) as JSON.
+#[pyfunction]
+fn derived_geometry(spec_json: &str, config_json: &str) -> PyResult<String> {
+    let (spec, cfg) = parse(spec_json, config_json)?;
+    Ok(to_json(&arena_core::generate::spec::derive(&spec, &cfg)))
+}
+
+/// Algorithm 1 with the lattice constructor. Returns ``(kind, info_json, data, origin,
+/// centreline)`` with kind ``"accepted" | "rejected" | "failed"``; the last three are
+/// None unless accepted.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn generate_lattice<'py>(
+    py: Python<'py>,
+    spec_json: &str,
+    config_json: &str,
+    seed: u64,
+) -> PyResult<(&'static str, String, Option<MapTuple<'py>>, Option<Bound<'py, PyArray2<f64>>>)> {
+    let (spec, cfg) = parse(spec_json, config_json)?;
+    let out = py.detach(move || construct::generate(&spec, &cfg, seed));
+    Ok(match out {
+        Outcome::Accepted { grid, candidate, report, candidate_index, tried } => {
+            let info = serde_json::json!({
+                "report": report, "candidate_index": candidate_index, "tried": tried, "pitch_m": candidate.pitch_m,
+            });
+            let line = line_to_py(py, &candidate.centreline);
+            ("accepted", info.to_string(), Some(grid_to_py(py, grid)), Some(line))
+        }
+        Outcome::Rejected(sr) => ("rejected", to_json(&sr), None, None),
+        Outcome::Failed { tried, reasons } => {
+            ("failed", serde_json::json!({"tried": tried, "reasons": reasons}).to_string(), None, None)
+        }
+    })
+}
+
+/// Validate an occupancy grid against a spec, measuring the raster only. Returns
+/// ``(report_json, measured centreline (N, 2) in the driving direction)``.
+#[pyfunction]
+fn validate_map<'py>(
+    py: Python<'py>,
+    data: PyReadonlyArray2<'py, u8>,
+    resolution: f64,
+    origin: (f64, f64, f64),
+    spec_json: &str,
+    config_json: &str,
+) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
+    let (spec, cfg) = parse(spec_json, config_json)?;
+    let (h, w) = (data.shape()[0], data.shape()[1]);
+    let grid = OccupancyGrid {
+        width: w,
+        height: h,
+        resolution,
+        origin: [origin.0, origin.1, origin.2],
+        data: data.as_array().iter().copied().collect(),
+    };
+    let report = py.detach(move || validate::validate_map(&grid, &spec, &cfg));
+    Ok((to_json(&report), line_to_py(py, &report.centreline)))
+}
+
+/// Curvature analysis of a closed curve (driving direction): turns, features, minimum
+/// radius, longest straight, total turn; plus its self-clearance outside `exclude_m`.
+#[pyfunction]
+#[pyo3(signature = (xy, corner_radius, exclude_m))]
+fn analyse_curve(py: Python<'_>, xy: PyReadonlyArray2<'_, f64>, corner_radius: f64, exclude_m: f64) -> PyResult<String> {
+    let pts = points_from_py(&xy, "xy")?;
+    if pts.len() < 3 || !(corner_radius > 0.0) {
+        return Err(crate::errors::InvalidArgumentError::new_err("analyse_curve needs ≥ 3 points and corner_radius > 0"));
+    }
+    let (a, c) = py.detach(move || {
+        (features::analyse_closed_curve(&pts, corner_radius), features::self_clearance(&pts, exclude_m, 0.1))
+    });
+    let mut v = serde_json::to_value(&a).expect("plain data");
+    v["self_clearance_m"] = serde_json::json!(if c.is_finite() { c } else { -1.0 });
+    Ok(v.to_string())
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rasterise_centreline, m)?)?;
+    m.add_function(wrap_pyfunction!(screen, m)?)?;
+    m.add_function(wrap_pyfunction!(derived_geometry, m)?)?;
+    m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;
+    m.add_function(wrap_pyfunction!(validate_map, m)?)?;
+    m.add_function(wrap_pyfunction!(analyse_curve, m)?)?;
     Ok(())
 }

@@ -1,0 +1,82 @@
+"""``roboracer-arena generate``: a TrackSpec (file, or a natural-language request once the
+parser is wired) to a validated map, a proven rejection (exit 3) or a generation
+failure (exit 4)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from . import EXIT_GENERATION_FAILURE, EXIT_OK, EXIT_REJECTED
+from ._common import add_json_flag, print_json
+from ..errors import InvalidArgumentError
+from ..spec import TrackSpec
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "generate",
+        help="requirements → validated occupancy map (or a rejection / generation failure)",
+        description=__doc__,
+    )
+    # Natural-language requests are parsed by roboracer_arena.parse (wired at integration).
+    p.add_argument("request", nargs="?", help="natural-language request (needs the parser); or use --spec")
+    p.add_argument("--spec", type=Path, metavar="SPEC.json", help="TrackSpec JSON file")
+    p.add_argument("--seed", type=int, default=0, help="seed of the candidate ordering (default 0)")
+    p.add_argument("-o", "--out", type=Path, default=Path("out/generated"), metavar="OUTDIR", help="output directory")
+    p.add_argument("--constructor", choices=["lattice", "de", "random"], default="lattice")
+    p.add_argument("--build", action="store_true", help="also build the USD environment through the builder")
+    add_json_flag(p)
+    p.set_defaults(func=run)
+
+
+def _spec_from_args(args: argparse.Namespace) -> TrackSpec:
+    if args.spec is not None:
+        return TrackSpec.from_file(args.spec)
+    if args.request:
+        from ..parse import parse_request  # type: ignore[import-not-found]
+
+        return parse_request(args.request).spec
+    raise InvalidArgumentError("give a TrackSpec with --spec SPEC.json (or a natural-language REQUEST)")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..generate import Acceptance, Rejection, generate_track, write_outputs
+
+    if args.seed < 0:
+        raise InvalidArgumentError(f"--seed must be ≥ 0, got {args.seed}")
+    spec = _spec_from_args(args)
+    outcome = generate_track(spec, seed=args.seed, constructor=args.constructor)
+    summary: dict = {"outcome": outcome.kind, "name": spec.name, "seconds": round(outcome.seconds, 4)}
+    if isinstance(outcome, Acceptance):
+        paths = write_outputs(outcome, args.out)
+        summary.update(
+            candidates_tried=outcome.candidates_tried,
+            files={k: str(v) for k, v in paths.items()},
+            checks=outcome.report["checks"],
+            features=outcome.report["features"],
+        )
+        if args.build:
+            from ..builder import build_environment  # type: ignore[import-not-found]
+            from ..maps import load_map  # type: ignore[import-not-found]
+
+            usd = args.out / "track.usda"
+            build_environment(load_map(paths["map_yaml"]), usd)
+            summary["files"]["usd"] = str(usd)
+        code = EXIT_OK
+    elif isinstance(outcome, Rejection):
+        summary.update(violations=outcome.violations, screen=outcome.screen)
+        code = EXIT_REJECTED
+    else:
+        summary.update(candidates_tried=outcome.candidates_tried, reasons=outcome.reasons)
+        code = EXIT_GENERATION_FAILURE
+    if args.json:
+        print_json(summary)
+    else:
+        print(outcome.summary(), file=sys.stdout if code == EXIT_OK else sys.stderr)
+        if code == EXIT_OK:
+            for c in outcome.report["checks"]:
+                print(f"  {'ok ' if c['passed'] else 'BAD'} {c['name']:<17} {c['measured']:<34} {c['bound']}")
+            print(f"wrote {args.out}/")
+    return code

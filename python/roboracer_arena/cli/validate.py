@@ -1,0 +1,34 @@
+"""``roboracer-arena validate MAP.yaml --spec SPEC.json``: run the raster validator on any
+ROS map. Exit 0 when every check passes, 4 when some check fails."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from . import EXIT_GENERATION_FAILURE, EXIT_OK
+from ._common import add_json_flag, print_json
+from ..spec import TrackSpec
+
+
+def register(sub) -> None:
+    p = sub.add_parser("validate", help="check a map against a TrackSpec on the raster", description=__doc__)
+    p.add_argument("map", type=Path, metavar="MAP.yaml", help="ROS map YAML (image beside it)")
+    p.add_argument("--spec", type=Path, required=True, metavar="SPEC.json", help="TrackSpec JSON file")
+    add_json_flag(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..generate import load_ros_map, validate_map
+
+    spec = TrackSpec.from_file(args.spec)
+    m = load_ros_map(args.map)
+    report, _ = validate_map(m, spec)
+    if args.json:
+        print_json({"map": str(args.map), **report})
+    else:
+        for c in report["checks"]:
+            print(f"{'ok ' if c['passed'] else 'BAD'} {c['name']:<17} {c['measured']:<34} {c['bound']}")
+        print(f"{args.map}: {'valid' if report['valid'] else 'INVALID'}")
+    return EXIT_OK if report["valid"] else EXIT_GENERATION_FAILURE

@@ -1,0 +1,83 @@
+"""The three typed outcomes of requirements → track (the paper's Sec. "Occupancy Maps as
+a Common Interface"): a proven rejection, a bounded-search generation failure, or an
+acceptance carrying a map that passed every raster-level check."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..spec import TrackSpec
+
+
+@dataclass(frozen=True)
+class GeneratedMap:
+    """An occupancy grid in ROS conventions (row 0 = top image row; 254/0/205)."""
+
+    data: np.ndarray
+    resolution: float
+    origin: tuple[float, float, float]
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.data.shape  # type: ignore[return-value]
+
+
+@dataclass(frozen=True)
+class Acceptance:
+    """A validated map: every check in ``report['checks']`` passed."""
+
+    spec: TrackSpec
+    map: GeneratedMap
+    centreline: np.ndarray  # (N, 2) metres, driving direction, constructor's curve
+    report: dict[str, Any]
+    constructor: str
+    seed: int
+    candidates_tried: int
+    seconds: float
+    kind: str = "accepted"
+
+    def summary(self) -> str:
+        h, w = self.map.shape
+        return (
+            f"accepted '{self.spec.name}': {w}x{h} cells at {self.map.resolution} m, "
+            f"{len(self.report['checks'])} checks passed after {self.candidates_tried} candidate(s) "
+            f"in {self.seconds:.2f} s"
+        )
+
+
+@dataclass(frozen=True)
+class Rejection:
+    """The screen proved the spec infeasible; ``violations`` state the bounds with numbers."""
+
+    spec: TrackSpec
+    violations: list[str]
+    screen: dict[str, Any]
+    seconds: float
+    kind: str = "rejected"
+
+    def summary(self) -> str:
+        return "rejected by the screen: " + "; ".join(self.violations)
+
+
+@dataclass(frozen=True)
+class GenerationFailure:
+    """No candidate passed within the budget; this does not prove infeasibility."""
+
+    spec: TrackSpec
+    constructor: str
+    seed: int
+    candidates_tried: int
+    reasons: dict[str, int] = field(default_factory=dict)
+    seconds: float = 0.0
+    built_invalid_report: dict[str, Any] | None = None
+    kind: str = "failed"
+
+    def summary(self) -> str:
+        top = ", ".join(f"{k}: {v}" for k, v in sorted(self.reasons.items(), key=lambda kv: -kv[1])[:5])
+        return f"generation failure after {self.candidates_tried} candidate(s) ({top})"
+
+
+Outcome = Acceptance | Rejection | GenerationFailure

@@ -1,0 +1,88 @@
+"""``generate_track``: screen → constructor → rasterise → validate (Algorithm 1), and the
+raster validator on its own (``validate_map``). The pipeline never returns an invalid map:
+every acceptance passed the raster validator."""
+
+from __future__ import annotations
+
+import json
+import time
+from typing import Any, Literal
+
+import numpy as np
+
+from .. import _core
+from ..constructor_config import ConstructorConfig
+from ..errors import InvalidArgumentError
+from ..spec import TrackSpec
+from .outcomes import Acceptance, GeneratedMap, GenerationFailure, Outcome, Rejection
+
+Constructor = Literal["lattice", "de", "random"]
+CONSTRUCTORS: tuple[str, ...] = ("lattice", "de", "random")
+
+
+def _jsons(spec: TrackSpec, config: ConstructorConfig) -> tuple[str, str]:
+    return spec.model_dump_json(), config.model_dump_json()
+
+
+def screen(spec: TrackSpec, config: ConstructorConfig | None = None) -> dict[str, Any]:
+    """The admissibility screen (Eqs. 1–2): ``passed``, ``violations`` and every quantity."""
+    return json.loads(_core.screen(*_jsons(spec, config or ConstructorConfig())))
+
+
+def derived_geometry(spec: TrackSpec, config: ConstructorConfig | None = None) -> dict[str, float]:
+    """r_min, pitch p, L_max, lattice pitch bound s_min and corner radius r_c for a spec."""
+    return json.loads(_core.derived_geometry(*_jsons(spec, config or ConstructorConfig())))
+
+
+def validate_map(m: GeneratedMap, spec: TrackSpec, config: ConstructorConfig | None = None) -> tuple[dict[str, Any], np.ndarray]:
+    """Measure the raster against the spec; returns (report, measured centreline (N, 2))."""
+    report, line = _core.validate_map(np.ascontiguousarray(m.data, np.uint8), m.resolution, tuple(m.origin), *_jsons(spec, config or ConstructorConfig()))
+    return json.loads(report), line
+
+
+def rasterise(centreline: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> GeneratedMap:
+    """Eq. 3 at the configured resolution and wall thickness, constant corridor width."""
+    xy = np.ascontiguousarray(centreline, np.float64)
+    data, origin = _core.rasterise_centreline(xy, np.full(len(xy), spec.corridor_width_m), config.resolution_m, config.wall_thickness_m, config.map_margin_m)
+    return GeneratedMap(data, config.resolution_m, origin)
+
+
+def generate_track(
+    spec: TrackSpec,
+    seed: int = 0,
+    constructor: Constructor = "lattice",
+    config: ConstructorConfig | None = None,
+) -> Outcome:
+    """Turn a spec into a validated map, a proven rejection or a generation failure.
+
+    ``constructor`` is ``"lattice"`` (the paper's method, Rust), or one of the baselines
+    ``"de"`` / ``"random"`` (scipy; their output is validated the same way, and an invalid
+    one becomes a :class:`GenerationFailure`, never an acceptance).
+    """
+    if constructor not in CONSTRUCTORS:
+        raise InvalidArgumentError(f"constructor must be one of {', '.join(CONSTRUCTORS)}; got {constructor!r}")
+    if not isinstance(seed, int) or seed < 0:
+        raise InvalidArgumentError(f"seed must be a non-negative integer, got {seed!r}")
+    config = config or ConstructorConfig()
+    t0 = time.perf_counter()
+    sr = screen(spec, config)
+    if not sr["passed"]:
+        return Rejection(spec, list(sr["violations"]), sr, time.perf_counter() - t0)
+    if constructor == "lattice":
+        kind, info, grid, line = _core.generate_lattice(*_jsons(spec, config), seed)
+        info = json.loads(info)
+        if kind == "accepted":
+            data, origin = grid
+            return Acceptance(spec, GeneratedMap(data, config.resolution_m, origin), line, info["report"], constructor, seed, info["tried"], time.perf_counter() - t0)
+        return GenerationFailure(spec, constructor, seed, info["tried"], dict(info["reasons"]), time.perf_counter() - t0)
+    from .baselines import construct_baseline
+
+    line = construct_baseline(spec, config, seed, constructor)
+    if line is None:
+        return GenerationFailure(spec, constructor, seed, 1, {"no curve emitted": 1}, time.perf_counter() - t0)
+    m = rasterise(line, spec, config)
+    report, _ = validate_map(m, spec, config)
+    if not report["valid"]:
+        failed = "+".join(c["name"] for c in report["checks"] if not c["passed"])
+        return GenerationFailure(spec, constructor, seed, 1, {f"raster {failed}": 1}, time.perf_counter() - t0, report)
+    return Acceptance(spec, m, line, report, constructor, seed, 1, time.perf_counter() - t0)
