@@ -227,19 +227,25 @@ mod debug_tests {
     #[test]
     #[ignore]
     fn debug_print() {
-        let s = Spec { name: "t".into(), lap_length_m: 60.0, corridor_width_m: 1.5, hall_x_m: 20.0, hall_y_m: 15.0, direction: "counterclockwise".into(), hairpins: 3, chicanes: 1, sweepers: 0, feature_order: vec![], min_radius_m: 0.0, longest_straight_m: 0.0 };
+        let s = Spec { name: "t".into(), lap_length_m: 40.0, corridor_width_m: 1.2, hall_x_m: 12.0, hall_y_m: 10.0, direction: "counterclockwise".into(), hairpins: 2, chicanes: 0, sweepers: 0, feature_order: vec![], min_radius_m: 0.0, longest_straight_m: 0.0 };
         let cfg = ConstructorConfig::default();
         let d = derive(&s, &cfg);
         println!("{d:?} options {:?}", perimeter_options(&s, &d));
         let mut shown = 0;
-        for k in 0..200 {
+        for k in 0..800 {
             if let Ok(c) = construct(&s, &cfg, 0, k) {
                 let g = rasterise_candidate(&c, &s, &cfg).unwrap();
                 let r = validate_map(&g, &s, &cfg);
+                if r.valid { continue; }
                 let a = analyse_closed_curve(&c.centreline, d.corner_radius);
-                println!("k {k} pitch {:.3} analytic minr {:.3} valid {} failed {:?}", c.pitch_m, a.min_radius_m, r.valid, r.failed());
+                let rl = analyse_closed_curve(&r.centreline, d.corner_radius);
+                println!("k {k} pitch {:.3} failed {:?}", c.pitch_m, r.failed());
+                for t in &a.turns { print!(" [{:.1}° r{:.2} @{:.1}-{:.1}]", t.angle_rad.to_degrees(), t.peak_radius_m, t.start_m, t.end_m); }
+                println!();
+                for t in &rl.turns { print!(" [{:.1}° r{:.2} @{:.1}-{:.1}]", t.angle_rad.to_degrees(), t.peak_radius_m, t.start_m, t.end_m); }
+                println!();
                 shown += 1;
-                if shown > 20 { break; }
+                if shown > 4 { break; }
             }
         }
     }

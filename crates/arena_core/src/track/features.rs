@@ -8,10 +8,11 @@
 //! `generate::lattice`); the bands are:
 //!
 //! * a *turn* is a maximal run where `|κ| ≥ 1/(8 r_c)` that reaches `|κ| ≥ 1/(3 r_c)`;
-//!   same-sense turns separated by less than `1.2 r_c` of straight are merged;
+//!   same-sense turns separated by less than `0.8 r_c` of straight are merged (one lattice
+//!   edge leaves ≤ 0.8 r_c between fillets, two edges ≥ 2 r_c; smoothing blurs ~0.6 r_c);
 //! * *hairpin*: a merged turn of `|θ| ≥ 135°`;
 //! * *chicane*: two consecutive opposite-sense turns of `45° ≤ |θ| < 135°` separated by
-//!   less than `1.2 r_c`;
+//!   less than `0.8 r_c`;
 //! * *sweeper*: any other turn of `45° ≤ |θ| < 135°` whose peak radius is `≥ 1.5 r_c`;
 //! * a *straight* is a maximal run where `|κ| < 1/(8 r_c)`.
 
@@ -216,7 +217,7 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
         }
     }
     // Merge same-sense turns across short gaps.
-    let gap_max = 1.2 * rc;
+    let gap_max = 0.8 * rc;
     let mut turns: Vec<(usize, usize, f64, f64)> = Vec::new();
     for t in raw {
         if let Some(last) = turns.last_mut() {
