@@ -13,17 +13,8 @@ from roboracer_arena.envs import LidarConfig, SimConfig
 from roboracer_arena.errors import InvalidArgumentError
 
 
-def stadium(straight: float, r: float, n: int) -> np.ndarray:
-    h = straight / 2
-    pts = []
-    for cx, a0 in ((h, -math.pi / 2), (-h, math.pi / 2)):
-        for k in range(n + 1):
-            a = a0 + math.pi * k / n
-            pts.append((cx + r * math.cos(a), r * math.sin(a)))
-    return np.asarray(pts)
-
-
-STADIUM = ([stadium(6.0, 4.0, 48), stadium(6.0, 2.0, 48)], stadium(6.0, 3.0, 96))
+# Straights 6 m, centreline radius 3 m, corridor 2 m: walls are stadiums of radius 4 and 2.
+STADIUM = _core.stadium_track(6.0, 3.0, 2.0)
 
 
 def make(num_envs=2, vehicles=2, config=None, seed=0, tracks=(STADIUM,)):

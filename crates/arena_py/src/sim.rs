@@ -229,8 +229,23 @@ impl Simulator {
     }
 }
 
+/// Analytic stadium track (walls [outer, inner], centreline), for tests and benchmarks:
+/// straights of `straight` m, centreline radius `radius` m, corridor `width` m.
+#[pyfunction]
+#[pyo3(signature = (straight = 6.0, radius = 3.0, width = 2.0))]
+fn stadium_track<'py>(py: Python<'py>, straight: f64, radius: f64, width: f64) -> PyResult<(Vec<Bound<'py, PyArray2<f64>>>, Bound<'py, PyArray2<f64>>)> {
+    let ok = |x: f64| x.is_finite() && x > 0.0;
+    if !(ok(radius) && ok(width) && straight.is_finite() && straight >= 0.0 && width < 2.0 * radius) {
+        return Err(invalid("stadium_track needs straight >= 0, radius > 0 and 0 < width < 2 radius"));
+    }
+    let (walls, centre) = arena_core::sim::shapes::stadium_track(straight, radius, width);
+    let arr = |pts: &[[f64; 2]]| PyArray2::from_vec2(py, &pts.iter().map(|p| p.to_vec()).collect::<Vec<_>>()).map_err(|e| invalid(e.to_string()));
+    Ok((walls.iter().map(|w| arr(w)).collect::<PyResult<_>>()?, arr(&centre)?))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Simulator>()?;
+    m.add_function(wrap_pyfunction!(stadium_track, m)?)?;
     m.add("STATE_FIELDS", PyTuple::new(m.py(), STATE_FIELDS)?)?;
     Ok(())
 }

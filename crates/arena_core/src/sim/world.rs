@@ -27,6 +27,12 @@ pub const EVENT_LAP: u8 = 4;
 /// pose at rest (never expected; reported so it cannot pass silently).
 pub const EVENT_FAULT: u8 = 8;
 
+/// Half side of the ground cuboid (m): larger than any track.
+const GROUND_HALF_SIZE: f32 = 5000.0;
+
+/// Contact prediction distance (m); below the chassis' 2 cm ground clearance.
+const PREDICTION_DISTANCE: f32 = 0.01;
+
 struct Car {
     body: RigidBodyHandle,
     collider: ColliderHandle,
@@ -66,7 +72,16 @@ impl World {
         pw.gravity = Vector::new(0.0, 0.0, -(physics.gravity as f32));
         pw.integration_parameters.dt = physics.dt as f32;
         pw.integration_parameters.num_solver_iterations = physics.solver_iterations;
-        let ground = ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Z)).friction(physics.ground_friction as f32).build();
+        // Speculative-contact margin (rapier's default is 2 cm, as large as the chassis'
+        // ground clearance, which kept a chassis–ground contact in every step).
+        pw.integration_parameters.normalized_prediction_distance = PREDICTION_DISTANCE;
+        // Ground: a big cuboid with its top face at z = 0 (not a half-space, whose
+        // unbounded AABB would keep a chassis–ground contact pair alive in every step;
+        // the chassis box rides above the ground on its wheels, so normally no pair exists).
+        let ground = ColliderBuilder::cuboid(GROUND_HALF_SIZE, GROUND_HALF_SIZE, 0.5)
+            .translation(Vector::new(0.0, 0.0, -0.5))
+            .friction(physics.ground_friction as f32)
+            .build();
         pw.colliders.insert(ground);
         let wall = pw.colliders.insert(ColliderBuilder::new(track.wall_shape.clone()).friction(physics.wall_friction as f32).build());
         let mut cars = Vec::with_capacity(vehicles);
