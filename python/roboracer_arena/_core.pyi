@@ -71,6 +71,8 @@ class Simulator:
     @property
     def config_json(self) -> str: ...
     def track_ids(self) -> npt.NDArray[np.int64]: ...
+    def step_counts(self) -> tuple[int, int]:
+        """(world steps through the rapier pipeline, contact-free shortcut steps), summed over envs."""
     def set_tracks(self, track_ids: npt.ArrayLike) -> None:
         """Track of each env, shape (num_envs,); reset the env afterwards."""
     def reset(self, env_mask: npt.NDArray[np.bool_], poses: npt.NDArray[np.float64]) -> None:
