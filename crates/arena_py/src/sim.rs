@@ -236,11 +236,14 @@ impl Simulator {
     }
 }
 
+/// (walls, centreline) as numpy arrays.
+type TrackArrays<'py> = (Vec<Bound<'py, PyArray2<f64>>>, Bound<'py, PyArray2<f64>>);
+
 /// Analytic stadium track (walls [outer, inner], centreline), for tests and benchmarks:
 /// straights of `straight` m, centreline radius `radius` m, corridor `width` m.
 #[pyfunction]
 #[pyo3(signature = (straight = 6.0, radius = 3.0, width = 2.0))]
-fn stadium_track<'py>(py: Python<'py>, straight: f64, radius: f64, width: f64) -> PyResult<(Vec<Bound<'py, PyArray2<f64>>>, Bound<'py, PyArray2<f64>>)> {
+fn stadium_track<'py>(py: Python<'py>, straight: f64, radius: f64, width: f64) -> PyResult<TrackArrays<'py>> {
     let ok = |x: f64| x.is_finite() && x > 0.0;
     if !(ok(radius) && ok(width) && straight.is_finite() && straight >= 0.0 && width < 2.0 * radius) {
         return Err(invalid("stadium_track needs straight >= 0, radius > 0 and 0 < width < 2 radius"));

@@ -19,6 +19,9 @@ use super::vehicle::VehicleModel;
 use super::world::{World, STATE_SIZE};
 use crate::error::{ArenaError, Result};
 
+/// One world with its slices of the state, events and (optional) scan buffers.
+type WorldOutputs<'a> = (((&'a mut World, &'a mut [f64]), &'a mut [u8]), Option<&'a mut [f32]>);
+
 pub struct Simulator {
     params: SimParams,
     model: VehicleModel,
@@ -153,7 +156,7 @@ impl Simulator {
         self.check_outputs(scans.as_deref().map(|s| s.len()), state.len(), events.len())?;
         let (model, scanner) = (&self.model, &self.scanner);
         let b = scanner.num_beams();
-        let one = |(((w, st), ev), sc): (((&mut World, &mut [f64]), &mut [u8]), Option<&mut [f32]>)| {
+        let one = |(((w, st), ev), sc): WorldOutputs<'_>| {
             w.write_state(st, ev);
             if let Some(sc) = sc {
                 w.scan(scanner, model, sc);

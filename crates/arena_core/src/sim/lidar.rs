@@ -388,8 +388,7 @@ mod tests {
             [r * a.cos(), r * a.sin()]
         }).collect();
         let grid = SegmentGrid::new(&[poly]);
-        let mut p = LidarParams::default();
-        p.mount_x = 0.0;
+        let p = LidarParams { mount_x: 0.0, ..Default::default() };
         let sc = Scanner::new(&p);
         let mut out = vec![0.0f32; sc.num_beams()];
         sc.scan([0.0, 0.0, 1.0], &grid, &[], &mut ChaCha8Rng::seed_from_u64(1), &mut out);
@@ -414,8 +413,7 @@ mod tests {
     #[test]
     fn noise_is_seeded_and_clamped() {
         let grid = SegmentGrid::new(&[square(2.0)]);
-        let mut p = LidarParams::default();
-        p.noise_std = 0.05;
+        let p = LidarParams { noise_std: 0.05, ..Default::default() };
         let sc = Scanner::new(&p);
         let (mut a, mut b) = (vec![0.0f32; sc.num_beams()], vec![0.0f32; sc.num_beams()]);
         sc.scan([0.0, 0.0, 0.0], &grid, &[], &mut ChaCha8Rng::seed_from_u64(7), &mut a);

@@ -35,6 +35,7 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
 
 /// Lower `ranges[k]` to the nearest wall hit of beam k, for beams at world angles
 /// `theta0 + k inc` with unit directions `dirs[k]`, from `(ox, oy)`, within `rmax`.
+#[allow(clippy::too_many_arguments)]
 pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: &[[f64; 2]], rmax: f64, ranges: &mut [f64]) {
     let n = dirs.len();
     if n == 0 {

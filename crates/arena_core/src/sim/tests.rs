@@ -128,7 +128,7 @@ fn lidar_in_world_sees_walls_and_other_cars() {
     let track = Arc::new(Track::new(&[square_room(5.0)], &square_room(2.0), 0.5).unwrap());
     let mut sim = Simulator::new(vec![track], 1, 2, params, 0).unwrap();
     // Car 0 at the origin facing +x; car 1 three metres ahead, sideways.
-    sim.reset(&[true], &[0.0, 0.0, 0.0, 3.0, 0.0, 1.5707963]).unwrap();
+    sim.reset(&[true], &[0.0, 0.0, 0.0, 3.0, 0.0, std::f64::consts::FRAC_PI_2]).unwrap();
     let mut out = Out::new(&sim);
     sim.observe(Some(&mut out.scans), &mut out.state, &mut out.events).unwrap();
     let b = sim.num_beams();
