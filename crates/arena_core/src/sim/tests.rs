@@ -234,3 +234,23 @@ fn free_step_shortcut_matches_the_full_pipeline() {
     }
 }
 
+
+/// Two cars driven head-on into each other report a vehicle contact (not a wall one),
+/// stop instead of passing through each other, and never produce a fault.
+#[test]
+fn head_on_cars_report_vehicle_contact() {
+    let track = Arc::new(Track::new(&[square_room(20.0)], &square_room(5.0), 0.5).unwrap());
+    let mut sim = Simulator::new(vec![track], 1, 2, SimParams::default(), 0).unwrap();
+    sim.reset(&[true], &[-3.0, 0.0, 0.0, 3.0, 0.0, std::f64::consts::PI]).unwrap();
+    let mut out = Out::new(&sim);
+    let mut seen = 0u8;
+    for _ in 0..60 {
+        sim.step(&[0.0, 4.0, 0.0, 4.0], 10, None, &mut out.state, &mut out.events).unwrap();
+        seen |= out.events[0] | out.events[1];
+        // Chassis boxes are 0.55 m long: centres never closer than that minus contact slack.
+        assert!(out.row(0)[0] < out.row(1)[0], "cars passed through each other");
+    }
+    assert!(seen & EVENT_VEHICLE != 0, "no vehicle contact reported");
+    assert_eq!(seen & (EVENT_WALL | EVENT_FAULT), 0);
+    assert!(out.row(1)[0] - out.row(0)[0] > 0.5, "{:?} {:?}", out.row(0), out.row(1));
+}
