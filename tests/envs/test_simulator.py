@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from roboracer_arena import _core
-from roboracer_arena.envs import LidarConfig, SimConfig
+from roboracer_arena.envs import LidarConfig, PhysicsConfig, SimConfig
 from roboracer_arena.errors import InvalidArgumentError
 
 
@@ -158,11 +158,25 @@ def test_tracks_switch_per_env():
 
 
 @pytest.fixture(scope="module")
-def berlin(sources):
+def berlin_geometry(sources):
     from roboracer_arena.corridor import extract_corridor
 
-    geo = extract_corridor(sources / "f1tenth-gym" / "maps" / "berlin.yaml")
-    return geo.walls, geo.centreline
+    return extract_corridor(sources / "f1tenth-gym" / "maps" / "berlin.yaml")
+
+
+@pytest.fixture(scope="module")
+def berlin(berlin_geometry):
+    return berlin_geometry.walls, berlin_geometry.centreline
+
+
+def test_physics_walls_are_the_builders_wall_mesh(berlin_geometry):
+    """The collision mesh in every world is exactly the mesh the USD stage gets."""
+    geo = berlin_geometry
+    config = SimConfig(physics=PhysicsConfig(wall_height=geo.params["wall_height_m"]))
+    sim = _core.Simulator([(geo.walls, geo.centreline)], 2, 1, config.to_json(), 0)
+    vertices, triangles = sim.wall_mesh(0)
+    usd_vertices, usd_triangles = geo.meshes["walls"]
+    assert np.array_equal(vertices, usd_vertices) and np.array_equal(triangles, usd_triangles)
 
 
 def _reference_ranges(walls, origin, angles, range_max):

@@ -196,6 +196,18 @@ impl Simulator {
         PyArray2::from_vec2(py, &rows).map_err(|e| invalid(e.to_string()))
     }
 
+    /// The collision wall mesh of a track as the physics engine holds it (shared by all
+    /// envs on that track): (vertices (V, 3) float32, triangles (T, 3) uint32).
+    fn wall_mesh<'py>(&self, py: Python<'py>, track_id: usize) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>)> {
+        let (v, t) = self.inner.track(track_id).py()?.wall_mesh();
+        let v: Vec<Vec<f32>> = v.iter().map(|p| p.to_vec()).collect();
+        let t: Vec<Vec<u32>> = t.iter().map(|p| p.to_vec()).collect();
+        Ok((
+            PyArray2::from_vec2(py, &v).map_err(|e| invalid(e.to_string()))?,
+            PyArray2::from_vec2(py, &t).map_err(|e| invalid(e.to_string()))?,
+        ))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Simulator(num_envs={}, vehicles_per_env={}, num_beams={}, tracks={}, dt={})",

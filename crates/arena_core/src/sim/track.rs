@@ -158,6 +158,14 @@ impl std::fmt::Debug for Track {
 }
 
 impl Track {
+    /// The collision mesh as the physics engine holds it: (vertices, triangles).
+    pub fn wall_mesh(&self) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+        match self.wall_shape.as_trimesh() {
+            Some(m) => (m.vertices().iter().map(|v| [v.x, v.y, v.z]).collect(), m.indices().to_vec()),
+            None => (Vec::new(), Vec::new()),
+        }
+    }
+
     /// Build from closed wall polylines and a closed centreline; walls are extruded from
     /// z = 0 to `wall_height` for the collision mesh.
     pub fn new(walls: &[Vec<[f64; 2]>], centreline: &[[f64; 2]], wall_height: f64) -> Result<Self> {
