@@ -7,6 +7,8 @@ use std::sync::Arc;
 use arena_core::sim::shapes::stadium_track;
 use arena_core::sim::{SimParams, Simulator, Track, STATE_SIZE};
 use criterion::{criterion_group, criterion_main, Criterion};
+use rapier3d::parry::query::{Ray, RayCast};
+use rapier3d::prelude::Vector;
 
 fn simulator(envs: usize, per_env: usize) -> Simulator {
     let params = SimParams::default();
@@ -43,6 +45,31 @@ fn bench_sim(c: &mut Criterion) {
     let mut scans = vec![0.0f32; sim.num_beams()];
     c.bench_function("lidar scan (1081 beams)", |b| {
         b.iter(|| sim.observe(Some(&mut scans), &mut state, &mut events).unwrap())
+    });
+
+    // The alternatives, from the same pose: the per-beam grid walk, and ray casts on the
+    // rapier/parry trimesh (the 3D collision walls) as a reference.
+    let track = sim.tracks()[0].clone();
+    let (ox, oy, yaw) = (state[0] + 0.12 * state[2].cos(), state[1] + 0.12 * state[2].sin(), state[2]);
+    let dirs: Vec<(f64, f64)> = (0..1081)
+        .map(|k| {
+            let a = yaw - 0.75 * std::f64::consts::PI + k as f64 * 1.5 * std::f64::consts::PI / 1080.0;
+            (a.cos(), a.sin())
+        })
+        .collect();
+    c.bench_function("lidar scan (1081 beams, per-beam grid walk)", |b| {
+        b.iter(|| dirs.iter().map(|&(dx, dy)| track.grid.cast(ox, oy, dx, dy, 30.0)).fold(0.0, f64::max))
+    });
+    let mesh = track.wall_shape.as_trimesh().unwrap();
+    c.bench_function("lidar scan (1081 beams, parry trimesh ray casts)", |b| {
+        b.iter(|| {
+            dirs.iter()
+                .map(|&(dx, dy)| {
+                    let ray = Ray::new(Vector::new(ox as f32, oy as f32, 0.12), Vector::new(dx as f32, dy as f32, 0.0));
+                    mesh.cast_local_ray(&ray, 30.0, true).unwrap_or(30.0)
+                })
+                .fold(0.0, f32::max)
+        })
     });
 
     for (envs, per_env) in [(256, 1), (32, 8)] {
