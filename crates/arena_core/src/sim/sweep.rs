@@ -52,9 +52,12 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
         let l2 = s[2] * s[2] + s[3] * s[3];
         let t = if l2 > 0.0 { (-(ax * s[2] + ay * s[3]) / l2).clamp(0.0, 1.0) } else { 0.0 };
         let (cx, cy) = (ax + t * s[2], ay + t * s[3]);
-        if cx * cx + cy * cy > r2 {
+        let d2 = cx * cx + cy * cy;
+        if d2 > r2 {
             continue;
         }
+        // No hit on this segment is nearer than its closest point (slack for rounding).
+        let dmin = d2.sqrt() * (1.0 - 1e-9);
         // Angular interval swept counter-clockwise from p to q as seen from the origin.
         let ((px, py), (qx, qy)) = if ax * by - ay * bx >= 0.0 { ((ax, ay), (bx, by)) } else { ((bx, by), (ax, ay)) };
         let start = (fast_atan2(py, px) - theta0).rem_euclid(TAU);
@@ -69,6 +72,9 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
             let k0 = if inc > 0.0 { (l.max(0.0) * inv - 1e-6).ceil().max(0.0) as usize } else { 0 };
             let k1 = if inc > 0.0 { ((h.min(span) * inv + 1e-6).floor() as usize).min(n - 1) } else { 0 };
             for k in k0..=k1 {
+                if dmin >= ranges[k] {
+                    continue; // occluded: a nearer wall already covers this beam
+                }
                 let d = dirs[k];
                 // Same arithmetic as `ray_segment` (so the same bits), but the division
                 // is only done for a hit that can lower the range (1e-12 slack keeps
