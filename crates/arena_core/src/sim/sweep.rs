@@ -45,7 +45,11 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
     let margin = inc.max(1e-4) + 1e-4;
     let inv = if inc > 0.0 { 1.0 / inc } else { 0.0 };
     let r2 = rmax * rmax;
-    for s in grid.segments() {
+    // Pass 1: segments within range and the field of view, with their nearest distance
+    // and angular interval.
+    let segs = grid.segments();
+    let mut cands: Vec<Candidate> = Vec::with_capacity(segs.len());
+    for (i, s) in segs.iter().enumerate() {
         let (ax, ay) = (s[0] - ox, s[1] - oy);
         let (bx, by) = (ax + s[2], ay + s[3]);
         // Skip segments entirely beyond range.
@@ -56,15 +60,43 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
         if d2 > r2 {
             continue;
         }
-        // No hit on this segment is nearer than its closest point (slack for rounding).
-        let dmin = d2.sqrt() * (1.0 - 1e-9);
         // Angular interval swept counter-clockwise from p to q as seen from the origin.
         let ((px, py), (qx, qy)) = if ax * by - ay * bx >= 0.0 { ((ax, ay), (bx, by)) } else { ((bx, by), (ax, ay)) };
-        let start = (fast_atan2(py, px) - theta0).rem_euclid(TAU);
-        let len = (fast_atan2(qy, qx) - fast_atan2(py, px)).rem_euclid(TAU);
+        let ap = fast_atan2(py, px);
+        let start = (ap - theta0).rem_euclid(TAU);
+        let len = (fast_atan2(qy, qx) - ap).rem_euclid(TAU);
         let (lo, hi) = (start - margin, start + len + margin);
+        if [-TAU, 0.0, TAU].iter().all(|sh| hi + sh < 0.0 || lo + sh > span) {
+            continue; // outside the field of view
+        }
+        // No hit on this segment is nearer than its closest point (slack for rounding).
+        cands.push(Candidate { dmin: d2.sqrt() * (1.0 - 1e-9), lo, hi, seg: i as u32 });
+    }
+    // Near segments first (counting sort on distance buckets), so that beams are covered
+    // early and occluded (segment, beam) pairs fail the cheap `dmin >= range` test. The
+    // order cannot change the result: each range is a minimum.
+    const BUCKETS: usize = 32;
+    let bucket = |d: f64| ((d / rmax * BUCKETS as f64) as usize).min(BUCKETS - 1);
+    let mut first = [0usize; BUCKETS + 1];
+    for c in &cands {
+        first[bucket(c.dmin) + 1] += 1;
+    }
+    for b in 0..BUCKETS {
+        first[b + 1] += first[b];
+    }
+    let mut order = vec![0u32; cands.len()];
+    for (i, c) in cands.iter().enumerate() {
+        let b = bucket(c.dmin);
+        order[first[b]] = i as u32;
+        first[b] += 1;
+    }
+    // Pass 2: exact intersections of each candidate with the beams it spans.
+    for &i in &order {
+        let c = &cands[i as usize];
+        let s = &segs[c.seg as usize];
+        let (ax, ay) = (s[0] - ox, s[1] - oy);
         for shift in [-TAU, 0.0, TAU] {
-            let (l, h) = (lo + shift, hi + shift);
+            let (l, h) = (c.lo + shift, c.hi + shift);
             if h < 0.0 || l > span {
                 continue;
             }
@@ -72,7 +104,7 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
             let k0 = if inc > 0.0 { (l.max(0.0) * inv - 1e-6).ceil().max(0.0) as usize } else { 0 };
             let k1 = if inc > 0.0 { ((h.min(span) * inv + 1e-6).floor() as usize).min(n - 1) } else { 0 };
             for k in k0..=k1 {
-                if dmin >= ranges[k] {
+                if c.dmin >= ranges[k] {
                     continue; // occluded: a nearer wall already covers this beam
                 }
                 let d = dirs[k];
@@ -91,6 +123,15 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
             }
         }
     }
+}
+
+/// A segment that may be seen: nearest distance, angular interval (rad from beam 0,
+/// widened), index.
+struct Candidate {
+    dmin: f64,
+    lo: f64,
+    hi: f64,
+    seg: u32,
 }
 
 #[cfg(test)]
