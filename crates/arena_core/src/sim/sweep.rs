@@ -45,6 +45,7 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
     let margin = inc.max(1e-4) + 1e-4;
     let inv = if inc > 0.0 { 1.0 / inc } else { 0.0 };
     let r2 = rmax * rmax;
+    let theta0 = theta0.rem_euclid(TAU);
     // Pass 1: segments within range and the field of view, with their nearest distance
     // and angular interval.
     let segs = grid.segments();
@@ -63,8 +64,8 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
         // Angular interval swept counter-clockwise from p to q as seen from the origin.
         let ((px, py), (qx, qy)) = if ax * by - ay * bx >= 0.0 { ((ax, ay), (bx, by)) } else { ((bx, by), (ax, ay)) };
         let ap = fast_atan2(py, px);
-        let start = (ap - theta0).rem_euclid(TAU);
-        let len = (fast_atan2(qy, qx) - ap).rem_euclid(TAU);
+        let start = wrap_tau(ap - theta0);
+        let len = wrap_tau(fast_atan2(qy, qx) - ap);
         let (lo, hi) = (start - margin, start + len + margin);
         if [-TAU, 0.0, TAU].iter().all(|sh| hi + sh < 0.0 || lo + sh > span) {
             continue; // outside the field of view
@@ -101,8 +102,9 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
                 continue;
             }
             // (±1e-6 beams: span * inv may round just below n - 1.)
-            let k0 = if inc > 0.0 { (l.max(0.0) * inv - 1e-6).ceil().max(0.0) as usize } else { 0 };
-            let k1 = if inc > 0.0 { ((h.min(span) * inv + 1e-6).floor() as usize).min(n - 1) } else { 0 };
+            // (Non-negative, so truncation is floor; no libm floor/ceil calls.)
+            let k0 = if inc > 0.0 { ceil_nonneg(l.max(0.0) * inv - 1e-6) } else { 0 };
+            let k1 = if inc > 0.0 { ((h.min(span) * inv + 1e-6) as usize).min(n - 1) } else { 0 };
             for k in k0..=k1 {
                 if c.dmin >= ranges[k] {
                     continue; // occluded: a nearer wall already covers this beam
@@ -123,6 +125,25 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
             }
         }
     }
+}
+
+/// `x` wrapped into [0, 2 pi) for |x| < 4 pi (all this module passes), without fmod.
+#[inline(always)]
+fn wrap_tau(x: f64) -> f64 {
+    let x = if x < 0.0 { x + TAU } else { x };
+    let x = if x < 0.0 { x + TAU } else { x };
+    let x = if x >= TAU { x - TAU } else { x };
+    if x >= TAU { x - TAU } else { x }
+}
+
+/// Ceiling of a value >= -1 as usize (negative values give 0).
+#[inline(always)]
+fn ceil_nonneg(x: f64) -> usize {
+    if x <= 0.0 {
+        return 0;
+    }
+    let t = x as usize;
+    t + ((t as f64) < x) as usize
 }
 
 /// A segment that may be seen: nearest distance, angular interval (rad from beam 0,
