@@ -176,6 +176,7 @@ def _order(c: Canon, f: Found, ms: list[Mention], counts: Counter[str]) -> None:
         if ok and len(run) >= 2:
             ordered_runs.append((run, links, glue))
     if not ordered_runs:
+        _first_or_last(c, f, ms, counts)
         return
     if len(ordered_runs) > 1:
         raise RequestParseError("the request gives two separate feature orders; state one sequence")
@@ -200,3 +201,30 @@ def _order(c: Canon, f: Found, ms: list[Mention], counts: Counter[str]) -> None:
         c.consume_token(j)
     f.values["feature_order"] = order
     f.spans["feature_order"] = [m.span for m in run]
+
+
+_FIRST_LAST = {"first": "first", "last": "last", "start": "first", "end": "last"}
+
+
+def _first_or_last(c: Canon, f: Found, ms: list[Mention], counts: Counter[str]) -> None:
+    """ "two hairpins and a chicane, the chicane first": with two kinds of feature, naming
+    one kind first (or last) orders the lap."""
+    kinds = [k for k, n in counts.items() if n > 0]
+    if len(kinds) != 2:
+        return
+    for m in ms:
+        after = range(m.last + 1, min(len(c.tokens), m.last + 5))
+        for j in after:
+            w = c.tokens[j].canon
+            if w in (",", ".", ";") or (c.tokens[j].kind != "word"):
+                break
+            if w in _FIRST_LAST and not c.used[j]:
+                lead = m.feature if _FIRST_LAST[w] == "first" else next(k for k in kinds if k != m.feature)
+                other = next(k for k in kinds if k != lead)
+                f.values["feature_order"] = [lead] * counts[lead] + [other] * counts[other]
+                f.spans["feature_order"] = [(m.span[0], c.tokens[j].end)]
+                for k in range(m.last + 1, j + 1):
+                    if c.tokens[k].canon in _ORDER_GLUE | {"comes", "come", "should", "must", "go", "goes", "at", "the", w}:
+                        c.consume_token(k)
+                return
+

@@ -37,6 +37,7 @@ def _rx(body: str) -> re.Pattern[str]:
 # A quantity that is not the start of a hall pair or a feature count.
 _QEND = r"(?! (?:x|by|\d|hairpins?|chicanes?|sweepers?)(?: |$))"
 _LONG = alt("long", "in length", "length")
+_LENGTHN = alt("length", "distance", "circumference", "perimeter")
 _WIDE = alt("wide", "in width", "width", "across")
 _MINR = "(?:" + alt("minimum", "min", "smallest", "tightest", "least", "lowest") + " )?"
 _RKIND = "(?:" + alt("turning", "turn", "corner", "cornering", "curve", "bend", "centreline", "curvature") + " )?"
@@ -100,7 +101,9 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     (_rx(rf"{HALL} (?:{FILL})(?P<w>{_LONG}|{_WIDE}) (?:{FILL}){_q('q')}{_QEND}"), _hall_one),
     (_rx(rf"{HALL} (?:{FILL}){_q('q')} (?P<w>{_LONG}|{_WIDE})"), _hall_one),
     (_rx(rf"{_q('q')} (?P<w>{_LONG}|{_WIDE}) {HALL}"), _hall_one),
-    # -- quantity then noun
+    # -- quantity then noun ("no turn tighter than 2 m radius" first: it ends in "radius")
+    (_rx(rf"(?:{FILL})?(?:no|not|never) (?:{_TURNS} )?(?:{FILL})tighter than (?:a )?{_q('q')}(?: radius)?{_QEND}"),
+     _setter("min_radius_m")),
     (_rx(rf"{_q('q')} {_MINR}{_RKIND}radius"), _setter("min_radius_m")),
     (_rx(rf"{_q('q')} (?:long )?{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
     (_rx(rf"{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
@@ -109,14 +112,12 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
      lambda m, c, f: f.set("lap_length_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
     # -- noun then quantity
     (_rx(rf"{_MINR}{_RKIND}radius (?:{FILL}){_q('q')}{_QEND}"), _setter("min_radius_m")),
-    (_rx(rf"(?:{FILL})?(?:no|not|never) (?:{_TURNS} )?(?:{FILL})tighter than (?:a )?{_q('q')}(?: radius)?{_QEND}"),
-     _setter("min_radius_m")),
     (_rx(rf"{alt('tightest', 'smallest', 'sharpest')} {_TURNS} (?:{FILL}){_q('q')}(?: radius)?{_QEND}"), _setter("min_radius_m")),
     (_rx(rf"{_STRAIGHT_ADJ}straights? (?:{FILL}){_q('q')}(?: long| in length)?{_QEND}"), _setter("longest_straight_m")),
     (_rx(rf"(?:(?:{CORR}|{LAP}) )?width (?:{FILL}){_q('q')}{_QEND}"), _setter("corridor_width_m")),
     (_rx(rf"(?:{CORR}|{LAP}) (?:{FILL}){_q('q')} {_WIDE}|{CORR} (?:{FILL}){_q('p')}{_QEND}"),
      lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
-    (_rx(rf"(?:(?:{LAP}|total|overall) )?(?:{LAP} )?length (?:{FILL}){_q('q')}{_QEND}"), _setter("lap_length_m")),
+    (_rx(rf"(?:(?:{LAP}|total|overall) )?(?:{LAP} )?{_LENGTHN} (?:{FILL}){_q('q')}{_QEND}"), _setter("lap_length_m")),
     (_rx(rf"{LAP} (?:{FILL}){_q('q')}(?: {_LONG}| around| round)?{_QEND}"), _setter("lap_length_m")),
     # -- bare fallbacks: "60 metres long", "1.5 m wide"
     (_rx(rf"{_q('q')} (?:{_LONG}|around|round)"), _setter("lap_length_m")),
@@ -126,7 +127,8 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
 
 # -- name ------------------------------------------------------------------------------
 _NAME_KEY = re.compile(
-    r"\b(?:called|named|titled|entitled|(?:its |the |with the )?name(?:\s+(?:it|is|of|should be))?\s*[:=]?)\s+",
+    r"\b(?:called|named|titled|entitled|call(?:\s+(?:it|this|the\s+(?:track|circuit|map|layout)))?"
+    r"|(?:its |the |with the )?name(?:\s+(?:it|is|of|should be))?\s*[:=]?)\s+",
     re.IGNORECASE,
 )
 _QUOTED = re.compile(r"[\"“'‘]([^\"”’]+?)[\"”'’](?=\W|$)")
