@@ -74,10 +74,13 @@ def _collect(c: Canon) -> list[Mention]:
                 n = int(value)
             add(m, _feature(m["f"]), "zero" if n == 0 else "count", n)
             c.consume(m.start(), m.end())
-    for rx, kind in ((_REF, "ref"), (_BARE, "bare")):
-        for m in rx.finditer(c.text):
-            kind_here = "bare-plural" if kind == "bare" and m["f"].endswith("s") else kind
-            add(m, _feature(m["f"]), kind_here, 0)
+    refs = list(_REF.finditer(c.text))
+    for m in refs:
+        add(m, _feature(m["f"]), "ref", 0)
+    for m in _BARE.finditer(c.text):
+        if any(r.start() <= m.start("f") < r.end() for r in refs):
+            continue  # the noun of a reference ("the hairpins")
+        add(m, _feature(m["f"]), "bare-plural" if m["f"].endswith("s") else "bare", 0)
     out.sort(key=lambda x: x.first)
     return out
 
