@@ -76,10 +76,11 @@ def _marked(result, colour: bool) -> str:
     return "".join(out)
 
 
-def print_result(result, file=sys.stdout) -> None:
-    """Human-readable TrackSpec with the source of each value."""
+def print_result(result, file=None) -> None:
+    """Human-readable TrackSpec with the source of each value (on ``file``, default stdout)."""
     from ..parse.result import FIELDS
 
+    file = file or sys.stdout
     colour = file.isatty()
     values = result.spec.model_dump()
     print(f"request: {_marked(result, colour)}", file=file)
