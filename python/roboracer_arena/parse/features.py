@@ -31,6 +31,10 @@ _COUNTED = [
     re.compile(_B + rf"(?P<one>a single|single|another|a|an) {_ADJS}{_F}" + _E),
     re.compile(_B + rf"{_F} (?::|=|x) (?P<n>\d+(?:\.\d+)?)" + _E),
 ]
+_EACH = re.compile(
+    _B + rf"(?P<n>\d+) {_ADJS}(?P<f1>{FEATURE_RE})(?: ,)? each (?:followed by|then|leading into|with|before) "
+    rf"(?P<m>a|an|a single|\d+) {_ADJS}(?P<f2>{FEATURE_RE})" + _E
+)
 _REF = re.compile(_B + rf"(?:the|both|these|those|each|every|its|their|all|said)(?: \d+)? {_ADJS}{_F}" + _E)
 _BARE = re.compile(_B + rf"{_ADJS}{_F}" + _E)
 _IN_ORDER = re.compile(_B + r"in (?:(?:that|this|the|exactly|strict|given|listed|following) )*(?:order|sequence)" + _E)
@@ -45,6 +49,8 @@ class Mention:
     first: int  # token indices [first, last]
     last: int
     span: tuple[int, int]
+    block: list[str] | None = None  # "2 hairpins, each followed by a chicane": h c h c
+    absorbed: bool = False  # the "chicane" of that phrase: counted, ordered by ``block``
 
 
 def _feature(word: str) -> str:
@@ -58,6 +64,15 @@ def _collect(c: Canon) -> list[Mention]:
         r = c.token_range(m.start(group), m.end(group))
         out.append(Mention(feature, kind, count, r.start, r.stop - 1, c.span(m.start(group), m.end(group))))
 
+    while (m := _EACH.search(c.text)) is not None:
+        n, k = int(m["n"]), (1 if not m["m"][0].isdigit() else int(m["m"]))
+        f1, f2 = _feature(m["f1"]), _feature(m["f2"])
+        add(m, f1, "count", n, "f1")
+        out[-1].block = ([f1] + [f2] * k) * n
+        add(m, f2, "count", n * k, "f2")
+        out[-1].absorbed = True
+        out[-1].span = out[-2].span = c.span(m.start(), m.end())
+        c.consume(m.start(), m.end())
     while (m := _ZERO_LIST.search(c.text)) is not None:
         for fm in _FEATURE_WORD.finditer(m.group()):
             r = c.token_range(m.start() + fm.start(), m.start() + fm.end())
@@ -186,6 +201,11 @@ def _order(c: Canon, f: Found, ms: list[Mention], counts: Counter[str]) -> None:
     run, links, glue = ordered_runs[0]
     seq: list[list[str]] = []
     for k, m in enumerate(run):
+        if m.absorbed:
+            continue
+        if m.block is not None:
+            seq.append(m.block)
+            continue
         n = m.count if m.kind == "count" else counts[m.feature]
         if n == 0:
             raise RequestParseError(f"the feature order names {m.feature}s but the request gives no count for them")

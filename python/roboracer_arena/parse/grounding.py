@@ -78,6 +78,8 @@ def _trace_count(name: str, value: int, toks: list[Tok]) -> Span | None:
     written = {int(t.value) for t in toks if t.kind == "num" and t.value is not None and float(t.value).is_integer()}
     if any(t.canon in _ONE_WORDS for t in toks):
         written.add(1)
+    if any(t.canon == "each" for t in toks):  # "two sweepers, each followed by two chicanes"
+        written |= {a * b for a in written for b in written}
     if value in written or value == len(hits):
         return hits[0].start, hits[-1].end
     return None

@@ -128,7 +128,7 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
 # -- name ------------------------------------------------------------------------------
 _NAME_KEY = re.compile(
     r"\b(?:called|named|titled|entitled|call(?:\s+(?:it|this|the\s+(?:track|circuit|map|layout)))?"
-    r"|(?:its |the |with the )?name(?:\s+(?:it|is|of|should be))?\s*[:=]?)\s+",
+    r"|(?:its |the |with the )?name(?:\s+(?:it|is|of|should be|this|the\s+(?:track|circuit|map|layout)))?\s*[:=]?)\s+",
     re.IGNORECASE,
 )
 _QUOTED = re.compile(r"[\"“'‘]([^\"”’]+?)[\"”'’](?=\W|$)")
@@ -184,6 +184,22 @@ def _direction(c: Canon, f: Found) -> None:
             f.set("direction", "clockwise" if sense == "cw" else "counterclockwise", sp)
 
 
+_QUALIFIERS = {
+    "min_radius_m": {"tightest", "smallest", "sharpest", "minimum", "min", "lowest", "least", "radius"},
+    "longest_straight_m": {"longest", "straight", "straights"},
+    "corridor_width_m": {"width", "wide"},
+}
+
+
+def _qualifiers(c: Canon, f: Found) -> None:
+    """Words that only qualify a stated field ("the tightest corner ... radius of 2 m")."""
+    for name, words in _QUALIFIERS.items():
+        if name in f.values:
+            for k, t in enumerate(c.tokens):
+                if not c.used[k] and t.canon in words:
+                    c.consume_token(k)
+
+
 def _unparsed(text: str, c: Canon) -> tuple[Fragment, ...]:
     frags: list[list[int]] = []
     for k, t in enumerate(c.tokens):
@@ -218,6 +234,7 @@ def parse_rules(text: str) -> ParseResult:
             c.consume(m.start(), m.end())
     _direction(c, f)
     parse_features(c, f)
+    _qualifiers(c, f)
     return finish(text, f, _unparsed(text, c), backend="rules")
 
 
