@@ -120,6 +120,7 @@ def test_corridor_width(text):
         ("anti-clockwise", "counterclockwise"), ("counter-clockwise", "counterclockwise"),
         ("counter clockwise", "counterclockwise"), ("counterclockwise", "counterclockwise"),
         ("run it CCW", "counterclockwise"), ("not clockwise", "counterclockwise"),
+        ("clock-wise", "clockwise"), ("anti-clock-wise", "counterclockwise"),
     ],
 )  # fmt: skip
 def test_direction(text, sense):
@@ -173,6 +174,7 @@ def test_bare_plural_is_reported_not_guessed():
         ("two hairpins and a chicane, the chicane first", ["chicane", "hairpin", "hairpin"]),
         ("two hairpins and a chicane. The chicane comes first, then the hairpins", ["chicane", "hairpin", "hairpin"]),
         ("starting with a sweeper, then two chicanes", ["sweeper", "chicane", "chicane"]),
+        ("2 hairpins, each followed by a chicane", ["hairpin", "chicane", "hairpin", "chicane"]),
     ],
 )
 def test_feature_order(text, order):
@@ -216,7 +218,7 @@ def test_longest_straight(text):
     [
         ('a track called "Gym Sprint"', "Gym Sprint"), ("a track named Foxtrot, 40 m lap", "Foxtrot"),
         ("call it Red Arrow with two hairpins", "Red Arrow"), ("named Loop-9.", "Loop-9"),
-        ("a circuit called 'The Oval'", "The Oval"),
+        ("a circuit called 'The Oval'", "The Oval"), ("name the track 'Blue Line'; 40 m lap", "Blue Line"),
     ],
 )  # fmt: skip
 def test_name(text, name):
@@ -252,6 +254,16 @@ def test_unexplained_words_are_reported_with_spans():
 def test_stray_number_is_reported():
     r = parse_request("a 40 m lap with 7 bumps")
     assert [u.text for u in r.unparsed] == ["7 bumps"]
+    assert [u.text for u in parse_request("a track with three turns").unparsed] == ["three turns"]
+
+
+def test_each_multiplies_counts():
+    assert stated("2 hairpins, each followed by a chicane")["chicanes"] == 2
+
+
+def test_qualifier_words_of_a_stated_field_are_explained():
+    r = parse_request("the tightest corner should have a radius of 2.5 m")
+    assert r.unparsed == () and r.spec.min_radius_m == 2.5
 
 
 def test_same_field_twice_with_different_values_is_an_error():

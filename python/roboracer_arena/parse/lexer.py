@@ -21,6 +21,9 @@ _DROPPED = {"-", "–", "—", "‐"}  # hyphens and dashes join words; they car
 
 # Multi-word phrases -> one canonical token (longest first). "s" plural is kept.
 _PHRASES: list[tuple[tuple[str, ...], str]] = [
+    (("counter", "clock", "wise"), "ccw"),
+    (("anti", "clock", "wise"), "ccw"),
+    (("clock", "wise"), "cw"),
     (("counter", "clockwise"), "ccw"),
     (("anti", "clockwise"), "ccw"),
     (("counterclockwise",), "ccw"),

@@ -203,7 +203,8 @@ def _qualifiers(c: Canon, f: Found) -> None:
 def _unparsed(text: str, c: Canon) -> tuple[Fragment, ...]:
     frags: list[list[int]] = []
     for k, t in enumerate(c.tokens):
-        if c.used[k] or t.kind == "punct" or (t.kind == "word" and t.canon in FILLER):
+        after_number = k > 0 and c.tokens[k - 1].kind == "num" and not c.used[k - 1] and t.kind == "word"
+        if c.used[k] or t.kind == "punct" or (t.kind == "word" and t.canon in FILLER and not after_number):
             continue
         if t.kind == "unit":
             continue  # a unit on its own ("metres") says nothing
