@@ -101,7 +101,7 @@ def test_defaults_need_no_trace():
     assert ground("anything at all", TrackSpec()).invented == {}
 
 
-@pytest.mark.parametrize("name", ["requests.jsonl"])
+@pytest.mark.parametrize("name", ["requests.jsonl", "requests_heldout.jsonl"])
 def test_rules_output_is_always_grounded(name):
     for line in (REPO / "benches" / name).read_text().splitlines():
         text = json.loads(line)["text"]

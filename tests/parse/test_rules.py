@@ -93,7 +93,8 @@ def test_hall_single_dimension():
     [
         "a 38 m lap", "a 38 m long loop", "lap of 38 m", "a lap length of 38 metres",
         "the track should be 38 metres long", "38 metres long", "38 m per lap",
-        "a track roughly 38 m around", "total length: 38 m", "a 38-metre circuit",
+        "a track roughly 38 m around", "total length: 38 m", "a 38-metre circuit", "38 m total length",
+        "38 metres overall", "a lap of 38 m in total",
     ],
 )  # fmt: skip
 def test_lap_length(text):
@@ -197,7 +198,7 @@ def test_order_that_omits_a_counted_feature_is_an_error():
     [
         "a minimum radius of 2 m", "min radius 2m", "a 2 m minimum radius", "a radius of at least 2 metres",
         "a minimum turning radius of 2 m", "no turn tighter than 2 m", "corners no tighter than 2 m radius",
-        "radii of no less than 2 m",
+        "radii of no less than 2 m", "corners mustn't be tighter than a 2 m radius", "turns can't be tighter than 2 m",
     ],
 )  # fmt: skip
 def test_min_radius(text):

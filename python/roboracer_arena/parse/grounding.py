@@ -33,7 +33,8 @@ from .units import METRES_PER
 from .vocab import CORRIDOR_NOUNS, HALL_NOUNS, LAP_NOUNS, ORDER_FORWARD, ORDER_REVERSE, ORDER_START
 
 _LENGTH_CUES: dict[str, set[str]] = {
-    "lap_length_m": set(LAP_NOUNS) | {"long", "length", "distance", "circumference", "perimeter", "around", "round"},
+    "lap_length_m": set(LAP_NOUNS)
+    | {"long", "length", "distance", "circumference", "perimeter", "around", "round", "total", "overall"},
     "corridor_width_m": set(CORRIDOR_NOUNS) | {"wide", "width", "across", "narrow"},
     "hall_x_m": set(HALL_NOUNS) | {"by", "x", "long", "length", "wide", "width"},
     "hall_y_m": set(HALL_NOUNS) | {"by", "x", "long", "length", "wide", "width"},

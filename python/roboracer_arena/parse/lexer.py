@@ -48,6 +48,7 @@ _PHRASES: list[tuple[tuple[str, ...], str]] = [
     (("straightaways",), "straights"),
     (("radii",), "radius"),
 ]
+_NEGATED_BASE = {"can't": "can", "won't": "will", "shan't": "shall"}
 _FEATURE_TAIL = {"bend", "bends", "turn", "turns", "corner", "corners", "curve", "curves"}
 _FEATURES = {"hairpin", "hairpins", "chicane", "chicanes", "sweeper", "sweepers"}
 
@@ -69,7 +70,18 @@ def _fmt(v: float) -> str:
 
 def tokenize(text: str) -> list[Tok]:
     """Split ``text`` into canonical tokens (see the module docstring)."""
-    raw = [(m.group(), m.start(), m.end()) for m in _RAW.finditer(text) if m.group() not in _DROPPED]
+    raw = []
+    for m in _RAW.finditer(text):
+        w = m.group()
+        if w in _DROPPED:
+            continue
+        lw = w.lower().replace("’", "'")
+        if lw.endswith("n't") and len(lw) > 3:  # "shouldn't" -> "should" + "not"
+            base = _NEGATED_BASE.get(lw, w[:-3])
+            raw.append((base, m.start(), m.end() - 3))
+            raw.append(("not", m.end() - 3, m.end()))
+        else:
+            raw.append((w, m.start(), m.end()))
     words = [r[0].lower().replace("’", "'") for r in raw]
     out: list[Tok] = []
     i = 0

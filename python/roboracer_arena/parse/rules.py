@@ -108,8 +108,9 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     (_rx(rf"{_q('q')} (?:long )?{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
     (_rx(rf"{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
      lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
-    (_rx(rf"{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"),
-     lambda m, c, f: f.set("lap_length_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
+    (_rx(rf"{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
+         rf"|{_q('t')} (?:in )?(?:total|overall)(?: (?:{LAP} )?{_LENGTHN})?"),
+     lambda m, c, f: f.set("lap_length_m", _qty(m, next(g for g in "qpt" if m[g])), _span(c, m))),
     # -- noun then quantity
     (_rx(rf"{_MINR}{_RKIND}radius (?:{FILL}){_q('q')}{_QEND}"), _setter("min_radius_m")),
     (_rx(rf"{alt('tightest', 'smallest', 'sharpest')} {_TURNS} (?:{FILL}){_q('q')}(?: radius)?{_QEND}"), _setter("min_radius_m")),
