@@ -22,6 +22,7 @@ def register(sub) -> None:
         "generate",
         help="requirements → validated occupancy map (or a rejection / generation failure)",
         description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("request", nargs="?", help="natural-language request (or use --spec)")
     p.add_argument("--spec", type=Path, metavar="SPEC.json", help="TrackSpec JSON file")
