@@ -158,9 +158,15 @@ def parse_features(c: Canon, f: Found) -> None:
     counted = {m.feature for m in ms if m.kind == "count"}
     counts: Counter[str] = Counter()
     zero: dict[str, Mention] = {}
-    for m in ms:
-        if m.kind == "bare":  # a bare singular noun: one, unless counted elsewhere
-            m.kind, m.count = ("ref", 0) if m.feature in counted else ("count", 1)
+    for i, m in enumerate(ms):
+        if m.kind == "bare":  # a bare singular noun: a reference, or one item of a list
+            listed = (i > 0 and _link(c, ms[i - 1], m) != "break") or (
+                i + 1 < len(ms) and _link(c, m, ms[i + 1]) != "break"
+            )
+            if m.feature in counted:
+                m.kind = "ref"
+            elif listed:
+                m.kind, m.count = "count", 1
         if m.kind == "bare-plural" and m.feature in counted:
             m.kind = "ref"
     for m in ms:
