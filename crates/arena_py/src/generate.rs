@@ -104,6 +104,26 @@ fn generate_lattice<'py>(
     })
 }
 
+/// The lattice constructor without the raster validator in its loop (the paper's
+/// constructor-comparison protocol). Returns ``(info_json, centreline | None)``; info has
+/// ``tried`` and, when no candidate passed the constructor's checks, ``reasons``.
+#[pyfunction]
+fn construct_lattice<'py>(
+    py: Python<'py>,
+    spec_json: &str,
+    config_json: &str,
+    seed: u64,
+) -> PyResult<(String, Option<Bound<'py, PyArray2<f64>>>)> {
+    let (spec, cfg) = parse(spec_json, config_json)?;
+    let out = py.detach(move || construct::first_candidate(&spec, &cfg, seed));
+    Ok(match out {
+        Ok((c, tried)) => {
+            (serde_json::json!({"tried": tried, "pitch_m": c.pitch_m}).to_string(), Some(line_to_py(py, &c.centreline)))
+        }
+        Err((tried, reasons)) => (serde_json::json!({"tried": tried, "reasons": reasons}).to_string(), None),
+    })
+}
+
 /// Validate an occupancy grid against a spec, measuring the raster only. Returns
 /// ``(report_json, measured centreline (N, 2) in the driving direction)``.
 #[pyfunction]
@@ -150,6 +170,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(screen, m)?)?;
     m.add_function(wrap_pyfunction!(derived_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;
+    m.add_function(wrap_pyfunction!(construct_lattice, m)?)?;
     m.add_function(wrap_pyfunction!(validate_map, m)?)?;
     m.add_function(wrap_pyfunction!(analyse_curve, m)?)?;
     Ok(())

@@ -144,6 +144,21 @@ pub fn rasterise_candidate(c: &Candidate, spec: &Spec, cfg: &ConstructorConfig) 
     rasterise_constant(&c.centreline, spec.corridor_width_m, cfg.resolution_m, cfg.wall_thickness_m, cfg.map_margin_m)
 }
 
+/// The lattice constructor on its own, as the paper's constructor comparison runs it:
+/// the first candidate (k < `max_candidates`) that passes the constructor's own analytic
+/// checks, *without* the raster validator in the loop. `Err` carries the number of
+/// candidates tried and why each failed. Algorithm 1 proper is [`generate`].
+pub fn first_candidate(spec: &Spec, cfg: &ConstructorConfig, seed: u64) -> Result<(Candidate, u32), (u32, BTreeMap<String, u32>)> {
+    let mut reasons: BTreeMap<String, u32> = BTreeMap::new();
+    for k in 0..cfg.max_candidates {
+        match construct(spec, cfg, seed, k) {
+            Ok(c) => return Ok((c, k + 1)),
+            Err(why) => *reasons.entry(why.to_string()).or_default() += 1,
+        }
+    }
+    Err((cfg.max_candidates, reasons))
+}
+
 /// Algorithm 1 with the lattice constructor.
 pub fn generate(spec: &Spec, cfg: &ConstructorConfig, seed: u64) -> Outcome {
     let sr = screen(spec, cfg);
