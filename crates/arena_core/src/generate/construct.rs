@@ -232,6 +232,32 @@ mod tests {
     }
 
     #[test]
+    fn impossible_counts_fail_with_a_full_histogram() {
+        // r_req = 0.1 m passes the screen; ~18 lattice edges cannot hold 12 hairpins.
+        let mut s = spec(40.0, 12, 0, 0);
+        s.min_radius_m = 0.1;
+        assert!(screen(&s, &ConstructorConfig::default()).passed);
+        match generate(&s, &ConstructorConfig::default(), 0) {
+            Outcome::Failed { tried, reasons } => {
+                assert_eq!(tried, 800);
+                assert_eq!(reasons.values().sum::<u32>(), 800);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(first_candidate(&s, &ConstructorConfig::default(), 0).is_err());
+    }
+
+    #[test]
+    fn clockwise_laps_run_clockwise() {
+        let mut s = spec(50.0, 1, 1, 0);
+        for (dir, sign) in [("counterclockwise", 1.0), ("clockwise", -1.0)] {
+            s.direction = dir.into();
+            let (c, _) = first_candidate(&s, &ConstructorConfig::default(), 3).expect("a candidate");
+            assert_eq!(crate::geometry::signed_area(&c.centreline).signum(), sign, "{dir}");
+        }
+    }
+
+    #[test]
     fn screen_rejection_comes_first() {
         assert!(matches!(generate(&spec(200.0, 0, 0, 0), &ConstructorConfig::default(), 0), Outcome::Rejected(_)));
     }
