@@ -74,3 +74,13 @@ def test_validator_fails_a_map_against_the_wrong_spec():
     report, _ = validate_map(acc.map, SMALL.model_copy(update={"lap_length_m": 50.0, "hairpins": 2}))
     failed = {c["name"] for c in report["checks"] if not c["passed"]}
     assert not report["valid"] and {"lap_length", "hairpins"} <= failed
+
+
+@pytest.mark.parametrize("resolution", [0.025, 0.1])
+def test_resolution_is_configurable(resolution):
+    from roboracer_arena.constructor_config import ConstructorConfig
+
+    out = generate_track(SMALL, config=ConstructorConfig(resolution_m=resolution))
+    assert isinstance(out, Acceptance) and out.map.resolution == resolution
+    h, w = out.map.shape
+    assert w * resolution == pytest.approx(SMALL.hall_x_m - 1, abs=3)  # map spans the hall, not the cell count
