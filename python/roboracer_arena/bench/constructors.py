@@ -82,31 +82,32 @@ def load_specs(path: str | Path) -> list[TrackSpec]:
     return specs
 
 
-def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConfig) -> tuple[Any, str]:
-    """(GeneratedMap or None, why not built)."""
+def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConfig) -> tuple[Any, str, int]:
+    """(GeneratedMap or None, why not built, lattice candidates tried)."""
     if constructor == "lattice":
         out = generate_track(spec, seed=seed, config=config)
         if isinstance(out, Acceptance):
-            return out.map, ""
+            return out.map, "", out.candidates_tried
         reasons = getattr(out, "reasons", {}) or {out.kind: 1}
-        return None, max(reasons, key=reasons.get)
+        return None, max(reasons, key=reasons.get), getattr(out, "candidates_tried", 0)
     if constructor == "lattice-raw":
         info, line = _core.construct_lattice(spec.model_dump_json(), config.model_dump_json(), seed)
+        tried = json.loads(info)["tried"]
         if line is None:
             reasons = json.loads(info)["reasons"]
-            return None, max(reasons, key=reasons.get)
-        return rasterise(line, spec, config), ""
+            return None, max(reasons, key=reasons.get), tried
+        return rasterise(line, spec, config), "", tried
     line = construct_baseline(spec, config, seed, constructor)
     if line is None:
-        return None, "self-intersecting curve"
-    return rasterise(line, spec, config), ""
+        return None, "self-intersecting curve", 1
+    return rasterise(line, spec, config), "", 1
 
 
 def run_trial(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConfig, workdir: Path) -> dict[str, Any]:
     """One matched trial: build, write the map, read it back, validate it."""
     t0 = time.perf_counter()
-    m, why = _build(spec, seed, constructor, config)
-    row: dict[str, Any] = {"spec": spec.name, "seed": seed, "constructor": constructor, "built": m is not None}
+    m, why, tried = _build(spec, seed, constructor, config)
+    row: dict[str, Any] = {"spec": spec.name, "seed": seed, "constructor": constructor, "built": m is not None, "candidates": tried}
     if m is None:
         row.update(valid=False, failed_checks=[], not_built_reason=why)
     else:
@@ -123,6 +124,7 @@ def summarise(rows: list[dict[str, Any]], constructor: str) -> dict[str, Any]:
     built = sum(r["built"] for r in mine)
     valid = sum(r["valid"] for r in mine)
     secs = sorted(r["seconds"] for r in mine)
+    cands = sorted(r["candidates"] for r in mine)
     return {
         "constructor": constructor,
         "trials": n,
@@ -130,6 +132,8 @@ def summarise(rows: list[dict[str, Any]], constructor: str) -> dict[str, Any]:
         "valid": valid,
         "seconds_per_trial_mean": sum(secs) / n if n else float("nan"),
         "seconds_per_trial_median": secs[n // 2] if n else float("nan"),
+        "candidates_median": cands[n // 2] if n else 0,
+        "candidates_max": cands[-1] if n else 0,
         "failed_checks": dict(Counter(c for r in mine for c in r["failed_checks"])),
         "not_built": dict(Counter(r["not_built_reason"] for r in mine if not r["built"])),
     }
@@ -176,6 +180,8 @@ def print_table(result: dict[str, Any]) -> None:
             f"{s['seconds_per_trial_mean']:>8.3f} {s['seconds_per_trial_median']:>8.3f}   {ptxt:>22}"
         )
     for s in result["summary"]:
+        if s["constructor"].startswith("lattice"):
+            print(f"  {s['constructor']}: candidates per trial median {s['candidates_median']}, max {s['candidates_max']} (cap 800)")
         if s["failed_checks"] or s["not_built"]:
             print(f"  {s['constructor']}: failed checks {s['failed_checks'] or '{}'}; not built {s['not_built'] or '{}'}")
 
