@@ -30,6 +30,7 @@ from __future__ import annotations
 import argparse
 import json
 import platform
+import statistics
 import sys
 import tempfile
 import time
@@ -131,8 +132,8 @@ def summarise(rows: list[dict[str, Any]], constructor: str) -> dict[str, Any]:
         "built": built,
         "valid": valid,
         "seconds_per_trial_mean": sum(secs) / n if n else float("nan"),
-        "seconds_per_trial_median": secs[n // 2] if n else float("nan"),
-        "candidates_median": cands[n // 2] if n else 0,
+        "seconds_per_trial_median": statistics.median(secs) if n else float("nan"),
+        "candidates_median": statistics.median(cands) if n else 0,
         "candidates_max": cands[-1] if n else 0,
         "failed_checks": dict(Counter(c for r in mine for c in r["failed_checks"])),
         "not_built": dict(Counter(r["not_built_reason"] for r in mine if not r["built"])),
@@ -181,7 +182,7 @@ def print_table(result: dict[str, Any]) -> None:
         )
     for s in result["summary"]:
         if s["constructor"].startswith("lattice"):
-            print(f"  {s['constructor']}: candidates per trial median {s['candidates_median']}, max {s['candidates_max']} (cap 800)")
+            print(f"  {s['constructor']}: candidates per trial median {s['candidates_median']:g}, max {s['candidates_max']} (cap 800)")
         if s["failed_checks"] or s["not_built"]:
             print(f"  {s['constructor']}: failed checks {s['failed_checks'] or '{}'}; not built {s['not_built'] or '{}'}")
 
