@@ -32,3 +32,14 @@ def test_cli_exit_4_writes_no_map(tmp_path, capsys):
     assert summary["outcome"] == "failed" and summary["candidates_tried"] == 800
     assert sum(summary["reasons"].values()) == 800
     assert not outdir.exists() or not any(outdir.iterdir())
+
+
+def test_baselines_never_return_an_invalid_map():
+    spec = TrackSpec(name="random-small", lap_length_m=40, hall_x_m=15, hall_y_m=12, hairpins=1)
+    for seed in range(3):
+        out = generate_track(spec, seed=seed, constructor="random")
+        if isinstance(out, GenerationFailure):
+            assert out.candidates_tried == 1 and out.reasons
+            assert out.built_invalid_report is None or not out.built_invalid_report["valid"]
+        else:
+            assert out.report["valid"]
