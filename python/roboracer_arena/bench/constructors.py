@@ -168,8 +168,10 @@ def print_table(result: dict[str, Any]) -> None:
         f"{result['admissible_specs']} admissible specs × {len(result['seeds'])} seeds = trials per constructor; "
         f"{len(result['screen_rejections'])} spec(s) rejected by the screen (not trials)"
     )
-    for r in result["screen_rejections"]:
+    for r in result["screen_rejections"][:5]:
         print(f"  rejected {r['spec']}: {'; '.join(r['violations'])}")
+    if len(result["screen_rejections"]) > 5:
+        print(f"  … and {len(result['screen_rejections']) - 5} more (see --json)")
     head = f"{'constructor':<12} {'valid trials':>12} {'valid/built':>11} {'s/trial':>8} {'median s':>8}   {'paper':>22}"
     print(head)
     print("-" * len(head))
