@@ -25,3 +25,35 @@ def rasterise_centreline(
     margin: float = 0.5,
 ) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]]:
     """Eq. 3 with per-vertex full widths; returns (data (H, W) uint8, origin (x, y, yaw))."""
+def screen(spec_json: str, config_json: str) -> str:
+    """Admissibility screen (Eqs. 1–2) as JSON: passed, violations, r_min_m, pitch_m, l_max_m, …"""
+
+def derived_geometry(spec_json: str, config_json: str) -> str:
+    """Derived geometry as JSON: r_min, pitch, l_max, s_min, corner_radius."""
+
+def generate_lattice(
+    spec_json: str, config_json: str, seed: int
+) -> tuple[
+    str,
+    str,
+    tuple[npt.NDArray[np.uint8], tuple[float, float, float]] | None,
+    npt.NDArray[np.float64] | None,
+]:
+    """Algorithm 1 (lattice): (kind "accepted"|"rejected"|"failed", info_json, map | None, centreline | None)."""
+
+def construct_lattice(
+    spec_json: str, config_json: str, seed: int
+) -> tuple[str, npt.NDArray[np.float64] | None]:
+    """Lattice constructor without raster validation in the loop: (info_json, centreline | None)."""
+
+def validate_map(
+    data: npt.NDArray[np.uint8],
+    resolution: float,
+    origin: tuple[float, float, float],
+    spec_json: str,
+    config_json: str,
+) -> tuple[str, npt.NDArray[np.float64]]:
+    """Raster validator: (report_json, measured centreline (N, 2) in the driving direction)."""
+
+def analyse_curve(xy: npt.NDArray[np.float64], corner_radius: float, exclude_m: float) -> str:
+    """Curvature analysis of a closed curve as JSON (turns, features, min radius, self_clearance_m)."""

@@ -68,9 +68,11 @@ def run(args: argparse.Namespace) -> int:
             features=outcome.report["features"],
         )
         if args.build:
-            from ..builder import build_environment  # type: ignore[import-not-found]
-            from ..maps import load_map  # type: ignore[import-not-found]
-
+            try:
+                from ..builder import build_environment  # type: ignore[import-not-found]
+                from ..maps import load_map  # type: ignore[import-not-found]
+            except ImportError as e:
+                raise InvalidArgumentError(f"--build needs the USD builder, which this installation lacks ({e}); the map was written to {args.out}") from e
             usd = args.out / "track.usda"
             build_environment(load_map(paths["map_yaml"]), usd)
             summary["files"]["usd"] = str(usd)
