@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["PurePursuitDriver", "PurePursuitParams", "EnvPurePursuit"]
+__all__ = ["DriveResult", "EnvPurePursuit", "PurePursuitDriver", "PurePursuitParams", "drive_laps"]
 
 
 @dataclass(frozen=True)
@@ -165,3 +165,99 @@ class EnvPurePursuit:
         for ds in self._drivers.values():
             for d in ds:
                 d.reset()
+
+
+@dataclass
+class DriveResult:
+    """Outcome of :func:`drive_laps` (times in simulated seconds)."""
+
+    track: str
+    track_length: float
+    laps_requested: int
+    laps_completed: int
+    lap_times: list[float]
+    collided: bool
+    contact_steps: int
+    sim_time: float
+    distance: float
+    max_speed: float
+    wall_time: float
+    video: str | None = None
+
+    @property
+    def completed(self) -> bool:
+        """All requested laps driven without a contact."""
+        return self.laps_completed >= self.laps_requested and not self.collided
+
+    def to_dict(self) -> dict[str, Any]:
+        from dataclasses import asdict
+
+        return {**asdict(self), "completed": self.completed}
+
+
+def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = None, video: Any = None,
+               video_fps: float = 10.0, render_size: int = 500, max_time_s: float | None = None,
+               progress: bool = False, **env_kwargs: Any) -> DriveResult:
+    """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
+    list) with :class:`PurePursuitDriver` from the centreline start, stopping at the first
+    contact. Optionally writes a GIF/MP4 of the drive. ``env_kwargs`` go to the env."""
+    import time
+
+    from .envs.single import RoboRacerEnv
+
+    if laps < 1:
+        from .errors import InvalidArgumentError
+
+        raise InvalidArgumentError(f"laps must be >= 1, got {laps}")
+    env = RoboRacerEnv(track=track, render_mode="rgb_array" if video else None, render_size=render_size,
+                       **{"reset_poses": "grid", "collision_ends_episode": True, "time_limit_s": None, **env_kwargs})
+    length = env.tracks[0].length
+    limit = max_time_s if max_time_s is not None else laps * (length / 0.5 + 30.0)  # >= 0.5 m/s average
+    dt = env.config.control_dt
+    driver = PurePursuitDriver.for_env(env) if params is None else EnvPurePursuit(env, params)
+    every = max(1, round(env.config.control_rate_hz / video_fps))
+    frames: list[np.ndarray] = []
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=round(laps * length, 1), unit="m", desc=f"driving {env.tracks[0].name}", leave=False)
+    t0 = time.perf_counter()
+    obs, info = env.reset(seed=0, options={"track_id": 0})
+    if video:
+        frames.append(env.render())
+    lap_times: list[float] = []
+    steps, contacts, vmax, collided = 0, 0, 0.0, False
+    state_speed = env.odometry_index.get("speed", env.odometry_index.get("vx"))
+    while steps * dt < limit:
+        obs, _, terminated, truncated, info = env.step(driver.act(obs))
+        steps += 1
+        progressed = float(np.min(info["progress"]))
+        while len(lap_times) < laps and progressed >= (len(lap_times) + 1) * length:
+            lap_times.append(round(steps * dt, 3))
+        contact = bool(np.any(info["contact_wall"]) or np.any(info["contact_vehicle"]))
+        contacts += contact
+        collided = collided or contact
+        if state_speed is not None:
+            vmax = max(vmax, float(np.max(np.abs(env.odometry_raw(obs)[:, state_speed]))))
+        if bar is not None:
+            bar.update(round(min(progressed, laps * length), 1) - bar.n)
+        if video and steps % every == 0:
+            frames.append(env.render())
+        if terminated or truncated or len(lap_times) >= laps:
+            break
+    if bar is not None:
+        bar.close()
+    out = None
+    if video:
+        from .render.video import write_video
+
+        frames.append(env.render())
+        out = str(write_video(frames, video, fps=env.config.control_rate_hz / every))
+    env.close()
+    return DriveResult(
+        track=env.tracks[0].name, track_length=round(length, 3), laps_requested=laps, laps_completed=len(lap_times),
+        lap_times=[round(b - a, 3) for a, b in zip([0.0, *lap_times[:-1]], lap_times)], collided=collided,
+        contact_steps=contacts, sim_time=round(steps * dt, 3), distance=round(float(np.min(info["progress"])), 3),
+        max_speed=round(vmax, 3), wall_time=round(time.perf_counter() - t0, 3), video=out,
+    )

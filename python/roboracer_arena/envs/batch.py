@@ -209,7 +209,7 @@ class SimBatch:
         return info
 
     def rebuild(self, seed: int) -> None:
-        """Recreate the native simulator with a new seed (same tracks, counts and config)."""
-        if seed != self.seed:
-            self.seed = int(seed)
-            self.sim = self._Simulator(self._natives, self.num_envs, self.vehicles, self.config.sim.to_json(), self.seed)
+        """Recreate the native simulator with ``seed`` (same tracks, counts and config), so
+        its per-vehicle noise streams restart: the same seed gives the same episode."""
+        self.seed = int(seed)
+        self.sim = self._Simulator(self._natives, self.num_envs, self.vehicles, self.config.sim.to_json(), self.seed)
