@@ -50,6 +50,10 @@ class SimBatch:
         self.progress = np.zeros((E, V), np.float64)  # metres since reset
         self.elapsed = np.zeros(E, np.int64)
         self.vehicle_rewards = np.zeros((E, V), np.float64)
+        self._len = np.ones((E, 1), np.float64)  # lap length of each env's track
+        self._half_len = np.full((E, 1), 0.5)
+        self._no_contact = np.zeros((E, V), bool)
+        self._no_env = np.zeros(E, bool)
 
         veh, lid = config.sim.vehicle, config.sim.lidar
         self._lo = np.array([-veh.max_steer, veh.min_speed])
@@ -88,12 +92,14 @@ class SimBatch:
         a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, self.vehicles, 2)
         out = self.actions
         if self.config.action_mode == "ackermann":
-            np.clip(np.nan_to_num(a, nan=0.0), self._lo, self._hi, out=out)
+            np.clip(a, self._lo, self._hi, out=out)  # ±inf -> bounds; NaN stays NaN
         else:
-            n = np.clip(np.nan_to_num(a, nan=0.0), -1.0, 1.0)
+            n = np.clip(a, -1.0, 1.0)
             out[..., 0] = n[..., 0] * self._hi[0]
             sp = n[..., 1]
             out[..., 1] = np.where(sp >= 0.0, sp * self._hi[1], -sp * self._lo[1])
+        if np.isnan(out).any():
+            out[np.isnan(out)] = 0.0
 
     def from_ackermann(self, cmds: np.ndarray) -> np.ndarray:
         """Convert [steer rad, speed m/s] commands to this env's action mode (float32)."""
@@ -114,6 +120,7 @@ class SimBatch:
             tid = fixed_track if fixed_track is not None else (int(rng.integers(len(self.tracks))) if len(self.tracks) > 1 else 0)
             self.track_ids[e] = tid
             length = self.lengths[tid]
+            self._len[e], self._half_len[e] = length, length / 2
             s0 = float(rng.uniform(0.0, length)) if cfg.reset_poses == "random" else 0.0
             for k in range(V):
                 s = (s0 - k * cfg.grid_spacing) % length
@@ -151,22 +158,27 @@ class SimBatch:
         self.sim.step(self.actions, self.substeps, self.scans if self.config.observation.scan else None,
                       self.state, self.events)
         s = self.state[:, :, self._s_col]
-        length = self.lengths[self.track_ids][:, None]
         ds = s - self.prev_s
-        ds -= length * np.round(ds / length)  # wrap at the lap
+        np.remainder(ds + self._half_len, self._len, out=ds)  # wrap at the lap
+        ds -= self._half_len
         self.prev_s[:] = s
         self.progress += ds
         self.elapsed += 1
-        contact = (self.events & (CONTACT_WALL | CONTACT_VEHICLE)) != 0
         r = self.config.reward
         vr = self.vehicle_rewards
         np.multiply(ds, r.progress, out=vr)
-        vr -= r.collision_penalty * contact
         if r.time_penalty:
             vr -= r.time_penalty * self.config.control_dt
-        reward = vr.sum(axis=1)
-        terminated = contact.any(axis=1) if self.config.collision_ends_episode else np.zeros(self.num_envs, bool)
-        truncated = self.elapsed >= self.max_steps if self.max_steps is not None else np.zeros(self.num_envs, bool)
+        if self.events.any():
+            contact = (self.events & (CONTACT_WALL | CONTACT_VEHICLE)) != 0
+            vr -= r.collision_penalty * contact
+            terminated = contact.any(axis=1) & self.config.collision_ends_episode
+        else:
+            contact, terminated = self._no_contact, self._no_env
+        reward = vr[:, 0].copy() if self.vehicles == 1 else vr.sum(axis=1)
+        if self.max_steps is None:
+            return reward, terminated, self._no_env, contact
+        truncated = self.elapsed >= self.max_steps
         return reward, terminated, truncated & ~terminated, contact
 
     # ------------------------------------------------------------------ observation

@@ -23,7 +23,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .batch import SimBatch
+from .batch import CONTACT_VEHICLE, CONTACT_WALL, LAP_COMPLETED, SimBatch
 from .env_config import EnvConfig
 from .tracks import resolve_tracks
 
@@ -53,7 +53,7 @@ class RoboRacerEnv(gym.Env):
         self._render_size = render_size
         self._view: Any = None
         self._squeeze = self.config.vehicles_per_env == 1
-        self._fixed_track: int | None = None
+        self._state_info = [f for f in ("laps", "lap_time", "progress_s") if f in self._batch.field_index]
 
     # ------------------------------------------------------------ gymnasium API
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
@@ -88,11 +88,23 @@ class RoboRacerEnv(gym.Env):
         return {k: v[0] for k, v in obs.items()} if self._squeeze else obs
 
     def _info(self) -> dict[str, Any]:
-        info = self._batch.info(0)
-        if self._squeeze:
-            info = {k: (v[0] if isinstance(v, np.ndarray) and v.ndim else v) for k, v in info.items()}
-        info["track_id"] = int(self._batch.track_ids[0])
-        info["track"] = self.tracks[int(self._batch.track_ids[0])].name
+        b = self._batch
+        tid = int(b.track_ids[0])
+        if not self._squeeze:
+            info = b.info(0)
+            info.update(track_id=tid, track=self.tracks[tid].name)
+            return info
+        ev, st, f = int(b.events[0, 0]), b.state[0, 0], b.field_index
+        info = {
+            "track_id": tid,
+            "track": self.tracks[tid].name,
+            "progress": float(b.progress[0, 0]),
+            "contact_wall": bool(ev & CONTACT_WALL),
+            "contact_vehicle": bool(ev & CONTACT_VEHICLE),
+            "lap_completed": bool(ev & LAP_COMPLETED),
+        }
+        for name in self._state_info:
+            info[name] = float(st[f[name]])
         return info
 
     @property

@@ -54,31 +54,35 @@ class SimView:
              scans: np.ndarray | None = None) -> np.ndarray:
         """One frame, (H, W, 3) uint8: vehicles from ``state`` (V, S) rows, rays from ``scans`` (V, B)."""
         bg, tf = self._background(track_id)
-        img = bg.copy()
-        d = ImageDraw.Draw(img)
         veh, lid = self.sim.vehicle, self.sim.lidar
         fx, fy, fyaw = field_index["x"], field_index["y"], field_index["yaw"]
-        for k, row in enumerate(np.asarray(state)):
-            x, y, yaw = float(row[fx]), float(row[fy]), float(row[fyaw])
-            if not math.isfinite(x + y + yaw):
-                continue
-            c, s = math.cos(yaw), math.sin(yaw)
-            if scans is not None:
+        poses = [(float(r[fx]), float(r[fy]), float(r[fyaw])) for r in np.asarray(state)]
+        img = bg.copy()
+        if scans is not None:
+            rays = Image.new("RGBA", img.size, (0, 0, 0, 0))
+            d = ImageDraw.Draw(rays)
+            for k, (x, y, yaw) in enumerate(poses):
+                if not math.isfinite(x + y + yaw):
+                    continue
                 r = np.asarray(scans[k], dtype=np.float64)
-                n = len(r)
-                step = max(1, n // self.max_rays)
-                ang = yaw + np.linspace(-lid.fov / 2, lid.fov / 2, n)[::step]
-                ox, oy = x + lid.mount_x * c, y + lid.mount_x * s
+                step = max(1, len(r) // self.max_rays)
+                ang = yaw + np.linspace(-lid.fov / 2, lid.fov / 2, len(r))[::step]
+                ox, oy = x + lid.mount_x * math.cos(yaw), y + lid.mount_x * math.sin(yaw)
                 rr = np.nan_to_num(r[::step], nan=0.0, posinf=lid.range_max)
                 ends = np.column_stack([ox + rr * np.cos(ang), oy + rr * np.sin(ang)])
                 o = _px(np.array([[ox, oy]]), tf)[0]
                 for e in _px(ends, tf):
-                    d.line([o, e], fill=RAY, width=1)
-            hl, hw = veh.chassis_length / 2, veh.chassis_width / 2
-            body = np.array([[hl, hw], [hl, -hw], [-hl, -hw], [-hl, hw]])
+                    d.line([o, e], fill=(*RAY, 110), width=1)
+            img = Image.alpha_composite(img.convert("RGBA"), rays).convert("RGB")
+        d = ImageDraw.Draw(img)
+        hl, hw = veh.chassis_length / 2, veh.chassis_width / 2
+        body = np.array([[hl, hw], [hl, -hw], [-hl, -hw], [-hl, hw]])
+        for k, (x, y, yaw) in enumerate(poses):
+            if not math.isfinite(x + y + yaw):
+                continue
+            c, s = math.cos(yaw), math.sin(yaw)
             rot = np.column_stack([x + body[:, 0] * c - body[:, 1] * s, y + body[:, 0] * s + body[:, 1] * c])
-            colour = VEHICLE_COLOURS[k % len(VEHICLE_COLOURS)]
-            d.polygon(_px(rot, tf), fill=colour, outline=(0, 0, 0))
+            d.polygon(_px(rot, tf), fill=VEHICLE_COLOURS[k % len(VEHICLE_COLOURS)], outline=(0, 0, 0))
             nose = np.array([[x, y], [x + hl * c, y + hl * s]])
             d.line(_px(nose, tf), fill=(255, 255, 255), width=max(1, round(tf[2] * 0.04)))
         return np.asarray(img, dtype=np.uint8)
