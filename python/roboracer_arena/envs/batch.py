@@ -16,6 +16,8 @@ from .env_config import EnvConfig
 from .tracks import Track
 
 CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
+#: Simulator state columns copied into ``info`` when present.
+STATE_INFO = ("laps", "lap_time", "last_lap_time", "progress_s")
 
 
 class SimBatch:
@@ -58,7 +60,10 @@ class SimBatch:
         veh, lid = config.sim.vehicle, config.sim.lidar
         self._lo = np.array([-veh.max_steer, veh.min_speed])
         self._hi = np.array([veh.max_steer, veh.max_speed])
-        self._s_col = self.field_index["progress_s"]
+        # "travel" (signed metres along the centreline since reset, wrap handled natively)
+        # when the simulator has it; otherwise the lap-wrapped change of "progress_s".
+        self._wrap = "travel" not in self.field_index
+        self._s_col = self.field_index["progress_s" if self._wrap else "travel"]
         self._odo_cols = np.array([self.field_index[f] for f in config.observation.odometry], dtype=np.intp)
         self._odo_offset = np.zeros((E, 1, len(self._odo_cols)), np.float64)
         self._odo_scale = np.ones((E, 1, len(self._odo_cols)), np.float64)
@@ -159,8 +164,9 @@ class SimBatch:
                       self.state, self.events)
         s = self.state[:, :, self._s_col]
         ds = s - self.prev_s
-        np.remainder(ds + self._half_len, self._len, out=ds)  # wrap at the lap
-        ds -= self._half_len
+        if self._wrap:
+            np.remainder(ds + self._half_len, self._len, out=ds)  # wrap at the lap
+            ds -= self._half_len
         self.prev_s[:] = s
         self.progress += ds
         self.elapsed += 1
@@ -215,7 +221,7 @@ class SimBatch:
             "lap_completed": (self.events[envs] & LAP_COMPLETED) != 0,
             "vehicle_rewards": self.vehicle_rewards[envs].copy(),
         }
-        for name in ("laps", "lap_time", "progress_s"):
+        for name in STATE_INFO:
             if name in f:
                 info[name] = st[..., f[name]].copy()
         return info

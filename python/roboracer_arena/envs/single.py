@@ -23,7 +23,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .batch import CONTACT_VEHICLE, CONTACT_WALL, LAP_COMPLETED, SimBatch
+from .batch import CONTACT_VEHICLE, CONTACT_WALL, LAP_COMPLETED, STATE_INFO, SimBatch
 from .env_config import EnvConfig
 from .tracks import resolve_tracks
 
@@ -53,7 +53,7 @@ class RoboRacerEnv(gym.Env):
         self._render_size = render_size
         self._view: Any = None
         self._squeeze = self.config.vehicles_per_env == 1
-        self._state_info = [f for f in ("laps", "lap_time", "progress_s") if f in self._batch.field_index]
+        self._state_info = [f for f in STATE_INFO if f in self._batch.field_index]
 
     # ------------------------------------------------------------ gymnasium API
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
