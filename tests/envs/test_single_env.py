@@ -83,7 +83,7 @@ def test_progress_reward_and_rest(oval):
         total += r
         assert not term and not trunc
     assert 0.5 < total < 2.1
-    assert info["progress"] == pytest.approx(total, abs=1e-6)
+    assert info["progress"] == pytest.approx(rest + total, abs=1e-9)
 
 
 def test_wall_contact_terminates_with_penalty(oval):
