@@ -55,7 +55,7 @@ class VehicleConfig(BaseModel):
     chassis_length: float = Field(0.55, gt=0, description="Collision box length (m), Traxxas body about 0.55 m.")
     chassis_width: float = Field(0.29, gt=0, description="Collision box width (m), Traxxas body about 0.29 m.")
     chassis_height: float = Field(0.10, gt=0, description="Collision box height (m).")
-    chassis_clearance: float = Field(0.02, ge=0, description="Gap between the collision box and the ground at rest (m).")
+    chassis_clearance: float = Field(0.03, ge=0, description="Gap between the collision box and the ground at rest (m), about the Traxxas chassis clearance.")
     suspension_rest_length: float = Field(0.08, gt=0, description="Unloaded suspension length (m).")
     suspension_travel: float = Field(0.05, gt=0, description="Maximum compression before the bump stop (m).")
     suspension_stiffness: float = Field(
@@ -118,7 +118,15 @@ class PhysicsConfig(BaseModel):
         0.83, ge=0, description="Ground collider friction (chassis on ground only; tyres use tyre_friction)."
     )
     solver_iterations: int = Field(2, ge=1, le=16, description="Rapier solver iterations per step.")
-    ccd: bool = Field(False, description="Continuous collision detection on the chassis (not needed at dt <= 5 ms).")
+    ccd: bool = Field(False, description="Continuous collision detection on the chassis (not needed at dt <= 10 ms).")
+    shortcut_free_steps: bool = Field(
+        True,
+        description=(
+            "Skip the rapier pipeline for a world step in which no chassis can touch anything (walls, other "
+            "cars, ground: checked with twice the step's travel as margin) and integrate the free bodies with "
+            "rapier's own symplectic Euler. Contacts always go through rapier. False = rapier every step."
+        ),
+    )
 
 
 class SimConfig(BaseModel):

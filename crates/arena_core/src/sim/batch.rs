@@ -66,6 +66,14 @@ impl Simulator {
     pub fn tracks(&self) -> &[Arc<Track>] {
         &self.tracks
     }
+    /// Summed over worlds: (steps through the rapier pipeline, contact-free shortcut steps).
+    pub fn step_counts(&self) -> [u64; 2] {
+        self.worlds.iter().fold([0, 0], |a, w| {
+            let c = w.step_counts();
+            [a[0] + c[0], a[1] + c[1]]
+        })
+    }
+
     pub fn track_of(&self, env: usize) -> usize {
         self.worlds[env].track_id()
     }

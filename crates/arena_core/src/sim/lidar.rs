@@ -88,6 +88,35 @@ impl SegmentGrid {
         self.segs.len()
     }
 
+    /// True when no wall segment comes within `r` of `(x, y)`.
+    pub fn clear_of(&self, x: f64, y: f64, r: f64) -> bool {
+        let inv = 1.0 / self.cell;
+        let ix0 = ((x - r - self.x0) * inv).floor().max(0.0) as usize;
+        let iy0 = ((y - r - self.y0) * inv).floor().max(0.0) as usize;
+        let ix1 = (((x + r - self.x0) * inv).floor() as isize).min(self.nx as isize - 1);
+        let iy1 = (((y + r - self.y0) * inv).floor() as isize).min(self.ny as isize - 1);
+        if ix1 < 0 || iy1 < 0 {
+            return true;
+        }
+        let r2 = r * r;
+        for iy in iy0..=iy1 as usize {
+            for ix in ix0..=ix1 as usize {
+                let c = iy * self.nx + ix;
+                for &k in &self.items[self.start[c] as usize..self.start[c + 1] as usize] {
+                    let s = &self.segs[k as usize];
+                    let l2 = s[2] * s[2] + s[3] * s[3];
+                    let (wx, wy) = (x - s[0], y - s[1]);
+                    let t = if l2 > 0.0 { ((wx * s[2] + wy * s[3]) / l2).clamp(0.0, 1.0) } else { 0.0 };
+                    let (dx, dy) = (wx - t * s[2], wy - t * s[3]);
+                    if dx * dx + dy * dy < r2 {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
     /// Distance along the unit direction `(dx, dy)` from `(ox, oy)` to the first wall,
     /// or `f64::INFINITY` if none within `max_t`.
     pub fn cast(&self, ox: f64, oy: f64, dx: f64, dy: f64, max_t: f64) -> f64 {
@@ -333,6 +362,9 @@ mod tests {
         assert!((grid.cast(0.0, 0.0, 1.0, 0.0, 30.0) - 10.0).abs() < 1e-12);
         assert_eq!(grid.cast(0.0, 0.0, -1.0, 0.0, 30.0), f64::INFINITY);
         assert_eq!(grid.cast(0.0, 0.0, 1.0, 0.0, 5.0), f64::INFINITY);
+        assert!(grid.clear_of(9.0, 0.0, 0.99) && !grid.clear_of(9.0, 0.0, 1.01));
+        assert!(!grid.clear_of(10.5, 1.2, 0.55) && grid.clear_of(10.5, 1.2, 0.5));
+        assert!(grid.clear_of(-100.0, 0.0, 5.0));
         let car = Footprint { x: 3.0, y: 0.0, cos: 1.0, sin: 0.0, half_length: 0.25, half_width: 0.15 };
         assert!((car.cast(0.0, 0.0, 1.0, 0.0) - 2.75).abs() < 1e-12);
         assert_eq!(car.cast(0.0, 0.0, 0.0, 1.0), f64::INFINITY);

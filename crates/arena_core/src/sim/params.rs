@@ -63,7 +63,7 @@ impl Default for VehicleParams {
             chassis_length: 0.55,
             chassis_width: 0.29,
             chassis_height: 0.10,
-            chassis_clearance: 0.02,
+            chassis_clearance: 0.03,
             suspension_rest_length: 0.08,
             suspension_travel: 0.05,
             suspension_stiffness: 600.0,
@@ -115,6 +115,9 @@ pub struct PhysicsParams {
     pub ground_friction: f64,
     pub solver_iterations: usize,
     pub ccd: bool,
+    /// Skip the rapier pipeline for a world step in which no chassis can touch anything
+    /// (integrating the free bodies with rapier's own scheme); see `World::step`.
+    pub shortcut_free_steps: bool,
 }
 
 impl Default for PhysicsParams {
@@ -127,6 +130,7 @@ impl Default for PhysicsParams {
             ground_friction: 0.83,
             solver_iterations: 2,
             ccd: false,
+            shortcut_free_steps: true,
         }
     }
 }

@@ -30,8 +30,8 @@ pub const EVENT_FAULT: u8 = 8;
 /// Half side of the ground cuboid (m): larger than any track.
 const GROUND_HALF_SIZE: f32 = 5000.0;
 
-/// Contact prediction distance (m); below the chassis' 2 cm ground clearance.
-const PREDICTION_DISTANCE: f32 = 0.01;
+/// Contact prediction distance (m); well below the chassis ground clearance.
+const PREDICTION_DISTANCE: f32 = 0.005;
 
 struct Car {
     body: RigidBodyHandle,
@@ -62,6 +62,11 @@ pub struct World {
     track: Arc<Track>,
     track_id: usize,
     dt: f64,
+    gravity: f64,
+    shortcut: bool,
+    scratch: Vec<[f64; 3]>,
+    /// World steps through the rapier pipeline, and contact-free shortcut steps.
+    counts: [u64; 2],
 }
 
 impl World {
@@ -87,7 +92,10 @@ impl World {
         let mut cars = Vec::with_capacity(vehicles);
         for v in 0..vehicles {
             let pose = track.centreline.pose_at(v as f64 * 1.0);
-            let (body, collider) = pw.insert(model.body(pose, physics.ccd), model.collider());
+            let (body, collider) = pw.insert(model.body(pose, physics.ccd, physics.dt), model.collider());
+            // Mass properties take effect at the first pipeline step unless computed now;
+            // the wheel impulses of that first step need them.
+            pw.bodies[body].recompute_mass_properties_from_colliders(&pw.colliders);
             let mut rng = ChaCha8Rng::seed_from_u64(vehicle_seed(seed, env, v));
             rng.set_stream(v as u64);
             cars.push(Car {
@@ -101,7 +109,18 @@ impl World {
                 last_good: model.spawn_pose(pose),
             });
         }
-        World { pw, wall, cars, track, track_id, dt: physics.dt }
+        World {
+            pw,
+            wall,
+            cars,
+            track,
+            track_id,
+            dt: physics.dt,
+            gravity: physics.gravity,
+            shortcut: physics.shortcut_free_steps,
+            scratch: Vec::with_capacity(vehicles),
+            counts: [0, 0],
+        }
     }
 
     pub fn track_id(&self) -> usize {
@@ -110,6 +129,17 @@ impl World {
 
     pub fn track(&self) -> &Arc<Track> {
         &self.track
+    }
+
+    /// Full 3D pose and (linear, angular) velocity of vehicle `v`'s chassis.
+    pub fn chassis(&self, v: usize) -> (Pose, Vector, Vector) {
+        let b = &self.pw.bodies[self.cars[v].body];
+        (*b.position(), b.linvel(), b.angvel())
+    }
+
+    /// (world steps through the rapier pipeline, contact-free shortcut steps) so far.
+    pub fn step_counts(&self) -> [u64; 2] {
+        self.counts
     }
 
     pub fn num_vehicles(&self) -> usize {
@@ -161,8 +191,14 @@ impl World {
                     model.apply(b, &mut car.act, car.cmd, self.dt);
                 }
             }
-            self.pw.step();
-            self.collect_contacts();
+            if self.shortcut && self.free_of_contacts(model) {
+                self.integrate_free();
+                self.counts[1] += 1;
+            } else {
+                self.pw.step();
+                self.collect_contacts();
+                self.counts[0] += 1;
+            }
         }
         let elapsed = substeps as f64 * self.dt;
         for car in &mut self.cars {
@@ -182,6 +218,64 @@ impl World {
             if car.progress.update(&self.track.centreline, [t.x as f64, t.y as f64], elapsed, speed * elapsed) {
                 car.events |= EVENT_LAP;
             }
+        }
+    }
+
+    /// True when no chassis can touch anything (walls, other chassis, ground) during the
+    /// next step: every chassis box, grown by twice its travel in one step plus the
+    /// contact prediction distance, is clear of the wall segments (2D: the walls are
+    /// vertical extrusions of them), of the other boxes' bounding circles and of the ground.
+    fn free_of_contacts(&mut self, model: &VehicleModel) -> bool {
+        let [hx, hy, hz] = model.half_extents;
+        let [bx, by, bz] = model.box_centre;
+        let r_xy = hx.hypot(hy);
+        let margin = 2.0 * PREDICTION_DISTANCE as f64 + 0.02;
+        self.scratch.clear();
+        for car in &self.cars {
+            let b = &self.pw.bodies[car.body];
+            let p = b.position();
+            let reach = 2.0 * b.linvel().length() as f64 * self.dt + margin;
+            let c = p.transform_point(Vector::new(bx as f32, by as f32, bz as f32));
+            let (ax, ay, az) = (p.rotation * Vector::X, p.rotation * Vector::Y, p.rotation * Vector::Z);
+            let low = c.z as f64 - (ax.z.abs() as f64 * hx + ay.z.abs() as f64 * hy + az.z.abs() as f64 * hz);
+            let reach_z = 2.0 * b.linvel().z.abs() as f64 * self.dt + 1.5 * PREDICTION_DISTANCE as f64;
+            if low <= reach_z || !self.track.grid.clear_of(c.x as f64, c.y as f64, r_xy + reach) {
+                return false;
+            }
+            self.scratch.push([c.x as f64, c.y as f64, reach]);
+        }
+        for (i, a) in self.scratch.iter().enumerate() {
+            for b in &self.scratch[i + 1..] {
+                if (a[0] - b[0]).hypot(a[1] - b[1]) <= 2.0 * r_xy + a[2] + b[2] {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// One contact-free step without the rapier pipeline, replaying what rapier's solver
+    /// does to a body without contacts: `num_solver_iterations` substeps of dt / n, each
+    /// adding gravity, applying the gyroscopic correction, then integrating the pose
+    /// linearised (quaternion first order) about the CoM. The wheel impulses were
+    /// already applied to the velocities, as before a pipeline step.
+    fn integrate_free(&mut self) {
+        let n = self.pw.integration_parameters.num_solver_iterations.max(1);
+        let h = self.dt as f32 / n as f32;
+        let g = Vector::new(0.0, 0.0, -(self.gravity as f32) * h);
+        for car in &self.cars {
+            let b = &mut self.pw.bodies[car.body];
+            let (mut v, mut p) = (b.linvel(), *b.position());
+            for _ in 0..n {
+                v += g;
+                let w = if b.gyroscopic_forces_enabled() { b.angvel_with_gyroscopic_forces(h) } else { b.angvel() };
+                let half = w * (0.5 * h);
+                p.rotation = (Rotation::from_xyzw(half.x, half.y, half.z, 1.0) * p.rotation).normalize();
+                p.translation += v * h;
+                b.set_angvel(w, false);
+                b.set_position(p, false);
+            }
+            b.set_linvel(v, true);
         }
     }
 
