@@ -33,7 +33,11 @@ class ObservationConfig(BaseModel):
 
     model_config = _FROZEN
 
-    scan: bool = Field(True, description="Include the lidar scan ('scan' key, (B,) or (V, B)).")
+    scan: bool = Field(
+        True,
+        description="Include the lidar scan ('scan' key, (B,) or (V, B)), computed at the end of every env step "
+        "(so at control_rate_hz, whatever LidarConfig.rate_hz says); False skips the scan entirely.",
+    )
     odometry: tuple[str, ...] = Field(
         ("x", "y", "yaw", "vx", "vy", "yaw_rate", "steer"),
         description=f"Odometry columns ('odometry' key) in this order; any of {ODOMETRY_FIELDS}.",
