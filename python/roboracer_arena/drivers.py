@@ -143,6 +143,11 @@ class EnvPurePursuit:
             max_steer=float(self.env.max_steer), wheelbase=float(self.env.wheelbase)
         )
         self._drivers: dict[int, list[PurePursuitDriver]] = {}
+        missing = [f for f in ("x", "y", "yaw") if f not in self.env.odometry_index]
+        if missing:
+            from .errors import ConfigError
+
+            raise ConfigError(f"pure pursuit needs the odometry fields x, y, yaw in the observation (missing {missing})")
 
     def act(self, obs: Any) -> np.ndarray:
         """An action for ``obs`` (the env's last observation)."""

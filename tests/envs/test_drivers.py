@@ -44,3 +44,27 @@ def test_projection_tracks_progress_locally(oval):
     i0 = d.project(0.0, -3.0)
     i1 = d.project(0.5, -3.0)
     assert (i1 - i0) % len(d.points) == pytest.approx(0.5 / d.ds, abs=1.5)
+
+
+def test_env_driver_needs_the_pose_in_the_observation(oval):
+    from roboracer_arena.envs.single import RoboRacerEnv
+    from roboracer_arena.errors import ConfigError
+
+    env = RoboRacerEnv(track=oval, observation={"odometry": ["speed"]}, sim={"lidar": {"num_beams": 9}})
+    with pytest.raises(ConfigError, match="x, y, yaw"):
+        PurePursuitDriver.for_env(env)
+
+
+def test_env_driver_works_with_normalised_observations_and_actions(oval):
+    from roboracer_arena.envs.single import RoboRacerEnv
+
+    env = RoboRacerEnv(track=oval, observation={"normalise": True}, action_mode="normalised", reset_poses="grid",
+                       sim={"lidar": {"num_beams": 9}})
+    driver = PurePursuitDriver.for_env(env)
+    obs, _ = env.reset(seed=0)
+    for _ in range(100):
+        action = driver.act(obs)
+        assert env.action_space.contains(action)
+        obs, _, term, _, info = env.step(action)
+        assert not term
+    assert info["progress"] > 10.0
