@@ -74,6 +74,8 @@ class Simulator:
     @property
     def config_json(self) -> str: ...
     def track_ids(self) -> npt.NDArray[np.int64]: ...
+    def step_counts(self) -> tuple[int, int]:
+        """(world steps through the rapier pipeline, contact-free shortcut steps), summed over envs."""
     def set_tracks(self, track_ids: npt.ArrayLike) -> None:
         """Track of each env, shape (num_envs,); reset the env afterwards."""
     def reset(self, env_mask: npt.NDArray[np.bool_], poses: npt.NDArray[np.float64]) -> None:
@@ -102,7 +104,6 @@ def stadium_track(
     straight: float = 6.0, radius: float = 3.0, width: float = 2.0
 ) -> tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]:
     """Analytic stadium track ``(walls [outer, inner], centreline)`` for tests and benchmarks."""
-
 # --- maps (ROS map YAML + PGM/PNG, nav2 rules) ---------------------------------------
 def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], str]:
     """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta_json)``."""

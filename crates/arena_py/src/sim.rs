@@ -121,6 +121,13 @@ impl Simulator {
         serde_json::to_string(self.inner.params()).unwrap_or_default()
     }
 
+    /// (world steps through the rapier pipeline, contact-free shortcut steps) so far,
+    /// summed over envs.
+    fn step_counts(&self) -> (u64, u64) {
+        let c = self.inner.step_counts();
+        (c[0], c[1])
+    }
+
     /// Track id of every env.
     fn track_ids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         let ids: Vec<i64> = (0..self.inner.num_envs()).map(|e| self.inner.track_of(e) as i64).collect();

@@ -60,11 +60,13 @@ class _Driver:
         out[..., 1] = self.speed
 
 
-def measure(vehicles: int, per_env: int, seconds: float, substeps: int, dt: float, speed: float = 3.0) -> dict[str, Any]:
+def measure(
+    vehicles: int, per_env: int, seconds: float, substeps: int, dt: float, speed: float = 3.0, shortcut: bool = True
+) -> dict[str, Any]:
     """Vehicle-steps/s for `vehicles` cars as `vehicles / per_env` worlds."""
     per_env = max(1, min(per_env, vehicles))
     envs = max(1, vehicles // per_env)
-    config = SimConfig(physics=PhysicsConfig(dt=dt))
+    config = SimConfig(physics=PhysicsConfig(dt=dt, shortcut_free_steps=shortcut))
     sim = _core.Simulator([_track()], envs, per_env, config.to_json(), 0)
     length = sim.centreline_length(0)
     poses = np.zeros((envs, per_env, 3))
@@ -90,6 +92,7 @@ def measure(vehicles: int, per_env: int, seconds: float, substeps: int, dt: floa
         calls += 1
         wall_contacts += int(np.count_nonzero(events & 1))
     steps = calls * substeps * envs * per_env
+    pipeline, shortcut = sim.step_counts()
     return {
         "vehicles": envs * per_env,
         "envs": envs,
@@ -100,6 +103,7 @@ def measure(vehicles: int, per_env: int, seconds: float, substeps: int, dt: floa
         "vehicle_steps_per_s": steps / busy,
         "sim_seconds_per_wall_second": calls * substeps * dt / busy,
         "wall_contact_fraction": wall_contacts / max(1, calls * envs * per_env),
+        "rapier_pipeline_fraction": pipeline / max(1, pipeline + shortcut),
         "mean_speed": float(np.mean(np.abs(state[..., sim.state_fields.index("vx")]))),
     }
 
@@ -124,15 +128,15 @@ def _threads() -> str:
     return os.environ.get("RAYON_NUM_THREADS") or f"{os.cpu_count()} (all cores)"
 
 
-def run(vehicles: list[int], per_env: int, seconds: float, substeps: int, dt: float) -> dict[str, Any]:
-    rows = [measure(n, per_env, seconds, substeps, dt) for n in vehicles]
-    scan = measure_scan()
+def run(vehicles: list[int], per_env: int, seconds: float, substeps: int, dt: float, shortcut: bool = True) -> dict[str, Any]:
+    rows = [measure(n, per_env, seconds, substeps, dt, shortcut=shortcut) for n in vehicles]
+    scan = measure_scan(min(1.0, seconds))
     return {"machine": platform.processor() or platform.machine(), "threads": _threads(), "rows": rows, "scan": scan}
 
 
 def print_table(result: dict[str, Any]) -> None:
     print(f"physics throughput, lidar off (threads: {result['threads']})")
-    head = f"{'vehicles':>8} {'envs x per_env':>15} {'dt (s)':>7} {'substeps':>8} {'ours (veh-steps/s)':>19} {'paper':>8} {'ratio':>8} {'target':>9}"
+    head = f"{'vehicles':>8} {'envs x per_env':>15} {'dt (s)':>7} {'substeps':>8} {'rapier steps':>12} {'ours (veh-steps/s)':>19} {'paper':>8} {'ratio':>8} {'target':>9}"
     print(head)
     print("-" * len(head))
     for r in result["rows"]:
@@ -141,7 +145,8 @@ def print_table(result: dict[str, Any]) -> None:
         target = TARGETS.get(n)
         ours = r["vehicle_steps_per_s"]
         print(
-            f"{n:>8} {str(r['envs']) + ' x ' + str(r['per_env']):>15} {r['dt']:>7.3f} {r['substeps']:>8} {ours:>19,.0f} "
+            f"{n:>8} {str(r['envs']) + ' x ' + str(r['per_env']):>15} {r['dt']:>7.3f} {r['substeps']:>8} "
+            f"{r['rapier_pipeline_fraction']:>12.1%} {ours:>19,.0f} "
             f"{paper if paper is not None else '-':>8} {(f'{ours / paper:,.0f}x' if paper else '-'):>8} "
             f"{(('ok ' if ours >= target else 'MISS ') + f'{target:,.0f}') if target else '-':>9}"
         )
@@ -150,7 +155,7 @@ def print_table(result: dict[str, Any]) -> None:
 
 
 def _cli(args: argparse.Namespace) -> int:
-    result = run(args.vehicles, args.per_env, args.seconds, args.substeps, args.dt)
+    result = run(args.vehicles, args.per_env, args.seconds, args.substeps, args.dt, not args.no_shortcut)
     print_table(result)
     if args.json:
         atomic_write_text(args.json, json.dumps(result, indent=2))
@@ -165,6 +170,11 @@ def register(kinds) -> None:
     p.add_argument("--seconds", type=float, default=3.0, metavar="S", help="timed seconds per vehicle count (default 3)")
     p.add_argument("--substeps", type=int, default=10, help="physics steps per Simulator.step call (default 10)")
     p.add_argument("--dt", type=float, default=PhysicsConfig().dt, help="physics time step in s (default 0.005)")
+    p.add_argument(
+        "--no-shortcut",
+        action="store_true",
+        help="run the rapier pipeline in every step (physics.shortcut_free_steps=False)",
+    )
     p.add_argument("--json", type=Path, metavar="FILE", help="write the results to FILE as JSON")
     p.set_defaults(func=_cli)
 
