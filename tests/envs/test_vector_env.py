@@ -103,3 +103,21 @@ def test_vector_render(oval):
 def test_bad_num_envs(oval):
     with pytest.raises(ValueError):
         RoboRacerVectorEnv(num_envs=0, track=oval, **SMALL)
+
+
+def test_several_vehicles_per_env(oval):
+    env = make_vec(3, oval, vehicles_per_env=2, reset_poses="grid", grid_offset=0.0)  # in line
+    obs, info = env.reset(seed=0)
+    assert obs["scan"].shape == (3, 2, 109) and obs["odometry"].shape == (3, 2, 7)
+    assert info["progress"].shape == (3, 2)
+    assert env.single_action_space.shape == (2, 2)
+    # the car behind sees the one in front: its forward beam is shorter than the leader's
+    mid = 109 // 2
+    assert obs["scan"][0, 1, mid] < obs["scan"][0, 0, mid]
+    obs, rew, term, trunc, info = env.step(np.tile([[0.0, 1.0], [0.0, 3.0]], (3, 1, 1)).astype(np.float32))
+    assert env.observation_space.contains(obs) and rew.shape == (3,)
+    for _ in range(60):  # the second car runs into the first
+        obs, rew, term, trunc, info = env.step(np.tile([[0.0, 0.5], [0.0, 3.0]], (3, 1, 1)).astype(np.float32))
+        if term.any():
+            break
+    assert term.all() and info["final_info"]["contact_vehicle"].any()
