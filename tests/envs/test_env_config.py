@@ -20,9 +20,10 @@ def test_substeps_follow_rate_and_dt():
 
 
 def test_overrides_merge_with_a_base_config():
-    base = EnvConfig.build(vehicles_per_env=3)
-    c = EnvConfig.build(base, action_mode="normalised")
+    base = EnvConfig.build(vehicles_per_env=3, sim={"physics": {"dt": 0.01}})
+    c = EnvConfig.build(base, action_mode="normalised", sim={"lidar": {"num_beams": 271}})
     assert c.vehicles_per_env == 3 and c.action_mode == "normalised"
+    assert c.sim.physics.dt == 0.01 and c.sim.lidar.num_beams == 271  # nested dicts merge
 
 
 @pytest.mark.parametrize(

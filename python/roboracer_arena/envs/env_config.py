@@ -114,10 +114,23 @@ class EnvConfig(BaseModel):
 
     @classmethod
     def build(cls, config: EnvConfig | dict | None = None, **overrides: object) -> EnvConfig:
-        """An EnvConfig from a config (or dict) plus keyword overrides (``gymnasium.make`` kwargs)."""
+        """An EnvConfig from a config (or dict) plus keyword overrides (``gymnasium.make`` kwargs).
+        Nested dicts merge into the base (``sim={"lidar": {"num_beams": 271}}`` keeps the rest of ``sim``)."""
         base = config.model_dump() if isinstance(config, EnvConfig) else dict(config or {})
-        base.update(overrides)
+        base = _deep_merge(base, overrides)
         try:
             return cls.model_validate(base)
         except ValidationError as e:
             raise ConfigError(f"invalid environment configuration: {e}") from e
+
+
+def _deep_merge(base: dict, overrides: dict) -> dict:
+    out = dict(base)
+    for k, v in overrides.items():
+        if isinstance(v, BaseModel):
+            v = v.model_dump()
+        if isinstance(v, dict) and isinstance(out.get(k), dict):
+            out[k] = _deep_merge(out[k], v)
+        else:
+            out[k] = v
+    return out
