@@ -34,3 +34,13 @@ def test_write_video_rejects_unknown_formats(tmp_path):
         write_video([np.zeros((4, 4, 3), np.uint8)], tmp_path / "x.avi")
     with pytest.raises(ConfigError, match="no frames"):
         write_video([], tmp_path / "x.gif")
+
+
+def test_write_mp4(tmp_path):
+    pytest.importorskip("imageio_ffmpeg")  # the 'video' extra
+    import imageio.v3 as iio
+
+    frames = [np.full((101, 99, 3), 20 * i, np.uint8) for i in range(6)]
+    path = write_video(frames, tmp_path / "x.mp4", fps=10)
+    back = iio.imread(path)
+    assert back.shape == (6, 112, 112, 3)

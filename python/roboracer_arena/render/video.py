@@ -34,16 +34,17 @@ def write_video(frames: Sequence[np.ndarray], path: str | Path, fps: float = 20.
             raise ConfigError("MP4 output needs the 'video' extra (pip install roboracer-arena[video])") from e
         with atomic_path(path) as tmp:
             try:
-                iio.imwrite(tmp, np.stack([_even(f) for f in frames]), fps=fps, extension=".mp4")
+                iio.imwrite(tmp, np.stack([_pad16(f) for f in frames]), fps=fps, extension=".mp4")
             except Exception as e:  # imageio raises plain errors when no ffmpeg/pyav plugin is present
                 raise ConfigError(f"{path}: cannot write MP4 ({e}); install imageio-ffmpeg or av, or write a .gif") from e
         return path
     raise ConfigError(f"{path}: unsupported video format {suffix!r} (use .gif or .mp4)")
 
 
-def _even(f: np.ndarray) -> np.ndarray:
+def _pad16(f: np.ndarray) -> np.ndarray:
+    """Pad to multiples of 16 pixels (the codec's macro block) by repeating the edge."""
     h, w = f.shape[:2]
-    return np.asarray(f[: h - h % 2, : w - w % 2], dtype=np.uint8)
+    return np.pad(np.asarray(f, dtype=np.uint8), ((0, -h % 16), (0, -w % 16), (0, 0)), mode="edge")
 
 
 def record_episode(env: Any, policy: Callable[[Any], Any], path: str | Path | None = None,
