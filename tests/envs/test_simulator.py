@@ -152,3 +152,70 @@ def test_tracks_switch_per_env():
     sim.observe(scans, state, events)
     # Env 0 sits in the 10 m square room: straight ahead the wall is 5 m - mount offset away.
     assert scans[0, 0, sim.num_beams // 2] == pytest.approx(5.0 - cfg_mount, abs=1e-4)
+
+
+# --- a real recorded map (f1tenth-gym berlin) through the builder's corridor ----------
+
+
+@pytest.fixture(scope="module")
+def berlin(sources):
+    from roboracer_arena.corridor import extract_corridor
+
+    geo = extract_corridor(sources / "f1tenth-gym" / "maps" / "berlin.yaml")
+    return geo.walls, geo.centreline
+
+
+def _reference_ranges(walls, origin, angles, range_max):
+    """Brute force: every beam against every wall segment (numpy, float64)."""
+    a = np.concatenate([w for w in walls])
+    b = np.concatenate([np.roll(w, -1, axis=0) for w in walls])
+    e = b - a  # (S, 2)
+    d = np.stack([np.cos(angles), np.sin(angles)], axis=1)  # (B, 2)
+    w = a - origin  # (S, 2)
+    den = d[:, None, 0] * e[None, :, 1] - d[:, None, 1] * e[None, :, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (w[None, :, 0] * e[None, :, 1] - w[None, :, 1] * e[None, :, 0]) / den
+        u = (w[None, :, 0] * d[:, None, 1] - w[None, :, 1] * d[:, None, 0]) / den
+    hit = (np.abs(den) > 1e-14) & (t >= 0) & (u >= 0) & (u <= 1)
+    return np.minimum(np.where(hit, t, np.inf).min(axis=1), range_max)
+
+
+def test_lidar_on_berlin_matches_brute_force(berlin):
+    walls, centre = berlin
+    sim = _core.Simulator([(walls, centre)], 1, 1, SimConfig().to_json(), 0)
+    lidar = SimConfig().lidar
+    scans, state, events = buffers(sim)
+    for s in np.linspace(0.0, sim.centreline_length(0), 7, endpoint=False):
+        x, y, yaw = sim.centreline_pose(0, s)
+        sim.reset(np.ones(1, bool), np.array([[[x, y, yaw + 0.2]]]))
+        sim.observe(scans, state, events)
+        yaw = state[0, 0, 2]
+        origin = np.array([x + lidar.mount_x * np.cos(yaw), y + lidar.mount_x * np.sin(yaw)])
+        angles = yaw - lidar.fov / 2 + np.arange(lidar.num_beams) * lidar.fov / (lidar.num_beams - 1)
+        ref = _reference_ranges(walls, origin, angles, lidar.range_max)
+        # float32 output of float64 geometry: within 1e-5 m (plus rounding of the pose
+        # through float32 physics: the reset pose is what the state reports).
+        assert np.max(np.abs(scans[0, 0] - ref)) < 1e-4
+
+
+def test_drives_a_lap_of_berlin_without_touching_a_wall(berlin):
+    from roboracer_arena.bench.physics import _Driver
+
+    sim = _core.Simulator([berlin], 1, 1, SimConfig().to_json(), 0)
+    sim.reset(np.ones(1, bool), np.array([[sim.centreline_pose(0, 0.0)]]))
+    scans, state, events = buffers(sim)
+    sim.observe(None, state, events)
+    driver = _Driver(sim, speed=2.5, lookahead=1.0)
+    actions = np.zeros((1, 1, 2))
+    laps = state[..., sim.state_fields.index("laps")]
+    lap_events = 0
+    for _ in range(int(60 / 0.05)):  # at most 60 s of driving, 20 Hz control
+        driver.actions(state, actions)
+        sim.step(actions, 10, None, state, events)
+        assert not events[0, 0] & 1, f"wall contact at {state[0, 0, :3]}"
+        lap_events += int(events[0, 0] & 4 != 0)
+        if laps[0, 0] >= 1:
+            break
+    assert lap_events == 1 and state[0, 0, sim.state_fields.index("laps")] == 1
+    lap_time = state[0, 0, sim.state_fields.index("last_lap_time")]
+    assert sim.centreline_length(0) / 2.6 < lap_time < sim.centreline_length(0) / 1.5

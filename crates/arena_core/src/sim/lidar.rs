@@ -19,9 +19,11 @@ pub struct SegmentGrid {
     cell: f64,
     nx: usize,
     ny: usize,
-    /// CSR: the segments of cell `c` are `items[start[c]..start[c + 1]]`.
+    /// CSR: the segments of cell `c` are `items[start[c]..start[c + 1]]`, and
+    /// `cell_segs` holds copies of them in the same order (contiguous for the cast loop).
     start: Vec<u32>,
     items: Vec<u32>,
+    cell_segs: Vec<[f64; 4]>,
 }
 
 impl SegmentGrid {
@@ -49,9 +51,10 @@ impl SegmentGrid {
         }
         let mean = total_len / segs.len().max(1) as f64;
         let (w, h) = ((hi[0] - lo[0]).max(1e-3), (hi[1] - lo[1]).max(1e-3));
-        // Cells about two mean segment lengths wide (a handful of segments where a wall
-        // crosses), but never finer than needed to keep the grid under ~4 M cells.
-        let mut cell = (2.0 * mean).clamp(0.1, 2.0);
+        // Cells about three mean segment lengths wide (a handful of segments where a
+        // wall crosses; measured on berlin: 1x 114 us, 2x 84, 4x 80, 8x 98 us per scan in
+        // a dev build), never so fine that the grid exceeds ~4 M cells.
+        let mut cell = (3.0 * mean).clamp(0.1, 2.0);
         while (w / cell + 2.0) * (h / cell + 2.0) > 4.0e6 {
             cell *= 1.5;
         }
@@ -81,7 +84,8 @@ impl SegmentGrid {
             items.extend(b);
             start.push(items.len() as u32);
         }
-        SegmentGrid { segs, x0, y0, cell, nx, ny, start, items }
+        let cell_segs = items.iter().map(|&k| segs[k as usize]).collect();
+        SegmentGrid { segs, x0, y0, cell, nx, ny, start, items, cell_segs }
     }
 
     pub fn num_segments(&self) -> usize {
@@ -150,11 +154,8 @@ impl SegmentGrid {
         let mut best = f64::INFINITY;
         loop {
             let c = iy as usize * self.nx + ix as usize;
-            for &k in &self.items[self.start[c] as usize..self.start[c + 1] as usize] {
-                let t = ray_segment(ox, oy, dx, dy, &self.segs[k as usize]);
-                if t < best {
-                    best = t;
-                }
+            for sg in &self.cell_segs[self.start[c] as usize..self.start[c + 1] as usize] {
+                best = best.min(ray_segment(ox, oy, dx, dy, sg));
             }
             let t_exit = tmx.min(tmy);
             if best <= t_exit || t_exit > t1 {
@@ -178,18 +179,21 @@ impl SegmentGrid {
     }
 }
 
-/// Ray parameter t >= 0 where `o + t d` meets segment `s`, or infinity.
+/// Ray parameter t >= 0 where `o + t d` meets segment `s`, or infinity. Branch-free
+/// (the hit conditions become a select), which matters: ray casting is ~75 % of a scan
+/// and the hit/miss branches are unpredictable.
 #[inline(always)]
 fn ray_segment(ox: f64, oy: f64, dx: f64, dy: f64, s: &[f64; 4]) -> f64 {
     let (ex, ey) = (s[2], s[3]);
     let den = dx * ey - dy * ex;
-    if den.abs() < 1e-14 {
-        return f64::INFINITY;
-    }
     let (wx, wy) = (s[0] - ox, s[1] - oy);
-    let t = (wx * ey - wy * ex) / den;
-    let u = (wx * dy - wy * dx) / den;
-    if t >= 0.0 && (0.0..=1.0).contains(&u) { t } else { f64::INFINITY }
+    let sign = if den < 0.0 { -1.0 } else { 1.0 };
+    let ad = den * sign;
+    let tn = (wx * ey - wy * ex) * sign; // t * |den|
+    let un = (wx * dy - wy * dx) * sign; // u * |den|
+    let t = tn / ad;
+    let ok = (ad > 1e-14) & (tn >= 0.0) & (un >= 0.0) & (un <= ad);
+    if ok { t } else { f64::INFINITY }
 }
 
 /// Conservative segment–box overlap (bounding boxes plus separating line of the segment).
