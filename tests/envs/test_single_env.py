@@ -16,13 +16,22 @@ def make(track, **kw):
     return RoboRacerEnv(track=track, **{**SMALL, **kw})
 
 
-@pytest.mark.filterwarnings("ignore:.*(infinity|symmetric and normalized).*")
+@pytest.mark.filterwarnings("ignore:.*(infinity|symmetric and normalized|not having a spec).*")
 def test_check_env_passes(oval):
     env = gym.make("RoboRacerArena-v0", track=oval, render_mode="rgb_array", **SMALL)
     check_env(env.unwrapped)
     obs, info = env.reset(seed=0)
     assert obs["scan"].shape == (109,) and obs["odometry"].shape == (7,)
     assert info["track"] == "stadium"
+
+
+@pytest.mark.filterwarnings("ignore:.*(infinity|symmetric and normalized|not having a spec).*")
+@pytest.mark.parametrize("options", [
+    {"action_mode": "normalised", "observation": {"normalise": True}},
+    {"vehicles_per_env": 2, "observation": {"scan": False}},
+])
+def test_check_env_passes_with_options(oval, options):
+    check_env(RoboRacerEnv(track=oval, **SMALL, **options))
 
 
 def test_make_with_module_prefix(oval):
