@@ -188,6 +188,9 @@ class DriveResult:
     max_speed: float
     wall_time: float
     video: str | None = None
+    contact_at: list[float] | None = None  # (x, y) of the first contact
+    corridor_width_at_contact: float | None = None  # narrowest corridor width within 1 m of it
+    vehicle_width: float | None = None
 
     @property
     def completed(self) -> bool:
@@ -233,6 +236,8 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
         frames.append(env.render())
     lap_times: list[float] = []
     steps, contacts, vmax, collided = 0, 0, 0.0, False
+    contact_at: list[float] | None = None
+    width_at_contact: float | None = None
     state_speed = env.odometry_index.get("speed", env.odometry_index.get("vx"))
     while steps * dt < limit:
         obs, _, terminated, truncated, info = env.step(driver.act(obs))
@@ -242,6 +247,11 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
             lap_times.append(round(steps * dt, 3))
         contact = bool(np.any(info["contact_wall"]) or np.any(info["contact_vehicle"]))
         contacts += contact
+        if contact and not collided:
+            state, f = env.simulator_state
+            x, y = float(state[0, f["x"]]), float(state[0, f["y"]])
+            contact_at = [round(x, 3), round(y, 3)]
+            width_at_contact = round(env.tracks[0].corridor_width_near(x, y), 3)
         collided = collided or contact
         if state_speed is not None:
             vmax = max(vmax, float(np.max(np.abs(env.odometry_raw(obs)[:, state_speed]))))
@@ -265,4 +275,6 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
         lap_times=[round(b - a, 3) for a, b in zip([0.0, *lap_times[:-1]], lap_times)], collided=collided,
         contact_steps=contacts, sim_time=round(steps * dt, 3), distance=round(float(np.min(info["progress"])), 3),
         max_speed=round(vmax, 3), wall_time=round(time.perf_counter() - t0, 3), video=out,
+        contact_at=contact_at, corridor_width_at_contact=width_at_contact,
+        vehicle_width=env.config.sim.vehicle.chassis_width,
     )

@@ -53,3 +53,10 @@ def test_missing_map_file_is_a_map_io_error(tmp_path):
 
     with pytest.raises(MapIOError, match="nope.yaml"):
         resolve_tracks(tmp_path / "nope.yaml")
+
+
+def test_clearance_and_corridor_width(oval):
+    assert oval.clearance([[0.0, -3.0], [0.0, -3.5]]) == pytest.approx([0.8, 0.3], abs=1e-6)
+    assert oval.corridor_width_near(0.0, -3.0) == pytest.approx(1.6, abs=1e-3)
+    narrow = stadium(half_width=0.2, name="narrow")
+    assert narrow.corridor_width_near(6.0, 0.0) == pytest.approx(0.4, abs=1e-3)

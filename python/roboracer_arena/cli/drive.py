@@ -45,7 +45,11 @@ def run(args: argparse.Namespace) -> int:
     for i, t in enumerate(res.lap_times, 1):
         print(f"  lap {i}: {t:.2f} s")
     if res.collided:
-        print(f"  contact on {res.contact_steps} control step(s)")
+        print(f"  contact on {res.contact_steps} control step(s), first at (x, y) = {tuple(res.contact_at or ())}")
+        w = res.corridor_width_at_contact
+        if w is not None and res.vehicle_width is not None and w < res.vehicle_width + 0.2:
+            print(f"  the corridor there is only {w:.2f} m wide for a {res.vehicle_width:.2f} m wide car: "
+                  "the map's drivable path is too narrow at that point")
     if res.video:
         print(f"  wrote {res.video}")
     return 0

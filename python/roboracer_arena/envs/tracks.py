@@ -77,6 +77,32 @@ class Track:
         lo, hi = pts.min(axis=0), pts.max(axis=0)
         return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
 
+    @cached_property
+    def _segments(self) -> tuple[np.ndarray, np.ndarray]:
+        """(starts (S, 2), deltas (S, 2)) of every wall edge, closing edges included."""
+        rings = [np.vstack([w, w[:1]]) if len(w) > 2 and not np.allclose(w[0], w[-1]) else w for w in self.walls]
+        starts = np.vstack([r[:-1] for r in rings])
+        return starts, np.vstack([r[1:] for r in rings]) - starts
+
+    def clearance(self, points: Any) -> np.ndarray:
+        """Distance (m) from each of ``points`` ((N, 2)) to the nearest wall (walls are closed rings)."""
+        p = np.atleast_2d(np.asarray(points, dtype=np.float64))
+        a, d = self._segments
+        l2 = np.maximum((d * d).sum(axis=1), 1e-18)
+        out = np.empty(len(p))
+        for i, q in enumerate(p):
+            t = np.clip(((q - a) * d).sum(axis=1) / l2, 0.0, 1.0)
+            out[i] = np.sqrt((((a + t[:, None] * d) - q) ** 2).sum(axis=1).min())
+        return out
+
+    def corridor_width_near(self, x: float, y: float, radius: float = 1.0) -> float:
+        """Narrowest corridor width (2 × wall clearance of the centreline) within ``radius`` of (x, y)."""
+        c = self.loop
+        near = c[np.hypot(c[:, 0] - x, c[:, 1] - y) <= radius]
+        if len(near) == 0:
+            near = c[[int(np.argmin(np.hypot(c[:, 0] - x, c[:, 1] - y)))]]
+        return float(2.0 * self.clearance(near).min())
+
     def native(self) -> tuple[list[np.ndarray], np.ndarray]:
         """The ``(walls, centreline)`` pair the native simulator takes."""
         return list(self.walls), self.centreline
