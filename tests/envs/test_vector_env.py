@@ -1,4 +1,5 @@
-"""The native vector env: make_vec, autoreset (SAME_STEP), determinism across num_envs."""
+"""The native vector env: make_vec, autoreset (NEXT_STEP default, SAME_STEP option),
+determinism across num_envs, gymnasium's vector wrappers."""
 
 import gymnasium as gym
 import numpy as np
@@ -21,7 +22,7 @@ def make_vec(n, track, **kw):
 def test_make_vec_four_envs(oval):
     env = make_vec(4, oval)
     assert isinstance(env.unwrapped, RoboRacerVectorEnv)
-    assert env.metadata["autoreset_mode"] == AutoresetMode.SAME_STEP
+    assert env.metadata["autoreset_mode"] == AutoresetMode.NEXT_STEP
     obs, info = env.reset(seed=0)
     assert obs["scan"].shape == (4, 109) and obs["odometry"].shape == (4, 7)
     assert env.observation_space.contains(obs)
@@ -64,8 +65,28 @@ def test_env_zero_is_identical_whatever_num_envs():
         assert np.array_equal(s1, s4) and np.array_equal(o1, o4)
 
 
-def test_same_step_autoreset_returns_reset_obs_and_final_obs(oval):
+def test_next_step_autoreset(oval):
     env = make_vec(3, oval, reset_poses="grid", time_limit_s=0.5)  # 10 steps
+    env.reset(seed=0)
+    go = np.tile([0.0, 2.0], (3, 1)).astype(np.float32)
+    for k in range(10):
+        obs, rew, term, trunc, info = env.step(go)
+    assert trunc.all() and not term.any() and "final_obs" not in info
+    x_last = obs["odometry"][0, 0]
+    obs, rew, term, trunc, info = env.step(go)  # the reset step: action ignored
+    assert not (term | trunc).any() and (rew == 0).all()
+    assert obs["odometry"][0, 0] < x_last - 0.3 and info["progress"][0] == 0.0
+    first = obs["odometry"].copy()
+    env.reset(seed=0)
+    again, _ = env.reset(seed=0)
+    assert np.array_equal(again["odometry"], first)  # the reset observation, exactly
+    obs, rew, term, trunc, info = env.step(go)
+    assert (rew > 0).all()
+
+
+def test_same_step_autoreset_returns_reset_obs_and_final_obs(oval):
+    env = make_vec(3, oval, reset_poses="grid", time_limit_s=0.5, autoreset_mode="SameStep")  # 10 steps
+    assert env.metadata["autoreset_mode"] == AutoresetMode.SAME_STEP
     env.reset(seed=0)
     for k in range(10):
         obs, rew, term, trunc, info = env.step(np.tile([0.0, 2.0], (3, 1)).astype(np.float32))
@@ -80,7 +101,7 @@ def test_same_step_autoreset_returns_reset_obs_and_final_obs(oval):
 
 
 def test_partial_autoreset_keeps_other_envs_running(oval):
-    env = make_vec(2, oval, reset_poses="grid", time_limit_s=None)
+    env = make_vec(2, oval, reset_poses="grid", time_limit_s=None, autoreset_mode="SameStep")
     env.reset(seed=0)
     act = np.array([[0.5, 2.0], [0.0, 1.0]], np.float32)  # env 0 turns into the wall
     for _ in range(200):
@@ -106,7 +127,7 @@ def test_bad_num_envs(oval):
 
 
 def test_several_vehicles_per_env(oval):
-    env = make_vec(3, oval, vehicles_per_env=2, reset_poses="grid", grid_offset=0.0)  # in line
+    env = make_vec(3, oval, vehicles_per_env=2, reset_poses="grid", grid_offset=0.0, autoreset_mode="SameStep")
     obs, info = env.reset(seed=0)
     assert obs["scan"].shape == (3, 2, 109) and obs["odometry"].shape == (3, 2, 7)
     assert info["progress"].shape == (3, 2)
@@ -121,3 +142,19 @@ def test_several_vehicles_per_env(oval):
         if term.any():
             break
     assert term.all() and info["final_info"]["contact_vehicle"].any()
+
+
+def test_gymnasium_vector_wrappers(oval):
+    from gymnasium.wrappers.vector import FlattenObservation, RecordEpisodeStatistics
+
+    env = RecordEpisodeStatistics(FlattenObservation(make_vec(4, oval, time_limit_s=0.5, action_mode="normalised")))
+    obs, _ = env.reset(seed=0)
+    assert obs.shape == (4, 109 + 7)
+    env.action_space.seed(0)
+    episodes = 0
+    for _ in range(12):
+        obs, rew, term, trunc, info = env.step(env.action_space.sample())
+        if "episode" in info:
+            episodes += int(info["_episode"].sum())
+            assert (info["episode"]["l"][info["_episode"]] <= 10).all()
+    assert episodes == 4

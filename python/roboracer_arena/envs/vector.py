@@ -1,12 +1,22 @@
 """Native vector env: ``num_envs`` RoboRacer environments on ONE batched
 ``_core.Simulator`` (rayon-parallel, GIL released), not Sync/AsyncVectorEnv.
 
-Autoreset mode: **SAME_STEP**. When an environment terminates or truncates, ``step``
-resets it before returning: the returned observation is the first one of its next
-episode, ``infos["final_obs"]`` (object array, ``None`` elsewhere) holds the last one
-and ``infos["final_info"]`` its info, both with ``_final_obs``/``_final_info`` masks.
-Every action of every step is therefore used (no dead "reset" step), which keeps the
-batch dense.
+Autoreset mode (``metadata["autoreset_mode"]``), chosen with ``autoreset_mode=``:
+
+* **NEXT_STEP** (default, like gymnasium's own vector envs, and the only mode gymnasium's
+  vector observation wrappers accept): the step that ends an episode returns its last
+  observation; the *next* step resets that environment, ignores its action and returns
+  the first observation of the new episode with reward 0 and ``terminated = truncated =
+  False``.
+* **SAME_STEP**: the step that ends an episode resets the environment before returning;
+  the returned observation is the new episode's first, ``infos["final_obs"]`` (object
+  array, ``None`` elsewhere) and ``infos["final_info"]`` hold the last ones, with
+  ``_final_obs`` / ``_final_info`` masks.
+
+A reset environment is re-observed with the others (one extra scan pass on steps that
+contain a reset; the simulator has no masked observe). With lidar noise (``noise_std >
+0``) that extra pass also draws from the other environments' noise streams, so
+bit-identical results across ``num_envs`` hold for noise-free lidar (the default).
 
 Seeding: ``reset(seed=s)`` gives environment ``i`` the RNG ``default_rng([s, i])`` for its
 track and start-pose draws and reseeds the simulator with ``s``, so environment ``i``
@@ -30,7 +40,7 @@ class RoboRacerVectorEnv(VectorEnv):
     """Batched RoboRacer environments (see module docstring); spaces as in
     :class:`~roboracer_arena.envs.single.RoboRacerEnv` with a leading env axis."""
 
-    metadata = {"render_modes": ["rgb_array"], "render_fps": 20, "autoreset_mode": AutoresetMode.SAME_STEP}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 20, "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(
         self,
@@ -41,6 +51,7 @@ class RoboRacerVectorEnv(VectorEnv):
         corridor_params: Any = None,
         render_size: int = 400,
         max_episode_steps: int | None = None,
+        autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
         **overrides: Any,
     ) -> None:
         if num_envs < 1:
@@ -57,7 +68,12 @@ class RoboRacerVectorEnv(VectorEnv):
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self.render_mode = render_mode
-        self.metadata = {**self.metadata, "render_fps": self.config.control_rate_hz}
+        mode = AutoresetMode(autoreset_mode) if isinstance(autoreset_mode, str) else autoreset_mode
+        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP):
+            raise ValueError(f"autoreset_mode must be NEXT_STEP or SAME_STEP, got {autoreset_mode!r}")
+        self.autoreset_mode = mode
+        self._autoreset = np.zeros(self.num_envs, bool)
+        self.metadata = {**self.metadata, "render_fps": self.config.control_rate_hz, "autoreset_mode": mode}
         self._render_size = render_size
         self._view: Any = None
         self._squeeze = self.config.vehicles_per_env == 1
@@ -79,23 +95,34 @@ class RoboRacerVectorEnv(VectorEnv):
             mask = np.asarray(options["reset_mask"], dtype=bool).reshape(self.num_envs)
         track_id = (options or {}).get("track_id")
         self._batch.reset(mask, self._rngs, None if track_id is None else int(track_id))
+        self._autoreset &= ~mask
         return self._obs(), self._info()
 
     def step(self, actions: Any):
         b = self._batch
         b.set_actions(actions)
         reward, terminated, truncated, _ = b.step()
-        done = terminated | truncated
         infos: dict[str, Any] = {}
-        if done.any():
-            idx = np.flatnonzero(done)
-            final_obs = np.full(self.num_envs, None, dtype=object)
-            last = self._obs(idx)
-            for j, e in enumerate(idx):
-                final_obs[e] = {k: v[j] for k, v in last.items()}
-            final_info = self._masked(self._info(), done)
-            b.reset(done, self._rngs)
-            infos = {"final_obs": final_obs, "_final_obs": done.copy(), "final_info": final_info, "_final_info": done.copy()}
+        if self.autoreset_mode == AutoresetMode.NEXT_STEP:
+            pending = self._autoreset
+            if pending.any():  # episodes that ended last step start now; their action was moot
+                b.reset(pending, self._rngs)
+                reward[pending] = 0.0
+                terminated[pending] = False
+                truncated[pending] = False
+            self._autoreset = terminated | truncated
+        else:
+            done = terminated | truncated
+            if done.any():
+                idx = np.flatnonzero(done)
+                final_obs = np.full(self.num_envs, None, dtype=object)
+                last = self._obs(idx)
+                for j, e in enumerate(idx):
+                    final_obs[e] = {k: v[j] for k, v in last.items()}
+                final_info = self._masked(self._info(), done)
+                b.reset(done, self._rngs)
+                infos = {"final_obs": final_obs, "_final_obs": done.copy(), "final_info": final_info,
+                         "_final_info": done.copy()}
         infos.update(self._info())
         return self._obs(), reward.astype(np.float64), terminated.copy(), truncated.copy(), infos
 
