@@ -7,10 +7,15 @@ braking and acceleration passes around the closed loop).
 >>> driver = PurePursuitDriver.for_env(env)
 >>> obs, info = env.reset(seed=0)
 >>> obs, reward, terminated, truncated, info = env.step(driver.act(obs))
+
+The same ``for_env`` works on the native vector env (every env and vehicle, each on its
+own track). :func:`drive_laps` drives whole laps and reports lap times and contacts (the
+``roboracer-arena drive`` command and the track library's drivability check).
 """
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 from typing import Any
 
@@ -130,11 +135,11 @@ def _speed_profile(curv: np.ndarray, ds: float, p: PurePursuitParams) -> np.ndar
 
 
 class EnvPurePursuit:
-    """Drives a RoboRacer env (single env, all of its vehicles) with pure pursuit.
+    """Drives a RoboRacer env — single env or native vector env, every vehicle — with pure pursuit.
 
     Reads the pose and speed from the odometry observation (raw or normalised), follows
-    the centreline of the track the env is currently on, and returns an action in the
-    env's action mode. Create it with :meth:`PurePursuitDriver.for_env`.
+    the centreline of the track each environment is currently on, and returns an action
+    in the env's action mode. Create it with :meth:`PurePursuitDriver.for_env`.
     """
 
     def __init__(self, env: Any, params: PurePursuitParams | None = None) -> None:
@@ -142,34 +147,47 @@ class EnvPurePursuit:
         self.params = params or PurePursuitParams(
             max_steer=float(self.env.max_steer), wheelbase=float(self.env.wheelbase)
         )
-        self._drivers: dict[int, list[PurePursuitDriver]] = {}
-        missing = [f for f in ("x", "y", "yaw") if f not in self.env.odometry_index]
+        self._vector = hasattr(self.env, "num_envs")
+        self._geometry: dict[int, PurePursuitDriver] = {}  # one resampled centreline per track
+        self._slots: dict[tuple[int, int], tuple[int, PurePursuitDriver]] = {}  # (env, vehicle) -> state
+        f = self.env.odometry_index
+        missing = [k for k in ("x", "y", "yaw") if k not in f]
         if missing:
             from .errors import ConfigError
 
             raise ConfigError(f"pure pursuit needs the odometry fields x, y, yaw in the observation (missing {missing})")
+        self._cols = (f["x"], f["y"], f["yaw"], f.get("speed", f.get("vx")))
+
+    def _driver(self, e: int, k: int, track_id: int) -> PurePursuitDriver:
+        slot = self._slots.get((e, k))
+        if slot is None or slot[0] != track_id:
+            base = self._geometry.get(track_id)
+            if base is None:
+                base = self._geometry[track_id] = PurePursuitDriver(self.env.tracks[track_id].centreline, self.params)
+            slot = (track_id, copy.copy(base))  # shares the geometry, own projection state
+            slot[1].reset()
+            self._slots[(e, k)] = slot
+        return slot[1]
 
     def act(self, obs: Any) -> np.ndarray:
         """An action for ``obs`` (the env's last observation)."""
         env = self.env
-        odo = env.odometry_raw(obs)  # (V, K) in SI units
-        track_id = int(env.current_track_id)
-        drivers = self._drivers.get(track_id)
-        if drivers is None:
-            centreline = env.tracks[track_id].centreline
-            drivers = [PurePursuitDriver(centreline, self.params) for _ in range(env.vehicles_per_env)]
-            self._drivers[track_id] = drivers
-        f = env.odometry_index
-        speed_field = "speed" if "speed" in f else "vx"
-        cmds = np.array(
-            [d.act_pose(row[f["x"]], row[f["y"]], row[f["yaw"]], row[f[speed_field]]) for d, row in zip(drivers, odo)]
-        )
-        return env.from_ackermann(cmds)
+        odo = np.asarray(env.odometry_raw(obs), dtype=np.float64)  # (V, K) or (E, V, K), SI units
+        track_ids = np.atleast_1d(env.current_track_ids if self._vector else env.current_track_id)
+        if not self._vector:
+            odo = odo[None]
+        cx, cy, cyaw, cv = self._cols
+        cmds = np.zeros((*odo.shape[:2], 2))
+        for e, tid in enumerate(track_ids):
+            for k, row in enumerate(odo[e]):
+                speed = row[cv] if cv is not None else 0.0
+                cmds[e, k] = self._driver(e, k, int(tid)).act_pose(row[cx], row[cy], row[cyaw], speed)
+        return env.from_ackermann(cmds if self._vector else cmds[0])
 
     def reset(self) -> None:
-        for ds in self._drivers.values():
-            for d in ds:
-                d.reset()
+        """Forget every vehicle's last projection (optional: a jump is detected anyway)."""
+        for _, d in self._slots.values():
+            d.reset()
 
 
 @dataclass

@@ -158,3 +158,21 @@ def test_gymnasium_vector_wrappers(oval):
             episodes += int(info["_episode"].sum())
             assert (info["episode"]["l"][info["_episode"]] <= 10).all()
     assert episodes == 4
+
+
+def test_pure_pursuit_drives_every_env_of_a_vector_env(oval):
+    from roboracer_arena.drivers import PurePursuitDriver
+
+    tracks = [oval, stadium(4.0, 2.5, name="b")]
+    env = make_vec(4, tracks, reset_poses="random", vehicles_per_env=2, grid_offset=0.0, grid_spacing=1.5,
+                   observation={"normalise": True}, action_mode="normalised", time_limit_s=None)
+    driver = PurePursuitDriver.for_env(env)
+    obs, info = env.reset(seed=5)
+    total = np.zeros(4)
+    for _ in range(80):  # 4 s
+        action = driver.act(obs)
+        assert env.action_space.contains(action)
+        obs, rew, term, trunc, info = env.step(action)
+        assert not term.any()
+        total += rew
+    assert (total > 2 * 6.0).all()  # both cars of every env made progress (summed reward)

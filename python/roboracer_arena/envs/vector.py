@@ -154,3 +154,38 @@ class RoboRacerVectorEnv(VectorEnv):
         for k in info:
             out[f"_{k}"] = mask.copy()
         return out
+
+    # ------------------------------------------------------------------ drivers, tools
+    @property
+    def current_track_ids(self) -> np.ndarray:
+        """Index (into :attr:`tracks`) of each environment's current track, (E,)."""
+        return self._batch.track_ids.copy()
+
+    @property
+    def vehicles_per_env(self) -> int:
+        return self.config.vehicles_per_env
+
+    @property
+    def max_steer(self) -> float:
+        return self.config.sim.vehicle.max_steer
+
+    @property
+    def wheelbase(self) -> float:
+        return self.config.sim.vehicle.wheelbase
+
+    @property
+    def odometry_index(self) -> dict[str, int]:
+        """Column of each odometry field in ``obs["odometry"]``."""
+        return {f: i for i, f in enumerate(self.config.observation.odometry)}
+
+    def odometry_raw(self, obs: dict[str, np.ndarray]) -> np.ndarray:
+        """``obs["odometry"]`` in SI units, shape (E, V, K), whatever the normalisation."""
+        if "odometry" not in obs:
+            raise ValueError("the observation has no odometry (ObservationConfig.odometry is empty)")
+        odo = np.reshape(obs["odometry"], (self.num_envs, self.vehicles_per_env, -1))
+        return self._batch.odometry_raw(odo, slice(None))
+
+    def from_ackermann(self, cmds: Any) -> np.ndarray:
+        """``[steer rad, speed m/s]`` commands ((E, V, 2)) as an action of this vector env."""
+        a = self._batch.from_ackermann(np.reshape(cmds, (self.num_envs, self.vehicles_per_env, 2)))
+        return a[:, 0] if self._squeeze else a
