@@ -231,3 +231,26 @@ class SimBatch:
         its per-vehicle noise streams restart: the same seed gives the same episode."""
         self.seed = int(seed)
         self.sim = self._Simulator(self._natives, self.num_envs, self.vehicles, self.config.sim.to_json(), self.seed)
+
+
+class EnvHelpers:
+    """Properties both envs expose to drivers and tools (they hold ``config``)."""
+
+    config: EnvConfig
+
+    @property
+    def vehicles_per_env(self) -> int:
+        return self.config.vehicles_per_env
+
+    @property
+    def max_steer(self) -> float:
+        return self.config.sim.vehicle.max_steer
+
+    @property
+    def wheelbase(self) -> float:
+        return self.config.sim.vehicle.wheelbase
+
+    @property
+    def odometry_index(self) -> dict[str, int]:
+        """Column of each odometry field in ``obs["odometry"]``."""
+        return {f: i for i, f in enumerate(self.config.observation.odometry)}

@@ -23,12 +23,12 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .batch import CONTACT_VEHICLE, CONTACT_WALL, LAP_COMPLETED, STATE_INFO, SimBatch
+from .batch import CONTACT_VEHICLE, CONTACT_WALL, LAP_COMPLETED, STATE_INFO, EnvHelpers, SimBatch
 from .env_config import EnvConfig
 from .tracks import resolve_tracks
 
 
-class RoboRacerEnv(gym.Env):
+class RoboRacerEnv(EnvHelpers, gym.Env):
     """Single RoboRacer environment (see module docstring)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 20}
@@ -111,23 +111,6 @@ class RoboRacerEnv(gym.Env):
     def current_track_id(self) -> int:
         """Index (into :attr:`tracks`) of the track of the current episode."""
         return int(self._batch.track_ids[0])
-
-    @property
-    def vehicles_per_env(self) -> int:
-        return self.config.vehicles_per_env
-
-    @property
-    def max_steer(self) -> float:
-        return self.config.sim.vehicle.max_steer
-
-    @property
-    def wheelbase(self) -> float:
-        return self.config.sim.vehicle.wheelbase
-
-    @property
-    def odometry_index(self) -> dict[str, int]:
-        """Column of each odometry field in ``obs["odometry"]``."""
-        return {f: i for i, f in enumerate(self.config.observation.odometry)}
 
     def odometry_raw(self, obs: dict[str, np.ndarray]) -> np.ndarray:
         """``obs["odometry"]`` in SI units, shape (V, K), whatever the normalisation."""

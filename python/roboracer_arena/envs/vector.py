@@ -31,12 +31,12 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from .batch import SimBatch
+from .batch import EnvHelpers, SimBatch
 from .env_config import EnvConfig
 from .tracks import resolve_tracks
 
 
-class RoboRacerVectorEnv(VectorEnv):
+class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
     """Batched RoboRacer environments (see module docstring); spaces as in
     :class:`~roboracer_arena.envs.single.RoboRacerEnv` with a leading env axis."""
 
@@ -160,23 +160,6 @@ class RoboRacerVectorEnv(VectorEnv):
     def current_track_ids(self) -> np.ndarray:
         """Index (into :attr:`tracks`) of each environment's current track, (E,)."""
         return self._batch.track_ids.copy()
-
-    @property
-    def vehicles_per_env(self) -> int:
-        return self.config.vehicles_per_env
-
-    @property
-    def max_steer(self) -> float:
-        return self.config.sim.vehicle.max_steer
-
-    @property
-    def wheelbase(self) -> float:
-        return self.config.sim.vehicle.wheelbase
-
-    @property
-    def odometry_index(self) -> dict[str, int]:
-        """Column of each odometry field in ``obs["odometry"]``."""
-        return {f: i for i, f in enumerate(self.config.observation.odometry)}
 
     def odometry_raw(self, obs: dict[str, np.ndarray]) -> np.ndarray:
         """``obs["odometry"]`` in SI units, shape (E, V, K), whatever the normalisation."""
