@@ -108,13 +108,18 @@ impl Simulator {
             }
         }
         let model = &self.model;
-        self.worlds.par_iter_mut().zip(mask.par_iter()).zip(poses.par_chunks(v * 3)).for_each(|((w, &m), p)| {
+        let run = |((w, &m), p): ((&mut World, &bool), &[f64])| {
             if m {
                 for k in 0..v {
                     w.reset_vehicle(k, [p[3 * k], p[3 * k + 1], p[3 * k + 2]], model);
                 }
             }
-        });
+        };
+        if self.worlds.len() == 1 {
+            self.worlds.iter_mut().zip(mask.iter()).zip(poses.chunks(v * 3)).for_each(run);
+        } else {
+            self.worlds.par_iter_mut().zip(mask.par_iter()).zip(poses.par_chunks(v * 3)).for_each(run);
+        }
         Ok(())
     }
 
@@ -129,10 +134,16 @@ impl Simulator {
         }
         self.check_outputs(scans.as_deref().map(|s| s.len()), state.len(), events.len())?;
         let model = &self.model;
-        self.worlds.par_iter_mut().zip(actions.par_chunks(v * 2)).for_each(|(w, a)| {
+        let run = |(w, a): (&mut World, &[f64])| {
             let cmds: Vec<(f64, f64)> = a.chunks_exact(2).map(|c| model.sanitise(c[0], c[1])).collect();
             w.step(&cmds, substeps, model);
-        });
+        };
+        // One env: stay on the calling thread (a rayon hand-off costs microseconds).
+        if self.worlds.len() == 1 {
+            self.worlds.iter_mut().zip(actions.chunks(v * 2)).for_each(run);
+        } else {
+            self.worlds.par_iter_mut().zip(actions.par_chunks(v * 2)).for_each(run);
+        }
         self.observe(scans, state, events)
     }
 
@@ -141,16 +152,21 @@ impl Simulator {
         let v = self.vehicles_per_env;
         self.check_outputs(scans.as_deref().map(|s| s.len()), state.len(), events.len())?;
         let (model, scanner) = (&self.model, &self.scanner);
+        let b = scanner.num_beams();
+        let one = |(((w, st), ev), sc): (((&mut World, &mut [f64]), &mut [u8]), Option<&mut [f32]>)| {
+            w.write_state(st, ev);
+            if let Some(sc) = sc {
+                w.scan(scanner, model, sc);
+            }
+        };
+        if self.worlds.len() == 1 {
+            one((((&mut self.worlds[0], state), events), scans));
+            return Ok(());
+        }
         let worlds = self.worlds.par_iter_mut().zip(state.par_chunks_mut(v * STATE_SIZE)).zip(events.par_chunks_mut(v));
         match scans {
-            Some(scans) => {
-                let b = scanner.num_beams();
-                worlds.zip(scans.par_chunks_mut(v * b)).for_each(|(((w, st), ev), sc)| {
-                    w.write_state(st, ev);
-                    w.scan(scanner, model, sc);
-                });
-            }
-            None => worlds.for_each(|((w, st), ev)| w.write_state(st, ev)),
+            Some(scans) => worlds.zip(scans.par_chunks_mut(v * b)).for_each(|(a, sc)| one((a, Some(sc)))),
+            None => worlds.for_each(|a| one((a, None))),
         }
         Ok(())
     }

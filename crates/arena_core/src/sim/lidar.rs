@@ -8,6 +8,7 @@ use rand_chacha::rand_core::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::params::LidarParams;
+use super::sweep::sweep;
 
 /// Wall segments bucketed in a uniform grid.
 #[derive(Debug, Clone)]
@@ -90,6 +91,11 @@ impl SegmentGrid {
 
     pub fn num_segments(&self) -> usize {
         self.segs.len()
+    }
+
+    /// All wall segments as (ax, ay, bx - ax, by - ay).
+    pub fn segments(&self) -> &[[f64; 4]] {
+        &self.segs
     }
 
     /// True when no wall segment comes within `r` of `(x, y)`.
@@ -183,7 +189,7 @@ impl SegmentGrid {
 /// (the hit conditions become a select), which matters: ray casting is ~75 % of a scan
 /// and the hit/miss branches are unpredictable.
 #[inline(always)]
-fn ray_segment(ox: f64, oy: f64, dx: f64, dy: f64, s: &[f64; 4]) -> f64 {
+pub(crate) fn ray_segment(ox: f64, oy: f64, dx: f64, dy: f64, s: &[f64; 4]) -> f64 {
     let (ex, ey) = (s[2], s[3]);
     let den = dx * ey - dy * ex;
     let (wx, wy) = (s[0] - ox, s[1] - oy);
@@ -245,8 +251,15 @@ impl Footprint {
 pub struct Scanner {
     cos: Vec<f64>,
     sin: Vec<f64>,
+    /// Angle of beam 0 relative to the heading, and the beam increment (rad).
+    angle0: f64,
+    inc: f64,
     params: LidarParams,
 }
+
+/// Scans use the angular sweep (walk each segment once) when the track has at most this
+/// many segments per beam, else the per-beam grid walk. Both give identical ranges.
+const SWEEP_MAX_SEGMENTS_PER_BEAM: usize = 4;
 
 impl Scanner {
     pub fn new(params: &LidarParams) -> Self {
@@ -254,7 +267,13 @@ impl Scanner {
         let inc = if n > 1 { params.fov / (n - 1) as f64 } else { 0.0 };
         let start = if n > 1 { -0.5 * params.fov } else { 0.0 };
         let angles: Vec<f64> = (0..n).map(|k| start + k as f64 * inc).collect();
-        Scanner { cos: angles.iter().map(|a| a.cos()).collect(), sin: angles.iter().map(|a| a.sin()).collect(), params: params.clone() }
+        Scanner {
+            cos: angles.iter().map(|a| a.cos()).collect(),
+            sin: angles.iter().map(|a| a.sin()).collect(),
+            angle0: start,
+            inc,
+            params: params.clone(),
+        }
     }
 
     pub fn num_beams(&self) -> usize {
@@ -267,14 +286,32 @@ impl Scanner {
         let (cy, sy) = (pose[2].cos(), pose[2].sin());
         let (ox, oy) = (pose[0] + self.params.mount_x * cy, pose[1] + self.params.mount_x * sy);
         let rmax = self.params.range_max;
-        for (k, o) in out.iter_mut().enumerate().take(self.cos.len()) {
-            let (c, s) = (self.cos[k], self.sin[k]);
-            let (dx, dy) = (c * cy - s * sy, c * sy + s * cy);
-            let mut t = grid.cast(ox, oy, dx, dy, rmax);
-            for f in others {
-                t = t.min(f.cast(ox, oy, dx, dy));
+        let n = self.cos.len();
+        if grid.num_segments() <= SWEEP_MAX_SEGMENTS_PER_BEAM * n {
+            let dirs: Vec<[f64; 2]> = (0..n).map(|k| {
+                let (c, s) = (self.cos[k], self.sin[k]);
+                [c * cy - s * sy, c * sy + s * cy]
+            }).collect();
+            let mut ranges = vec![f64::INFINITY; n];
+            let theta0 = pose[2] + self.angle0;
+            sweep(grid, ox, oy, theta0, self.inc, &dirs, rmax, &mut ranges);
+            for (k, o) in out.iter_mut().enumerate().take(n) {
+                let mut t = ranges[k];
+                for f in others {
+                    t = t.min(f.cast(ox, oy, dirs[k][0], dirs[k][1]));
+                }
+                *o = t.min(rmax) as f32;
             }
-            *o = t.min(rmax) as f32;
+        } else {
+            for (k, o) in out.iter_mut().enumerate().take(n) {
+                let (c, s) = (self.cos[k], self.sin[k]);
+                let (dx, dy) = (c * cy - s * sy, c * sy + s * cy);
+                let mut t = grid.cast(ox, oy, dx, dy, rmax);
+                for f in others {
+                    t = t.min(f.cast(ox, oy, dx, dy));
+                }
+                *o = t.min(rmax) as f32;
+            }
         }
         let sd = self.params.noise_std;
         if sd > 0.0 {

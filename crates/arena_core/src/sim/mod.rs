@@ -5,6 +5,7 @@
 //! * [`track`]: shared wall mesh, lidar grid and centreline of one track
 //! * [`vehicle`]: chassis, suspension, tyres, Ackermann steering, speed controller
 //! * [`lidar`]: exact ray casting against wall segments and other vehicles
+//! * [`sweep`]: the same scan by angular sweep over segments (chosen for small tracks)
 //! * [`progress`]: arc length along the centreline and lap counting
 //! * [`world`]: one rapier world per environment
 //! * [`batch`]: N worlds stepped with rayon, deterministic for any N and thread count
@@ -14,6 +15,7 @@ pub mod lidar;
 pub mod params;
 pub mod progress;
 pub mod shapes;
+pub mod sweep;
 pub mod track;
 pub mod vehicle;
 pub mod world;
