@@ -60,6 +60,8 @@ class SimBatch:
         veh, lid = config.sim.vehicle, config.sim.lidar
         self._lo = np.array([-veh.max_steer, veh.min_speed])
         self._hi = np.array([veh.max_steer, veh.max_speed])
+        self._scalar_actions = E * V == 1
+        self._bounds = (tuple(self._lo.tolist()), tuple(self._hi.tolist()))
         # "travel" (signed metres along the centreline since reset, wrap handled natively)
         # when the simulator has it; otherwise the lap-wrapped change of "progress_s".
         self._wrap = "travel" not in self.field_index
@@ -94,8 +96,19 @@ class SimBatch:
         """Sanitise and store actions ((E, V, 2) after reshape): NaN -> 0 (straight, stop),
         ±inf and out-of-range values clipped to the action bounds; then mapped to
         [steer rad, speed m/s] for the simulator."""
-        a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, self.vehicles, 2)
         out = self.actions
+        if self._scalar_actions and self.config.action_mode == "ackermann":
+            try:  # one vehicle: plain floats are several times faster than numpy calls
+                steer, speed = actions.tolist() if hasattr(actions, "tolist") else actions
+                steer, speed = float(steer), float(speed)
+            except (TypeError, ValueError):
+                pass
+            else:  # NaN (x != x) becomes 0
+                (slo, vlo), (shi, vhi) = self._bounds
+                out[0, 0, 0] = (slo if steer < slo else shi if steer > shi else steer) if steer == steer else 0.0
+                out[0, 0, 1] = (vlo if speed < vlo else vhi if speed > vhi else speed) if speed == speed else 0.0
+                return
+        a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, self.vehicles, 2)
         if self.config.action_mode == "ackermann":
             np.clip(a, self._lo, self._hi, out=out)  # ±inf -> bounds; NaN stays NaN
         else:
