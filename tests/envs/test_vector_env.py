@@ -121,9 +121,13 @@ def test_vector_render(oval):
     assert len(frames) == 2 and frames[0].dtype == np.uint8 and frames[0].ndim == 3 and frames[0].shape[2] == 3
 
 
-def test_bad_num_envs(oval):
+def test_bad_num_envs_and_modes(oval):
     with pytest.raises(ValueError):
         RoboRacerVectorEnv(num_envs=0, track=oval, **SMALL)
+    with pytest.raises(ValueError, match="autoreset_mode"):
+        RoboRacerVectorEnv(num_envs=1, track=oval, autoreset_mode="disabled", **SMALL)
+    env = RoboRacerVectorEnv(num_envs=1, track=oval, autoreset_mode="same_step", **SMALL)
+    assert env.metadata["autoreset_mode"] == AutoresetMode.SAME_STEP
 
 
 def test_several_vehicles_per_env(oval):

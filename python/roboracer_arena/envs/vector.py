@@ -68,7 +68,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self.render_mode = render_mode
-        mode = AutoresetMode(autoreset_mode) if isinstance(autoreset_mode, str) else autoreset_mode
+        mode = _autoreset_mode(autoreset_mode)
         if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP):
             raise ValueError(f"autoreset_mode must be NEXT_STEP or SAME_STEP, got {autoreset_mode!r}")
         self.autoreset_mode = mode
@@ -172,3 +172,13 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         """``[steer rad, speed m/s]`` commands ((E, V, 2)) as an action of this vector env."""
         a = self._batch.from_ackermann(np.reshape(cmds, (self.num_envs, self.vehicles_per_env, 2)))
         return a[:, 0] if self._squeeze else a
+
+
+def _autoreset_mode(value: AutoresetMode | str) -> AutoresetMode | None:
+    """An AutoresetMode from the enum, its value ("NextStep") or its name ("next_step")."""
+    if isinstance(value, AutoresetMode):
+        return value
+    for m in AutoresetMode:
+        if str(value) in (m.value, m.name, m.name.lower()):
+            return m
+    return None
