@@ -2,7 +2,8 @@
 //! segment grid, walk each wall segment once and update only the beams whose directions
 //! it spans. A segment's beam range comes from a fast arctangent (error < 2e-5 rad)
 //! widened by one beam on each side, so it is conservative; every (segment, beam) pair
-//! in range is then intersected exactly with the same [`ray_segment`] as the grid walk,
+//! in range is then intersected exactly with the same arithmetic as the grid walk's
+//! `ray_segment`,
 //! so both methods return the same minimum, bit for bit.
 //!
 //! Cost: O(segments + beam-segment crossings within range) per scan, independent of the
@@ -10,7 +11,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use super::lidar::{ray_segment, SegmentGrid};
+use super::lidar::SegmentGrid;
 
 /// atan2 with |error| < 2e-5 rad (Abramowitz & Stegun 4.4.49 on [0, 1], folded).
 #[inline(always)]
@@ -68,7 +69,18 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
             let k1 = if inc > 0.0 { ((h.min(span) * inv + 1e-6).floor() as usize).min(n - 1) } else { 0 };
             for k in k0..=k1 {
                 let d = dirs[k];
-                ranges[k] = ranges[k].min(ray_segment(ox, oy, d[0], d[1], s));
+                // Same arithmetic as `ray_segment` (so the same bits), but the division
+                // is only done for a hit that can lower the range (1e-12 slack keeps
+                // the pre-test conservative under rounding).
+                let den = d[0] * s[3] - d[1] * s[2];
+                let sign = if den < 0.0 { -1.0 } else { 1.0 };
+                let ad = den * sign;
+                let tn = (ax * s[3] - ay * s[2]) * sign;
+                let un = (ax * d[1] - ay * d[0]) * sign;
+                let ok = (ad > 1e-14) & (tn >= 0.0) & (un >= 0.0) & (un <= ad);
+                if ok && tn <= ranges[k] * ad * (1.0 + 1e-12) {
+                    ranges[k] = ranges[k].min(tn / ad);
+                }
             }
         }
     }
