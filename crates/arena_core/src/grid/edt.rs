@@ -31,49 +31,103 @@ pub fn edt_within(feature: &[bool], width: usize, height: usize, cap: f64) -> Ve
     transform(feature, width, height, cap, move |d2| d2.sqrt().min(c))
 }
 
+/// Column distances (phase 1) are stored in the narrowest type that holds the cap.
+trait ColumnDist: Copy + Send + Sync {
+    const FAR: Self;
+    fn zero() -> Self;
+    /// `self + 1`, saturating at FAR.
+    fn next(self) -> Self;
+    /// Squared value, or None when FAR (no feature within the cap in this column).
+    fn square(self) -> Option<f64>;
+}
+
+impl ColumnDist for u8 {
+    const FAR: u8 = u8::MAX;
+    fn zero() -> Self {
+        0
+    }
+    #[inline]
+    fn next(self) -> Self {
+        self.saturating_add(1)
+    }
+    #[inline]
+    fn square(self) -> Option<f64> {
+        (self != u8::MAX).then(|| (self as f64) * (self as f64))
+    }
+}
+
+impl ColumnDist for u32 {
+    const FAR: u32 = u32::MAX;
+    fn zero() -> Self {
+        0
+    }
+    #[inline]
+    fn next(self) -> Self {
+        self.saturating_add(1)
+    }
+    #[inline]
+    fn square(self) -> Option<f64> {
+        (self != u32::MAX).then(|| (self as f64) * (self as f64))
+    }
+}
+
 /// Both phases; `finish` maps each squared distance to the stored value.
 fn transform(feature: &[bool], width: usize, height: usize, cap: f64, finish: impl Fn(f32) -> f32 + Sync) -> Vec<f32> {
     assert_eq!(feature.len(), width * height, "mask size does not match width × height");
     if width == 0 || height == 0 {
         return Vec::new();
     }
+    if cap < (u8::MAX - 1) as f64 {
+        transform_with::<u8>(feature, width, height, cap.max(0.0).floor() as u32, finish)
+    } else {
+        let c = if cap.is_finite() { cap.floor().min((u32::MAX - 1) as f64) as u32 } else { u32::MAX - 1 };
+        transform_with::<u32>(feature, width, height, c, finish)
+    }
+}
+
+fn transform_with<T: ColumnDist + PartialOrd>(
+    feature: &[bool],
+    width: usize,
+    height: usize,
+    cap_cells: u32,
+    finish: impl Fn(f32) -> f32 + Sync,
+) -> Vec<f32> {
     // Phase 1: distance to the nearest feature in the same column, by a downward sweep
-    // (fused with reading the mask) and an upward sweep (fused with squaring and the
-    // cap) over whole rows: cache-friendly, no transpose.
-    const FAR: u32 = 1 << 30;
-    let mut g = vec![0u32; width * height];
-    for (c, &f) in feature[..width].iter().enumerate() {
-        g[c] = if f { 0 } else { FAR };
+    // (fused with reading the mask) and an upward sweep over whole rows: cache-friendly,
+    // no transpose; stored as u8 when the cap allows (a quarter of the memory traffic).
+    let mut g = vec![T::zero(); width * height];
+    for (x, &f) in g[..width].iter_mut().zip(&feature[..width]) {
+        *x = if f { T::zero() } else { T::FAR };
     }
     for r in 1..height {
         let (above, row) = g[(r - 1) * width..(r + 1) * width].split_at_mut(width);
         for ((x, &a), &f) in row.iter_mut().zip(above.iter()).zip(&feature[r * width..(r + 1) * width]) {
-            *x = if f { 0 } else { (a + 1).min(FAR) };
+            *x = if f { T::zero() } else { a.next() };
         }
     }
-    let cap_cells = if cap.is_finite() { cap.max(0.0).floor().min(FAR as f64) as u32 } else { FAR - 1 };
-    let mut d = vec![0f32; width * height];
-    for r in (0..height).rev() {
-        if r + 1 < height {
-            let (row, below) = g[r * width..(r + 2) * width].split_at_mut(width);
-            for (x, &b) in row.iter_mut().zip(below.iter()) {
-                *x = (*x).min(b + 1);
+    for r in (0..height.saturating_sub(1)).rev() {
+        let (row, below) = g[r * width..(r + 2) * width].split_at_mut(width);
+        for (x, &b) in row.iter_mut().zip(below.iter()) {
+            let nb = b.next();
+            if nb < *x {
+                *x = nb;
             }
         }
-        for (o, &v) in d[r * width..(r + 1) * width].iter_mut().zip(&g[r * width..(r + 1) * width]) {
-            *o = if v > cap_cells { INF } else { (v as f32) * (v as f32) };
-        }
     }
-    drop(g);
     // Phase 2: lower envelope of parabolas along each row, rows in parallel.
-    d.par_chunks_mut(width).for_each_init(|| Scratch::new(width), |scratch, row| transform_1d(row, scratch, &finish));
+    let cap2 = (cap_cells as f64) * (cap_cells as f64);
+    let mut d = vec![0f32; width * height];
+    d.par_chunks_mut(width).zip(g.par_chunks(width)).for_each_init(
+        || Scratch::new(width),
+        |scratch, (out, col)| transform_1d(col, out, cap2, scratch, &finish),
+    );
     d
 }
 
 struct Scratch {
     /// Roots of the envelope's parabolas, their sample values, and the boundaries.
     v: Vec<u32>,
-    fv: Vec<f32>,
+    fv: Vec<f64>,
     z: Vec<f64>,
 }
 
@@ -83,20 +137,22 @@ impl Scratch {
     }
 }
 
-/// In-place 1-D squared distance transform of a sampled function `f`, each result
-/// passed through `finish` (f64 arithmetic, so positions beyond 4096 stay exact).
-/// Samples ≥ INF are absent; inside a run of zero samples only the run's ends can be
-/// nearest to a cell outside it, so interior zeros stay out of the envelope.
-fn transform_1d(f: &mut [f32], s: &mut Scratch, finish: &impl Fn(f32) -> f32) {
-    let n = f.len();
+/// 1-D squared distance transform of one row whose samples are the column distances
+/// `col` (squared, absent when FAR or above `cap2`), each result passed through `finish`
+/// into `out`. f64 arithmetic, so positions beyond 4096 stay exact. Inside a run of zero
+/// samples only the run's ends can be nearest to a cell outside it, so interior zeros
+/// stay out of the envelope.
+fn transform_1d<T: ColumnDist>(col: &[T], out: &mut [f32], cap2: f64, s: &mut Scratch, finish: &impl Fn(f32) -> f32) {
+    let n = col.len();
+    let sample = |q: usize| col[q].square().filter(|&x| x <= cap2);
     let (v, fv, z) = (&mut s.v, &mut s.fv, &mut s.z);
     let mut k = usize::MAX; // index of the envelope's last parabola; MAX = empty
     for q in 0..n {
-        let fq = f[q];
-        if fq >= INF || (fq == 0.0 && q > 0 && q + 1 < n && f[q - 1] == 0.0 && f[q + 1] == 0.0) {
+        let Some(fq) = sample(q) else { continue };
+        if fq == 0.0 && q > 0 && q + 1 < n && sample(q - 1) == Some(0.0) && sample(q + 1) == Some(0.0) {
             continue;
         }
-        let hq = fq as f64 + (q * q) as f64;
+        let hq = fq + (q * q) as f64;
         if k == usize::MAX {
             k = 0;
             v[0] = q as u32;
@@ -107,7 +163,7 @@ fn transform_1d(f: &mut [f32], s: &mut Scratch, finish: &impl Fn(f32) -> f32) {
         }
         loop {
             let p = v[k] as usize;
-            let sp = (hq - (fv[k] as f64 + (p * p) as f64)) / (2.0 * (q - p) as f64);
+            let sp = (hq - (fv[k] + (p * p) as f64)) / (2.0 * (q - p) as f64);
             if sp <= z[k] && k > 0 {
                 k -= 1;
             } else if sp <= z[k] {
@@ -127,22 +183,22 @@ fn transform_1d(f: &mut [f32], s: &mut Scratch, finish: &impl Fn(f32) -> f32) {
     }
     if k == usize::MAX {
         let none = finish(INF);
-        f.iter_mut().for_each(|x| *x = none);
+        out.iter_mut().for_each(|x| *x = none);
         return;
     }
-    // Read the envelope left to right, in place (the parabolas' samples are in `fv`).
     let mut k = 0usize;
-    let (mut p, mut fp) = (v[0] as usize, fv[0] as f64);
-    for q in 0..n {
+    let (mut p, mut fp) = (v[0] as usize, fv[0]);
+    for (q, o) in out.iter_mut().enumerate() {
         let qf = q as f64;
         if z[k + 1] < qf {
             while z[k + 1] < qf {
                 k += 1;
             }
-            (p, fp) = (v[k] as usize, fv[k] as f64);
+            (p, fp) = (v[k] as usize, fv[k]);
         }
-        let out = if f[q] == 0.0 { 0.0 } else { let dq = qf - p as f64; (dq * dq + fp) as f32 };
-        f[q] = finish(out);
+        let dq = qf - p as f64;
+        let d2 = if col[q].square() == Some(0.0) { 0.0 } else { (dq * dq + fp) as f32 };
+        *o = finish(d2);
     }
 }
 
