@@ -94,3 +94,16 @@ fn open_map_is_refused() {
     let g = OccupancyGrid::filled(40, 30, 0.05, [0.0; 3], OCCUPIED);
     assert!(matches!(build_geometry(&g, &BuildParams::default(), None), Err(ArenaError::Corridor(_))));
 }
+
+#[test]
+fn corridor_wider_than_the_first_distance_cap_is_exact() {
+    // 14 m wide at 5 cm: inscribed radius 140 cells > the first cap of 128
+    let (r, w) = (9.0, 14.0);
+    let g = ring(r, w, 0.05);
+    let geo = build_geometry(&g, &BuildParams::default(), None).unwrap();
+    assert!(geo.iou >= 0.97, "iou {}", geo.iou);
+    assert!(geo.centreline.iter().all(|&p| (radius(p) - r).abs() < 0.05));
+    let outer = geo.walls.iter().find(|l| signed_area(l) > 0.0).unwrap();
+    let mean = outer.iter().map(|&q| radius(q)).sum::<f64>() / outer.len() as f64;
+    assert!((mean - (r + w / 2.0)).abs() < 0.05, "{mean}");
+}

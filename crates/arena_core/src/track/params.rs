@@ -24,7 +24,7 @@ pub struct BuildParams {
     pub ring_scale: f64,
     /// Douglas–Peucker tolerance for walls and ducts (m); 0 = half a map cell.
     pub simplify_tolerance_m: f64,
-    /// Taubin smoothing passes applied to the duct paths and the centreline.
+    /// Taubin smoothing passes applied to the duct paths (the centreline gets 5 × as many).
     pub smoothing_iterations: usize,
     /// Spacing of the resampled centreline (m).
     pub centreline_spacing_m: f64,
