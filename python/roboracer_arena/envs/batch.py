@@ -66,6 +66,8 @@ class SimBatch:
         # when the simulator has it; otherwise the lap-wrapped change of "progress_s".
         self._wrap = "travel" not in self.field_index
         self._s_col = self.field_index["progress_s" if self._wrap else "travel"]
+        self._info_names = [f for f in STATE_INFO if f in self.field_index]
+        self._info_cols = np.array([self.field_index[f] for f in self._info_names], dtype=np.intp)
         self._odo_cols = np.array([self.field_index[f] for f in config.observation.odometry], dtype=np.intp)
         self._odo_offset = np.zeros((E, 1, len(self._odo_cols)), np.float64)
         self._odo_scale = np.ones((E, 1, len(self._odo_cols)), np.float64)
@@ -224,19 +226,23 @@ class SimBatch:
         return np.asarray(odo, dtype=np.float64) * self._odo_scale[env] + self._odo_offset[env]
 
     def info(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:
-        """Per-env diagnostics, arrays with leading env axis."""
-        st, f = self.state[envs], self.field_index
+        """Per-env diagnostics, fresh arrays with leading env axis (then vehicle axis):
+        track_id, progress (m since reset), contact_wall / contact_vehicle / lap_completed
+        (this step), the simulator's laps / lap_time / last_lap_time / progress_s and, with
+        several vehicles, vehicle_rewards."""
+        ev = self.events[envs]
         info = {
             "track_id": self.track_ids[envs].copy(),
             "progress": self.progress[envs].copy(),
-            "contact_wall": (self.events[envs] & CONTACT_WALL) != 0,
-            "contact_vehicle": (self.events[envs] & CONTACT_VEHICLE) != 0,
-            "lap_completed": (self.events[envs] & LAP_COMPLETED) != 0,
-            "vehicle_rewards": self.vehicle_rewards[envs].copy(),
+            "contact_wall": (ev & CONTACT_WALL) != 0,
+            "contact_vehicle": (ev & CONTACT_VEHICLE) != 0,
+            "lap_completed": (ev & LAP_COMPLETED) != 0,
         }
-        for name in STATE_INFO:
-            if name in f:
-                info[name] = st[..., f[name]].copy()
+        if self.vehicles > 1:
+            info["vehicle_rewards"] = self.vehicle_rewards[envs].copy()
+        cols = self.state[envs][..., self._info_cols]  # one gather; the columns are views of it
+        for j, name in enumerate(self._info_names):
+            info[name] = cols[..., j]
         return info
 
     def rebuild(self, seed: int) -> None:

@@ -150,9 +150,12 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
 
     @staticmethod
     def _masked(info: dict[str, Any], mask: np.ndarray) -> dict[str, Any]:
+        """Add gymnasium's ``_key`` masks (one shared read-only array for all keys)."""
+        mask = mask.copy()
+        mask.flags.writeable = False
         out = dict(info)
         for k in info:
-            out[f"_{k}"] = mask.copy()
+            out[f"_{k}"] = mask
         return out
 
     # ------------------------------------------------------------------ drivers, tools
