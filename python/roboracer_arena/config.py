@@ -44,7 +44,7 @@ class GeometryConfig(BaseModel):
         0.0,
         ge=-1,
         le=1,
-        description="Level-set offset of the collision walls from the corridor border (m); positive moves walls into the corridor. 0 puts them exactly on the mapped border, which keeps the round-trip IoU highest.",
+        description="Offset of the collision walls from the corridor border (m); positive moves them away from the free space, negative narrows the corridor. 0 puts them exactly on the mapped border, which keeps the round-trip IoU highest.",
     )
     tube_diameter_m: float = Field(
         0.33,
@@ -60,29 +60,40 @@ class GeometryConfig(BaseModel):
     )
     ring_spacing_m: float = Field(
         1.0,
-        gt=0,
-        description="Distance between the rings drawn on the ducts (m); ~1 m matches the segment joints of real air ducts.",
+        ge=0,
+        description="Arc-length spacing of the rings drawn on the ducts (m); ~1 m matches the segment joints of real air ducts. 0 disables rings.",
     )
     ring_width_m: float = Field(
         0.05,
         gt=0,
-        description="Width of each ring along the duct (m); 5 cm reads as a band without hiding the tube.",
+        description="Length of each ring band along the duct (m); 5 cm reads as a band without hiding the tube.",
+    )
+    ring_scale: float = Field(
+        1.12,
+        gt=0,
+        le=3,
+        description="Ring radius as a multiple of the tube radius; 1.12 makes the band stand just proud of the tube so it is visible without z-fighting.",
     )
     simplify_tolerance_m: float = Field(
-        0.01,
+        0.0,
         ge=0,
-        description="Douglas-Peucker tolerance for the wall polylines (m). 1 cm is a fifth of a typical 0.05 m cell, far below map accuracy, yet removes most marching-squares vertices on straights.",
+        description="Douglas-Peucker tolerance for walls and ducts (m); 0 means half a map cell, the raster's own uncertainty, so simplification never moves a wall by more than the map can resolve.",
     )
     smoothing_iterations: int = Field(
         2,
         ge=0,
-        le=50,
-        description="Smoothing passes over the duct borders; 2 removes the staircase of the raster without visibly cutting corners.",
+        le=100,
+        description="Taubin smoothing passes over the duct paths and the centreline; 2 removes the staircase of the raster without visibly cutting corners.",
     )
     centreline_spacing_m: float = Field(
         0.1,
         gt=0,
         description="Sample spacing of the extracted centreline (m); 0.1 m is finer than the car's wheelbase (0.33 m).",
+    )
+    floor_margin_m: float = Field(
+        0.5,
+        ge=0,
+        description="Margin of the floor quad around the barriers (m); 0.5 m keeps the ducts' footprint (0.33 m) on the floor.",
     )
 
 

@@ -17,6 +17,8 @@ RUST_BUILD_PARAMS = {
     "tube_segments",
     "ring_spacing_m",
     "ring_width_m",
+    "ring_scale",
+    "floor_margin_m",
     "simplify_tolerance_m",
     "smoothing_iterations",
     "centreline_spacing_m",
