@@ -3,9 +3,11 @@
 
 use pyo3::prelude::*;
 
+mod build;
 mod errors;
 mod generate;
 mod grid;
+mod maps;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -13,5 +15,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     grid::register(m)?;
     generate::register(m)?;
+    maps::register(m)?;
+    build::register(m)?;
     Ok(())
 }
