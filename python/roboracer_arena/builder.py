@@ -134,7 +134,7 @@ def build_environment(
         "origin": [float(v) for v in occ.origin],
         "raster_px": [int(occ.data.shape[1]), int(occ.data.shape[0])],
         "build_config": cfg.model_dump_json(),
-        "geometry_params": str(getattr(geo, "params_json", "")),
+        "geometry_params": json.dumps(geo.params, sort_keys=True),
         "iou": float(geo.iou),
         "max_wall_deviation_cells": float(geo.max_wall_deviation_cells),
     }

@@ -6,6 +6,7 @@ from __future__ import annotations
 from pxr import Gf, Sdf, Usd, UsdPhysics, UsdShade
 
 from ..config import PhysicsConfig
+from .textures import SHADE_MEAN
 
 LOOKS = "/World/Looks"
 PHYSICS_MATERIAL = f"{LOOKS}/TrackPhysics"
@@ -23,7 +24,8 @@ def define_preview_material(
 ) -> UsdShade.Material:
     """A UsdPreviewSurface material ``/World/Looks/<name>``. With ``texture`` (an asset path
     relative to the stage) the diffuse colour comes from a UsdUVTexture read through the
-    ``st`` primvar; ``colour`` is then the texture's fallback."""
+    ``st`` primvar: a single-channel shade map (mean :data:`SHADE_MEAN`) scaled by
+    ``colour / SHADE_MEAN``, so the mean colour is ``colour`` (also the fallback)."""
     mat = UsdShade.Material.Define(stage, f"{LOOKS}/{name}")
     surf = UsdShade.Shader.Define(stage, f"{LOOKS}/{name}/PreviewSurface")
     surf.CreateIdAttr("UsdPreviewSurface")
@@ -42,7 +44,9 @@ def define_preview_material(
         tex = UsdShade.Shader.Define(stage, f"{LOOKS}/{name}/DiffuseTexture")
         tex.CreateIdAttr("UsdUVTexture")
         tex.CreateInput("file", Sdf.ValueTypeNames.Asset).Set(Sdf.AssetPath(texture))
-        tex.CreateInput("sourceColorSpace", Sdf.ValueTypeNames.Token).Set("sRGB")
+        tex.CreateInput("sourceColorSpace", Sdf.ValueTypeNames.Token).Set("raw")  # linear shade values
+        gain = [c / SHADE_MEAN for c in rgb]
+        tex.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(gain[0], gain[1], gain[2], 1.0))
         tex.CreateInput("wrapS", Sdf.ValueTypeNames.Token).Set("repeat")
         tex.CreateInput("wrapT", Sdf.ValueTypeNames.Token).Set("repeat")
         tex.CreateInput("fallback", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(rgb[0], rgb[1], rgb[2], 1.0))

@@ -144,9 +144,9 @@ def _define_looks(
     colour = {"Floor": mc.floor_colour, "Wall": mc.wall_colour, "Duct": mc.duct_colour, "Ring": mc.ring_colour}
     tex_for: dict[str, Texture] = {}
     if mc.textures and "Floor" in with_st:
-        tex_for["Floor"] = floor_texture(mc.floor_colour, mc.texture_size_px)
+        tex_for["Floor"] = floor_texture(mc.texture_size_px)
     if mc.textures and "Duct" in with_st:
-        tex_for["Duct"] = duct_texture(mc.duct_colour, mc.texture_size_px)
+        tex_for["Duct"] = duct_texture(mc.texture_size_px)
     params = {"Floor": (0.8, 0.0), "Wall": (0.9, 0.0), "Duct": (0.35, 0.6), "Ring": (0.7, 0.0)}
     mats: dict[str, Any] = {}
     used: list[Texture] = []
