@@ -75,3 +75,24 @@ def test_preview_of_a_generated_track_labels_features(tmp_path, capsys):
     assert "generated centreline" in summary["drawn"] and "features" in summary["drawn"]
     kinds = sorted(f["kind"] for f in summary["features"])
     assert kinds.count("hairpin") == 2 and kinds.count("chicane") == 1
+
+
+def test_preview_of_a_stage_whose_map_is_gone(tmp_path, capsys):
+    import shutil
+
+    yaml = write_map(tmp_path / "maps", ring_raster(160, style="filled"))
+    out = tmp_path / "ring.usdc"
+    assert main(["build", str(yaml), "-o", str(out), "--no-textures"]) == 0
+    shutil.rmtree(tmp_path / "maps")
+    capsys.readouterr()
+    assert main(["preview", str(out), "-o", str(tmp_path / "p.png"), "--json"]) == 0
+    drawn = json.loads(capsys.readouterr().out)["drawn"]
+    assert "map" not in drawn and {"walls", "barriers", "floor outline"} <= set(drawn)
+
+
+def test_preview_of_a_non_stage_is_bad_input(tmp_path, capsys):
+    bad = tmp_path / "x.usda"
+    bad.write_text("not usd at all")
+    assert main(["preview", str(bad), "-o", str(tmp_path / "x.png")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "x.usda" in err
