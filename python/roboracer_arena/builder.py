@@ -112,12 +112,11 @@ def build_environment(
     from .corridor import extract_corridor
     from .maps import load_map
     from .usd import write_stage
+    from .usd.stage import resolve_format
 
     cfg = resolve_config(config)
     pose = parse_start(start)
     out = Path(out_path)
-    from .usd.stage import resolve_format
-
     resolve_format(out, cfg)  # refuse a bad suffix before any work
 
     t0 = time.perf_counter()
@@ -126,6 +125,7 @@ def build_environment(
     geo = extract_corridor(occ, params=cfg.geometry_params(), start=pose)
     t2 = time.perf_counter()
     meshes = stage_meshes(geo, cfg)
+    t3 = time.perf_counter()
     source = str(getattr(occ, "path", "") or "")
     metadata = {
         "generator": f"roboracer-arena {__version__}",
@@ -145,10 +145,9 @@ def build_environment(
     h, w = occ.data.shape
     timings = {"load": t1 - t0, "geometry": t2 - t1}
     timings.update({f"geometry.{k}": float(v) for k, v in dict(getattr(geo, "timings", {}) or {}).items()})
-    timings["usd_author"] = written.seconds_author
+    timings["usd_author"] = (t3 - t2) + written.seconds_author  # mesh records + stage in memory
     timings["usd_write"] = written.seconds_write
-    timings["total"] = timings["load"] + timings["geometry"] + written.seconds_author + written.seconds_write
-    cl = np.asarray(geo.centreline, dtype=np.float64).reshape(-1, 2)
+    timings["total"] = timings["load"] + timings["geometry"] + timings["usd_author"] + timings["usd_write"]
     return BuildReport(
         source=source,
         output=str(out),
@@ -163,7 +162,7 @@ def build_environment(
         meshes={k: MeshCount(vertices=len(v), triangles=len(t)) for k, (v, t) in geo.meshes.items()},
         walls=len(geo.walls),
         ducts=len(geo.ducts),
-        centreline_length_m=float(np.linalg.norm(np.diff(np.r_[cl, cl[:1]], axis=0), axis=1).sum()) if len(cl) > 1 else 0.0,
+        centreline_length_m=geo.centreline_length if len(geo.centreline) > 1 else 0.0,
         iou=float(geo.iou),
         max_wall_deviation_cells=float(geo.max_wall_deviation_cells),
     )
@@ -205,7 +204,3 @@ def stage_meshes(geo: Any, cfg: BuildConfig) -> list:
             if len(parts.ring_triangles):
                 out.append(StageMesh("/World/Track/Barriers/Rings", parts.ring_points, parts.ring_triangles, "Ring"))
     return out
-
-
-def report_json(report: BuildReport) -> str:
-    return json.dumps(report.model_dump(mode="json"), indent=2)
