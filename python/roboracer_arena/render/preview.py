@@ -93,10 +93,11 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048) -
             a, b = boundary_edges(m.triangles)
             canvas.segments(m.points[a, :2], m.points[b, :2], FLOOR[:3], width_px=3)
             drawn.append("floor outline")
-    for path, m in meshes.items():
-        if "/Barriers" in path:
-            canvas.triangles(m.points[m.triangles][:, :, :2], DUCT)
-            drawn.append("barriers")
+    barriers = [m for path, m in meshes.items() if "/Barriers" in path]
+    for m in barriers:
+        canvas.triangles(m.points[m.triangles][:, :, :2], DUCT)
+    if barriers:
+        drawn.append("barriers")
     walls = meshes.get("/World/Track/Walls")
     if walls is not None and len(walls.triangles):
         tri = walls.points[walls.triangles][:, :, :2]
