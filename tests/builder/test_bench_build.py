@@ -37,3 +37,4 @@ def test_one_size_runs_in_a_single_threaded_subprocess():
     assert row["iou"] >= 0.97 and row["usd_bytes"] > 0 and row["peak_rss_gb"] > 0
     assert {"load", "geometry", "usd_author", "usd_write", "total"} <= set(row["stages"])
     assert "generated 3h1c" in bench.format_table(result)
+    assert bench.format_markdown(result).startswith("| map | raster MP |")

@@ -53,8 +53,8 @@ SIZES: list[tuple[str, str, float | None]] = [
     ("gbr", "bdevan5-f1tenth-benchmarks/maps/gbr.yaml", None),
     ("example_map", "f1tenth-gym/examples/example_map.yaml", None),
     ("Zandvoort", "f1tenth-racetracks/Zandvoort/Zandvoort_map.yaml", None),
-    ("Monza x1.45", "f1tenth-racetracks/Monza/Monza_map.yaml", 8.43),
     ("Silverstone x1.36", "f1tenth-racetracks/Silverstone/Silverstone_map.yaml", 7.40),
+    ("Monza x1.45", "f1tenth-racetracks/Monza/Monza_map.yaml", 8.43),
     ("Spa x1.64", "f1tenth-racetracks/Spa/Spa_map.yaml", 10.77),
 ]
 QUICK = ["generated 3h1c", "columbia", "gbr"]
@@ -244,12 +244,34 @@ def format_table(result: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+def format_markdown(result: dict[str, Any]) -> str:
+    """The same results as Markdown tables (for BENCHMARKS.md)."""
+    rows = sorted((r for r in result["rows"] if "error" not in r), key=lambda r: r["raster_mp"])
+    out = [
+        "| map | raster MP | s (wall) | CPU s | 1st build s | USD MB | paper s | paper MB | USD / paper | peak RSS GB | IoU |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for r in rows:
+        out.append(
+            f"| {r['label']} | {r['raster_mp']:.3f} | {r['seconds']:.3f} | {r['cpu_seconds']:.3f} | {r['seconds_first']:.3f} "
+            f"| {r['usd_mb']:.2f} | {r['paper_seconds']:.2f} | {r['paper_usd_mb']:.1f} | {r['usd_fraction_of_paper']:.3f} "
+            f"| {r['peak_rss_gb']:.3f} | {r['iou']:.4f} |"
+        )
+    out += [f"| {r['label']} | error: {r['error']} |" for r in result["rows"] if "error" in r]
+    if rows:
+        keys = [k for k in rows[0]["stages"] if k not in ("total", "geometry.total", "geometry.crop", "geometry.meshes")]
+        out += ["", "| map (ms) | " + " | ".join(k.replace("geometry.", "g.") for k in keys) + " |", "|---|" + "---:|" * len(keys)]
+        out += [f"| {r['label']} | " + " | ".join(f"{1e3 * r['stages'][k]:.1f}" for k in keys) + " |" for r in rows]
+    return "\n".join(out)
+
+
 def register(kinds) -> None:
     p = kinds.add_parser("build", help="map → USD build time and size vs the paper", description=__doc__)
     p.add_argument("--sizes", nargs="+", metavar="LABEL", choices=[s[0] for s in SIZES], help="subset of sizes (default: all)")
     p.add_argument("--repeat", type=int, default=3, help="builds per size; the median is reported (default 3)")
     p.add_argument("--no-textures", action="store_true", help="build without PNG textures")
     p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
+    p.add_argument("--markdown", metavar="FILE", type=Path, help="write the tables to FILE as Markdown")
     p.set_defaults(func=_cli)
 
 
@@ -259,6 +281,9 @@ def _cli(args: argparse.Namespace) -> int:
     if args.json:
         atomic_write_text(args.json, json.dumps(result, indent=2))
         print(f"wrote {args.json}")
+    if args.markdown:
+        atomic_write_text(args.markdown, format_markdown(result) + "\n")
+        print(f"wrote {args.markdown}")
     return 0 if all("error" not in r for r in result["rows"]) else 1
 
 
