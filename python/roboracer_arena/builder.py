@@ -49,6 +49,9 @@ class BuildReport(BaseModel):
     centreline_length_m: float
     iou: float = Field(description="IoU of the drivable region re-rasterised from the collision walls with the source corridor.")
     max_wall_deviation_cells: float = Field(description="Worst distance (cells) from a wall vertex to the corridor border.")
+    border_contact_cells: int = Field(
+        0, description="Corridor cells on the map edge; > 0 means the map edge closes the corridor there (it acts as a wall)."
+    )
 
     def summary(self) -> str:
         """A few human-readable lines."""
@@ -62,6 +65,8 @@ class BuildReport(BaseModel):
             f"  meshes: {counts}\n"
             f"  USD {self.usd_bytes / 1e6:.2f} MB ({self.usd_format}), IoU {self.iou:.4f}, "
             f"worst wall deviation {self.max_wall_deviation_cells:.2f} cells"
+            + (f"\n  note: the corridor meets the map edge on {self.border_contact_cells} cells; the edge acts as a wall there"
+               if self.border_contact_cells else "")
         )
 
 
@@ -137,6 +142,7 @@ def build_environment(
         "geometry_params": json.dumps(geo.params, sort_keys=True),
         "iou": float(geo.iou),
         "max_wall_deviation_cells": float(geo.max_wall_deviation_cells),
+        "border_contact_cells": int(getattr(geo, "border_contact_cells", 0)),
     }
     if pose is not None:
         metadata["start"] = list(pose)
@@ -165,6 +171,7 @@ def build_environment(
         centreline_length_m=geo.centreline_length if len(geo.centreline) > 1 else 0.0,
         iou=float(geo.iou),
         max_wall_deviation_cells=float(geo.max_wall_deviation_cells),
+        border_contact_cells=int(getattr(geo, "border_contact_cells", 0)),
     )
 
 

@@ -53,6 +53,7 @@ SIZES: list[tuple[str, str, float | None]] = [
     ("gbr", "bdevan5-f1tenth-benchmarks/maps/gbr.yaml", None),
     ("example_map", "f1tenth-gym/examples/example_map.yaml", None),
     ("Zandvoort", "f1tenth-racetracks/Zandvoort/Zandvoort_map.yaml", None),
+    ("vegas", "f1tenth-gym/maps/vegas.yaml", None),
     ("Silverstone x1.36", "f1tenth-racetracks/Silverstone/Silverstone_map.yaml", 7.40),
     ("Monza x1.45", "f1tenth-racetracks/Monza/Monza_map.yaml", 8.43),
     ("Spa x1.64", "f1tenth-racetracks/Spa/Spa_map.yaml", 10.77),
