@@ -15,7 +15,6 @@ never silently falls back to a default.
 from __future__ import annotations
 
 import json
-import tomllib
 from pathlib import Path
 from typing import Any, Literal
 
@@ -210,6 +209,10 @@ class BuildConfig(BaseModel):
 
 
 def _parse_toml(p: Path, text: str) -> dict[str, Any]:
+    try:
+        import tomllib  # Python >= 3.11
+    except ImportError as e:  # pragma: no cover - Python 3.10
+        raise ConfigError(f"{p}: reading TOML needs Python >= 3.11 (tomllib); use a JSON config") from e
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
