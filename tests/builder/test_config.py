@@ -95,3 +95,10 @@ def test_syntax_errors_and_missing_file(tmp_path):
     (tmp_path / "list.json").write_text(json.dumps([1, 2]))
     with pytest.raises(ConfigError, match="must be a table/object"):
         BuildConfig.from_file(tmp_path / "list.json")
+
+
+def test_geometry_defaults_equal_the_rust_build_params():
+    """One source of truth: the Rust BuildParams defaults; BuildConfig.geometry mirrors them."""
+    from roboracer_arena.corridor import DEFAULT_PARAMS
+
+    assert BuildConfig().geometry_params() == DEFAULT_PARAMS
