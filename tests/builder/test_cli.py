@@ -96,3 +96,13 @@ def test_preview_of_a_non_stage_is_bad_input(tmp_path, capsys):
     assert main(["preview", str(bad), "-o", str(tmp_path / "x.png")]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "x.usda" in err
+
+
+def test_start_pose_off_the_corridor_is_bad_input(tmp_path, capsys):
+    yaml = write_map(tmp_path, ring_raster(160, style="filled"))  # 8 m map, centre (-1, -1) + 4 m is the infield
+    assert main(["build", str(yaml), "-o", str(tmp_path / "a.usdc"), "--start=-1.0,-1.0"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("roboracer-arena build: error:") and "\n" not in err
+    assert main(["build", str(yaml), "-o", str(tmp_path / "a.usdc"), "--start", "x,y"]) == 2
+    assert "start pose" in capsys.readouterr().err
+    assert not (tmp_path / "a.usdc").exists()

@@ -17,7 +17,7 @@ def register(sub) -> None:
     p.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.usdc", help="output stage (.usdc, .usda or .usd)")
     p.add_argument("--config", type=Path, metavar="F", help="BuildConfig file (.toml or .json)")
     p.add_argument(
-        "--start", metavar="x,y[,yaw]", help="seed the corridor from this pose (map frame, m/rad) instead of finding the ring"
+        "--start", metavar="x,y[,yaw]", help="seed the corridor from this pose (map frame, m/rad) instead of finding the ring; write --start=-1.5,2 when x is negative"
     )
     p.add_argument("--usda", action="store_true", help="write text USD (the output must end in .usda or .usd)")
     p.add_argument("--no-textures", action="store_true", help="plain colours, no PNG textures beside the stage")

@@ -20,7 +20,7 @@ def register(sub) -> None:
     p.add_argument("source", type=Path, metavar="MAP.yaml|OUT.usdc", help="a ROS map YAML or a built USD stage")
     p.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.png", help="picture to write (PNG)")
     p.add_argument("--config", type=Path, metavar="F", help="BuildConfig file for a map (.toml or .json)")
-    p.add_argument("--start", metavar="x,y[,yaw]", help="seed the corridor from this pose (maps only)")
+    p.add_argument("--start", metavar="x,y[,yaw]", help="seed the corridor from this pose (maps only; --start=-1.5,2 when x is negative)")
     p.add_argument("--max-px", type=int, default=2048, help="longest side of the picture in pixels (default 2048)")
     add_json_flag(p)
     p.set_defaults(func=run)
