@@ -177,3 +177,16 @@ def test_failed_write_keeps_the_previous_stage(tmp_path):
 def test_metadata_json_is_parseable(ring_stage):
     _, stage = ring_stage
     assert json.loads(stage_metadata(stage)["build_config"])["physics"]["static_friction"] == 0.83
+
+
+def test_stage_folder_is_relocatable(ring_stage, tmp_path):
+    """Textures are referenced relative to the stage, so the folder can be moved."""
+    import shutil
+
+    written, _ = ring_stage
+    moved = tmp_path / "moved"
+    shutil.copytree(written.path.parent, moved)
+    stage = Usd.Stage.Open(str(moved / written.path.name))
+    asset = UsdShade.Shader(stage.GetPrimAtPath("/World/Looks/Floor/DiffuseTexture")).GetInput("file").Get()
+    assert asset.resolvedPath.startswith(str(moved))
+    assert validate_stage(stage) == []
