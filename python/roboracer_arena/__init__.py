@@ -21,6 +21,8 @@ from .spec import TrackSpec
 # user who only parses requests never imports pxr or gymnasium.
 _LAZY = {
     "load_map": "roboracer_arena.maps",
+    "OccupancyMap": "roboracer_arena.maps",
+    "extract_corridor": "roboracer_arena.corridor",
     "build_environment": "roboracer_arena.builder",
     "BuildConfig": "roboracer_arena.config",
     "BuildReport": "roboracer_arena.builder",
