@@ -278,13 +278,15 @@ def register(kinds) -> None:
 
 def _cli(args: argparse.Namespace) -> int:
     result = run(args.sizes, max(1, args.repeat), textures=not args.no_textures)
-    print(format_table(result))
+    # files first, so a closed stdout (e.g. `| head`) cannot lose them
     if args.json:
         atomic_write_text(args.json, json.dumps(result, indent=2))
-        print(f"wrote {args.json}")
     if args.markdown:
         atomic_write_text(args.markdown, format_markdown(result) + "\n")
-        print(f"wrote {args.markdown}")
+    print(format_table(result))
+    for f in (args.json, args.markdown):
+        if f:
+            print(f"wrote {f}")
     return 0 if all("error" not in r for r in result["rows"]) else 1
 
 
