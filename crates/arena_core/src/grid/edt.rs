@@ -52,7 +52,7 @@ impl ColumnDist for u8 {
     }
     #[inline]
     fn square(self) -> Option<f64> {
-        (self != u8::MAX).then(|| (self as f64) * (self as f64))
+        (self != u8::MAX).then_some((self as f64) * (self as f64))
     }
 }
 
@@ -67,20 +67,34 @@ impl ColumnDist for u32 {
     }
     #[inline]
     fn square(self) -> Option<f64> {
-        (self != u32::MAX).then(|| (self as f64) * (self as f64))
+        (self != u32::MAX).then_some((self as f64) * (self as f64))
     }
 }
 
 /// Both phases; `finish` maps each squared distance to the stored value.
-fn transform(feature: &[bool], width: usize, height: usize, cap: f64, finish: impl Fn(f32) -> f32 + Sync) -> Vec<f32> {
-    assert_eq!(feature.len(), width * height, "mask size does not match width × height");
+fn transform(
+    feature: &[bool],
+    width: usize,
+    height: usize,
+    cap: f64,
+    finish: impl Fn(f32) -> f32 + Sync,
+) -> Vec<f32> {
+    assert_eq!(
+        feature.len(),
+        width * height,
+        "mask size does not match width × height"
+    );
     if width == 0 || height == 0 {
         return Vec::new();
     }
     if cap < (u8::MAX - 1) as f64 {
         transform_with::<u8>(feature, width, height, cap.max(0.0).floor() as u32, finish)
     } else {
-        let c = if cap.is_finite() { cap.floor().min((u32::MAX - 1) as f64) as u32 } else { u32::MAX - 1 };
+        let c = if cap.is_finite() {
+            cap.floor().min((u32::MAX - 1) as f64) as u32
+        } else {
+            u32::MAX - 1
+        };
         transform_with::<u32>(feature, width, height, c, finish)
     }
 }
@@ -101,7 +115,11 @@ fn transform_with<T: ColumnDist + PartialOrd>(
     }
     for r in 1..height {
         let (above, row) = g[(r - 1) * width..(r + 1) * width].split_at_mut(width);
-        for ((x, &a), &f) in row.iter_mut().zip(above.iter()).zip(&feature[r * width..(r + 1) * width]) {
+        for ((x, &a), &f) in row
+            .iter_mut()
+            .zip(above.iter())
+            .zip(&feature[r * width..(r + 1) * width])
+        {
             *x = if f { T::zero() } else { a.next() };
         }
     }
@@ -117,10 +135,12 @@ fn transform_with<T: ColumnDist + PartialOrd>(
     // Phase 2: lower envelope of parabolas along each row, rows in parallel.
     let cap2 = (cap_cells as f64) * (cap_cells as f64);
     let mut d = vec![0f32; width * height];
-    d.par_chunks_mut(width).zip(g.par_chunks(width)).for_each_init(
-        || Scratch::new(width),
-        |scratch, (out, col)| transform_1d(col, out, cap2, scratch, &finish),
-    );
+    d.par_chunks_mut(width)
+        .zip(g.par_chunks(width))
+        .for_each_init(
+            || Scratch::new(width),
+            |scratch, (out, col)| transform_1d(col, out, cap2, scratch, &finish),
+        );
     d
 }
 
@@ -133,7 +153,11 @@ struct Scratch {
 
 impl Scratch {
     fn new(n: usize) -> Self {
-        Scratch { v: vec![0; n], fv: vec![0.0; n], z: vec![0.0; n + 1] }
+        Scratch {
+            v: vec![0; n],
+            fv: vec![0.0; n],
+            z: vec![0.0; n + 1],
+        }
     }
 }
 
@@ -142,14 +166,25 @@ impl Scratch {
 /// into `out`. f64 arithmetic, so positions beyond 4096 stay exact. Inside a run of zero
 /// samples only the run's ends can be nearest to a cell outside it, so interior zeros
 /// stay out of the envelope.
-fn transform_1d<T: ColumnDist>(col: &[T], out: &mut [f32], cap2: f64, s: &mut Scratch, finish: &impl Fn(f32) -> f32) {
+fn transform_1d<T: ColumnDist>(
+    col: &[T],
+    out: &mut [f32],
+    cap2: f64,
+    s: &mut Scratch,
+    finish: &impl Fn(f32) -> f32,
+) {
     let n = col.len();
     let sample = |q: usize| col[q].square().filter(|&x| x <= cap2);
     let (v, fv, z) = (&mut s.v, &mut s.fv, &mut s.z);
     let mut k = usize::MAX; // index of the envelope's last parabola; MAX = empty
     for q in 0..n {
         let Some(fq) = sample(q) else { continue };
-        if fq == 0.0 && q > 0 && q + 1 < n && sample(q - 1) == Some(0.0) && sample(q + 1) == Some(0.0) {
+        if fq == 0.0
+            && q > 0
+            && q + 1 < n
+            && sample(q - 1) == Some(0.0)
+            && sample(q + 1) == Some(0.0)
+        {
             continue;
         }
         let hq = fq + (q * q) as f64;
@@ -197,7 +232,11 @@ fn transform_1d<T: ColumnDist>(col: &[T], out: &mut [f32], cap2: f64, s: &mut Sc
             (p, fp) = (v[k] as usize, fv[k]);
         }
         let dq = qf - p as f64;
-        let d2 = if col[q].square() == Some(0.0) { 0.0 } else { (dq * dq + fp) as f32 };
+        let d2 = if col[q].square() == Some(0.0) {
+            0.0
+        } else {
+            (dq * dq + fp) as f32
+        };
         *o = finish(d2);
     }
 }

@@ -85,7 +85,14 @@ impl Crop {
         let c1 = (bc1 as i64 + m).min(g.width as i64);
         let r1 = (br1 as i64 + m).min(g.height as i64);
         let (w, h) = ((c1 - c0 + 1) as usize, (r1 - r0 + 1) as usize);
-        Crop { c0, r0, w, h, u0: c0 as f64, v0: (g.height as i64 - 1 - r1) as f64 }
+        Crop {
+            c0,
+            r0,
+            w,
+            h,
+            u0: c0 as f64,
+            v0: (g.height as i64 - 1 - r1) as f64,
+        }
     }
     /// The window of a full-map mask; `false` beyond the map.
     fn take(&self, full: &[bool], full_w: usize, full_h: usize) -> Vec<bool> {
@@ -97,17 +104,24 @@ impl Crop {
             }
             let dst = k * self.w + (cols.start - self.c0) as usize;
             let src = r as usize * full_w;
-            out[dst..dst + cols.clone().count()].copy_from_slice(&full[src + cols.start as usize..src + cols.end as usize]);
+            out[dst..dst + cols.clone().count()]
+                .copy_from_slice(&full[src + cols.start as usize..src + cols.end as usize]);
         }
         out
     }
     fn to_world(&self, g: &OccupancyGrid, l: &[[f64; 2]]) -> Polyline {
-        l.iter().map(|p| g.grid_to_world(self.u0 + p[0], self.v0 + p[1])).collect()
+        l.iter()
+            .map(|p| g.grid_to_world(self.u0 + p[0], self.v0 + p[1]))
+            .collect()
     }
 }
 
 /// Run the whole pipeline. `start` = optional (x, y) seed of the corridor (map metres).
-pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f64; 2]>) -> Result<Geometry> {
+pub fn build_geometry(
+    g: &OccupancyGrid,
+    params: &BuildParams,
+    start: Option<[f64; 2]>,
+) -> Result<Geometry> {
     let t_start = Instant::now();
     let mut timings: Vec<(&'static str, f64)> = Vec::new();
     let mut t = Instant::now();
@@ -117,7 +131,13 @@ pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f6
     };
     params.validate()?;
     if !(g.resolution.is_finite() && g.resolution > 0.0) || g.data.len() != g.width * g.height {
-        return Err(ArenaError::invalid(format!("invalid map: resolution {} and {} cells for {}×{}", g.resolution, g.data.len(), g.width, g.height)));
+        return Err(ArenaError::invalid(format!(
+            "invalid map: resolution {} and {} cells for {}×{}",
+            g.resolution,
+            g.data.len(),
+            g.width,
+            g.height
+        )));
     }
     let p = params.effective(g.resolution);
     let res = g.resolution;
@@ -144,7 +164,12 @@ pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f6
         let d_inf = edt_within(&infield, cw, ch, cap);
         let d_out = edt_within(&outer, cw, ch, cap);
         let d_nc: Vec<f32> = d_inf.iter().zip(&d_out).map(|(a, b)| a.min(*b)).collect();
-        let r_max = corr.iter().zip(&d_nc).filter(|(&c, _)| c).map(|(_, &d)| d as f64).fold(0.0, f64::max);
+        let r_max = corr
+            .iter()
+            .zip(&d_nc)
+            .filter(|(&c, _)| c)
+            .map(|(_, &d)| d as f64)
+            .fold(0.0, f64::max);
         if r_max + 2.0 <= cap {
             break (d_inf, d_out, d_nc);
         }
@@ -155,25 +180,45 @@ pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f6
     let duct_level = level + (radius / res) as f32;
     let band = (duct_level.max(level) as f64).max(0.0) + 3.0;
     let d_corr = edt_within(&corr, cw, ch, band);
-    let phi: Vec<f32> = (0..cw * ch).map(|i| if corr[i] { 0.5 - d_nc[i] } else { d_corr[i] - 0.5 }).collect();
+    let phi: Vec<f32> = (0..cw * ch)
+        .map(|i| {
+            if corr[i] {
+                0.5 - d_nc[i]
+            } else {
+                d_corr[i] - 0.5
+            }
+        })
+        .collect();
     drop((d_corr, d_nc));
     lap("distance", &mut timings);
 
     let tol = p.simplify_tolerance_m / res;
-    let walls_uv: Vec<Polyline> = marching_squares(&phi, cw, ch, level).iter().map(|l| simplify_closed(l, tol)).collect();
+    let walls_uv: Vec<Polyline> = marching_squares(&phi, cw, ch, level)
+        .iter()
+        .map(|l| simplify_closed(l, tol))
+        .collect();
     let walls: Vec<Polyline> = walls_uv.iter().map(|l| crop.to_world(g, l)).collect();
     lap("walls", &mut timings);
 
     let ducts: Vec<Polyline> = marching_squares(&phi, cw, ch, duct_level)
         .iter()
-        .map(|l| crop.to_world(g, &simplify_closed(&smooth_closed(l, p.smoothing_iterations), tol)))
+        .map(|l| {
+            crop.to_world(
+                g,
+                &simplify_closed(&smooth_closed(l, p.smoothing_iterations), tol),
+            )
+        })
         .collect();
     lap("ducts", &mut timings);
 
-    let medial = medial_loop(&d_inf, &d_out, cw, ch)
-        .ok_or_else(|| ArenaError::Corridor("no closed centreline found between the inner and outer walls".into()))?;
+    let medial = medial_loop(&d_inf, &d_out, cw, ch).ok_or_else(|| {
+        ArenaError::Corridor("no closed centreline found between the inner and outer walls".into())
+    })?;
     // The medial curve of a raster corridor zig-zags by up to half a cell: smooth it more.
-    let mut centreline = crop.to_world(g, &smooth_closed(&medial, CENTRELINE_SMOOTHING * p.smoothing_iterations));
+    let mut centreline = crop.to_world(
+        g,
+        &smooth_closed(&medial, CENTRELINE_SMOOTHING * p.smoothing_iterations),
+    );
     if signed_area(&centreline) < 0.0 {
         centreline.reverse();
     }
@@ -184,19 +229,43 @@ pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f6
     let mut barriers = TriMesh::default();
     for d in &ducts {
         barriers.append(&sweep_closed_tube(d, radius, radius, p.tube_segments));
-        barriers.append(&rings_along(d, p.ring_spacing_m, p.ring_width_m, radius * p.ring_scale, radius, p.tube_segments));
+        barriers.append(&rings_along(
+            d,
+            p.ring_spacing_m,
+            p.ring_width_m,
+            radius * p.ring_scale,
+            radius,
+            p.tube_segments,
+        ));
     }
     let pad = radius * p.ring_scale + p.floor_margin_m;
-    let b = bounds(&ducts).or_else(|| bounds(&walls)).expect("a corridor has walls");
+    let b = bounds(&ducts)
+        .or_else(|| bounds(&walls))
+        .expect("a corridor has walls");
     let floor = floor_quad(b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad);
     lap("meshes", &mut timings);
 
     let filled = fill_even_odd(&walls_uv, cw, ch);
     let iou = iou(&filled, &corr);
-    let max_wall_deviation_cells = walls_uv.iter().map(|l| max_deviation(l, &phi, cw, ch, level)).fold(0.0, f64::max);
+    let max_wall_deviation_cells = walls_uv
+        .iter()
+        .map(|l| max_deviation(l, &phi, cw, ch, level))
+        .fold(0.0, f64::max);
     lap("roundtrip", &mut timings);
     timings.push(("total", t_start.elapsed().as_secs_f64()));
-    Ok(Geometry { walls, ducts, centreline, floor, wall_mesh, barriers, iou, max_wall_deviation_cells, corridor, timings, params: p })
+    Ok(Geometry {
+        walls,
+        ducts,
+        centreline,
+        floor,
+        wall_mesh,
+        barriers,
+        iou,
+        max_wall_deviation_cells,
+        corridor,
+        timings,
+        params: p,
+    })
 }
 
 /// Largest |φ − level| (cells) sampled along a closed loop at ≤ ½-cell spacing.
@@ -208,7 +277,13 @@ fn max_deviation(l: &[[f64; 2]], phi: &[f32], w: usize, h: usize, level: f32) ->
         let steps = ((a[0] - b[0]).hypot(a[1] - b[1]) * 2.0).ceil().max(1.0) as usize;
         for k in 0..steps {
             let s = k as f64 / steps as f64;
-            let v = bilinear(phi, w, h, a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]));
+            let v = bilinear(
+                phi,
+                w,
+                h,
+                a[0] + s * (b[0] - a[0]),
+                a[1] + s * (b[1] - a[1]),
+            );
             worst = worst.max((v - level as f64).abs());
         }
     }
