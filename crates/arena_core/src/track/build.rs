@@ -157,14 +157,21 @@ pub fn build_geometry(
     // So both are needed only up to r_max + 2 (u8 column distances for corridors up to
     // ~500 cells wide); a cheap upper bound of r_max sets the cap.
     let cap = inscribed_radius_bound(&corr, cw, ch) + 2.0;
-    let d_inf = edt_within(&infield, cw, ch, cap);
-    let d_out = edt_within(&outer, cw, ch, cap);
-    let d_nc: Vec<f32> = d_inf.iter().zip(&d_out).map(|(a, b)| a.min(*b)).collect();
     // φ outside is only read up to the duct level (+ a margin for interpolation).
     let level = (p.wall_offset_m / res) as f32;
     let duct_level = level + (radius / res) as f32;
     let band = (duct_level.max(level) as f64).max(0.0) + 3.0;
-    let d_corr = edt_within(&corr, cw, ch, band);
+    // The three transforms are independent: run them side by side when threads allow.
+    let ((d_inf, d_out), d_corr) = rayon::join(
+        || {
+            rayon::join(
+                || edt_within(&infield, cw, ch, cap),
+                || edt_within(&outer, cw, ch, cap),
+            )
+        },
+        || edt_within(&corr, cw, ch, band),
+    );
+    let d_nc: Vec<f32> = d_inf.iter().zip(&d_out).map(|(a, b)| a.min(*b)).collect();
     let phi: Vec<f32> = (0..cw * ch)
         .map(|i| {
             if corr[i] {
