@@ -29,7 +29,7 @@ raise :class:`~roboracer_arena.errors.InvalidArgumentError`.
 >>> from roboracer_arena.corridor import extract_corridor
 >>> geo = extract_corridor("maps/berlin.yaml")          # doctest: +SKIP
 >>> geo.iou, len(geo.walls), geo.centreline.shape      # doctest: +SKIP
-(0.99, 2, (1553, 2))
+(0.9987, 2, (709, 2))
 """
 
 from __future__ import annotations

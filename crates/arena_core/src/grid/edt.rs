@@ -10,25 +10,24 @@ const INF: f32 = 1e20;
 /// Squared distance from every cell to the nearest cell where `feature` is true.
 /// Cells of an image without any feature get a huge value (≥ 1e20).
 pub fn edt_squared(feature: &[bool], width: usize, height: usize) -> Vec<f32> {
-    transform(feature, width, height, f64::INFINITY, |d2| d2)
+    transform(feature, width, height, f64::INFINITY, Finish::Squared)
 }
 
 /// Like [`edt_squared`], but exact only where the distance is at most `cap` (cells):
 /// elsewhere the value is some number above `cap²` (often ≥ 1e20). Work beyond the cap
 /// is skipped, which makes narrow bands around the features cheap.
 pub fn edt_squared_within(feature: &[bool], width: usize, height: usize, cap: f64) -> Vec<f32> {
-    transform(feature, width, height, cap, |d2| d2)
+    transform(feature, width, height, cap, Finish::Squared)
 }
 
 /// Euclidean distance (cell units) to the nearest feature cell.
 pub fn edt(feature: &[bool], width: usize, height: usize) -> Vec<f32> {
-    transform(feature, width, height, f64::INFINITY, f32::sqrt)
+    transform(feature, width, height, f64::INFINITY, Finish::Sqrt)
 }
 
 /// Euclidean distance (cells) where it is at most `cap`; `cap` elsewhere.
 pub fn edt_within(feature: &[bool], width: usize, height: usize, cap: f64) -> Vec<f32> {
-    let c = cap as f32;
-    transform(feature, width, height, cap, move |d2| d2.sqrt().min(c))
+    transform(feature, width, height, cap, Finish::SqrtMin(cap as f32))
 }
 
 /// Column distances (phase 1) are stored in the narrowest type that holds the cap.
@@ -71,14 +70,27 @@ impl ColumnDist for u32 {
     }
 }
 
+/// What is stored for each squared distance.
+#[derive(Clone, Copy)]
+enum Finish {
+    Squared,
+    Sqrt,
+    SqrtMin(f32),
+}
+
+impl Finish {
+    /// Apply to a whole row (one tight, vectorisable loop per variant).
+    fn apply(self, row: &mut [f32]) {
+        match self {
+            Finish::Squared => {}
+            Finish::Sqrt => row.iter_mut().for_each(|x| *x = x.sqrt()),
+            Finish::SqrtMin(c) => row.iter_mut().for_each(|x| *x = x.sqrt().min(c)),
+        }
+    }
+}
+
 /// Both phases; `finish` maps each squared distance to the stored value.
-fn transform(
-    feature: &[bool],
-    width: usize,
-    height: usize,
-    cap: f64,
-    finish: impl Fn(f32) -> f32 + Sync,
-) -> Vec<f32> {
+fn transform(feature: &[bool], width: usize, height: usize, cap: f64, finish: Finish) -> Vec<f32> {
     assert_eq!(
         feature.len(),
         width * height,
@@ -104,7 +116,7 @@ fn transform_with<T: ColumnDist + PartialOrd>(
     width: usize,
     height: usize,
     cap_cells: u32,
-    finish: impl Fn(f32) -> f32 + Sync,
+    finish: Finish,
 ) -> Vec<f32> {
     // Phase 1: distance to the nearest feature in the same column, by a downward sweep
     // (fused with reading the mask) and an upward sweep over whole rows: cache-friendly,
@@ -139,7 +151,10 @@ fn transform_with<T: ColumnDist + PartialOrd>(
         .zip(g.par_chunks(width))
         .for_each_init(
             || Scratch::new(width),
-            |scratch, (out, col)| transform_1d(col, out, cap2, scratch, &finish),
+            |scratch, (out, col)| {
+                transform_1d(col, out, cap2, scratch);
+                finish.apply(out);
+            },
         );
     d
 }
@@ -162,17 +177,10 @@ impl Scratch {
 }
 
 /// 1-D squared distance transform of one row whose samples are the column distances
-/// `col` (squared, absent when FAR or above `cap2`), each result passed through `finish`
-/// into `out`. f64 arithmetic, so positions beyond 4096 stay exact. Inside a run of zero
+/// `col` (squared, absent when FAR or above `cap2`), written to `out`. f64 arithmetic, so positions beyond 4096 stay exact. Inside a run of zero
 /// samples only the run's ends can be nearest to a cell outside it, so interior zeros
 /// stay out of the envelope.
-fn transform_1d<T: ColumnDist>(
-    col: &[T],
-    out: &mut [f32],
-    cap2: f64,
-    s: &mut Scratch,
-    finish: &impl Fn(f32) -> f32,
-) {
+fn transform_1d<T: ColumnDist>(col: &[T], out: &mut [f32], cap2: f64, s: &mut Scratch) {
     let n = col.len();
     let sample = |q: usize| col[q].square().filter(|&x| x <= cap2);
     let (v, fv, z) = (&mut s.v, &mut s.fv, &mut s.z);
@@ -217,8 +225,7 @@ fn transform_1d<T: ColumnDist>(
         }
     }
     if k == usize::MAX {
-        let none = finish(INF);
-        out.iter_mut().for_each(|x| *x = none);
+        out.fill(INF);
         return;
     }
     let mut k = 0usize;
@@ -237,7 +244,7 @@ fn transform_1d<T: ColumnDist>(
         } else {
             (dq * dq + fp) as f32
         };
-        *o = finish(d2);
+        *o = d2;
     }
 }
 

@@ -56,9 +56,6 @@ pub struct Geometry {
     pub params: BuildParams,
 }
 
-/// First cap (cells) of the infield/outer distance transforms (see the `distance` stage).
-const INITIAL_DISTANCE_CAP: f64 = 128.0;
-
 /// Smoothing passes of the centreline per `smoothing_iterations`.
 const CENTRELINE_SMOOTHING: usize = 5;
 
@@ -157,29 +154,24 @@ pub fn build_geometry(
     // Distances to the infield and to the outer side. Inside the corridor their minimum
     // is the distance to the nearest non-corridor cell (φ inside), and the medial loop
     // lies where they are equal, i.e. at most the widest inscribed radius r_max away.
-    // So both are needed only up to r_max + 2: start with a cap of 128 cells and widen
-    // it in the rare corridor wider than that.
-    let mut cap = INITIAL_DISTANCE_CAP;
-    let (d_inf, d_out, d_nc) = loop {
-        let d_inf = edt_within(&infield, cw, ch, cap);
-        let d_out = edt_within(&outer, cw, ch, cap);
-        let d_nc: Vec<f32> = d_inf.iter().zip(&d_out).map(|(a, b)| a.min(*b)).collect();
-        let r_max = corr
-            .iter()
-            .zip(&d_nc)
-            .filter(|(&c, _)| c)
-            .map(|(_, &d)| d as f64)
-            .fold(0.0, f64::max);
-        if r_max + 2.0 <= cap {
-            break (d_inf, d_out, d_nc);
-        }
-        cap = (2.0 * cap).max(r_max + 2.0);
-    };
+    // So both are needed only up to r_max + 2 (u8 column distances for corridors up to
+    // ~500 cells wide); a cheap upper bound of r_max sets the cap.
+    let cap = inscribed_radius_bound(&corr, cw, ch) + 2.0;
     // φ outside is only read up to the duct level (+ a margin for interpolation).
     let level = (p.wall_offset_m / res) as f32;
     let duct_level = level + (radius / res) as f32;
     let band = (duct_level.max(level) as f64).max(0.0) + 3.0;
-    let d_corr = edt_within(&corr, cw, ch, band);
+    // The three transforms are independent: run them side by side when threads allow.
+    let ((d_inf, d_out), d_corr) = rayon::join(
+        || {
+            rayon::join(
+                || edt_within(&infield, cw, ch, cap),
+                || edt_within(&outer, cw, ch, cap),
+            )
+        },
+        || edt_within(&corr, cw, ch, band),
+    );
+    let d_nc: Vec<f32> = d_inf.iter().zip(&d_out).map(|(a, b)| a.min(*b)).collect();
     let phi: Vec<f32> = (0..cw * ch)
         .map(|i| {
             if corr[i] {
@@ -266,6 +258,51 @@ pub fn build_geometry(
         timings,
         params: p,
     })
+}
+
+/// An upper bound (cells) of the largest disc inside the corridor: at every corridor
+/// cell the distance to the nearest other cell is at most the distance along its
+/// column and along its row. Linear (three sweeps), no square roots.
+fn inscribed_radius_bound(corr: &[bool], w: usize, h: usize) -> f64 {
+    // down[i]: corridor cells from i upwards to the nearest non-corridor cell (1 = adjacent)
+    let mut down = vec![0u16; w * h];
+    for r in 0..h {
+        for c in 0..w {
+            let i = r * w + c;
+            down[i] = if !corr[i] {
+                0
+            } else if r == 0 {
+                1
+            } else {
+                down[i - w].saturating_add(1)
+            };
+        }
+    }
+    let mut up = vec![0u16; w];
+    let mut left = vec![0u16; w];
+    let mut best = 0u16;
+    for r in (0..h).rev() {
+        let row = &corr[r * w..(r + 1) * w];
+        for c in 0..w {
+            up[c] = if row[c] { up[c].saturating_add(1) } else { 0 };
+            left[c] = if !row[c] {
+                0
+            } else if c == 0 {
+                1
+            } else {
+                left[c - 1].saturating_add(1)
+            };
+        }
+        let mut right = 0u16;
+        for c in (0..w).rev() {
+            right = if row[c] { right.saturating_add(1) } else { 0 };
+            if row[c] {
+                let d = down[r * w + c].min(up[c]).min(left[c]).min(right);
+                best = best.max(d);
+            }
+        }
+    }
+    best as f64
 }
 
 /// Largest |φ − level| (cells) sampled along a closed loop at ≤ ½-cell spacing.

@@ -145,3 +145,20 @@ fn corridor_wider_than_the_first_distance_cap_is_exact() {
     let mean = outer.iter().map(|&q| radius(q)).sum::<f64>() / outer.len() as f64;
     assert!((mean - (r + w / 2.0)).abs() < 0.05, "{mean}");
 }
+
+#[test]
+fn origin_yaw_rotates_every_output() {
+    let mut g = ring(4.0, 1.5, 0.05);
+    let [u, v] = g.world_to_grid(CX, CY); // ring centre in grid units
+    g.origin = [2.0, -1.0, 0.7];
+    let centre = g.grid_to_world(u, v);
+    let geo = build_geometry(&g, &BuildParams::default(), None).unwrap();
+    let rad = |p: [f64; 2]| (p[0] - centre[0]).hypot(p[1] - centre[1]);
+    assert!(geo.centreline.iter().all(|&p| (rad(p) - 4.0).abs() < 0.05));
+    assert!(signed_area(&geo.centreline) > 0.0);
+    for l in &geo.walls {
+        let want = if signed_area(l) > 0.0 { 4.75 } else { 3.25 };
+        assert!(l.iter().all(|&p| (rad(p) - want).abs() < 0.06));
+    }
+    assert!(geo.iou >= 0.97);
+}

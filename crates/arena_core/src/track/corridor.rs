@@ -92,7 +92,7 @@ pub fn isolate_corridor(g: &OccupancyGrid, start: Option<[f64; 2]>) -> Result<Co
     }
     if !g.data.contains(&FREE) {
         return Err(ArenaError::Corridor(
-            "empty map: no free cells, nothing to drive on".into(),
+            "empty map: no free cells (value 254), nothing to drive on".into(),
         ));
     }
     let t = Tree::new(g);
