@@ -25,3 +25,11 @@ def rasterise_centreline(
     margin: float = 0.5,
 ) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]]:
     """Eq. 3 with per-vertex full widths; returns (data (H, W) uint8, origin (x, y, yaw))."""
+
+# --- library (circuits, catalog): raster measurement ---------------------------------
+def measure_map(
+    data: npt.NDArray[np.uint8],
+    resolution: float,
+    origin: tuple[float, float, float],
+) -> tuple[str, npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """(info_json, closed CCW medial centreline (N, 2), local free widths (N,)); CorridorError if no loop."""

@@ -6,6 +6,7 @@ use pyo3::prelude::*;
 mod errors;
 mod generate;
 mod grid;
+mod library;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -13,5 +14,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     grid::register(m)?;
     generate::register(m)?;
+    library::register(m)?;
     Ok(())
 }
