@@ -36,7 +36,7 @@ class CircuitConfig:
     spacing: float = 0.1  # resampled vertex spacing along the centreline
     tolerance_tum: float = 0.01  # spline RMS tolerance, TUM data (already smoothed, 5 m spacing)
     tolerance_geojson: float = 0.05  # spline RMS tolerance, GeoJSON (hand-traced, ~30 m spacing)
-    csv_spacing: float = 0.25  # vertex spacing of the written centreline CSV (keeps the repo small)
+    csv_spacing: float = 0.5  # vertex spacing of the written centreline CSV (keeps the repo small)
 
 
 def _csv(xy: np.ndarray, widths: np.ndarray) -> str:
