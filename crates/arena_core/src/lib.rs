@@ -7,6 +7,7 @@
 //! * [`sim`]: vehicles, worlds, lidar and batched stepping
 
 pub mod error;
+pub mod fileio;
 pub mod generate;
 pub mod geometry;
 pub mod grid;

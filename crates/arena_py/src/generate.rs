@@ -10,9 +10,9 @@ use arena_core::generate::spec::{ConstructorConfig, Spec};
 use arena_core::grid::OccupancyGrid;
 use arena_core::track::{features, validate};
 
-type MapTuple<'py> = (Bound<'py, PyArray2<u8>>, (f64, f64, f64));
+pub(crate) type MapTuple<'py> = (Bound<'py, PyArray2<u8>>, (f64, f64, f64));
 
-fn grid_to_py<'py>(py: Python<'py>, g: arena_core::grid::OccupancyGrid) -> MapTuple<'py> {
+pub(crate) fn grid_to_py<'py>(py: Python<'py>, g: arena_core::grid::OccupancyGrid) -> MapTuple<'py> {
     let o = g.origin;
     let arr = numpy::ndarray::Array2::from_shape_vec((g.height, g.width), g.data).expect("shape matches");
     (PyArray2::from_owned_array(py, arr), (o[0], o[1], o[2]))
@@ -56,7 +56,7 @@ fn to_json<T: serde::Serialize>(v: &T) -> String {
     serde_json::to_string(v).expect("plain data serialises")
 }
 
-fn line_to_py<'py>(py: Python<'py>, line: &[[f64; 2]]) -> Bound<'py, PyArray2<f64>> {
+pub(crate) fn line_to_py<'py>(py: Python<'py>, line: &[[f64; 2]]) -> Bound<'py, PyArray2<f64>> {
     let flat: Vec<f64> = line.iter().flat_map(|p| [p[0], p[1]]).collect();
     let arr = numpy::ndarray::Array2::from_shape_vec((line.len(), 2), flat).expect("shape matches");
     PyArray2::from_owned_array(py, arr)

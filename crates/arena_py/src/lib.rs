@@ -3,10 +3,12 @@
 
 use pyo3::prelude::*;
 
+mod build;
 mod errors;
 mod generate;
 mod grid;
 mod library;
+mod maps;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -14,6 +16,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     grid::register(m)?;
     generate::register(m)?;
+    maps::register(m)?;
+    build::register(m)?;
     library::register(m)?;
     Ok(())
 }

@@ -1,7 +1,11 @@
 //! Planar polylines and the triangle meshes built from them. One set of meshes serves
 //! both the USD stage and the rapier worlds, so they live here, not in either consumer.
 
+pub mod contour;
+pub mod fill;
 pub mod mesh;
+pub mod smooth;
+pub mod tube;
 
 /// A polyline of map-frame points (m). A *closed* polyline does not repeat its first
 /// point at the end; closure is implied by the caller's context.

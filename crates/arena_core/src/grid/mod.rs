@@ -6,6 +6,10 @@
 
 pub mod edt;
 pub mod flood;
+pub mod image;
+pub mod mapfile;
+pub mod pgm;
+pub mod png_io;
 pub mod rasterise;
 
 /// Occupancy value of a free cell (ROS map_saver convention).
@@ -87,6 +91,21 @@ impl OccupancyGrid {
     pub fn mask_of(&self, value: u8) -> Vec<bool> {
         self.data.iter().map(|&d| d == value).collect()
     }
+}
+
+/// Value of a cell-centred field (row 0 at the top, like the grid) at grid point (u, v)
+/// in cell units from the lower-left corner, bilinearly interpolated between cell
+/// centres and clamped at the border.
+pub fn bilinear(f: &[f32], w: usize, h: usize, u: f64, v: f64) -> f64 {
+    let x = (u - 0.5).clamp(0.0, (w - 1) as f64);
+    let y = (v - 0.5).clamp(0.0, (h - 1) as f64);
+    let (c0, v0) = (x.floor() as usize, y.floor() as usize);
+    let (c1, v1) = ((c0 + 1).min(w - 1), (v0 + 1).min(h - 1));
+    let (tx, ty) = (x - c0 as f64, y - v0 as f64);
+    let at = |c: usize, vv: usize| f[(h - 1 - vv) * w + c] as f64;
+    let a = at(c0, v0) * (1.0 - tx) + at(c1, v0) * tx;
+    let b = at(c0, v1) * (1.0 - tx) + at(c1, v1) * tx;
+    a * (1.0 - ty) + b * ty
 }
 
 #[cfg(test)]

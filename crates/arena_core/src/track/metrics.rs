@@ -10,7 +10,8 @@ use crate::error::{ArenaError, Result};
 use crate::grid::edt::edt;
 use crate::grid::flood::{border_cells, label_components, Connectivity};
 use crate::grid::{OccupancyGrid, FREE};
-use std::collections::HashMap;
+use crate::grid::bilinear;
+use crate::track::centreline::longest_zero_loop;
 
 /// What the raster says about the track.
 #[derive(Debug, Clone)]
@@ -95,110 +96,6 @@ pub fn known_extent(g: &OccupancyGrid) -> [f64; 2] {
         return [0.0, 0.0];
     }
     [(c1 - c0 + 1) as f64 * g.resolution, (r1 - r0 + 1) as f64 * g.resolution]
-}
-
-/// Field value at grid point (u, v) in cell units (cell centres at half-integers).
-fn bilinear(f: &[f32], w: usize, h: usize, u: f64, v: f64) -> f64 {
-    let x = (u - 0.5).clamp(0.0, (w - 1) as f64);
-    let y = (v - 0.5).clamp(0.0, (h - 1) as f64);
-    let (c0, v0) = (x.floor() as usize, y.floor() as usize);
-    let (c1, v1) = ((c0 + 1).min(w - 1), (v0 + 1).min(h - 1));
-    let (tx, ty) = (x - c0 as f64, y - v0 as f64);
-    let at = |c: usize, vv: usize| f[(h - 1 - vv) * w + c] as f64;
-    let a = at(c0, v0) * (1.0 - tx) + at(c1, v0) * tx;
-    let b = at(c0, v1) * (1.0 - tx) + at(c1, v1) * tx;
-    a * (1.0 - ty) + b * ty
-}
-
-/// Marching squares on cell centres: the longest closed zero-crossing loop of `f`, as
-/// (u, v) grid coordinates (cell units from the lower-left corner, v up).
-fn longest_zero_loop(f: &[f32], w: usize, h: usize) -> Option<Vec<[f64; 2]>> {
-    // Sample (c, vv) with vv counted from the bottom.
-    let at = |c: usize, vv: usize| f[(h - 1 - vv) * w + c];
-    // A crossing lives on a lattice edge: key = (c, vv, dir) with dir 0 = +c, 1 = +vv.
-    let key = |c: usize, vv: usize, dir: usize| (vv * w + c) * 2 + dir;
-    let mut point: HashMap<usize, [f64; 2]> = HashMap::new();
-    let mut adj: HashMap<usize, Vec<usize>> = HashMap::new();
-    let crossing = |c: usize, vv: usize, dir: usize| -> [f64; 2] {
-        let (a, (c2, v2)) = (at(c, vv), if dir == 0 { (c + 1, vv) } else { (c, vv + 1) });
-        let b = at(c2, v2);
-        let t = (a / (a - b)) as f64;
-        let (x0, y0) = (c as f64 + 0.5, vv as f64 + 0.5);
-        if dir == 0 { [x0 + t, y0] } else { [x0, y0 + t] }
-    };
-    for vv in 0..h.saturating_sub(1) {
-        for c in 0..w.saturating_sub(1) {
-            let v = [at(c, vv), at(c + 1, vv), at(c + 1, vv + 1), at(c, vv + 1)];
-            let idx = (v[0] >= 0.0) as u8 | ((v[1] >= 0.0) as u8) << 1 | ((v[2] >= 0.0) as u8) << 2 | ((v[3] >= 0.0) as u8) << 3;
-            if idx == 0 || idx == 15 {
-                continue;
-            }
-            // Square edges: 0 bottom, 1 right, 2 top, 3 left.
-            let e = [key(c, vv, 0), key(c + 1, vv, 1), key(c, vv + 1, 0), key(c, vv, 1)];
-            let pos = [(c, vv, 0), (c + 1, vv, 1), (c, vv + 1, 0), (c, vv, 1)];
-            let centre_pos = (v.iter().sum::<f32>()) >= 0.0;
-            let pairs: &[(usize, usize)] = match idx {
-                1 | 14 => &[(3, 0)],
-                2 | 13 => &[(0, 1)],
-                3 | 12 => &[(3, 1)],
-                4 | 11 => &[(1, 2)],
-                6 | 9 => &[(0, 2)],
-                7 | 8 => &[(3, 2)],
-                5 => if centre_pos { &[(3, 2), (0, 1)] } else { &[(3, 0), (1, 2)] },
-                10 => if centre_pos { &[(3, 0), (1, 2)] } else { &[(3, 2), (0, 1)] },
-                _ => &[],
-            };
-            for &(a, b) in pairs {
-                for k in [a, b] {
-                    point.entry(e[k]).or_insert_with(|| crossing(pos[k].0, pos[k].1, pos[k].2));
-                }
-                adj.entry(e[a]).or_default().push(e[b]);
-                adj.entry(e[b]).or_default().push(e[a]);
-            }
-        }
-    }
-    // Walk loops; keep the longest closed one.
-    let mut seen: HashMap<usize, bool> = HashMap::new();
-    let mut best: Option<Vec<[f64; 2]>> = None;
-    let mut best_len = 0.0;
-    let mut starts: Vec<usize> = adj.keys().copied().collect();
-    starts.sort_unstable();
-    for s in starts {
-        if seen.contains_key(&s) || adj[&s].len() != 2 {
-            continue;
-        }
-        let mut path = vec![s];
-        seen.insert(s, true);
-        let (mut prev, mut cur) = (s, adj[&s][0]);
-        let mut closed = false;
-        loop {
-            if cur == s {
-                closed = true;
-                break;
-            }
-            if seen.contains_key(&cur) {
-                break;
-            }
-            seen.insert(cur, true);
-            path.push(cur);
-            let nb = &adj[&cur];
-            if nb.len() != 2 {
-                break;
-            }
-            let next = if nb[0] == prev { nb[1] } else { nb[0] };
-            prev = cur;
-            cur = next;
-        }
-        if closed && path.len() >= 3 {
-            let pts: Vec<[f64; 2]> = path.iter().map(|k| point[k]).collect();
-            let len = crate::geometry::polyline_length(&pts, true);
-            if len > best_len {
-                best_len = len;
-                best = Some(pts);
-            }
-        }
-    }
-    best
 }
 
 #[cfg(test)]

@@ -1,0 +1,130 @@
+//! Geometry parameters of the map-to-environment builder. JSON in and out; field names
+//! are mirrored by the Python `BuildConfig.geometry`.
+
+use crate::error::{ArenaError, Result};
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct BuildParams {
+    /// Height of the extruded collision walls (m).
+    pub wall_height_m: f64,
+    /// Offset of the collision walls from the corridor boundary (m); positive moves
+    /// them away from the free space (into the walls), negative narrows the corridor.
+    pub wall_offset_m: f64,
+    /// Outer diameter of the visual air-duct tubes (m).
+    pub tube_diameter_m: f64,
+    /// Vertices per tube cross-section (n-gon).
+    pub tube_segments: usize,
+    /// Arc-length spacing of the rings along each duct (m); 0 disables rings.
+    pub ring_spacing_m: f64,
+    /// Length of each ring band along the duct (m).
+    pub ring_width_m: f64,
+    /// Ring radius as a multiple of the tube radius.
+    pub ring_scale: f64,
+    /// Douglas–Peucker tolerance for walls and ducts (m); 0 = half a map cell.
+    pub simplify_tolerance_m: f64,
+    /// Taubin smoothing passes applied to the duct paths and the centreline.
+    pub smoothing_iterations: usize,
+    /// Spacing of the resampled centreline (m).
+    pub centreline_spacing_m: f64,
+    /// Margin of the floor quad around the barriers (m).
+    pub floor_margin_m: f64,
+}
+
+impl Default for BuildParams {
+    fn default() -> Self {
+        BuildParams {
+            wall_height_m: 0.5,
+            wall_offset_m: 0.0,
+            tube_diameter_m: 0.33,
+            tube_segments: 12,
+            ring_spacing_m: 1.0,
+            ring_width_m: 0.05,
+            ring_scale: 1.12,
+            simplify_tolerance_m: 0.0,
+            smoothing_iterations: 2,
+            centreline_spacing_m: 0.1,
+            floor_margin_m: 0.5,
+        }
+    }
+}
+
+impl BuildParams {
+    /// Parse JSON (missing fields take their defaults; unknown fields are an error).
+    pub fn from_json(s: &str) -> Result<Self> {
+        let p: BuildParams = if s.trim().is_empty() {
+            BuildParams::default()
+        } else {
+            serde_json::from_str(s).map_err(|e| ArenaError::invalid(format!("build params: {e}")))?
+        };
+        p.validate()?;
+        Ok(p)
+    }
+
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("params serialise")
+    }
+
+    /// The simplification tolerance in metres after resolving the "0 = half a cell" rule.
+    pub fn simplify_tolerance(&self, resolution: f64) -> f64 {
+        if self.simplify_tolerance_m > 0.0 { self.simplify_tolerance_m } else { 0.5 * resolution }
+    }
+
+    /// A copy with every automatic value resolved for a map of `resolution`.
+    pub fn effective(&self, resolution: f64) -> Self {
+        BuildParams { simplify_tolerance_m: self.simplify_tolerance(resolution), ..self.clone() }
+    }
+
+    pub fn validate(&self) -> Result<()> {
+        let positive = [
+            ("wall_height_m", self.wall_height_m),
+            ("tube_diameter_m", self.tube_diameter_m),
+            ("ring_width_m", self.ring_width_m),
+            ("ring_scale", self.ring_scale),
+            ("centreline_spacing_m", self.centreline_spacing_m),
+        ];
+        for (k, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(ArenaError::invalid(format!("build params: {k} must be a finite number > 0, got {v}")));
+            }
+        }
+        let non_negative = [
+            ("ring_spacing_m", self.ring_spacing_m),
+            ("simplify_tolerance_m", self.simplify_tolerance_m),
+            ("floor_margin_m", self.floor_margin_m),
+        ];
+        for (k, v) in non_negative {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(ArenaError::invalid(format!("build params: {k} must be a finite number ≥ 0, got {v}")));
+            }
+        }
+        if !self.wall_offset_m.is_finite() {
+            return Err(ArenaError::invalid("build params: wall_offset_m must be finite"));
+        }
+        if !(3..=64).contains(&self.tube_segments) {
+            return Err(ArenaError::invalid(format!("build params: tube_segments must be in 3..=64, got {}", self.tube_segments)));
+        }
+        if self.smoothing_iterations > 100 {
+            return Err(ArenaError::invalid("build params: smoothing_iterations must be ≤ 100"));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn json_defaults_unknown_fields_and_validation() {
+        let p = BuildParams::from_json(r#"{"wall_height_m": 0.8}"#).unwrap();
+        assert_eq!(p.wall_height_m, 0.8);
+        assert_eq!(p.tube_diameter_m, 0.33);
+        assert_eq!(BuildParams::from_json(&p.to_json()).unwrap(), p);
+        assert!(BuildParams::from_json(r#"{"wall_hieght_m": 0.8}"#).unwrap_err().to_string().contains("unknown field"));
+        assert!(BuildParams::from_json(r#"{"tube_diameter_m": -1}"#).is_err());
+        assert_eq!(BuildParams::default().effective(0.05).simplify_tolerance_m, 0.025);
+        assert_eq!(BuildParams::from_json("").unwrap(), BuildParams::default());
+    }
+}

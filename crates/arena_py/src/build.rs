@@ -1,0 +1,78 @@
+//! Bindings for `arena_core::track::build`: occupancy map → walls, ducts, centreline,
+//! meshes and the round-trip check, in one call with the GIL released.
+
+use numpy::{PyArray2, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::errors::IntoPyResult;
+use crate::generate::line_to_py;
+use arena_core::geometry::mesh::TriMesh;
+use arena_core::track::build;
+use arena_core::track::params::BuildParams;
+
+fn mesh_to_py<'py>(py: Python<'py>, m: TriMesh) -> (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>) {
+    let (nv, nt) = (m.vertices.len(), m.triangles.len());
+    let v = numpy::ndarray::Array2::from_shape_vec((nv, 3), m.vertices.into_iter().flatten().collect()).expect("shape");
+    let t = numpy::ndarray::Array2::from_shape_vec((nt, 3), m.triangles.into_iter().flatten().collect()).expect("shape");
+    (PyArray2::from_owned_array(py, v), PyArray2::from_owned_array(py, t))
+}
+
+/// Build the environment geometry of a map; see ``roboracer_arena.corridor`` for the keys.
+#[pyfunction]
+#[pyo3(signature = (data, resolution, origin, params_json="{}", start=None))]
+fn build_geometry<'py>(
+    py: Python<'py>,
+    data: PyReadonlyArray2<'py, u8>,
+    resolution: f64,
+    origin: (f64, f64, f64),
+    params_json: &str,
+    start: Option<Vec<f64>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let params = BuildParams::from_json(params_json).py()?;
+    let start = match start.as_deref() {
+        None => None,
+        Some([x, y]) | Some([x, y, _]) if x.is_finite() && y.is_finite() => Some([*x, *y]),
+        Some(s) => {
+            return Err(crate::errors::InvalidArgumentError::new_err(format!(
+                "start must be (x, y) or (x, y, yaw) finite numbers, got {s:?}"
+            )))
+        }
+    };
+    let g = crate::maps::grid_from_py(&data, resolution, origin);
+    let (w, h) = (g.width, g.height);
+    let geo = py.detach(move || build::build_geometry(&g, &params, start)).py()?;
+    let d = PyDict::new(py);
+    let lines = |ls: &[Vec<[f64; 2]>]| PyList::new(py, ls.iter().map(|l| line_to_py(py, l)));
+    d.set_item("walls", lines(&geo.walls)?)?;
+    d.set_item("ducts", lines(&geo.ducts)?)?;
+    d.set_item("centreline", line_to_py(py, &geo.centreline))?;
+    let meshes = PyDict::new(py);
+    meshes.set_item("floor", mesh_to_py(py, geo.floor))?;
+    meshes.set_item("walls", mesh_to_py(py, geo.wall_mesh))?;
+    meshes.set_item("barriers", mesh_to_py(py, geo.barriers))?;
+    d.set_item("meshes", meshes)?;
+    d.set_item("iou", geo.iou)?;
+    d.set_item("max_wall_deviation_cells", geo.max_wall_deviation_cells)?;
+    let mask = numpy::ndarray::Array2::from_shape_vec((h, w), geo.corridor.mask).expect("shape");
+    d.set_item("corridor_mask", PyArray2::from_owned_array(py, mask))?;
+    let timings = PyDict::new(py);
+    for (k, v) in &geo.timings {
+        timings.set_item(*k, *v)?;
+    }
+    d.set_item("timings", timings)?;
+    d.set_item("params_json", geo.params.to_json())?;
+    Ok(d)
+}
+
+/// The default geometry parameters as JSON.
+#[pyfunction]
+fn default_build_params() -> String {
+    BuildParams::default().to_json()
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(build_geometry, m)?)?;
+    m.add_function(wrap_pyfunction!(default_build_params, m)?)?;
+    Ok(())
+}
