@@ -29,6 +29,16 @@ _LAZY = {
 }
 
 
+def _install_gym_registration() -> None:
+    # RoboRacerArena-v0 for gymnasium.make / make_vec, without importing gymnasium here.
+    from .envs._gym_hook import install
+
+    install()
+
+
+_install_gym_registration()
+
+
 def __getattr__(name: str) -> Any:
     module = _LAZY.get(name)
     if module is None:

@@ -1,4 +1,5 @@
-"""Pictures: :class:`TopDown` (generic map-frame canvas) and the track previews built on it."""
+"""Pictures: :class:`TopDown` (generic map-frame canvas), the track previews built on it,
+top-down drawings of simulated episodes, and video writers."""
 
 from .topdown import TopDown
 

@@ -1,0 +1,135 @@
+"""Configuration of the native simulator (``_core.Simulator``): vehicle, lidar, physics.
+
+The three models mirror the Rust structs ``arena_core::sim::{VehicleParams, LidarParams,
+PhysicsParams}`` field for field (same names, SI units); :meth:`SimConfig.to_json`
+produces the ``config_json`` the simulator takes. Defaults reproduce the paper's
+Traxxas 1:10 RoboRacer vehicle table (see ``DESIGN.md``); where the paper gives no
+figure, the docstring of the field says where the value comes from.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+_FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+
+class VehicleConfig(BaseModel):
+    """Rigid chassis on four suspended wheels with Ackermann steering and a VESC-like
+    speed controller. Mass, inertia, geometry, steering limit and tyre friction are the
+    paper's Traxxas 1:10 figures; suspension and controller gains are chosen so the car
+    settles in well under a second and reaches its top speed like the real one."""
+
+    model_config = _FROZEN
+
+    wheelbase: float = Field(0.3275, gt=0, description="Wheelbase (m); must equal com_to_front + com_to_rear.")
+    track_width: float = Field(0.265, gt=0, description="Track width between left and right wheel contact points (m).")
+    mass: float = Field(4.885, gt=0, description="Total mass (kg).")
+    yaw_inertia: float = Field(0.089, gt=0, description="Yaw moment of inertia about the CoM (kg m^2).")
+    com_to_front: float = Field(0.1753, gt=0, description="CoM to front axle (m).")
+    com_to_rear: float = Field(0.1522, gt=0, description="CoM to rear axle (m).")
+    wheel_radius: float = Field(0.0525, gt=0, description="Wheel radius (m).")
+    com_height: float = Field(0.063, gt=0, description="CoM height above the ground at rest (m).")
+    max_steer: float = Field(0.524, gt=0, lt=1.5, description="Maximum steering angle (rad) of the virtual centre wheel.")
+    max_steer_rate: float = Field(
+        3.2, gt=0, description="Steering-rate limit (rad/s): servo slew, the F1TENTH single-track model's sv_max."
+    )
+    max_speed: float = Field(
+        7.0, gt=0, description="Largest commanded forward speed (m/s); the paper observed at most 6.66 m/s."
+    )
+    min_speed: float = Field(-3.0, le=0, description="Most negative commanded speed (m/s), i.e. reverse limit.")
+    tyre_friction: float = Field(0.83, gt=0, description="Tyre-surface friction coefficient mu (paper: about 0.83).")
+    cornering_stiffness_front: float = Field(
+        4.718,
+        gt=0,
+        description="Front cornering stiffness per unit normal load (1/rad), the F1TENTH/CommonRoad Traxxas C_Sf.",
+    )
+    cornering_stiffness_rear: float = Field(
+        5.4562,
+        gt=0,
+        description="Rear cornering stiffness per unit normal load (1/rad), the F1TENTH/CommonRoad Traxxas C_Sr.",
+    )
+    chassis_length: float = Field(0.55, gt=0, description="Collision box length (m), Traxxas body about 0.55 m.")
+    chassis_width: float = Field(0.29, gt=0, description="Collision box width (m), Traxxas body about 0.29 m.")
+    chassis_height: float = Field(0.10, gt=0, description="Collision box height (m).")
+    chassis_clearance: float = Field(0.02, ge=0, description="Gap between the collision box and the ground at rest (m).")
+    suspension_rest_length: float = Field(0.08, gt=0, description="Unloaded suspension length (m).")
+    suspension_travel: float = Field(0.05, gt=0, description="Maximum compression before the bump stop (m).")
+    suspension_stiffness: float = Field(
+        600.0, gt=0, description="Spring rate per wheel (N/m): about 2 cm static sag, 3.5 Hz heave."
+    )
+    suspension_damping: float = Field(
+        30.0, ge=0, description="Damper rate per wheel (N s/m): damping ratio about 0.55 at the default spring."
+    )
+    speed_kp: float = Field(
+        40.0, gt=0, description="Speed controller gain (N per m/s of speed error), like the VESC's speed PID P term."
+    )
+    max_drive_force: float = Field(
+        46.5, gt=0, description="Largest total drive force (N): mass times the F1TENTH model's a_max 9.51 m/s^2."
+    )
+    max_brake_force: float = Field(50.0, gt=0, description="Largest total braking force (N).")
+
+    @model_validator(mode="after")
+    def _consistent_geometry(self) -> VehicleConfig:
+        if abs(self.com_to_front + self.com_to_rear - self.wheelbase) > 1e-3:
+            raise ValueError(
+                f"com_to_front + com_to_rear = {self.com_to_front + self.com_to_rear:.4f} m "
+                f"must equal wheelbase = {self.wheelbase:.4f} m"
+            )
+        if self.max_speed <= self.min_speed:
+            raise ValueError("max_speed must exceed min_speed")
+        return self
+
+
+class LidarConfig(BaseModel):
+    """Planar scanning lidar (Hokuyo UST-10LX on the real car): 1081 beams over 270 deg,
+    30 m range; ranges are exact 2D ray casts against the walls and other vehicles'
+    chassis outlines, plus optional Gaussian noise from a per-vehicle seeded RNG."""
+
+    model_config = _FROZEN
+
+    num_beams: int = Field(1081, ge=1, le=100_000, description="Beams per scan (paper: 1081).")
+    fov: float = Field(
+        1.5 * math.pi, gt=0, le=2 * math.pi, description="Field of view (rad), centred on the heading (paper: 270 deg)."
+    )
+    range_max: float = Field(30.0, gt=0, description="Maximum range (m); a beam that hits nothing reads range_max.")
+    range_min: float = Field(0.0, ge=0, description="Readings below this are clamped up to it (m).")
+    noise_std: float = Field(0.0, ge=0, description="Std of additive Gaussian range noise (m); 0 = exact.")
+    mount_x: float = Field(0.12, description="Forward offset of the scanner from the CoM (m).")
+    mount_z: float = Field(0.12, description="Scanner height above the ground (m); informational in the 2D scan.")
+    rate_hz: float = Field(40.0, gt=0, description="Scan rate (Hz) the env should request scans at (paper: 39.9 Hz).")
+
+
+class PhysicsConfig(BaseModel):
+    """Rapier world settings. dt = 5 ms keeps the stiffest force (suspension, tyre
+    relaxation) well inside the explicit-integration stability limit and moves the car
+    at most 3.5 cm per step at 7 m/s, far less than its half-length, so walls never tunnel."""
+
+    model_config = _FROZEN
+
+    dt: float = Field(0.005, gt=0, le=0.02, description="Physics time step (s).")
+    gravity: float = Field(9.81, gt=0, description="Gravity (m/s^2).")
+    wall_height: float = Field(0.5, gt=0, description="Height of the extruded collision walls (m).")
+    wall_friction: float = Field(0.3, ge=0, description="Chassis-wall friction coefficient.")
+    ground_friction: float = Field(
+        0.83, ge=0, description="Ground collider friction (chassis on ground only; tyres use tyre_friction)."
+    )
+    solver_iterations: int = Field(2, ge=1, le=16, description="Rapier solver iterations per step.")
+    ccd: bool = Field(False, description="Continuous collision detection on the chassis (not needed at dt <= 5 ms).")
+
+
+class SimConfig(BaseModel):
+    """Everything the native simulator needs besides tracks, counts and the seed."""
+
+    model_config = _FROZEN
+
+    vehicle: VehicleConfig = Field(default_factory=VehicleConfig)
+    lidar: LidarConfig = Field(default_factory=LidarConfig)
+    physics: PhysicsConfig = Field(default_factory=PhysicsConfig)
+
+    def to_json(self) -> str:
+        """The ``config_json`` argument of ``_core.Simulator``."""
+        return json.dumps(self.model_dump(mode="json"))

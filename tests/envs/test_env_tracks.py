@@ -1,0 +1,55 @@
+import numpy as np
+import pytest
+
+from roboracer_arena.envs.tracks import Track, resolve_tracks
+from roboracer_arena.errors import ConfigError
+
+from synthetic_tracks import stadium
+
+
+def test_track_geometry_of_the_stadium(oval):
+    assert oval.length == pytest.approx(2 * 6.0 + 2 * np.pi * 3.0, rel=2e-3)
+    xmin, ymin, xmax, ymax = oval.bounds
+    assert xmin == pytest.approx(-6.8, abs=0.01) and ymax == pytest.approx(3.8, abs=0.01)
+    walls, centreline = oval.native()
+    assert len(walls) == 2 and centreline.dtype == np.float64
+
+
+def test_one_or_many_tracks(oval):
+    assert resolve_tracks(oval) == [oval]
+    other = stadium(4.0, 2.0, name="small")
+    assert [t.name for t in resolve_tracks([oval, other])] == ["stadium", "small"]
+
+
+def test_corridor_like_objects_are_accepted(oval):
+    class Corridor:
+        walls = list(oval.walls)
+        centreline = oval.centreline
+
+    (t,) = resolve_tracks(Corridor())
+    assert t.length == pytest.approx(oval.length)
+
+
+@pytest.mark.parametrize("bad", [None, [], 42])
+def test_bad_track_arguments(bad):
+    with pytest.raises(ConfigError):
+        resolve_tracks(bad)
+
+
+def test_catalog_ids_need_the_library():
+    with pytest.raises(ConfigError, match="catalog ids need the track library"):
+        resolve_tracks("monaco")
+
+
+def test_bad_polylines_are_rejected():
+    with pytest.raises(ConfigError, match="centreline"):
+        Track.from_polylines([np.zeros((3, 2))], np.array([[0.0, 0.0], [np.nan, 1.0], [1.0, 1.0]]))
+    with pytest.raises(ConfigError, match="wall 0"):
+        Track.from_polylines([np.zeros((1, 2))], np.eye(3)[:, :2])
+
+
+def test_missing_map_file_is_a_map_io_error(tmp_path):
+    from roboracer_arena.errors import MapIOError
+
+    with pytest.raises(MapIOError, match="nope.yaml"):
+        resolve_tracks(tmp_path / "nope.yaml")
