@@ -73,3 +73,77 @@ def measure_map(
     origin: tuple[float, float, float],
 ) -> tuple[str, npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """(info_json, closed CCW medial centreline (N, 2), local free widths (N,)); CorridorError if no loop."""
+
+# --- sim (batched vehicle simulation) -------------------------------------------------
+STATE_FIELDS: tuple[str, ...]
+
+class Simulator:
+    """``num_envs`` independent rapier worlds with ``vehicles_per_env`` cars each.
+
+    ``tracks``: list of ``(walls, centreline)``; walls = list of closed (N, 2) float64
+    polylines (map-frame metres), centreline = closed (M, 2) float64 polyline.
+    ``config_json``: ``SimConfig().to_json()``. Every env starts on track 0.
+
+    State columns (``state_fields``): x, y (CoM), yaw, vx, vy (body frame), yaw_rate,
+    steer (actual, rate limited), speed (planar, signed by vx), progress_s (arc length of
+    the projection on the centreline), travel (signed distance along the centreline since
+    reset), laps (full centreline lengths of travel since reset), lap_time, last_lap_time.
+    Events bits: 1 wall contact, 2 vehicle contact (during the last step), 4 lap
+    completed, 8 numerical fault (vehicle put back at its last finite pose; not expected).
+
+    Actions ``[steering (rad), speed (m/s)]``: NaN/inf become 0; finite values are clipped
+    to ±max_steer and [min_speed, max_speed]. Results are bit-identical for the same seed
+    whatever num_envs and thread count.
+    """
+
+    def __init__(
+        self,
+        tracks: list[tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]],
+        num_envs: int,
+        vehicles_per_env: int,
+        config_json: str = "{}",
+        seed: int = 0,
+    ) -> None: ...
+    @property
+    def num_envs(self) -> int: ...
+    @property
+    def vehicles_per_env(self) -> int: ...
+    @property
+    def num_beams(self) -> int: ...
+    @property
+    def num_tracks(self) -> int: ...
+    @property
+    def state_fields(self) -> tuple[str, ...]: ...
+    @property
+    def dt(self) -> float: ...
+    @property
+    def config_json(self) -> str: ...
+    def track_ids(self) -> npt.NDArray[np.int64]: ...
+    def set_tracks(self, track_ids: npt.ArrayLike) -> None:
+        """Track of each env, shape (num_envs,); reset the env afterwards."""
+    def reset(self, env_mask: npt.NDArray[np.bool_], poses: npt.NDArray[np.float64]) -> None:
+        """Put the vehicles of envs where ``env_mask`` is True at rest at ``poses`` (E, V, 3)."""
+    def step(
+        self,
+        actions: npt.NDArray[np.float64],
+        substeps: int,
+        scans: npt.NDArray[np.float32] | None,
+        state: npt.NDArray[np.float64],
+        events: npt.NDArray[np.uint8],
+    ) -> None:
+        """Run ``substeps`` physics steps, then scan (if ``scans`` is not None); outputs in place."""
+    def observe(
+        self,
+        scans: npt.NDArray[np.float32] | None,
+        state: npt.NDArray[np.float64],
+        events: npt.NDArray[np.uint8],
+    ) -> None:
+        """Write the outputs without stepping."""
+    def centreline_pose(self, track_id: int, s: float) -> tuple[float, float, float]: ...
+    def centreline_length(self, track_id: int) -> float: ...
+    def centreline(self, track_id: int) -> npt.NDArray[np.float64]: ...
+
+def stadium_track(
+    straight: float = 6.0, radius: float = 3.0, width: float = 2.0
+) -> tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]:
+    """Analytic stadium track ``(walls [outer, inner], centreline)`` for tests and benchmarks."""

@@ -9,6 +9,7 @@ mod generate;
 mod grid;
 mod library;
 mod maps;
+mod sim;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -19,5 +20,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     maps::register(m)?;
     build::register(m)?;
     library::register(m)?;
+    sim::register(m)?;
     Ok(())
 }

@@ -1,1 +1,27 @@
-//! See the crate docs; filled in by the sim work.
+//! Vehicle simulation: rapier3d worlds (one per environment) with 1:10 cars, exact 2D
+//! lidar, contact events, odometry, progress and laps, stepped in parallel.
+//!
+//! * [`params`]: the JSON configuration (mirrors `roboracer_arena.envs.config`)
+//! * [`track`]: shared wall mesh, lidar grid and centreline of one track
+//! * [`vehicle`]: chassis, suspension, tyres, Ackermann steering, speed controller
+//! * [`lidar`]: exact ray casting against wall segments and other vehicles
+//! * [`progress`]: arc length along the centreline and lap counting
+//! * [`world`]: one rapier world per environment
+//! * [`batch`]: N worlds stepped with rayon, deterministic for any N and thread count
+
+pub mod batch;
+pub mod lidar;
+pub mod params;
+pub mod progress;
+pub mod shapes;
+pub mod track;
+pub mod vehicle;
+pub mod world;
+
+#[cfg(test)]
+mod tests;
+
+pub use batch::Simulator;
+pub use params::{LidarParams, PhysicsParams, SimParams, VehicleParams};
+pub use track::{Centreline, Track};
+pub use world::{EVENT_FAULT, EVENT_LAP, EVENT_VEHICLE, EVENT_WALL, STATE_FIELDS, STATE_SIZE};

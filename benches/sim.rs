@@ -1,0 +1,67 @@
+//! Criterion benches for the simulator: one world step, one 1081-beam scan, a batched
+//! step. Geometry: the analytic stadium track (18 m straights, 9 m radius, 2 m corridor).
+
+use std::hint::black_box;
+use std::sync::Arc;
+
+use arena_core::sim::shapes::stadium_track;
+use arena_core::sim::{SimParams, Simulator, Track, STATE_SIZE};
+use criterion::{criterion_group, criterion_main, Criterion};
+
+fn simulator(envs: usize, per_env: usize) -> Simulator {
+    let params = SimParams::default();
+    let (walls, centre) = stadium_track(18.0, 9.0, 2.0);
+    let track = Arc::new(Track::new(&walls, &centre, params.physics.wall_height).unwrap());
+    let mut sim = Simulator::new(vec![track.clone()], envs, per_env, params, 0).unwrap();
+    let len = track.centreline.length();
+    let mut poses = Vec::new();
+    for _ in 0..envs {
+        for v in 0..per_env {
+            poses.extend(track.centreline.pose_at(len - 16.0 + 1.2 * v as f64));
+        }
+    }
+    sim.reset(&vec![true; envs], &poses).unwrap();
+    sim
+}
+
+fn bench_sim(c: &mut Criterion) {
+    // One physics step of one world with one car, driving slowly along the straight
+    // (re-reset every 2000 steps so it never reaches the bend).
+    let mut sim = simulator(1, 1);
+    let (mut state, mut events) = (vec![0.0; STATE_SIZE], vec![0u8; 1]);
+    let mut n = 0;
+    c.bench_function("world step (1 car, dt 5 ms)", |b| {
+        b.iter(|| {
+            n += 1;
+            if n % 2000 == 0 {
+                sim = simulator(1, 1);
+            }
+            sim.step(black_box(&[0.0, 1.0]), 1, None, &mut state, &mut events).unwrap()
+        })
+    });
+
+    let mut scans = vec![0.0f32; sim.num_beams()];
+    c.bench_function("lidar scan (1081 beams)", |b| {
+        b.iter(|| sim.observe(Some(&mut scans), &mut state, &mut events).unwrap())
+    });
+
+    for (envs, per_env) in [(256, 1), (32, 8)] {
+        let mut sim = simulator(envs, per_env);
+        let n = envs * per_env;
+        let actions: Vec<f64> = (0..n).flat_map(|_| [0.0, 1.0]).collect();
+        let (mut state, mut events) = (vec![0.0; n * STATE_SIZE], vec![0u8; n]);
+        let mut k = 0;
+        c.bench_function(&format!("batched step ({envs} envs x {per_env} cars, 10 substeps)"), |b| {
+            b.iter(|| {
+                k += 1;
+                if k % 200 == 0 {
+                    sim = simulator(envs, per_env);
+                }
+                sim.step(&actions, 10, None, &mut state, &mut events).unwrap()
+            })
+        });
+    }
+}
+
+criterion_group!(benches, bench_sim);
+criterion_main!(benches);

@@ -1,0 +1,166 @@
+//! N independent worlds stepped in parallel with rayon.
+//!
+//! Determinism: each world only reads its own actions and owns its own rapier state and
+//! per-vehicle RNGs (seeded from (seed, env index, vehicle index)); rapier runs
+//! single-threaded inside a world. Hence results are bit-identical for the same seed
+//! whatever the number of environments or threads.
+//!
+//! Bad actions: NaN or ±inf become 0 (straight / stop); finite values are clipped to
+//! ±max_steer and [min_speed, max_speed]. Nothing an action can hold raises or panics.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use super::lidar::Scanner;
+use super::params::SimParams;
+use super::track::Track;
+use super::vehicle::VehicleModel;
+use super::world::{World, STATE_SIZE};
+use crate::error::{ArenaError, Result};
+
+pub struct Simulator {
+    params: SimParams,
+    model: VehicleModel,
+    scanner: Scanner,
+    tracks: Vec<Arc<Track>>,
+    worlds: Vec<World>,
+    vehicles_per_env: usize,
+}
+
+impl Simulator {
+    /// `num_envs` worlds of `vehicles_per_env` cars, all on track 0 until
+    /// [`Simulator::set_tracks`].
+    pub fn new(tracks: Vec<Arc<Track>>, num_envs: usize, vehicles_per_env: usize, params: SimParams, seed: u64) -> Result<Self> {
+        params.validate()?;
+        if tracks.is_empty() {
+            return Err(ArenaError::invalid("Simulator needs at least one track"));
+        }
+        if num_envs == 0 || vehicles_per_env == 0 {
+            return Err(ArenaError::invalid("num_envs and vehicles_per_env must be at least 1"));
+        }
+        if num_envs.saturating_mul(vehicles_per_env) > 1 << 20 {
+            return Err(ArenaError::invalid("num_envs * vehicles_per_env must be at most 2^20"));
+        }
+        let model = VehicleModel::new(&params.vehicle, &params.physics);
+        let scanner = Scanner::new(&params.lidar);
+        let worlds = (0..num_envs)
+            .into_par_iter()
+            .map(|e| World::new(tracks[0].clone(), 0, vehicles_per_env, &model, &params.physics, seed, e))
+            .collect();
+        Ok(Simulator { params, model, scanner, tracks, worlds, vehicles_per_env })
+    }
+
+    pub fn num_envs(&self) -> usize {
+        self.worlds.len()
+    }
+    pub fn vehicles_per_env(&self) -> usize {
+        self.vehicles_per_env
+    }
+    pub fn num_beams(&self) -> usize {
+        self.scanner.num_beams()
+    }
+    pub fn params(&self) -> &SimParams {
+        &self.params
+    }
+    pub fn tracks(&self) -> &[Arc<Track>] {
+        &self.tracks
+    }
+    pub fn track_of(&self, env: usize) -> usize {
+        self.worlds[env].track_id()
+    }
+
+    pub fn track(&self, id: usize) -> Result<&Arc<Track>> {
+        self.tracks.get(id).ok_or_else(|| ArenaError::invalid(format!("track id {id} out of range (have {})", self.tracks.len())))
+    }
+
+    /// Choose the track of every environment (length num_envs). Reset afterwards.
+    pub fn set_tracks(&mut self, ids: &[i64]) -> Result<()> {
+        self.check_len("track_ids", ids.len(), self.num_envs())?;
+        for &id in ids {
+            if id < 0 || id as usize >= self.tracks.len() {
+                return Err(ArenaError::invalid(format!("track id {id} out of range (have {})", self.tracks.len())));
+            }
+        }
+        for (w, &id) in self.worlds.iter_mut().zip(ids) {
+            w.set_track(self.tracks[id as usize].clone(), id as usize);
+        }
+        Ok(())
+    }
+
+    /// Put every vehicle of each env whose mask is true at rest at its pose
+    /// (`poses`: num_envs × vehicles × 3, x y yaw). Non-finite poses are refused.
+    pub fn reset(&mut self, mask: &[bool], poses: &[f64]) -> Result<()> {
+        let v = self.vehicles_per_env;
+        self.check_len("env_mask", mask.len(), self.num_envs())?;
+        self.check_len("poses", poses.len(), self.num_envs() * v * 3)?;
+        for (e, &m) in mask.iter().enumerate() {
+            if m && poses[e * v * 3..(e + 1) * v * 3].iter().any(|x| !x.is_finite()) {
+                return Err(ArenaError::invalid(format!("reset pose of env {e} is not finite")));
+            }
+        }
+        let model = &self.model;
+        self.worlds.par_iter_mut().zip(mask.par_iter()).zip(poses.par_chunks(v * 3)).for_each(|((w, &m), p)| {
+            if m {
+                for k in 0..v {
+                    w.reset_vehicle(k, [p[3 * k], p[3 * k + 1], p[3 * k + 2]], model);
+                }
+            }
+        });
+        Ok(())
+    }
+
+    /// Step every env: `actions` (E × V × 2: steering, speed), `substeps` physics steps,
+    /// then (if `scans` is given, E × V × B) one scan per vehicle; writes `state`
+    /// (E × V × STATE_SIZE) and `events` (E × V).
+    pub fn step(&mut self, actions: &[f64], substeps: usize, scans: Option<&mut [f32]>, state: &mut [f64], events: &mut [u8]) -> Result<()> {
+        let v = self.vehicles_per_env;
+        self.check_len("actions", actions.len(), self.num_envs() * v * 2)?;
+        if substeps == 0 || substeps > 100_000 {
+            return Err(ArenaError::invalid(format!("substeps must be in 1..=100000, got {substeps}")));
+        }
+        self.check_outputs(scans.as_deref().map(|s| s.len()), state.len(), events.len())?;
+        let model = &self.model;
+        self.worlds.par_iter_mut().zip(actions.par_chunks(v * 2)).for_each(|(w, a)| {
+            let cmds: Vec<(f64, f64)> = a.chunks_exact(2).map(|c| model.sanitise(c[0], c[1])).collect();
+            w.step(&cmds, substeps, model);
+        });
+        self.observe(scans, state, events)
+    }
+
+    /// Write the outputs without stepping.
+    pub fn observe(&mut self, scans: Option<&mut [f32]>, state: &mut [f64], events: &mut [u8]) -> Result<()> {
+        let v = self.vehicles_per_env;
+        self.check_outputs(scans.as_deref().map(|s| s.len()), state.len(), events.len())?;
+        let (model, scanner) = (&self.model, &self.scanner);
+        let worlds = self.worlds.par_iter_mut().zip(state.par_chunks_mut(v * STATE_SIZE)).zip(events.par_chunks_mut(v));
+        match scans {
+            Some(scans) => {
+                let b = scanner.num_beams();
+                worlds.zip(scans.par_chunks_mut(v * b)).for_each(|(((w, st), ev), sc)| {
+                    w.write_state(st, ev);
+                    w.scan(scanner, model, sc);
+                });
+            }
+            None => worlds.for_each(|((w, st), ev)| w.write_state(st, ev)),
+        }
+        Ok(())
+    }
+
+    fn check_len(&self, name: &str, got: usize, want: usize) -> Result<()> {
+        if got == want {
+            Ok(())
+        } else {
+            Err(ArenaError::invalid(format!("{name} has {got} elements, expected {want}")))
+        }
+    }
+
+    fn check_outputs(&self, scans: Option<usize>, state: usize, events: usize) -> Result<()> {
+        let n = self.num_envs() * self.vehicles_per_env;
+        if let Some(s) = scans {
+            self.check_len("scans", s, n * self.num_beams())?;
+        }
+        self.check_len("state", state, n * STATE_SIZE)?;
+        self.check_len("events", events, n)
+    }
+}

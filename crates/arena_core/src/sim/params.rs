@@ -1,0 +1,236 @@
+//! Simulator parameters, deserialised from the JSON that
+//! `roboracer_arena.envs.config.SimConfig.to_json()` writes. Field names and defaults
+//! mirror the pydantic models exactly (SI units); unknown fields are rejected so a typo
+//! in a config never silently falls back to a default.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{ArenaError, Result};
+
+/// The Traxxas 1:10 RoboRacer vehicle (paper's table) plus model constants.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct VehicleParams {
+    pub wheelbase: f64,
+    pub track_width: f64,
+    pub mass: f64,
+    pub yaw_inertia: f64,
+    pub com_to_front: f64,
+    pub com_to_rear: f64,
+    pub wheel_radius: f64,
+    pub com_height: f64,
+    pub max_steer: f64,
+    /// Steering-rate limit (rad/s); 3.2 is the F1TENTH single-track model's `sv_max`.
+    pub max_steer_rate: f64,
+    pub max_speed: f64,
+    pub min_speed: f64,
+    pub tyre_friction: f64,
+    /// Cornering stiffness per unit normal load (1/rad), front and rear axles.
+    pub cornering_stiffness_front: f64,
+    pub cornering_stiffness_rear: f64,
+    pub chassis_length: f64,
+    pub chassis_width: f64,
+    pub chassis_height: f64,
+    pub chassis_clearance: f64,
+    pub suspension_rest_length: f64,
+    pub suspension_travel: f64,
+    pub suspension_stiffness: f64,
+    pub suspension_damping: f64,
+    /// Speed controller P gain (N per m/s of error).
+    pub speed_kp: f64,
+    pub max_drive_force: f64,
+    pub max_brake_force: f64,
+}
+
+impl Default for VehicleParams {
+    fn default() -> Self {
+        VehicleParams {
+            wheelbase: 0.3275,
+            track_width: 0.265,
+            mass: 4.885,
+            yaw_inertia: 0.089,
+            com_to_front: 0.1753,
+            com_to_rear: 0.1522,
+            wheel_radius: 0.0525,
+            com_height: 0.063,
+            max_steer: 0.524,
+            max_steer_rate: 3.2,
+            max_speed: 7.0,
+            min_speed: -3.0,
+            tyre_friction: 0.83,
+            cornering_stiffness_front: 4.718,
+            cornering_stiffness_rear: 5.4562,
+            chassis_length: 0.55,
+            chassis_width: 0.29,
+            chassis_height: 0.10,
+            chassis_clearance: 0.02,
+            suspension_rest_length: 0.08,
+            suspension_travel: 0.05,
+            suspension_stiffness: 600.0,
+            suspension_damping: 30.0,
+            speed_kp: 40.0,
+            max_drive_force: 46.5,
+            max_brake_force: 50.0,
+        }
+    }
+}
+
+/// The planar scanner (Hokuyo UST-10LX on the real car).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LidarParams {
+    pub num_beams: usize,
+    pub fov: f64,
+    pub range_max: f64,
+    pub range_min: f64,
+    pub noise_std: f64,
+    pub mount_x: f64,
+    pub mount_z: f64,
+    pub rate_hz: f64,
+}
+
+impl Default for LidarParams {
+    fn default() -> Self {
+        LidarParams {
+            num_beams: 1081,
+            fov: 1.5 * std::f64::consts::PI,
+            range_max: 30.0,
+            range_min: 0.0,
+            noise_std: 0.0,
+            mount_x: 0.12,
+            mount_z: 0.12,
+            rate_hz: 40.0,
+        }
+    }
+}
+
+/// Rapier world settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PhysicsParams {
+    pub dt: f64,
+    pub gravity: f64,
+    pub wall_height: f64,
+    pub wall_friction: f64,
+    pub ground_friction: f64,
+    pub solver_iterations: usize,
+    pub ccd: bool,
+}
+
+impl Default for PhysicsParams {
+    fn default() -> Self {
+        PhysicsParams {
+            dt: 0.005,
+            gravity: 9.81,
+            wall_height: 0.5,
+            wall_friction: 0.3,
+            ground_friction: 0.83,
+            solver_iterations: 2,
+            ccd: false,
+        }
+    }
+}
+
+/// The whole `config_json`: `{"vehicle": {...}, "lidar": {...}, "physics": {...}}`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SimParams {
+    pub vehicle: VehicleParams,
+    pub lidar: LidarParams,
+    pub physics: PhysicsParams,
+}
+
+fn check(ok: bool, what: &str) -> Result<()> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ArenaError::invalid(format!("simulator config: {what}")))
+    }
+}
+
+fn pos(x: f64) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+impl SimParams {
+    /// Parse and validate `config_json` (an empty object gives the defaults).
+    pub fn from_json(text: &str) -> Result<Self> {
+        let p: SimParams = serde_json::from_str(text)
+            .map_err(|e| ArenaError::invalid(format!("simulator config JSON: {e}")))?;
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// Reject values the model cannot run with (the pydantic models check the same).
+    pub fn validate(&self) -> Result<()> {
+        let v = &self.vehicle;
+        for (name, x) in [
+            ("vehicle.wheelbase", v.wheelbase),
+            ("vehicle.track_width", v.track_width),
+            ("vehicle.mass", v.mass),
+            ("vehicle.yaw_inertia", v.yaw_inertia),
+            ("vehicle.com_to_front", v.com_to_front),
+            ("vehicle.com_to_rear", v.com_to_rear),
+            ("vehicle.wheel_radius", v.wheel_radius),
+            ("vehicle.com_height", v.com_height),
+            ("vehicle.max_steer", v.max_steer),
+            ("vehicle.max_steer_rate", v.max_steer_rate),
+            ("vehicle.max_speed", v.max_speed),
+            ("vehicle.tyre_friction", v.tyre_friction),
+            ("vehicle.cornering_stiffness_front", v.cornering_stiffness_front),
+            ("vehicle.cornering_stiffness_rear", v.cornering_stiffness_rear),
+            ("vehicle.chassis_length", v.chassis_length),
+            ("vehicle.chassis_width", v.chassis_width),
+            ("vehicle.chassis_height", v.chassis_height),
+            ("vehicle.suspension_rest_length", v.suspension_rest_length),
+            ("vehicle.suspension_travel", v.suspension_travel),
+            ("vehicle.suspension_stiffness", v.suspension_stiffness),
+            ("vehicle.speed_kp", v.speed_kp),
+            ("vehicle.max_drive_force", v.max_drive_force),
+            ("vehicle.max_brake_force", v.max_brake_force),
+            ("lidar.fov", self.lidar.fov),
+            ("lidar.range_max", self.lidar.range_max),
+            ("lidar.rate_hz", self.lidar.rate_hz),
+            ("physics.dt", self.physics.dt),
+            ("physics.gravity", self.physics.gravity),
+            ("physics.wall_height", self.physics.wall_height),
+        ] {
+            check(pos(x), &format!("{name} must be a positive finite number, got {x}"))?;
+        }
+        check(v.max_steer < 1.5, "vehicle.max_steer must be below 1.5 rad")?;
+        check(
+            (v.com_to_front + v.com_to_rear - v.wheelbase).abs() <= 1e-3,
+            "vehicle.com_to_front + vehicle.com_to_rear must equal vehicle.wheelbase",
+        )?;
+        check(v.min_speed.is_finite() && v.min_speed <= 0.0, "vehicle.min_speed must be <= 0")?;
+        check(v.chassis_clearance.is_finite() && v.chassis_clearance >= 0.0, "vehicle.chassis_clearance must be >= 0")?;
+        check(v.suspension_damping.is_finite() && v.suspension_damping >= 0.0, "vehicle.suspension_damping must be >= 0")?;
+        let l = &self.lidar;
+        check(l.num_beams >= 1 && l.num_beams <= 100_000, "lidar.num_beams must be in 1..=100000")?;
+        check(l.fov <= 2.0 * std::f64::consts::PI + 1e-9, "lidar.fov must be at most 2 pi")?;
+        check(l.range_min.is_finite() && l.range_min >= 0.0 && l.range_min < l.range_max, "lidar.range_min must be in [0, range_max)")?;
+        check(l.noise_std.is_finite() && l.noise_std >= 0.0, "lidar.noise_std must be >= 0")?;
+        check(l.mount_x.is_finite() && l.mount_z.is_finite(), "lidar mount offsets must be finite")?;
+        let p = &self.physics;
+        check(p.dt <= 0.02, "physics.dt must be at most 0.02 s")?;
+        check(p.solver_iterations >= 1 && p.solver_iterations <= 16, "physics.solver_iterations must be in 1..=16")?;
+        check(p.wall_friction.is_finite() && p.wall_friction >= 0.0, "physics.wall_friction must be >= 0")?;
+        check(p.ground_friction.is_finite() && p.ground_friction >= 0.0, "physics.ground_friction must be >= 0")?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_json_gives_defaults_and_unknown_fields_fail() {
+        assert_eq!(SimParams::from_json("{}").unwrap(), SimParams::default());
+        let p = SimParams::from_json(r#"{"lidar": {"num_beams": 64}}"#).unwrap();
+        assert_eq!(p.lidar.num_beams, 64);
+        assert!(SimParams::from_json(r#"{"vehicle": {"mas": 3.0}}"#).is_err());
+        assert!(SimParams::from_json(r#"{"physics": {"dt": -1.0}}"#).is_err());
+        assert!(SimParams::from_json(r#"{"vehicle": {"wheelbase": 0.5}}"#).is_err());
+    }
+}

@@ -1,0 +1,80 @@
+//! Progress along the centreline and lap counting.
+//!
+//! `s` is the arc length of the car's projection on the centreline, found by a local
+//! search around the previous projection (so a car never jumps to a neighbouring pass
+//! of the track). `travel` accumulates the wrapped change of `s` since reset (negative
+//! when driving backwards). A lap is completed each time `travel` passes another full
+//! centreline length: the start/finish line is the reset pose.
+
+use super::track::Centreline;
+
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Progress {
+    pub segment: usize,
+    pub s: f64,
+    pub travel: f64,
+    pub laps: u32,
+    pub lap_time: f64,
+    pub last_lap_time: f64,
+}
+
+impl Progress {
+    /// Start at position `xy` (global projection).
+    pub fn reset(c: &Centreline, xy: [f64; 2]) -> Self {
+        let (segment, s) = c.project_global(xy);
+        Progress { segment, s, ..Default::default() }
+    }
+
+    /// Update after the car moved to `xy` during `elapsed` seconds, having moved at most
+    /// `max_move` metres. Returns true when a lap was completed.
+    pub fn update(&mut self, c: &Centreline, xy: [f64; 2], elapsed: f64, max_move: f64) -> bool {
+        let window = 2.0 + 2.0 * max_move;
+        let (segment, s) = c.project_local(xy, self.segment, window);
+        let len = c.length();
+        let mut ds = s - self.s;
+        if ds > 0.5 * len {
+            ds -= len;
+        } else if ds < -0.5 * len {
+            ds += len;
+        }
+        self.segment = segment;
+        self.s = s;
+        self.travel += ds;
+        self.lap_time += elapsed;
+        if self.travel >= (self.laps as f64 + 1.0) * len {
+            self.laps += 1;
+            self.last_lap_time = self.lap_time;
+            self.lap_time = 0.0;
+            return true;
+        }
+        false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn laps_count_across_the_wrap() {
+        let c = Centreline::new(&[[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]).unwrap();
+        let mut p = Progress::reset(&c, [5.0, 0.1]);
+        assert!((p.s - 5.0).abs() < 1e-12);
+        let mut laps = 0;
+        // Drive 1.5 laps forwards in 0.5 m steps along the square.
+        for k in 1..=120 {
+            let pose = c.pose_at(5.0 + 0.5 * k as f64);
+            laps += p.update(&c, [pose[0], pose[1]], 0.1, 0.5) as u32;
+        }
+        assert_eq!(laps, 1);
+        assert_eq!(p.laps, 1);
+        assert!((p.travel - 60.0).abs() < 1e-9);
+        assert!((p.last_lap_time - 8.0).abs() < 1e-9);
+        // Backwards reduces travel and never completes a lap.
+        for k in 1..=20 {
+            let pose = c.pose_at(65.0 - 0.5 * k as f64);
+            assert!(!p.update(&c, [pose[0], pose[1]], 0.1, 0.5));
+        }
+        assert!((p.travel - 50.0).abs() < 1e-9);
+    }
+}

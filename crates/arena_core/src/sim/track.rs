@@ -1,0 +1,215 @@
+//! A drivable track: closed wall polylines and a closed centreline in map-frame metres.
+//!
+//! Built once and shared (`Arc<Track>`) by every world that drives on it:
+//! * `wall_shape`: ONE rapier trimesh (the walls extruded by
+//!   [`crate::geometry::mesh::extrude_walls`], the very mesh the USD stage gets) whose
+//!   `SharedShape` is an `Arc`, so N worlds reference it without copying;
+//! * `grid`: a uniform grid over the wall segments for exact 2D lidar casts;
+//! * `centreline`: arc-length tables for progress, laps and reset poses.
+
+use rapier3d::prelude::{SharedShape, Vector};
+
+use super::lidar::SegmentGrid;
+use crate::error::{ArenaError, Result};
+use crate::geometry::mesh::extrude_walls;
+
+/// Closed polyline with cumulative arc length, for projection and interpolation.
+#[derive(Debug, Clone)]
+pub struct Centreline {
+    pts: Vec<[f64; 2]>,
+    /// `cum[i]` = arc length at `pts[i]`; `cum[n]` = total length (closing edge included).
+    cum: Vec<f64>,
+}
+
+impl Centreline {
+    /// A closed centreline; a repeated closing point is dropped.
+    pub fn new(points: &[[f64; 2]]) -> Result<Self> {
+        let pts = dedupe_closed(points);
+        if pts.len() < 3 {
+            return Err(ArenaError::invalid("centreline needs at least 3 distinct points"));
+        }
+        if pts.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(ArenaError::invalid("centreline has non-finite coordinates"));
+        }
+        let n = pts.len();
+        let mut cum = Vec::with_capacity(n + 1);
+        cum.push(0.0);
+        for i in 0..n {
+            let (a, b) = (pts[i], pts[(i + 1) % n]);
+            cum.push(cum[i] + (b[0] - a[0]).hypot(b[1] - a[1]));
+        }
+        Ok(Centreline { pts, cum })
+    }
+
+    /// Total (closed) length in metres.
+    pub fn length(&self) -> f64 {
+        self.cum[self.pts.len()]
+    }
+
+    pub fn num_segments(&self) -> usize {
+        self.pts.len()
+    }
+
+    /// Vertex `i` (of `num_segments()` distinct vertices; the polyline closes).
+    pub fn point(&self, i: usize) -> [f64; 2] {
+        self.pts[i % self.pts.len()]
+    }
+
+    /// Pose `(x, y, heading)` at arc length `s` (wrapped into `[0, length)`).
+    pub fn pose_at(&self, s: f64) -> [f64; 3] {
+        let len = self.length();
+        let s = if s.is_finite() { s.rem_euclid(len) } else { 0.0 };
+        let i = match self.cum.binary_search_by(|c| c.partial_cmp(&s).unwrap()) {
+            Ok(i) => i.min(self.pts.len() - 1),
+            Err(i) => i - 1,
+        };
+        let (a, b) = (self.pts[i], self.pts[(i + 1) % self.pts.len()]);
+        let seg = self.cum[i + 1] - self.cum[i];
+        let t = if seg > 0.0 { (s - self.cum[i]) / seg } else { 0.0 };
+        [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), (b[1] - a[1]).atan2(b[0] - a[0])]
+    }
+
+    /// Project `p` on segment `i`: (squared distance, arc length).
+    #[inline]
+    fn project_segment(&self, p: [f64; 2], i: usize) -> (f64, f64) {
+        let (a, b) = (self.pts[i], self.pts[(i + 1) % self.pts.len()]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let l2 = dx * dx + dy * dy;
+        let t = if l2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+        let (qx, qy) = (a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
+        (qx * qx + qy * qy, self.cum[i] + t * (self.cum[i + 1] - self.cum[i]))
+    }
+
+    /// Nearest point over all segments: (segment index, arc length).
+    pub fn project_global(&self, p: [f64; 2]) -> (usize, f64) {
+        let mut best = (f64::INFINITY, 0usize, 0.0);
+        for i in 0..self.pts.len() {
+            let (d2, s) = self.project_segment(p, i);
+            if d2 < best.0 {
+                best = (d2, i, s);
+            }
+        }
+        (best.1, best.2)
+    }
+
+    /// Nearest point among segments within `window` metres of arc length around segment
+    /// `hint` (the previous projection), so a car never jumps to a neighbouring pass of
+    /// the track. Returns (segment index, arc length).
+    pub fn project_local(&self, p: [f64; 2], hint: usize, window: f64) -> (usize, f64) {
+        let n = self.pts.len();
+        let hint = hint % n;
+        let mut best = {
+            let (d2, s) = self.project_segment(p, hint);
+            (d2, hint, s)
+        };
+        for dir in [1isize, -1] {
+            let mut walked = 0.0;
+            let mut i = hint;
+            for _ in 1..n {
+                i = (i as isize + dir).rem_euclid(n as isize) as usize;
+                let (d2, s) = self.project_segment(p, i);
+                if d2 < best.0 {
+                    best = (d2, i, s);
+                }
+                walked += self.cum[i + 1] - self.cum[i];
+                if walked > window {
+                    break;
+                }
+            }
+        }
+        (best.1, best.2)
+    }
+}
+
+/// Drop consecutive duplicates and a closing point equal to the first.
+fn dedupe_closed(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut out: Vec<[f64; 2]> = Vec::with_capacity(points.len());
+    for &p in points {
+        if out.last().is_none_or(|q| (q[0] - p[0]).hypot(q[1] - p[1]) > 1e-9) {
+            out.push(p);
+        }
+    }
+    while out.len() > 1 {
+        let (f, l) = (out[0], out[out.len() - 1]);
+        if (f[0] - l[0]).hypot(f[1] - l[1]) > 1e-9 {
+            break;
+        }
+        out.pop();
+    }
+    out
+}
+
+/// Everything the simulator needs about one track (immutable, shared by `Arc`).
+pub struct Track {
+    pub walls: Vec<Vec<[f64; 2]>>,
+    pub wall_shape: SharedShape,
+    pub grid: SegmentGrid,
+    pub centreline: Centreline,
+}
+
+impl std::fmt::Debug for Track {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Track")
+            .field("walls", &self.walls.len())
+            .field("segments", &self.grid.num_segments())
+            .field("centreline_length", &self.centreline.length())
+            .finish()
+    }
+}
+
+impl Track {
+    /// Build from closed wall polylines and a closed centreline; walls are extruded from
+    /// z = 0 to `wall_height` for the collision mesh.
+    pub fn new(walls: &[Vec<[f64; 2]>], centreline: &[[f64; 2]], wall_height: f64) -> Result<Self> {
+        let walls: Vec<Vec<[f64; 2]>> = walls.iter().map(|w| dedupe_closed(w)).filter(|w| w.len() >= 2).collect();
+        if walls.is_empty() {
+            return Err(ArenaError::invalid("track has no wall polyline with at least 2 distinct points"));
+        }
+        if walls.iter().flatten().flatten().any(|v| !v.is_finite()) {
+            return Err(ArenaError::invalid("track walls have non-finite coordinates"));
+        }
+        let centreline = Centreline::new(centreline)?;
+        let mesh = extrude_walls(&walls, 0.0, wall_height);
+        let vertices = mesh.vertices.iter().map(|v| Vector::new(v[0], v[1], v[2])).collect();
+        let wall_shape = SharedShape::trimesh(vertices, mesh.triangles)
+            .map_err(|e| ArenaError::Simulation(format!("wall mesh rejected by the physics engine: {e}")))?;
+        let grid = SegmentGrid::new(&walls);
+        Ok(Track { walls, wall_shape, grid, centreline })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circle(r: f64, n: usize) -> Vec<[f64; 2]> {
+        (0..n).map(|i| {
+            let a = i as f64 / n as f64 * std::f64::consts::TAU;
+            [r * a.cos(), r * a.sin()]
+        }).collect()
+    }
+
+    #[test]
+    fn centreline_length_pose_and_projection() {
+        let sq = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0], [0.0, 0.0]];
+        let c = Centreline::new(&sq).unwrap();
+        assert_eq!(c.num_segments(), 4);
+        assert!((c.length() - 6.0).abs() < 1e-12);
+        let p = c.pose_at(2.5);
+        assert!((p[0] - 2.0).abs() < 1e-12 && (p[1] - 0.5).abs() < 1e-12);
+        assert!((p[2] - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        assert_eq!(c.pose_at(-1.0), c.pose_at(5.0));
+        let (i, s) = c.project_global([1.0, -0.3]);
+        assert_eq!((i, s), (0, 1.0));
+        let (_, s) = c.project_local([0.1, 0.8], 3, 1.0);
+        assert!((s - 5.2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn track_builds_a_shared_mesh() {
+        let t = Track::new(&[circle(3.0, 64), circle(1.5, 64)], &circle(2.25, 64), 0.5).unwrap();
+        assert_eq!(t.grid.num_segments(), 128);
+        assert!(Track::new(&[], &circle(2.0, 8), 0.5).is_err());
+        assert!(Track::new(&[circle(3.0, 8)], &[[0.0, 0.0], [1.0, 0.0]], 0.5).is_err());
+    }
+}

@@ -1,0 +1,249 @@
+//! One rapier world per environment: its vehicles, the shared wall mesh of its track
+//! and a ground half-space. Steps physics, reports contacts, keeps odometry and progress.
+
+use std::sync::Arc;
+
+use rand_chacha::rand_core::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rapier3d::prelude::*;
+
+use super::lidar::{Footprint, Scanner};
+use super::params::PhysicsParams;
+use super::progress::Progress;
+use super::track::Track;
+use super::vehicle::{Actuators, VehicleModel};
+
+/// Columns of the state array, in order.
+pub const STATE_FIELDS: [&str; 13] = [
+    "x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed", "progress_s", "travel", "laps", "lap_time", "last_lap_time",
+];
+pub const STATE_SIZE: usize = STATE_FIELDS.len();
+
+/// Event bits (per vehicle, per `step` call).
+pub const EVENT_WALL: u8 = 1;
+pub const EVENT_VEHICLE: u8 = 2;
+pub const EVENT_LAP: u8 = 4;
+/// The physics produced a non-finite state; the vehicle was put back at its last finite
+/// pose at rest (never expected; reported so it cannot pass silently).
+pub const EVENT_FAULT: u8 = 8;
+
+/// Half side of the ground cuboid (m): larger than any track.
+const GROUND_HALF_SIZE: f32 = 5000.0;
+
+/// Contact prediction distance (m); below the chassis' 2 cm ground clearance.
+const PREDICTION_DISTANCE: f32 = 0.01;
+
+struct Car {
+    body: RigidBodyHandle,
+    collider: ColliderHandle,
+    act: Actuators,
+    cmd: (f64, f64),
+    progress: Progress,
+    rng: ChaCha8Rng,
+    events: u8,
+    last_good: Pose,
+}
+
+/// Per-vehicle RNG seed from (seed, env index, vehicle index): independent of N.
+pub fn vehicle_seed(seed: u64, env: usize, vehicle: usize) -> u64 {
+    fn mix(mut z: u64) -> u64 {
+        z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    mix(mix(mix(seed) ^ env as u64) ^ vehicle as u64)
+}
+
+pub struct World {
+    pw: PhysicsWorld,
+    wall: ColliderHandle,
+    cars: Vec<Car>,
+    track: Arc<Track>,
+    track_id: usize,
+    dt: f64,
+}
+
+impl World {
+    /// A world on `track` with `vehicles` cars parked along the centreline (call
+    /// [`World::reset_vehicle`] to place them).
+    pub fn new(track: Arc<Track>, track_id: usize, vehicles: usize, model: &VehicleModel, physics: &PhysicsParams, seed: u64, env: usize) -> Self {
+        let mut pw = PhysicsWorld::new();
+        pw.gravity = Vector::new(0.0, 0.0, -(physics.gravity as f32));
+        pw.integration_parameters.dt = physics.dt as f32;
+        pw.integration_parameters.num_solver_iterations = physics.solver_iterations;
+        // Speculative-contact margin (rapier's default is 2 cm, as large as the chassis'
+        // ground clearance, which kept a chassis–ground contact in every step).
+        pw.integration_parameters.normalized_prediction_distance = PREDICTION_DISTANCE;
+        // Ground: a big cuboid with its top face at z = 0 (not a half-space, whose
+        // unbounded AABB would keep a chassis–ground contact pair alive in every step;
+        // the chassis box rides above the ground on its wheels, so normally no pair exists).
+        let ground = ColliderBuilder::cuboid(GROUND_HALF_SIZE, GROUND_HALF_SIZE, 0.5)
+            .translation(Vector::new(0.0, 0.0, -0.5))
+            .friction(physics.ground_friction as f32)
+            .build();
+        pw.colliders.insert(ground);
+        let wall = pw.colliders.insert(ColliderBuilder::new(track.wall_shape.clone()).friction(physics.wall_friction as f32).build());
+        let mut cars = Vec::with_capacity(vehicles);
+        for v in 0..vehicles {
+            let pose = track.centreline.pose_at(v as f64 * 1.0);
+            let (body, collider) = pw.insert(model.body(pose, physics.ccd), model.collider());
+            let mut rng = ChaCha8Rng::seed_from_u64(vehicle_seed(seed, env, v));
+            rng.set_stream(v as u64);
+            cars.push(Car {
+                body,
+                collider,
+                act: Actuators::default(),
+                cmd: (0.0, 0.0),
+                progress: Progress::reset(&track.centreline, [pose[0], pose[1]]),
+                rng,
+                events: 0,
+                last_good: model.spawn_pose(pose),
+            });
+        }
+        World { pw, wall, cars, track, track_id, dt: physics.dt }
+    }
+
+    pub fn track_id(&self) -> usize {
+        self.track_id
+    }
+
+    pub fn track(&self) -> &Arc<Track> {
+        &self.track
+    }
+
+    pub fn num_vehicles(&self) -> usize {
+        self.cars.len()
+    }
+
+    /// Swap the track (the wall collider now references the new shared mesh). Vehicles
+    /// keep their poses: reset them afterwards.
+    pub fn set_track(&mut self, track: Arc<Track>, track_id: usize) {
+        if track_id == self.track_id {
+            return;
+        }
+        if let Some(c) = self.pw.colliders.get_mut(self.wall) {
+            c.set_shape(track.wall_shape.clone());
+        }
+        self.track = track;
+        self.track_id = track_id;
+    }
+
+    /// Put vehicle `v` at rest at `pose` = (x, y, yaw); non-finite poses are refused by
+    /// the caller. Clears progress, laps and events.
+    pub fn reset_vehicle(&mut self, v: usize, pose: [f64; 3], model: &VehicleModel) {
+        let spawn = model.spawn_pose(pose);
+        let car = &mut self.cars[v];
+        if let Some(b) = self.pw.bodies.get_mut(car.body) {
+            b.set_position(spawn, true);
+            b.set_linvel(Vector::ZERO, true);
+            b.set_angvel(Vector::ZERO, true);
+            b.reset_forces(true);
+            b.reset_torques(true);
+        }
+        car.act = Actuators::default();
+        car.cmd = (0.0, 0.0);
+        car.progress = Progress::reset(&self.track.centreline, [pose[0], pose[1]]);
+        car.events = 0;
+        car.last_good = spawn;
+    }
+
+    /// Run `substeps` physics steps with the given (already sanitised) commands, then
+    /// update progress and events.
+    pub fn step(&mut self, cmds: &[(f64, f64)], substeps: usize, model: &VehicleModel) {
+        for (car, &cmd) in self.cars.iter_mut().zip(cmds) {
+            car.cmd = cmd;
+            car.events = 0;
+        }
+        for _ in 0..substeps {
+            for car in &mut self.cars {
+                if let Some(b) = self.pw.bodies.get_mut(car.body) {
+                    model.apply(b, &mut car.act, car.cmd, self.dt);
+                }
+            }
+            self.pw.step();
+            self.collect_contacts();
+        }
+        let elapsed = substeps as f64 * self.dt;
+        for car in &mut self.cars {
+            let Some(b) = self.pw.bodies.get_mut(car.body) else { continue };
+            let finite = b.position().is_finite() && b.linvel().is_finite() && b.angvel().is_finite();
+            if !finite {
+                b.set_position(car.last_good, true);
+                b.set_linvel(Vector::ZERO, true);
+                b.set_angvel(Vector::ZERO, true);
+                car.act = Actuators::default();
+                car.events |= EVENT_FAULT;
+            } else {
+                car.last_good = *b.position();
+            }
+            let t = b.translation();
+            let speed = b.linvel().length() as f64;
+            if car.progress.update(&self.track.centreline, [t.x as f64, t.y as f64], elapsed, speed * elapsed) {
+                car.events |= EVENT_LAP;
+            }
+        }
+    }
+
+    fn collect_contacts(&mut self) {
+        let np = &self.pw.narrow_phase;
+        for car in &mut self.cars {
+            for pair in np.contact_pairs_with(car.collider) {
+                if !pair.has_any_active_contact() {
+                    continue;
+                }
+                let other = if pair.collider1 == car.collider { pair.collider2 } else { pair.collider1 };
+                if other == self.wall {
+                    car.events |= EVENT_WALL;
+                } else if self.pw.colliders.get(other).is_some_and(|c| c.parent().is_some()) {
+                    car.events |= EVENT_VEHICLE;
+                }
+            }
+        }
+    }
+
+    fn planar(&self, v: usize) -> ([f64; 3], [f64; 3]) {
+        let b = &self.pw.bodies[self.cars[v].body];
+        let p = b.position();
+        let fwd = p.rotation * Vector::X;
+        let yaw = (fwd.y as f64).atan2(fwd.x as f64);
+        let (c, s) = (yaw.cos(), yaw.sin());
+        let lv = b.linvel();
+        let (vx, vy) = (lv.x as f64 * c + lv.y as f64 * s, -(lv.x as f64) * s + lv.y as f64 * c);
+        ([p.translation.x as f64, p.translation.y as f64, yaw], [vx, vy, b.angvel().z as f64])
+    }
+
+    /// Write state rows (`STATE_SIZE` per vehicle) and event bytes.
+    pub fn write_state(&self, state: &mut [f64], events: &mut [u8]) {
+        for (v, car) in self.cars.iter().enumerate() {
+            let (pose, vel) = self.planar(v);
+            let pr = &car.progress;
+            let speed = vel[0].hypot(vel[1]).copysign(vel[0]);
+            let row = [
+                pose[0], pose[1], pose[2], vel[0], vel[1], vel[2], car.act.steer, speed,
+                pr.s, pr.travel, pr.laps as f64, pr.lap_time, pr.last_lap_time,
+            ];
+            state[v * STATE_SIZE..(v + 1) * STATE_SIZE].copy_from_slice(&row);
+            events[v] = car.events;
+        }
+    }
+
+    /// One scan per vehicle into `scans` (`num_beams` per vehicle); other vehicles'
+    /// chassis rectangles are visible.
+    pub fn scan(&mut self, scanner: &Scanner, model: &VehicleModel, scans: &mut [f32]) {
+        let n = scanner.num_beams();
+        let [hx, hy, _] = model.half_extents;
+        let cx = model.box_centre[0];
+        let poses: Vec<[f64; 3]> = (0..self.cars.len()).map(|v| self.planar(v).0).collect();
+        let prints: Vec<Footprint> = poses.iter().map(|p| {
+            let (c, s) = (p[2].cos(), p[2].sin());
+            Footprint { x: p[0] + cx * c, y: p[1] + cx * s, cos: c, sin: s, half_length: hx, half_width: hy }
+        }).collect();
+        let mut others = Vec::with_capacity(prints.len());
+        for (v, car) in self.cars.iter_mut().enumerate() {
+            others.clear();
+            others.extend(prints.iter().enumerate().filter(|(u, _)| *u != v).map(|(_, f)| *f));
+            scanner.scan(poses[v], &self.track.grid, &others, &mut car.rng, &mut scans[v * n..(v + 1) * n]);
+        }
+    }
+}

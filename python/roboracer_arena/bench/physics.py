@@ -1,0 +1,176 @@
+"""``roboracer-arena bench physics``: vehicle-steps per second of the native simulator
+with the lidar off, for 1, 256, 1024 and 2048 vehicles, beside the paper's Isaac Sim
+figures, plus the time of one 1081-beam lidar scan.
+
+A *vehicle-step* is one physics step (``dt``) of one vehicle. N vehicles run as
+``N / per_env`` independent rapier worlds of ``per_env`` cars each (``--per-env``).
+Cars follow the centreline of a stadium track with a vectorised pure-pursuit law
+(computed in numpy between calls, outside the timed region), ``--substeps`` physics
+steps per ``Simulator.step`` call (10 = a 20 Hz control loop at dt = 5 ms).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .. import _core
+from ..envs.config import PhysicsConfig, SimConfig
+from ..fileio import atomic_write_text
+
+# Paper (Isaac Sim, AMD EPYC 9654 + RTX PRO 6000): vehicle-steps/s by vehicle count.
+PAPER = {1: 28.1, 256: 8707.0, 1024: 8368.0, 2048: 6818.0}
+TARGETS = {1: 50_000.0, 256: 200_000.0, 2048: 200_000.0}
+
+
+def _track(scale: float = 3.0):
+    """A 3x stadium: 18 m straights, 9 m centreline radius, 2 m corridor (~93 m lap)."""
+    return _core.stadium_track(6.0 * scale, 3.0 * scale, 2.0)
+
+
+class _Driver:
+    """Vectorised pure pursuit on the centreline, so cars keep driving laps."""
+
+    def __init__(self, sim: _core.Simulator, speed: float, lookahead: float = 1.5):
+        pts = sim.centreline(0)
+        seg = np.linalg.norm(np.roll(pts, -1, axis=0) - pts, axis=1)
+        self.cum = np.concatenate([[0.0], np.cumsum(seg)])
+        self.pts = np.vstack([pts, pts[:1]])
+        self.length = self.cum[-1]
+        self.speed, self.lookahead = speed, lookahead
+        fields = sim.state_fields
+        self.ix, self.iy, self.iyaw, self.is_ = (fields.index(k) for k in ("x", "y", "yaw", "progress_s"))
+        self.wheelbase = SimConfig().vehicle.wheelbase
+
+    def actions(self, state: np.ndarray, out: np.ndarray) -> None:
+        s = np.mod(state[..., self.is_] + self.lookahead, self.length)
+        tx = np.interp(s, self.cum, self.pts[:, 0])
+        ty = np.interp(s, self.cum, self.pts[:, 1])
+        dx, dy = tx - state[..., self.ix], ty - state[..., self.iy]
+        alpha = np.arctan2(dy, dx) - state[..., self.iyaw]
+        ld = np.maximum(np.hypot(dx, dy), 1e-3)
+        out[..., 0] = np.arctan(2.0 * self.wheelbase * np.sin(alpha) / ld)
+        out[..., 1] = self.speed
+
+
+def measure(vehicles: int, per_env: int, seconds: float, substeps: int, dt: float, speed: float = 3.0) -> dict[str, Any]:
+    """Vehicle-steps/s for `vehicles` cars as `vehicles / per_env` worlds."""
+    per_env = max(1, min(per_env, vehicles))
+    envs = max(1, vehicles // per_env)
+    config = SimConfig(physics=PhysicsConfig(dt=dt))
+    sim = _core.Simulator([_track()], envs, per_env, config.to_json(), 0)
+    length = sim.centreline_length(0)
+    poses = np.zeros((envs, per_env, 3))
+    for v in range(per_env):
+        poses[:, v] = sim.centreline_pose(0, (v * length / per_env) % length)
+    sim.reset(np.ones(envs, bool), poses)
+    state = np.zeros((envs, per_env, len(sim.state_fields)))
+    events = np.zeros((envs, per_env), np.uint8)
+    actions = np.zeros((envs, per_env, 2))
+    driver = _Driver(sim, speed)
+    sim.observe(None, state, events)
+    # Warm-up (allocations, thread pool), then time only the simulator calls.
+    for _ in range(3):
+        driver.actions(state, actions)
+        sim.step(actions, substeps, None, state, events)
+    calls, busy, wall_contacts = 0, 0.0, 0
+    start = time.perf_counter()
+    while time.perf_counter() - start < seconds or calls < 3:
+        driver.actions(state, actions)
+        t0 = time.perf_counter()
+        sim.step(actions, substeps, None, state, events)
+        busy += time.perf_counter() - t0
+        calls += 1
+        wall_contacts += int(np.count_nonzero(events & 1))
+    steps = calls * substeps * envs * per_env
+    return {
+        "vehicles": envs * per_env,
+        "envs": envs,
+        "per_env": per_env,
+        "dt": dt,
+        "substeps": substeps,
+        "calls": calls,
+        "vehicle_steps_per_s": steps / busy,
+        "sim_seconds_per_wall_second": calls * substeps * dt / busy,
+        "wall_contact_fraction": wall_contacts / max(1, calls * envs * per_env),
+        "mean_speed": float(np.mean(np.abs(state[..., sim.state_fields.index("vx")]))),
+    }
+
+
+def measure_scan(seconds: float = 1.0, beams: int = 1081) -> dict[str, Any]:
+    """Median time of one full scan by one vehicle on the stadium track."""
+    sim = _core.Simulator([_track()], 1, 1, SimConfig().to_json(), 0)
+    sim.reset(np.ones(1, bool), np.array([[sim.centreline_pose(0, 5.0)]]))
+    scans = np.zeros((1, 1, sim.num_beams), np.float32)
+    state = np.zeros((1, 1, len(sim.state_fields)))
+    events = np.zeros((1, 1), np.uint8)
+    times = []
+    start = time.perf_counter()
+    while time.perf_counter() - start < seconds or len(times) < 20:
+        t0 = time.perf_counter()
+        sim.observe(scans, state, events)
+        times.append(time.perf_counter() - t0)
+    return {"beams": beams, "scan_us_median": float(np.median(times) * 1e6), "repeats": len(times)}
+
+
+def _threads() -> str:
+    return os.environ.get("RAYON_NUM_THREADS") or f"{os.cpu_count()} (all cores)"
+
+
+def run(vehicles: list[int], per_env: int, seconds: float, substeps: int, dt: float) -> dict[str, Any]:
+    rows = [measure(n, per_env, seconds, substeps, dt) for n in vehicles]
+    scan = measure_scan()
+    return {"machine": platform.processor() or platform.machine(), "threads": _threads(), "rows": rows, "scan": scan}
+
+
+def print_table(result: dict[str, Any]) -> None:
+    print(f"physics throughput, lidar off (threads: {result['threads']})")
+    head = f"{'vehicles':>8} {'envs x per_env':>15} {'dt (s)':>7} {'substeps':>8} {'ours (veh-steps/s)':>19} {'paper':>8} {'ratio':>8} {'target':>9}"
+    print(head)
+    print("-" * len(head))
+    for r in result["rows"]:
+        n = r["vehicles"]
+        paper = PAPER.get(n)
+        target = TARGETS.get(n)
+        ours = r["vehicle_steps_per_s"]
+        print(
+            f"{n:>8} {str(r['envs']) + ' x ' + str(r['per_env']):>15} {r['dt']:>7.3f} {r['substeps']:>8} {ours:>19,.0f} "
+            f"{paper if paper is not None else '-':>8} {(f'{ours / paper:,.0f}x' if paper else '-'):>8} "
+            f"{(('ok ' if ours >= target else 'MISS ') + f'{target:,.0f}') if target else '-':>9}"
+        )
+    s = result["scan"]
+    print(f"one {s['beams']}-beam lidar scan (exact 2D, stadium track): {s['scan_us_median']:.1f} us median over {s['repeats']} scans")
+
+
+def _cli(args: argparse.Namespace) -> int:
+    result = run(args.vehicles, args.per_env, args.seconds, args.substeps, args.dt)
+    print_table(result)
+    if args.json:
+        atomic_write_text(args.json, json.dumps(result, indent=2))
+        print(f"wrote {args.json}")
+    return 0
+
+
+def register(kinds) -> None:
+    p = kinds.add_parser("physics", help="vehicle-steps/s of the native simulator (lidar off)", description=__doc__)
+    p.add_argument("--vehicles", type=int, nargs="+", default=[1, 256, 1024, 2048], metavar="N", help="vehicle counts (default: 1 256 1024 2048)")
+    p.add_argument("--per-env", type=int, default=1, metavar="V", help="vehicles per world (default 1: one car per env)")
+    p.add_argument("--seconds", type=float, default=3.0, metavar="S", help="timed seconds per vehicle count (default 3)")
+    p.add_argument("--substeps", type=int, default=10, help="physics steps per Simulator.step call (default 10)")
+    p.add_argument("--dt", type=float, default=PhysicsConfig().dt, help="physics time step in s (default 0.005)")
+    p.add_argument("--json", type=Path, metavar="FILE", help="write the results to FILE as JSON")
+    p.set_defaults(func=_cli)
+
+
+def run_quick() -> dict[str, Any]:
+    """`bench all`: 1, 256 and 2048 vehicles, one second each."""
+    result = run([1, 256, 2048], 1, 1.0, 10, PhysicsConfig().dt)
+    print_table(result)
+    return result
