@@ -9,4 +9,7 @@ recorded third-party maps (referenced, never copied) and requirement-generated t
 
 from .catalog import KINDS, SELECTIONS, Catalog, default_tracks_dir, load_catalog, resolve
 
-__all__ = ["KINDS", "SELECTIONS", "Catalog", "default_tracks_dir", "load_catalog", "resolve"]
+#: The name the gymnasium env's ``track=`` hook looks up (``envs.tracks.resolve_catalog``).
+resolve_tracks = resolve
+
+__all__ = ["KINDS", "SELECTIONS", "Catalog", "default_tracks_dir", "load_catalog", "resolve", "resolve_tracks"]

@@ -95,33 +95,40 @@ def check_ring(entry: dict, m) -> Check:
 
 
 def check_usd(entry: dict, yaml_path: Path) -> Check:
-    """Hook: build the USD stage with the builder and validate it."""
+    """Hook onto the builder: build the USD stage and run every usd-core validator on it."""
     try:
-        from ..builder import build_environment  # type: ignore[attr-defined]
+        from ..builder import build_environment
+        from ..usd.validate import validation_errors
     except ImportError:
         return Check(NOT_RUN, "not run: builder (roboracer_arena.builder.build_environment) not available")
     with tempfile.TemporaryDirectory(prefix="rra-verify-") as tmp:
-        out = Path(tmp) / f"{entry['id']}.usdc"
+        out = Path(tmp) / "stage.usdc"
         try:
             report = build_environment(yaml_path, out)
         except ArenaError as e:
             return Check(FAIL, f"build failed: {e}")
-        ok = getattr(report, "valid", None)
-        problems = getattr(report, "problems", None) or getattr(report, "errors", None) or []
-        if ok is False or problems:
-            return Check(FAIL, f"stage invalid: {problems}")
-        if not out.is_file():
-            return Check(FAIL, "builder wrote no stage")
-        return Check(PASS, f"stage {out.stat().st_size // 1024} KiB")
+        errors = validation_errors(out)
+        if errors:
+            return Check(FAIL, f"stage invalid: {'; '.join(map(str, errors[:3]))}")
+        return Check(PASS, f"stage {report.usd_bytes // 1024} KiB, {report.walls} walls, IoU {report.iou:.4f}")
 
 
 def check_drive(entry: dict, yaml_path: Path) -> Check:
-    """Hook: the reference pure-pursuit driver completes one lap without a collision."""
+    """Hook onto the simulator: the reference pure-pursuit driver completes one lap of the
+    corridor centreline without a contact (full vehicle model and lidar, default env)."""
     try:
-        from ..drivers import PurePursuitDriver  # type: ignore[attr-defined]  # noqa: F401
+        from ..drivers import drive_laps
+        from .._core import Simulator  # noqa: F401  (the native simulator must be built in)
     except ImportError:
-        return Check(NOT_RUN, "not run: simulator not available (roboracer_arena.drivers.PurePursuitDriver)")
-    return Check(NOT_RUN, "not run: simulator lap hook not wired yet")
+        return Check(NOT_RUN, "not run: simulator not available (roboracer_arena.drivers / _core.Simulator)")
+    try:
+        r = drive_laps(yaml_path, laps=1)
+    except ArenaError as e:
+        return Check(FAIL, f"simulator refused the track: {e}")
+    if r.completed:
+        return Check(PASS, f"lap {r.lap_times[0]:.1f} s over {r.track_length:.1f} m, max {r.max_speed:.1f} m/s")
+    why = "collision" if r.collided else f"{r.laps_completed} lap(s) in {r.sim_time:.0f} s"
+    return Check(FAIL, f"lap not completed ({why} after {r.distance:.1f} of {r.track_length:.1f} m)")
 
 
 def verify_entry(cat: Catalog, entry: dict, sources: Path | None = None, usd: bool = True, drive: bool = True) -> TrackResult:
