@@ -1,7 +1,13 @@
-//! Criterion benches for the grid kernels on a synthetic ring corridor.
+//! Criterion benches for the grid kernels and the geometry build on a synthetic ring
+//! corridor at three raster sizes (0.13, 1 and 10 MP).
 
+use arena_core::geometry::contour::marching_squares;
 use arena_core::grid::edt::edt;
 use arena_core::grid::flood::{flood_fill, Connectivity};
+use arena_core::grid::regions::region_tree;
+use arena_core::grid::{OccupancyGrid, FREE, OCCUPIED};
+use arena_core::track::build::build_geometry;
+use arena_core::track::params::BuildParams;
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 
@@ -26,8 +32,20 @@ fn bench_grid(c: &mut Criterion) {
         c.bench_function(&format!("flood_fill {n}x{n}"), |b| {
             b.iter(|| flood_fill(black_box(&free), n, n, &[seed], Connectivity::Four))
         });
+        let data: Vec<u8> = free.iter().map(|&f| if f { FREE } else { OCCUPIED }).collect();
+        c.bench_function(&format!("region_tree {n}x{n}"), |b| b.iter(|| region_tree(black_box(&data), n, n, |v| v == FREE)));
+        let field: Vec<f32> = edt(&wall, n, n);
+        c.bench_function(&format!("marching_squares {n}x{n}"), |b| b.iter(|| marching_squares(black_box(&field), n, n, 2.5)));
+        let g = OccupancyGrid { width: n, height: n, resolution: 0.05, origin: [0.0; 3], data };
+        c.bench_function(&format!("build_geometry {n}x{n}"), |b| {
+            b.iter(|| build_geometry(black_box(&g), &BuildParams::default(), None).unwrap())
+        });
     }
 }
 
-criterion_group!(benches, bench_grid);
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(10);
+    targets = bench_grid
+}
 criterion_main!(benches);

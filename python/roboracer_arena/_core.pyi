@@ -51,6 +51,7 @@ class _Geometry(TypedDict):
     iou: float
     max_wall_deviation_cells: float
     corridor_mask: npt.NDArray[np.bool_]
+    border_contact_cells: int
     timings: dict[str, float]
     params_json: str
 

@@ -125,7 +125,7 @@ def build_environment(
     t1 = time.perf_counter()
     geo = extract_corridor(occ, params=cfg.geometry_params(), start=pose)
     t2 = time.perf_counter()
-    meshes = stage_meshes(geo.meshes, cfg)
+    meshes = stage_meshes(geo, cfg)
     source = str(getattr(occ, "path", "") or "")
     metadata = {
         "generator": f"roboracer-arena {__version__}",
@@ -169,11 +169,15 @@ def build_environment(
     )
 
 
-def stage_meshes(meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], cfg: BuildConfig) -> list:
-    """Turn the Rust meshes (``floor``, ``walls``, ``barriers``, optionally split as
-    ``ducts``/``rings``) into stage records with their looks and physics roles."""
+def stage_meshes(geo: Any, cfg: BuildConfig) -> list:
+    """Turn the corridor meshes (``floor``, ``walls``, ``barriers``) into stage records
+    with their looks and physics roles; the barriers are split into textured ducts and
+    rings when their layout checks out (see :mod:`roboracer_arena.usd.barriers`)."""
     from .usd import StageMesh
+    from .usd.barriers import split_barriers
 
+    meshes = geo.meshes
+    g = cfg.geometry
     out = []
     if "floor" in meshes:
         v, t = meshes["floor"]
@@ -182,14 +186,24 @@ def stage_meshes(meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], cfg: Build
     if "walls" in meshes:
         v, t = meshes["walls"]
         out.append(StageMesh("/World/Track/Walls", v, t, "Wall", collider=True, guide=True))
-    if "ducts" in meshes or "rings" in meshes:
-        for key, name, look in (("ducts", "Ducts", "Duct"), ("rings", "Rings", "Ring")):
-            if key in meshes:
-                v, t = meshes[key]
-                out.append(StageMesh(f"/World/Track/Barriers/{name}", v, t, look))
-    elif "barriers" in meshes:
+    if "barriers" in meshes:
         v, t = meshes["barriers"]
-        out.append(StageMesh("/World/Track/Barriers", v, t, "Duct"))
+        parts = split_barriers(v, t, geo.ducts, g.tube_segments, g.ring_spacing_m, g.ring_width_m)
+        if parts is None:
+            out.append(StageMesh("/World/Track/Barriers", v, t, "Duct"))
+        else:
+            out.append(
+                StageMesh(
+                    "/World/Track/Barriers/Ducts",
+                    parts.duct_points,
+                    parts.duct_triangles,
+                    "Duct",
+                    st=parts.duct_st,
+                    st_indices=parts.duct_st_indices,
+                )
+            )
+            if len(parts.ring_triangles):
+                out.append(StageMesh("/World/Track/Barriers/Rings", parts.ring_points, parts.ring_triangles, "Ring"))
     return out
 
 

@@ -15,8 +15,9 @@ and thin-line maps alike), and derives from it, in the map frame (metres, Z up):
   (tubes and rings) as ``(vertices (V, 3) float32, triangles (T, 3) uint32)``;
 * the round-trip check: ``iou`` of the walls' re-rasterised drivable region with the
   corridor, and ``max_wall_deviation_cells``;
-* ``corridor_mask`` (H, W) bool, ``timings`` per stage (seconds) and the effective
-  ``params``.
+* ``corridor_mask`` (H, W) bool, ``border_contact_cells`` (corridor cells on the map
+  edge, where the edge closes the corridor; 0 for a corridor fully walled in),
+  ``timings`` per stage (seconds) and the effective ``params``.
 
 Parameters (all optional; see :data:`DEFAULT_PARAMS`): ``wall_height_m``,
 ``wall_offset_m`` (positive moves the walls away from the free space),
@@ -62,6 +63,7 @@ class CorridorGeometry:
     iou: float
     max_wall_deviation_cells: float
     corridor_mask: npt.NDArray[np.bool_]
+    border_contact_cells: int
     timings: dict[str, float]
     params: dict[str, Any]
     map: OccupancyMap
@@ -115,6 +117,7 @@ def extract_corridor(
         iou=float(out["iou"]),
         max_wall_deviation_cells=float(out["max_wall_deviation_cells"]),
         corridor_mask=out["corridor_mask"],
+        border_contact_cells=int(out["border_contact_cells"]),
         timings=dict(out["timings"]),
         params=json.loads(out["params_json"]),
         map=m,

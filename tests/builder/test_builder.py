@@ -106,3 +106,36 @@ def test_bad_inputs_raise_typed_errors_and_write_nothing(tmp_path, ring_yaml):
         build_environment(ring_yaml, tmp_path / "s.usdc", start="a,b")
     assert not list(tmp_path.glob("*.usd*")) and not (tmp_path / "textures").exists()
     assert issubclass(CorridorError, ArenaError)
+
+
+def test_barriers_split_into_textured_ducts_and_rings(ring_yaml):
+    from roboracer_arena.corridor import extract_corridor
+    from roboracer_arena.usd.barriers import split_barriers
+
+    geo = extract_corridor(ring_yaml)
+    v, t = geo.meshes["barriers"]
+    g = BuildConfig().geometry
+    parts = split_barriers(v, t, geo.ducts, g.tube_segments, g.ring_spacing_m, g.ring_width_m)
+    assert parts is not None
+    assert len(parts.duct_points) + len(parts.ring_points) == len(v)
+    assert len(parts.duct_triangles) + len(parts.ring_triangles) == len(t)
+    assert len(parts.duct_st_indices) == 3 * len(parts.duct_triangles)
+    assert parts.duct_st_indices.max() < len(parts.duct_st)
+    # rings: one every ring_spacing_m along each duct, 2 sections of tube_segments vertices
+    lengths = [np.hypot(*(np.roll(d, -1, 0) - d).T).sum() for d in geo.ducts]
+    assert len(parts.ring_points) == sum(int(L // g.ring_spacing_m) for L in lengths) * 2 * g.tube_segments
+    # a layout that does not match (wrong segment count) is detected, not mis-split
+    assert split_barriers(v, t, geo.ducts, g.tube_segments + 1, g.ring_spacing_m, g.ring_width_m) is None
+
+
+def test_stage_has_ducts_and_rings(built):
+    _, out = built
+    stage = Usd.Stage.Open(str(out))
+    for name, look in (("Ducts", "Duct"), ("Rings", "Ring")):
+        prim = stage.GetPrimAtPath(f"/World/Track/Barriers/{name}")
+        assert prim, name
+        from pxr import UsdShade
+
+        mat, _ = UsdShade.MaterialBindingAPI(prim).ComputeBoundMaterial()
+        assert mat.GetPath() == f"/World/Looks/{look}"
+    assert stage.GetPrimAtPath("/World/Looks/Duct/DiffuseTexture")  # the ducts carry st, so they are textured

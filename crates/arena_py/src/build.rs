@@ -54,6 +54,7 @@ fn build_geometry<'py>(
     d.set_item("meshes", meshes)?;
     d.set_item("iou", geo.iou)?;
     d.set_item("max_wall_deviation_cells", geo.max_wall_deviation_cells)?;
+    d.set_item("border_contact_cells", geo.corridor.border_contact)?;
     let mask = numpy::ndarray::Array2::from_shape_vec((h, w), geo.corridor.mask).expect("shape");
     d.set_item("corridor_mask", PyArray2::from_owned_array(py, mask))?;
     let timings = PyDict::new(py);

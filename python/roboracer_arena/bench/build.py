@@ -42,9 +42,11 @@ PAPER = [
 # Targets of issue 2.
 TARGET_S_SMALL, TARGET_S_LARGE, TARGET_RSS_GB, TARGET_USD_FRACTION = 0.1, 0.5, 0.78, 0.25
 
+GENERATED = "generated:"  # a requirement-generated track (the paper's 3 hairpins + 1 chicane in 20 x 15 m)
 # Default sizes: (label, map YAML relative to the sources, target MP or None = native).
 SIZES: list[tuple[str, str, float | None]] = [
-    ("CornerHall", "bdevan5-f1tenth-benchmarks/maps/CornerHall.yaml", None),
+    ("columbia x0.57", "f1tenth-simulator/maps/columbia.yaml", 0.05),
+    ("generated 3h1c", GENERATED, None),
     ("columbia", "f1tenth-simulator/maps/columbia.yaml", None),
     ("aut", "bdevan5-f1tenth-benchmarks/maps/aut.yaml", None),
     ("gbr", "bdevan5-f1tenth-benchmarks/maps/gbr.yaml", None),
@@ -54,7 +56,7 @@ SIZES: list[tuple[str, str, float | None]] = [
     ("Silverstone x1.36", "f1tenth-racetracks/Silverstone/Silverstone_map.yaml", 7.40),
     ("Spa x1.64", "f1tenth-racetracks/Spa/Spa_map.yaml", 10.77),
 ]
-QUICK = ["CornerHall", "columbia", "gbr"]
+QUICK = ["generated 3h1c", "columbia", "gbr"]
 
 
 def sources_dir() -> Path:
@@ -73,9 +75,20 @@ def paper_at(mp: float) -> tuple[float, float]:
 # --- map preparation (parent process) ----------------------------------------------
 
 
-def upsampled_map(yaml_path: Path, target_mp: float, outdir: Path) -> Path:
-    """Write a nearest-neighbour upsampling of a map with ~``target_mp`` megapixels (same
-    extent, resolution divided by the factor) as trinary PNG + YAML in ``outdir``."""
+def generated_map(outdir: Path) -> Path:
+    """The paper's teaser request (3 hairpins, 1 chicane, 20 x 15 m hall) as a ROS map."""
+    from ..generate import Acceptance, generate_track, write_outputs
+    from ..spec import TrackSpec
+
+    outcome = generate_track(TrackSpec(name="bench-3h1c", hairpins=3, chicanes=1), seed=0)
+    if not isinstance(outcome, Acceptance):
+        raise RuntimeError(f"the generator did not accept the bench spec: {outcome.summary()}")
+    return write_outputs(outcome, outdir / "generated")["map_yaml"]
+
+
+def resampled_map(yaml_path: Path, target_mp: float, outdir: Path) -> Path:
+    """Write a nearest-neighbour resampling of a map with ~``target_mp`` megapixels (same
+    extent, resolution scaled accordingly) as trinary PNG + YAML in ``outdir``."""
     from PIL import Image
 
     from ..maps import load_map
@@ -83,7 +96,7 @@ def upsampled_map(yaml_path: Path, target_mp: float, outdir: Path) -> Path:
     m = load_map(yaml_path)
     h, w = m.data.shape
     f = math.sqrt(target_mp * 1e6 / (h * w))
-    nh, nw = max(h, round(h * f)), max(w, round(w * f))
+    nh, nw = max(1, round(h * f)), max(1, round(w * f))
     rows = np.minimum((np.arange(nh) * h) // nh, h - 1)
     cols = np.minimum((np.arange(nw) * w) // nw, w - 1)
     data = np.ascontiguousarray(m.data[rows][:, cols])
@@ -140,6 +153,7 @@ def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
                 "raster_mp": rep["raster_mp"],
                 "seconds": statistics.median(totals),
                 "seconds_min": min(totals),
+                "seconds_first": totals[0],
                 "stages": stages,
                 "usd_bytes": rep["usd_bytes"],
                 "meshes": rep["meshes"],
@@ -163,12 +177,12 @@ def run(labels: list[str] | None = None, repeat: int = 3, textures: bool = True,
     with tempfile.TemporaryDirectory(prefix="rra-bench-build-") as tmp:
         tmpdir = Path(tmp)
         for label, rel, target in tqdm(chosen, desc="bench build", unit="map", disable=not progress, file=sys.stderr):
-            yaml_path = src / rel
+            yaml_path = generated_map(tmpdir) if rel == GENERATED else src / rel
             if not yaml_path.is_file():
                 rows.append({"label": label, "map": str(yaml_path), "error": "map not found (set ROBORACER_ARENA_SOURCES)"})
                 continue
             if target is not None:
-                yaml_path = upsampled_map(yaml_path, target, tmpdir)
+                yaml_path = resampled_map(yaml_path, target, tmpdir)
             work = tmpdir / f"out-{len(rows)}"
             work.mkdir()
             rows.append(run_size(label, yaml_path, repeat, work, textures))
@@ -197,7 +211,7 @@ def run(labels: list[str] | None = None, repeat: int = 3, textures: bool = True,
 
 def format_table(result: dict[str, Any]) -> str:
     lines = [
-        f"{'map':<20} {'raster MP':>9} {'s':>7} {'USD MB':>7} | {'paper s':>7} {'paper MB':>8} | {'speedup':>7} {'USD/paper':>9} {'peak GB':>7} {'IoU':>6}",
+        f"{'map':<20} {'raster MP':>9} {'s':>7} {'USD MB':>7} | {'paper s':>7} {'paper MB':>8} | {'speedup':>7} {'USD/paper':>9} {'peak GB':>7} {'IoU':>6} {'1st s':>6}",
         "-" * 108,
     ]
     for r in result["rows"]:
@@ -207,15 +221,18 @@ def format_table(result: dict[str, Any]) -> str:
         lines.append(
             f"{r['label']:<20} {r['raster_mp']:>9.3f} {r['seconds']:>7.3f} {r['usd_mb']:>7.2f} | "
             f"{r['paper_seconds']:>7.2f} {r['paper_usd_mb']:>8.1f} | {r['speedup']:>6.1f}x {r['usd_fraction_of_paper']:>9.3f} "
-            f"{r['peak_rss_gb']:>7.3f} {r['iou']:>6.4f}"
+            f"{r['peak_rss_gb']:>7.3f} {r['iou']:>6.4f} {r['seconds_first']:>6.3f}"
         )
+    lines.append("s: median in-process build (load + geometry + USD), 1 thread; 1st s: the first build in the process.")
     lines.append("paper columns: the paper's time and USD size linearly interpolated at the same raster MP (Table map2usd).")
     ok = [r for r in result["rows"] if "error" not in r]
     if ok:
-        keys = [k for k in ok[0]["stages"] if k != "total"]
-        lines += ["", "per-stage median seconds:", f"{'map':<20} " + " ".join(f"{k[-16:]:>16}" for k in keys)]
+        keys = [k for k in ok[0]["stages"] if k not in ("total", "geometry.total")]
+        short = [k.replace("geometry.", "g.")[:10] for k in keys]
+        lines += ["", "per-stage median milliseconds (g.* = inside the Rust geometry stage):"]
+        lines.append(f"{'map':<20} " + " ".join(f"{k:>10}" for k in short))
         for r in ok:
-            lines.append(f"{r['label']:<20} " + " ".join(f"{r['stages'].get(k, float('nan')):>16.4f}" for k in keys))
+            lines.append(f"{r['label']:<20} " + " ".join(f"{1e3 * r['stages'].get(k, float('nan')):>10.1f}" for k in keys))
     return "\n".join(lines)
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from .topdown import TopDown
 
 CORRIDOR = (60, 170, 90, 90)
-FLOOR = (60, 170, 90, 110)
+FLOOR = (30, 130, 60, 255)
 WALL = (220, 30, 30)
 DUCT = (120, 120, 130, 200)
 CENTRELINE = (30, 90, 220)
@@ -89,10 +89,10 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048) -
         allp = np.concatenate([m.points for m in meshes.values() if len(m.points)])
         canvas = TopDown.for_bounds(allp.min(0)[:2], allp.max(0)[:2], max_px=max_px)
     for path, m in meshes.items():
-        tri_xy = m.points[m.triangles][:, :, :2] if len(m.triangles) else np.zeros((0, 3, 2))
-        if path.endswith("/Floor"):
-            canvas.triangles(tri_xy, FLOOR)
-            drawn.append("floor")
+        if path.endswith("/Floor") and len(m.triangles):
+            a, b = boundary_edges(m.triangles)
+            canvas.segments(m.points[a, :2], m.points[b, :2], FLOOR[:3], width_px=3)
+            drawn.append("floor outline")
     for path, m in meshes.items():
         if "/Barriers" in path:
             canvas.triangles(m.points[m.triangles][:, :, :2], DUCT)
@@ -103,7 +103,7 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048) -
         for a, b in ((0, 1), (1, 2), (2, 0)):
             canvas.segments(tri[:, a], tri[:, b], WALL, width_px=2)
         drawn.append("walls")
-    legend = [("floor", FLOOR[:3]), ("collision walls", WALL), ("barriers", DUCT[:3])]
+    legend = [("floor outline", FLOOR[:3]), ("collision walls", WALL), ("barriers", DUCT[:3])]
     features = _generated_overlay(canvas, src, drawn, legend) if src is not None else []
     canvas.legend(legend)
     canvas.save(out_png)
@@ -137,6 +137,15 @@ def _generated_overlay(canvas: TopDown, map_yaml: Path, drawn: list[str], legend
     if line.size:
         canvas.label(line[0], "start", (0, 0, 0))
     return features
+
+
+def boundary_edges(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Vertex pairs of the edges used by exactly one triangle (a mesh's outline)."""
+    t = np.asarray(triangles, dtype=np.int64)
+    e = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
+    uniq, counts = np.unique(e, axis=0, return_counts=True)
+    once = uniq[counts == 1]
+    return once[:, 0], once[:, 1]
 
 
 def read_centreline_csv(path: Path) -> np.ndarray:

@@ -51,12 +51,13 @@ class TopDown:
 
     @classmethod
     def for_raster(
-        cls, data: np.ndarray, resolution: float, origin: Sequence[float], max_px: int = 2048
+        cls, data: np.ndarray, resolution: float, origin: Sequence[float], max_px: int = 2048, min_px: int = 1024
     ) -> "TopDown":
         """A canvas showing an occupancy raster (254 free white, 0 occupied black, 205 grey),
-        shrunk so its longer side is at most ``max_px``."""
+        scaled so its longer side is at most ``max_px`` and, for small maps, enlarged
+        towards ``min_px`` (at most 4x) so labels stay legible."""
         h, w = data.shape
-        scale = min(1.0, max_px / max(h, w))
+        scale = fit_scale(max(h, w), max_px, min_px)
         canvas = cls(w, h, resolution, origin, scale)
         canvas.raster(data)
         return canvas
@@ -69,8 +70,7 @@ class TopDown:
         x0, y0 = lo[0] - margin, lo[1] - margin
         w = max(1, math.ceil((hi[0] - lo[0] + 2 * margin) / resolution))
         h = max(1, math.ceil((hi[1] - lo[1] + 2 * margin) / resolution))
-        scale = min(1.0, max_px / max(h, w))
-        return cls(w, h, resolution, (x0, y0, 0.0), scale)
+        return cls(w, h, resolution, (x0, y0, 0.0), fit_scale(max(h, w), max_px, max_px // 2))
 
     # --- coordinates -----------------------------------------------------------------
 
@@ -94,14 +94,14 @@ class TopDown:
         254 is white, 0 black and 205 the map_server grey."""
         img = Image.fromarray(np.ascontiguousarray(data, dtype=np.uint8), mode="L").convert("RGB")
         if img.size != self.image.size:
-            img = img.resize(self.image.size, Image.Resampling.BOX)
+            img = img.resize(self.image.size, Image.Resampling.BOX if self.scale < 1 else Image.Resampling.NEAREST)
         self.image.paste(img)
 
     def tint(self, mask: np.ndarray, colour: RGBA) -> None:
         """Blend ``colour`` over the cells where ``mask`` (grid-shaped) is true."""
         m = Image.fromarray(np.where(np.asarray(mask, bool), colour[3], 0).astype(np.uint8), mode="L")
         if m.size != self.image.size:
-            m = m.resize(self.image.size, Image.Resampling.BOX)
+            m = m.resize(self.image.size, Image.Resampling.BOX if self.scale < 1 else Image.Resampling.NEAREST)
         self.image.paste(Image.new("RGB", self.image.size, colour[:3]), (0, 0), m)
 
     def polyline(self, xy: np.ndarray, colour: RGB | RGBA, width_m: float = 0.0, closed: bool = False, min_px: int = 1) -> None:
@@ -161,6 +161,13 @@ class TopDown:
         """Write the picture as PNG, atomically."""
         atomic_write_bytes(path, self.png_bytes())
         return Path(path)
+
+
+def fit_scale(longest: int, max_px: int, min_px: int) -> float:
+    """Pixels per cell: shrink to ``max_px``, or enlarge small grids towards ``min_px`` (≤ 4x)."""
+    if longest >= min_px:
+        return min(1.0, max_px / longest)
+    return min(4.0, min_px / longest, max_px / longest)
 
 
 def _font(size_px: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:

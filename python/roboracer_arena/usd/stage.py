@@ -41,7 +41,8 @@ class StageMesh:
     ``look`` names a material in ``/World/Looks`` (``Floor``, ``Wall``, ``Duct``, ``Ring``);
     ``collider`` applies CollisionAPI + MeshCollisionAPI (approximation ``none``) and binds
     the physics material; ``guide`` makes the prim purpose ``guide`` and invisible;
-    ``st`` (V, 2) are texture coordinates (vertex interpolation)."""
+    ``st`` are texture coordinates: (V, 2) per vertex, or — with ``st_indices`` (3 T,) —
+    indexed face-varying values (for seams)."""
 
     path: str
     points: np.ndarray
@@ -50,6 +51,7 @@ class StageMesh:
     collider: bool = False
     guide: bool = False
     st: np.ndarray | None = None
+    st_indices: np.ndarray | None = None
 
 
 @dataclass
@@ -184,10 +186,11 @@ def _define_mesh(stage: Usd.Stage, m: StageMesh) -> Usd.Prim:
         mesh.CreateExtentAttr(Vt.Vec3fArray([Gf.Vec3f(*map(float, lo)), Gf.Vec3f(*map(float, hi))]))
     if m.st is not None:
         st = np.ascontiguousarray(m.st, dtype=np.float32).reshape(-1, 2)
-        pv = UsdGeom.PrimvarsAPI(mesh).CreatePrimvar(
-            looks.ST, Sdf.ValueTypeNames.TexCoord2fArray, UsdGeom.Tokens.vertex
-        )
+        interp = UsdGeom.Tokens.vertex if m.st_indices is None else UsdGeom.Tokens.faceVarying
+        pv = UsdGeom.PrimvarsAPI(mesh).CreatePrimvar(looks.ST, Sdf.ValueTypeNames.TexCoord2fArray, interp)
         pv.Set(Vt.Vec2fArray.FromNumpy(st))
+        if m.st_indices is not None:
+            pv.SetIndices(Vt.IntArray.FromNumpy(np.ascontiguousarray(m.st_indices, dtype=np.int32).ravel()))
     if m.guide:
         mesh.CreatePurposeAttr(UsdGeom.Tokens.guide)
         mesh.CreateVisibilityAttr(UsdGeom.Tokens.invisible)
@@ -209,3 +212,20 @@ def _vt_dict(d: Mapping[str, Any]) -> dict[str, Any]:
         else:
             out[k] = str(v)
     return out
+
+
+def warm_up() -> None:
+    """Author a throw-away stage with every schema the builder uses, so usd-core loads
+    its plugins now (~30 ms, once per process) rather than inside the first timed build."""
+    stage = Usd.Stage.CreateInMemory()
+    mesh = UsdGeom.Mesh.Define(stage, "/W/M")
+    UsdPhysics.Scene.Define(stage, "/W/P")
+    UsdPhysics.CollisionAPI.Apply(mesh.GetPrim())
+    UsdPhysics.MeshCollisionAPI.Apply(mesh.GetPrim())
+    mat = looks.define_preview_material(stage, "Floor", (0.5, 0.5, 0.5), texture="./t.png")
+    looks.bind(mesh.GetPrim(), mat)
+    UsdPhysics.MaterialAPI.Apply(mat.GetPrim())
+    stage.GetRootLayer().ExportToString()
+
+
+warm_up()

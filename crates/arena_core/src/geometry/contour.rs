@@ -43,7 +43,6 @@ pub fn marching_squares(f: &[f32], width: usize, height: usize, level: f32) -> V
     let at = |i: i64, j: i64| -> Option<f32> {
         (i >= 1 && i <= w && j >= 1 && j <= h).then(|| f[((h - j) * w + (i - 1)) as usize])
     };
-    let inside = |v: Option<f32>| v.is_some_and(|x| x < level);
     let key = |i: i64, j: i64, dir: i64| ((j * nw + i) * 2 + dir) as u64;
     // Crossing point on the lattice edge from node (i, j) along dir (0 = +u, 1 = +v).
     let crossing = |i: i64, j: i64, dir: i64| -> [f64; 2] {
@@ -59,14 +58,31 @@ pub fn marching_squares(f: &[f32], width: usize, height: usize, level: f32) -> V
     // next[start edge] = (end edge, point on start edge); order = starts in raster order.
     let mut next: KeyMap<(u64, [f64; 2])> = KeyMap::default();
     let mut order: Vec<u64> = Vec::new();
+    // Inside flags of one lattice row (padding included), reused row to row.
+    let flags = |j: i64, out: &mut Vec<u8>| {
+        out.clear();
+        out.push(0);
+        if j >= 1 && j <= h {
+            let row = &f[((h - j) * w) as usize..((h - j + 1) * w) as usize];
+            out.extend(row.iter().map(|&x| (x < level) as u8));
+        } else {
+            out.extend(std::iter::repeat_n(0u8, width));
+        }
+        out.push(0);
+    };
+    let (mut lo, mut hi) = (Vec::with_capacity(width + 2), Vec::with_capacity(width + 2));
+    flags(0, &mut hi);
     for j in 0..=h {
+        std::mem::swap(&mut lo, &mut hi);
+        flags(j + 1, &mut hi);
         for i in 0..=w {
-            let v = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
-            let b = v.map(inside);
-            let case = b[0] as u8 | (b[1] as u8) << 1 | (b[2] as u8) << 2 | (b[3] as u8) << 3;
+            let iu = i as usize;
+            let case = lo[iu] | lo[iu + 1] << 1 | hi[iu + 1] << 2 | hi[iu] << 3;
             if case == 0 || case == 15 {
                 continue;
             }
+            let v = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+            let b = [case & 1 != 0, case & 2 != 0, case & 4 != 0, case & 8 != 0];
             // Square edge k runs from corner k to corner k+1 (counter-clockwise).
             let edges = [(i, j, 0), (i + 1, j, 1), (i, j + 1, 0), (i, j, 1)];
             let saddle = case == 5 || case == 10;

@@ -1,6 +1,7 @@
-//! Exact Euclidean distance transform in linear time (Felzenszwalb & Huttenlocher 2012):
-//! two passes of the 1-D lower envelope of parabolas, columns then rows, parallel over
-//! lines with rayon. Distances are in cell units between cell centres.
+//! Exact Euclidean distance transform in linear time: the column distances by two row
+//! sweeps (Meijster et al. 2000, phase 1), then the 1-D lower envelope of parabolas along
+//! every row (Felzenszwalb & Huttenlocher 2012), rows in parallel with rayon.
+//! Distances are in cell units between cell centres.
 
 use rayon::prelude::*;
 
@@ -10,25 +11,29 @@ const INF: f32 = 1e20;
 /// Cells of an image without any feature get a huge value (≥ 1e20).
 pub fn edt_squared(feature: &[bool], width: usize, height: usize) -> Vec<f32> {
     assert_eq!(feature.len(), width * height, "mask size does not match width × height");
-    let mut d: Vec<f32> = feature.iter().map(|&f| if f { 0.0 } else { INF }).collect();
     if width == 0 || height == 0 {
-        return d;
+        return Vec::new();
     }
-    // Columns: transpose-free by gathering each column into a scratch buffer.
-    let mut cols = vec![0f32; width * height];
-    cols.par_chunks_mut(height).enumerate().for_each(|(c, out)| {
-        let mut line: Vec<f32> = (0..height).map(|r| d[r * width + c]).collect();
-        let mut scratch = Scratch::new(height);
-        transform_1d(&mut line, &mut scratch);
-        out.copy_from_slice(&line);
-    });
-    d.par_chunks_mut(width).enumerate().for_each(|(r, row)| {
-        for (c, v) in row.iter_mut().enumerate() {
-            *v = cols[c * height + r];
+    // Phase 1: distance to the nearest feature in the same column, by two sweeps over
+    // whole rows (cache-friendly, no transpose).
+    const FAR: u32 = 1 << 30;
+    let mut g: Vec<u32> = feature.iter().map(|&f| if f { 0 } else { FAR }).collect();
+    for r in 1..height {
+        let (above, row) = g[(r - 1) * width..(r + 1) * width].split_at_mut(width);
+        for (x, &a) in row.iter_mut().zip(above.iter()) {
+            *x = (*x).min(a + 1);
         }
-        let mut scratch = Scratch::new(width);
-        transform_1d(row, &mut scratch);
-    });
+    }
+    for r in (0..height - 1).rev() {
+        let (row, below) = g[r * width..(r + 2) * width].split_at_mut(width);
+        for (x, &b) in row.iter_mut().zip(below.iter()) {
+            *x = (*x).min(b + 1);
+        }
+    }
+    let mut d: Vec<f32> = g.iter().map(|&v| if v >= FAR { INF } else { (v as f32) * (v as f32) }).collect();
+    drop(g);
+    // Phase 2: lower envelope of parabolas along each row, rows in parallel.
+    d.par_chunks_mut(width).for_each_init(|| Scratch::new(width), |scratch, row| transform_1d(row, scratch));
     d
 }
 

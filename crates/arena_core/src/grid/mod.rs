@@ -11,6 +11,7 @@ pub mod mapfile;
 pub mod pgm;
 pub mod png_io;
 pub mod rasterise;
+pub mod regions;
 
 /// Occupancy value of a free cell (ROS map_saver convention).
 pub const FREE: u8 = 254;

@@ -2,22 +2,27 @@
 //!
 //! Free cells (254) are grouped into 4-connected components, all other cells (walls and
 //! unknown) into 8-connected ones, on the grid surrounded by a one-cell ring of
-//! non-free padding. With these complementary connectivities the components nest as a
+//! non-free padding ([`crate::grid::regions`], linear time on row runs). With these complementary connectivities the components nest as a
 //! tree rooted at the padding (the "outside"): a thin-line map gives
 //! outside → exterior free area → outer wall → corridor → inner wall → infield, a filled
 //! map outside/walls → corridor → infield. Flood fill on that tree removes the exterior
 //! (free cells connected to the map border) and the infield in one linear pass.
 //!
-//! Default: the corridor is the largest *outermost* free component that does not touch
-//! the map border and encloses a significant region (its largest enclosed subtree holds
-//! at least 1 % of its own cells) — the infield. With a start pose, the free component
-//! under the start is taken instead; if it reaches the map border the walls leak, and
-//! the error says where.
+//! Default: the corridor is the largest *outermost* free component that does not leak
+//! and encloses a significant region (its largest enclosed subtree holds at least 1 % of
+//! its own cells) — the infield. With a start pose, the free component under the start
+//! is taken instead.
+//!
+//! A component *leaks* when it reaches the map border along more than 2 % of the border
+//! cells: that is the exterior of a thin-line map (or a corridor merged with it through
+//! a gap in the wall), and the error says where. A ring that merely touches the border
+//! at a few cells (e.g. `vegas`, whose track grazes the image corner, or a SLAM map whose
+//! hallway runs off the edge) is accepted: the map edge acts as a wall there, as it does
+//! for every simulator, and [`Corridor::border_contact`] reports how many cells touch it.
 
 use crate::error::{ArenaError, Result};
-use crate::grid::flood::{label_components, Connectivity};
+use crate::grid::regions::{region_tree, RegionTree, NONE};
 use crate::grid::{OccupancyGrid, FREE};
-use std::collections::HashSet;
 
 /// The drivable ring of a map.
 #[derive(Debug, Clone)]
@@ -32,129 +37,40 @@ pub struct Corridor {
     pub holes: usize,
     /// Inclusive bounding box of the corridor cells: (col0, row0, col1, row1).
     pub bbox: (usize, usize, usize, usize),
+    /// Corridor cells on the map border (the map edge closes the corridor there).
+    pub border_contact: usize,
 }
 
 /// Fraction of the corridor's own cell count a hole must reach to count as an infield.
 const MIN_INFIELD_FRACTION: f64 = 0.01;
+/// Fraction of the map's border cells a free region may touch before it counts as leaking.
+const MAX_BORDER_FRACTION: f64 = 0.02;
 
+/// The region tree plus the corridor rules on top of it.
 struct Tree {
-    /// Node per component: free components first (0..nf), then non-free ones.
-    parent: Vec<u32>,
-    children: Vec<Vec<u32>>,
-    /// Cells in the node's subtree.
-    subtree: Vec<usize>,
-    size: Vec<usize>,
-    nf: usize,
-    /// Node of each padded cell.
-    node: Vec<u32>,
-    touches_border: Vec<bool>,
-}
-
-const NONE: u32 = u32::MAX;
-
-fn build_tree(g: &OccupancyGrid) -> Tree {
-    let (w, h) = (g.width + 2, g.height + 2);
-    let mut free = vec![false; w * h];
-    for r in 0..g.height {
-        let src = &g.data[r * g.width..(r + 1) * g.width];
-        for (c, &v) in src.iter().enumerate() {
-            free[(r + 1) * w + c + 1] = v == FREE;
-        }
-    }
-    let (fl, fs) = label_components(&free, w, h, Connectivity::Four);
-    let nonfree: Vec<bool> = free.iter().map(|f| !f).collect();
-    let (nl, ns) = label_components(&nonfree, w, h, Connectivity::Eight);
-    let nf = fs.len();
-    let n = nf + ns.len();
-    let node: Vec<u32> = (0..w * h).map(|i| if free[i] { fl[i] - 1 } else { nf as u32 + nl[i] - 1 }).collect();
-    drop((fl, nl, nonfree));
-    let size: Vec<usize> = fs.iter().chain(ns.iter()).copied().collect();
-
-    let mut edges: HashSet<(u32, u32)> = HashSet::new();
-    let mut last = (NONE, NONE);
-    let mut add = |a: u32, b: u32| {
-        if ((a as usize) < nf) != ((b as usize) < nf) {
-            let e = if a < b { (a, b) } else { (b, a) };
-            if e != last {
-                edges.insert(e);
-                last = e;
-            }
-        }
-    };
-    for r in 0..h {
-        for c in 0..w {
-            let i = r * w + c;
-            if c + 1 < w {
-                add(node[i], node[i + 1]);
-            }
-            if r + 1 < h {
-                add(node[i], node[i + w]);
-            }
-        }
-    }
-    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n];
-    let mut edge_list: Vec<(u32, u32)> = edges.into_iter().collect();
-    edge_list.sort_unstable();
-    for (a, b) in edge_list {
-        adj[a as usize].push(b);
-        adj[b as usize].push(a);
-    }
-    // BFS from the padding's component (node of padded cell 0).
-    let root = node[0];
-    let mut parent = vec![NONE; n];
-    let mut children: Vec<Vec<u32>> = vec![Vec::new(); n];
-    let mut order = vec![root];
-    let mut seen = vec![false; n];
-    seen[root as usize] = true;
-    let mut k = 0;
-    while k < order.len() {
-        let u = order[k];
-        k += 1;
-        for &v in &adj[u as usize] {
-            if !seen[v as usize] {
-                seen[v as usize] = true;
-                parent[v as usize] = u;
-                children[u as usize].push(v);
-                order.push(v);
-            }
-        }
-    }
-    let mut subtree = size.clone();
-    for &u in order.iter().rev() {
-        let p = parent[u as usize];
-        if p != NONE {
-            subtree[p as usize] += subtree[u as usize];
-        }
-    }
-    let mut touches_border = vec![false; n];
-    for c in 0..w {
-        for r in [1, h - 2] {
-            touches_border[node[r * w + c] as usize] |= free[r * w + c];
-        }
-    }
-    for r in 0..h {
-        for c in [1, w - 2] {
-            touches_border[node[r * w + c] as usize] |= free[r * w + c];
-        }
-    }
-    Tree { parent, children, subtree, size, nf, node, touches_border }
+    t: RegionTree,
+    /// Border contact above which a free region leaks.
+    leak_threshold: f64,
 }
 
 impl Tree {
-    /// The child subtree of free node `f` with most cells, if it qualifies as an infield.
+    fn new(g: &OccupancyGrid) -> Self {
+        let t = region_tree(&g.data, g.width, g.height, |v| v == FREE);
+        let border_total = (2 * (g.width + g.height)).saturating_sub(4).max(1);
+        Tree { t, leak_threshold: MAX_BORDER_FRACTION * border_total as f64 }
+    }
+    /// The child subtree of free region `f` with most cells, if it qualifies as an infield.
     fn infield_of(&self, f: u32) -> Option<u32> {
-        let best = self.children[f as usize].iter().copied().max_by_key(|&c| (self.subtree[c as usize], u32::MAX - c))?;
-        (self.subtree[best as usize] as f64 >= MIN_INFIELD_FRACTION * self.size[f as usize] as f64
-            && self.subtree[best as usize] >= 4)
+        let t = &self.t;
+        let best = t.children[f as usize].iter().copied().max_by_key(|&c| (t.subtree[c as usize], u32::MAX - c))?;
+        (t.subtree[best as usize] as f64 >= MIN_INFIELD_FRACTION * t.size[f as usize] as f64 && t.subtree[best as usize] >= 4)
             .then_some(best)
     }
-    fn is_ring(&self, f: u32) -> bool {
-        !self.touches_border[f as usize] && self.infield_of(f).is_some()
+    fn leaks(&self, f: u32) -> bool {
+        self.t.border_contact[f as usize] as f64 > self.leak_threshold
     }
-    /// Padded-grid index → map-frame point of the cell centre.
-    fn world(&self, g: &OccupancyGrid, padded: usize) -> [f64; 2] {
-        let w = g.width + 2;
-        g.cell_center(padded % w - 1, padded / w - 1)
+    fn is_ring(&self, f: u32) -> bool {
+        self.t.free[f as usize] && !self.leaks(f) && self.infield_of(f).is_some()
     }
 }
 
@@ -170,8 +86,7 @@ pub fn isolate_corridor(g: &OccupancyGrid, start: Option<[f64; 2]>) -> Result<Co
     if !g.data.contains(&FREE) {
         return Err(ArenaError::Corridor("empty map: no free cells, nothing to drive on".into()));
     }
-    let t = build_tree(g);
-    let pw = g.width + 2;
+    let t = Tree::new(g);
     let chosen = match start {
         Some([x, y]) => {
             let (c, r) = g.world_to_cell(x, y).ok_or_else(|| {
@@ -180,20 +95,18 @@ pub fn isolate_corridor(g: &OccupancyGrid, start: Option<[f64; 2]>) -> Result<Co
             if g.get(c, r) != FREE {
                 return Err(ArenaError::Corridor(format!("start {} is not on a free cell (value {})", fmt_xy([x, y]), g.get(c, r))));
             }
-            let f = t.node[(r + 1) * pw + c + 1];
-            if t.touches_border[f as usize] {
+            let f = t.t.region_at(c, r);
+            if t.leaks(f) {
                 // Report the border cell of the leaking region nearest to the start.
-                let leak = (0..t.node.len())
-                    .filter(|&i| t.node[i] == f && is_border(i, pw, g.height + 2))
-                    .min_by(|&a, &b| {
-                        let (pa, pb) = (t.world(g, a), t.world(g, b));
-                        ((pa[0] - x).hypot(pa[1] - y)).total_cmp(&(pb[0] - x).hypot(pb[1] - y))
-                    })
-                    .unwrap();
+                let leak = t.t.border_cells_of(f)
+                    .into_iter()
+                    .map(|(c, r)| g.cell_center(c, r))
+                    .min_by(|a, b| (a[0] - x).hypot(a[1] - y).total_cmp(&(b[0] - x).hypot(b[1] - y)))
+                    .expect("a leaking region has border cells");
                 return Err(ArenaError::Corridor(format!(
                     "the walls leak: the free region around the start {} reaches the map border at {} — close the gap in the walls",
                     fmt_xy([x, y]),
-                    fmt_xy(t.world(g, leak))
+                    fmt_xy(leak)
                 )));
             }
             if t.infield_of(f).is_none() {
@@ -207,77 +120,70 @@ pub fn isolate_corridor(g: &OccupancyGrid, start: Option<[f64; 2]>) -> Result<Co
         None => auto_select(g, &t)?,
     };
     let infield_root = t.infield_of(chosen).expect("chosen ring has an infield");
-    let mut in_infield = vec![false; t.parent.len()];
-    let mut stack = vec![infield_root];
-    while let Some(u) = stack.pop() {
-        in_infield[u as usize] = true;
-        stack.extend(&t.children[u as usize]);
-    }
-    let (w, h) = (g.width, g.height);
-    let mut mask = vec![false; w * h];
-    let mut infield = vec![false; w * h];
+    let in_infield = t.t.subtree_flags(infield_root);
+    let w = g.width;
+    let mut mask = vec![false; w * g.height];
+    let mut infield = vec![false; w * g.height];
     let (mut c0, mut r0, mut c1, mut r1) = (usize::MAX, usize::MAX, 0, 0);
-    for r in 0..h {
-        for c in 0..w {
-            let nd = t.node[(r + 1) * pw + c + 1];
-            let i = r * w + c;
-            if nd == chosen {
-                mask[i] = true;
-                (c0, r0, c1, r1) = (c0.min(c), r0.min(r), c1.max(c), r1.max(r));
-            } else if in_infield[nd as usize] {
-                infield[i] = true;
-            }
+    for (run, &reg) in t.t.runs.iter().zip(&t.t.run_region) {
+        let (r, a, b) = (run.row as usize, run.start as usize, run.end as usize);
+        if reg == chosen {
+            mask[r * w + a..r * w + b].fill(true);
+            (c0, r0, c1, r1) = (c0.min(a), r0.min(r), c1.max(b - 1), r1.max(r));
+        } else if in_infield[reg as usize] {
+            infield[r * w + a..r * w + b].fill(true);
         }
     }
-    Ok(Corridor { mask, infield, cells: t.size[chosen as usize], holes: t.children[chosen as usize].len(), bbox: (c0, r0, c1, r1) })
-}
-
-fn is_border(i: usize, w: usize, h: usize) -> bool {
-    let (c, r) = (i % w, i / w);
-    c == 1 || r == 1 || c == w - 2 || r == h - 2
+    Ok(Corridor {
+        mask,
+        infield,
+        cells: t.t.size[chosen as usize],
+        holes: t.t.children[chosen as usize].len(),
+        bbox: (c0, r0, c1, r1),
+        border_contact: t.t.border_contact[chosen as usize],
+    })
 }
 
 fn auto_select(g: &OccupancyGrid, t: &Tree) -> Result<u32> {
-    let rings: Vec<u32> = (0..t.nf as u32).filter(|&f| t.is_ring(f)).collect();
+    let tt = &t.t;
+    let rings: Vec<u32> = (0..tt.len() as u32).filter(|&f| t.is_ring(f)).collect();
     // Outermost rings only: a ring nested inside another ring is part of its infield.
     let outermost = rings.iter().copied().filter(|&f| {
-        let mut p = t.parent[f as usize];
+        let mut p = tt.parent[f as usize];
         while p != NONE {
-            if (p as usize) < t.nf && t.is_ring(p) {
+            if t.is_ring(p) {
                 return false;
             }
-            p = t.parent[p as usize];
+            p = tt.parent[p as usize];
         }
         true
     });
-    if let Some(best) = outermost.max_by_key(|&f| (t.size[f as usize], u32::MAX - f)) {
+    if let Some(best) = outermost.max_by_key(|&f| (tt.size[f as usize], u32::MAX - f)) {
         return Ok(best);
     }
     // Diagnose: a free region around an infield that reaches the border is a leak.
-    let leaking = (0..t.nf as u32)
-        .filter(|&f| t.touches_border[f as usize] && t.infield_of(f).is_some())
-        .max_by_key(|&f| t.size[f as usize]);
-    let pw = g.width + 2;
+    let leaking = (0..tt.len() as u32)
+        .filter(|&f| tt.free[f as usize] && t.leaks(f) && t.infield_of(f).is_some())
+        .max_by_key(|&f| tt.size[f as usize]);
     if let Some(f) = leaking {
-        let ph = g.height + 2;
-        let border: Vec<usize> = (0..t.node.len()).filter(|&i| t.node[i] == f && is_border(i, pw, ph)).collect();
-        let at = border[border.len() / 2];
+        let border = tt.border_cells_of(f);
+        let (c, r) = border[border.len() / 2];
         return Err(ArenaError::Corridor(format!(
             "no closed corridor: the walls leak — the free region around the infield reaches the map border \
              ({} border cells, e.g. at {}); close the gap or pass a start pose inside a closed corridor",
             border.len(),
-            fmt_xy(t.world(g, at))
+            fmt_xy(g.cell_center(c, r))
         )));
     }
     let free = g.data.iter().filter(|&&v| v == FREE).count();
-    let largest = (0..t.nf).max_by_key(|&f| t.size[f]).unwrap();
+    let largest = (0..tt.len()).filter(|&f| tt.free[f]).max_by_key(|&f| tt.size[f]).expect("the map has free cells");
     let blank = free * 100 >= g.data.len() * 99;
     Err(ArenaError::Corridor(format!(
         "no closed corridor: no free region encloses an infield{} ({:.1} % of the map is free; the largest free region has {} cells{})",
         if blank { " — the map is blank (no walls)" } else { "" },
         100.0 * free as f64 / g.data.len() as f64,
-        t.size[largest],
-        if t.touches_border[largest] { " and touches the map border" } else { "" }
+        tt.size[largest],
+        if tt.border_contact[largest] > 0 { " and touches the map border" } else { "" }
     )))
 }
 

@@ -113,3 +113,26 @@ fn outermost_ring_wins_over_a_ring_in_the_infield() {
     assert!(c.mask[g.index(45 + 38, 45)] && !c.mask[g.index(45 + 14, 45)]);
     assert!(c.infield[g.index(45 + 14, 45)]);
 }
+
+#[test]
+fn a_ring_grazing_the_map_edge_is_closed_by_it_but_a_wide_opening_leaks() {
+    // a filled ring with a free channel from the ring up to the top border
+    let mut g = ring_map(100, 20.0, 30.0, 2.0, FREE, UNKNOWN);
+    let carve = |g: &mut OccupancyGrid, cols: std::ops::Range<usize>| {
+        for row in 0..25 {
+            for col in cols.clone() {
+                let i = g.index(col, row);
+                g.data[i] = FREE;
+            }
+        }
+    };
+    carve(&mut g, 50..52);
+    let c = isolate_corridor(&g, None).unwrap();
+    assert_eq!(c.border_contact, 2);
+    assert!(c.mask[g.index(50, 0)]);
+    carve(&mut g, 40..60); // 20 border cells > 2 % of 396
+    let m = corridor_err(isolate_corridor(&g, None));
+    assert!(m.contains("leak"), "{m}");
+    let m = corridor_err(isolate_corridor(&g, Some(g.cell_center(50, 50 + 25))));
+    assert!(m.contains("leak") && m.contains("reaches the map border at"), "{m}");
+}
