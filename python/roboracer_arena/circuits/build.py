@@ -171,7 +171,7 @@ def build_all(
         it: Iterator[dict] = map(_work, tasks)
         results = list(progress(it, len(tasks)) if progress else it)
     else:
-        with get_context("fork" if os.name == "posix" else "spawn").Pool(jobs) as pool:
+        with get_context("spawn").Pool(jobs) as pool:  # fork can deadlock on threads (rayon, usd)
             it = pool.imap_unordered(_work, tasks)
             results = list(progress(it, len(tasks)) if progress else it)
     results.sort(key=lambda r: r["id"])

@@ -93,7 +93,7 @@ def build_generated(
     tasks = [(tid, spec, seed, str(outdir)) for tid, spec, seed in sweep()]
     Path(outdir).mkdir(parents=True, exist_ok=True)
     if jobs > 1:
-        with get_context("fork" if os.name == "posix" else "spawn").Pool(jobs) as pool:
+        with get_context("spawn").Pool(jobs) as pool:
             it: Iterator[dict] = pool.imap(_one, tasks)
             recs = list(progress(it, len(tasks)) if progress else it)
     else:

@@ -94,19 +94,33 @@ def isolate_corridor(data: np.ndarray, resolution: float) -> tuple[np.ndarray | 
     return out, ""
 
 
-def _corridor_by_builder(yaml_path: Path):
-    """The builder's extract_corridor, when it is installed (None otherwise)."""
+def corridor_grid(yaml_path: Path, data: np.ndarray, resolution: float) -> tuple[np.ndarray | None, str, str]:
+    """The map with only its corridor free: ``(grid or None, reason, which check decided)``.
+
+    Uses the builder's ``extract_corridor`` (its ``corridor_mask``) when installed, else
+    :func:`isolate_corridor`."""
     try:
-        from ..corridor import extract_corridor  # type: ignore[attr-defined]
+        from ..corridor import extract_corridor
     except ImportError:
-        return None
-    return extract_corridor
+        iso, why = isolate_corridor(data, resolution)
+        return iso, why, "library.recorded.isolate_corridor"
+    check = "corridor.extract_corridor"
+    try:
+        geo = extract_corridor(yaml_path)
+    except ArenaError as e:
+        return None, f"no closed corridor (extract_corridor: {e})", check
+    mask = np.asarray(geo.corridor_mask, bool)
+    if mask.shape != data.shape:
+        return None, f"corridor mask {mask.shape} does not match the map {data.shape}", check
+    iso = np.where(mask, FREE, np.where(data == FREE, UNKNOWN, data)).astype(np.uint8)
+    return iso, "", check
 
 
 def assess_map(sources: Path, yaml_path: Path) -> dict:
     """Load one recorded map and measure it; ``usable`` False comes with a ``reason``."""
     rel = str(yaml_path.relative_to(sources))
-    rec: dict = {"id": record_id(sources, yaml_path), "name": yaml_path.stem, "source_path": rel,
+    name = yaml_path.stem[:-4] if yaml_path.stem.endswith("_map") else yaml_path.stem
+    rec: dict = {"id": record_id(sources, yaml_path), "name": name, "source_path": rel,
                  "source_dir": rel.split("/")[0]}
     try:
         m = load_ros_map(yaml_path)
@@ -118,18 +132,8 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
     img_bytes = data.tobytes()
     rec.update(resolution_m=float(m.resolution), raster={"width_px": w, "height_px": h},
                grid_sha256=hashlib.sha256(img_bytes + repr(float(m.resolution)).encode()).hexdigest())
-    extract = _corridor_by_builder(yaml_path)
-    if extract is not None:
-        try:
-            geo = extract(yaml_path)
-            rec["corridor_check"] = "roboracer_arena.corridor.extract_corridor"
-            rec["builder_iou"] = float(getattr(geo, "iou", float("nan")))
-        except ArenaError as e:
-            rec.update(usable=False, reason=f"no closed corridor (extract_corridor: {e})")
-            return rec
-    else:
-        rec["corridor_check"] = "library.recorded.isolate_corridor"
-    iso, why = isolate_corridor(data, float(m.resolution))
+    iso, why, check = corridor_grid(yaml_path, data, float(m.resolution))
+    rec["corridor_check"] = check
     if iso is None:
         rec.update(usable=False, reason=why)
         return rec
@@ -182,7 +186,7 @@ def assess_all(sources: Path, jobs: int = 1, progress=None) -> list[dict]:
     yamls = find_map_yamls(sources)
     fn = partial(assess_map, sources)
     if jobs > 1:
-        with get_context("fork" if os.name == "posix" else "spawn").Pool(jobs) as pool:
+        with get_context("spawn").Pool(jobs) as pool:
             it = pool.imap(fn, yamls)
             recs = list(progress(it, len(yamls)) if progress else it)
     else:

@@ -71,11 +71,11 @@ def check_load(entry: dict, yaml_path: Path):
     return Check(PASS, f"{w}x{h} at {m.resolution:g} m, checksum ok"), m
 
 
-def check_ring(entry: dict, m) -> Check:
-    from .recorded import isolate_corridor
+def check_ring(entry: dict, m, yaml_path: Path) -> Check:
+    from .recorded import corridor_grid
 
     data = np.asarray(m.data, np.uint8)
-    iso, why = isolate_corridor(data, float(m.resolution))
+    iso, why, _ = corridor_grid(yaml_path, data, float(m.resolution))
     if iso is None:
         return Check(FAIL, why)
     try:
@@ -137,7 +137,7 @@ def verify_entry(cat: Catalog, entry: dict, sources: Path | None = None, usd: bo
     yaml_path = cat.map_path(entry, sources)
     res.checks["load"], m = check_load(entry, yaml_path)
     if m is not None and res.checks["load"].status == PASS:
-        res.checks["ring"] = check_ring(entry, m)
+        res.checks["ring"] = check_ring(entry, m, yaml_path)
     else:
         res.checks["ring"] = Check(NOT_RUN, "not run: map did not load")
     res.checks["usd"] = check_usd(entry, yaml_path) if usd else Check(NOT_RUN, "not run: --no-usd")
@@ -164,7 +164,7 @@ def verify(cat: Catalog, entries: list[dict], sources: Path | None = None, jobs:
     t0 = time.perf_counter()
     tasks = [(cat, e, sources, usd, drive) for e in entries]
     if jobs > 1 and len(tasks) > 1:
-        with get_context("fork" if os.name == "posix" else "spawn").Pool(jobs) as pool:
+        with get_context("spawn").Pool(jobs) as pool:
             it = pool.imap(_work, tasks)
             results = list(progress(it, len(tasks)) if progress else it)
     else:
