@@ -44,3 +44,21 @@ def test_sheet(tmp_path):
 
     with Image.open(out) as im:
         assert im.size[0] == 3 * 180 and im.size[1] >= 2 * 178
+
+
+def test_prune_moves_failed_recorded_maps_only():
+    from roboracer_arena.library.verify import prune_catalog
+
+    cat = load_catalog()
+    rec, gen = cat.select("recorded")[0], cat.select("generated")[0]
+    bad = {"status": "FAIL", "detail": "lap not completed"}
+    ok = {"status": "pass", "detail": "fine"}
+    summary = {"results": [
+        {"id": rec["id"], "kind": "recorded", "passed": False, "checks": {"load": ok, "drive": bad}},
+        {"id": gen["id"], "kind": "generated", "passed": False, "checks": {"load": ok, "drive": bad}},
+    ]}
+    n = len(cat.entries)
+    assert prune_catalog(cat, summary) == [rec["id"]]
+    assert len(cat.entries) == n - 1 and cat.left_out[-1]["id"] == rec["id"]
+    assert "drive: lap not completed" in cat.left_out[-1]["reason"]
+    assert cat.get(gen["id"])["verified"]["drive"] == "FAIL"

@@ -12,7 +12,7 @@ from pathlib import Path
 from ..fileio import atomic_write_text
 
 # Benchmark kinds, in the order `bench all` runs them.
-KINDS: list[str] = ["build", "env", "physics"]
+KINDS: list[str] = ["build", "env", "library", "physics"]
 
 
 def register(sub) -> None:

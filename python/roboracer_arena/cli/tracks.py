@@ -55,6 +55,8 @@ def register(sub) -> None:
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
     a.add_argument("--no-usd", action="store_true", help="skip the USD build check")
     a.add_argument("--no-drive", action="store_true", help="skip the pure-pursuit lap")
+    a.add_argument("--update-catalog", action="store_true",
+                   help="record the results in the catalog; recorded maps that fail move to left_out")
     a.set_defaults(func=run_verify)
     a = t.add_parser("sheet", help="contact sheet of every track")
     a.add_argument("-o", "--out", type=Path, required=True, metavar="sheet.png", help="output PNG")
@@ -172,6 +174,15 @@ def run_verify(args) -> int:
     jobs = args.jobs or os.cpu_count() or 1
     s = verify(cat, entries, args.sources, jobs=jobs, usd=not args.no_usd, drive=not args.no_drive,
                progress=_progress("verify"))
+    if args.update_catalog:
+        from ..fileio import atomic_write_text
+        from ..library.verify import prune_catalog
+
+        moved = prune_catalog(cat, s)
+        atomic_write_text(cat.path, cat.to_json())
+        s["moved_to_left_out"] = moved
+        if not args.json:
+            print(f"updated {cat.path}: {len(moved)} recorded map(s) moved to left_out: {', '.join(moved) or '-'}")
     if args.json:
         print_json(s)
     else:
@@ -187,6 +198,8 @@ def run_verify(args) -> int:
         reasons = {v["detail"] for r in s["results"] for v in r["checks"].values() if v["status"] == "not run"}
         for why in sorted(reasons):
             print(f"  ({why})")
+        if s["drive_cautious"]:
+            print(f"  {len(s['drive_cautious'])} lap(s) needed the cautious retry: {', '.join(s['drive_cautious'])}")
         print(f"{s['passed']}/{s['tracks']} tracks without a failed check in {s['seconds']:.1f} s "
               f"({s['jobs']} process(es)); by kind: " + ", ".join(f"{k} {v['passed']}/{v['tracks']}" for k, v in s["by_kind"].items()))
     return EXIT_OK if not s["failed"] else EXIT_BAD_INPUT
