@@ -15,19 +15,33 @@ KIND_COLOUR = {"circuit": (200, 40, 40), "recorded": (40, 90, 200), "generated":
 
 
 def thumbnail(yaml_path: Path, size: tuple[int, int]) -> Image.Image:
-    """The map cropped to its known (non-unknown) cells, as a greyscale thumbnail."""
+    """The map's corridor (free space elsewhere blanked), cropped to its known cells, as a
+    greyscale thumbnail."""
     from ..generate.mapfile import load_ros_map
+    from .recorded import corridor_grid
 
-    data = np.asarray(load_ros_map(yaml_path).data, np.uint8)
+    m = load_ros_map(yaml_path)
+    data = np.asarray(m.data, np.uint8)
+    iso, _, _ = corridor_grid(yaml_path, data, float(m.resolution))
+    if iso is not None:
+        data = iso
+        # Walls not bordering the corridor (thin-line maps' far side, clutter) are blanked too.
+        from scipy import ndimage
+
+        near = ndimage.binary_dilation(data == 254, iterations=max(2, int(round(0.3 / m.resolution))))
+        data = np.where((data == 0) & ~near, 205, data).astype(np.uint8)
     known = data != 205
     if known.any():
         rows, cols = np.nonzero(known.any(axis=1))[0], np.nonzero(known.any(axis=0))[0]
         data = data[rows[0]: rows[-1] + 1, cols[0]: cols[-1] + 1]
-    img = Image.fromarray(np.where(data == 254, 255, np.where(data == 0, 0, 215)).astype(np.uint8), "L")
-    # Min-filter while shrinking so thin walls survive: reduce in integer steps first.
-    factor = max(1, int(min(img.width / size[0], img.height / size[1]) // 2))
-    if factor > 1:
-        img = img.reduce(factor)
+    # Drivable space dark, walls mid-grey, unknown white; shrink by block minimum first so
+    # a corridor a few cells wide stays visible at thumbnail size.
+    shade = np.where(data == 254, 30, np.where(data == 0, 150, 255)).astype(np.uint8)
+    f = max(1, int(min(shade.shape[1] / size[0], shade.shape[0] / size[1])))
+    if f > 1:
+        h, w = (shade.shape[0] // f) * f, (shade.shape[1] // f) * f
+        shade = shade[:h, :w].reshape(h // f, f, w // f, f).min(axis=(1, 3))
+    img = Image.fromarray(shade, "L")
     img.thumbnail(size, Image.Resampling.LANCZOS)
     return img
 
