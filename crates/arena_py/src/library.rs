@@ -23,7 +23,9 @@ fn measure_map<'py>(
     origin: (f64, f64, f64),
 ) -> PyResult<(String, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
     if !(resolution > 0.0 && resolution.is_finite()) {
-        return Err(crate::errors::InvalidArgumentError::new_err(format!("resolution must be > 0, got {resolution}")));
+        return Err(crate::errors::InvalidArgumentError::new_err(format!(
+            "resolution must be > 0, got {resolution}"
+        )));
     }
     let (h, w) = (data.shape()[0], data.shape()[1]);
     let grid = OccupancyGrid {
@@ -43,8 +45,13 @@ fn measure_map<'py>(
         "centreline_length_m": length,
     });
     let flat: Vec<f64> = t.centreline.iter().flat_map(|p| [p[0], p[1]]).collect();
-    let line = numpy::ndarray::Array2::from_shape_vec((t.centreline.len(), 2), flat).expect("shape matches");
-    Ok((info.to_string(), PyArray2::from_owned_array(py, line), PyArray1::from_vec(py, t.widths)))
+    let line = numpy::ndarray::Array2::from_shape_vec((t.centreline.len(), 2), flat)
+        .expect("shape matches");
+    Ok((
+        info.to_string(),
+        PyArray2::from_owned_array(py, line),
+        PyArray1::from_vec(py, t.widths),
+    ))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
