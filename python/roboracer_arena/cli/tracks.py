@@ -138,12 +138,12 @@ def run_show(args) -> int:
     for k, v in e.items():
         if k == "notes":
             for n in v:
-                print(f"{'note':<16}{n}")
+                print(f"{'note':<19}{n}")
         elif isinstance(v, dict):
-            print(f"{k:<16}" + ", ".join(f"{kk}={vv}" for kk, vv in v.items()))
+            print(f"{k:<19}" + ", ".join(f"{kk}={vv}" for kk, vv in v.items()))
         else:
-            print(f"{k:<16}{v}")
-    print(f"{'map_path':<16}{path}")
+            print(f"{k:<19}{v}")
+    print(f"{'map_path':<19}{path}")
     return EXIT_OK
 
 
