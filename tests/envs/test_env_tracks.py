@@ -36,9 +36,13 @@ def test_bad_track_arguments(bad):
         resolve_tracks(bad)
 
 
-def test_catalog_ids_need_the_library():
-    with pytest.raises(ConfigError, match="catalog ids need the track library"):
-        resolve_tracks("monaco")
+def test_catalog_ids_resolve_through_the_library():
+    from roboracer_arena.errors import InvalidArgumentError
+
+    (monaco,) = resolve_tracks("monaco")
+    assert 320 < monaco.length < 345  # 1:10 Monaco, 333 m
+    with pytest.raises(InvalidArgumentError, match="unknown track id"):
+        resolve_tracks("no-such-track")
 
 
 def test_bad_polylines_are_rejected():

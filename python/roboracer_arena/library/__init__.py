@@ -1,0 +1,15 @@
+"""The track library: one catalog (``tracks/catalog.json``) of real circuits at 1:10,
+recorded third-party maps (referenced, never copied) and requirement-generated tracks.
+
+* :func:`resolve` -- catalog id or selection (``"circuits"``, ``"recorded"``,
+  ``"generated"``, ``"all"``) to map YAML paths; the gymnasium env uses it for ``track=``.
+* :func:`load_catalog`, :class:`Catalog` -- the catalog itself.
+* ``roboracer-arena tracks list|show|build|verify|sheet|catalog`` -- the CLI.
+"""
+
+from .catalog import KINDS, SELECTIONS, Catalog, default_tracks_dir, load_catalog, resolve
+
+#: The name the gymnasium env's ``track=`` hook looks up (``envs.tracks.resolve_catalog``).
+resolve_tracks = resolve
+
+__all__ = ["KINDS", "SELECTIONS", "Catalog", "default_tracks_dir", "load_catalog", "resolve", "resolve_tracks"]
