@@ -65,7 +65,10 @@ def test_resolve_ids_and_selections(cat, sources):
     assert len(resolve("circuits", cat)) == sum(e["kind"] == "circuit" for e in cat.entries)
     assert len(resolve("all", cat, sources=sources)) == len(cat.entries)
     assert len(resolve(["monaco", "generated"], cat)) == 1 + len(cat.select("generated"))
-    assert resolve_tracks is resolve
+    tracks = resolve_tracks(["monaco", "suzuka"], cat)
+    assert [t.name for t in tracks] == ["monaco", "suzuka"]
+    # Suzuka is grade-separated: the env laps its own figure-8 centreline, not one lobe.
+    assert tracks[1].length > 550  # the full lap (580.7 m), not one lobe (~343 m)
     with pytest.raises(InvalidArgumentError, match="unknown track id"):
         resolve("no-such-track", cat)
 

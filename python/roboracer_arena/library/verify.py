@@ -23,6 +23,7 @@ import numpy as np
 from .. import _core
 from ..errors import ArenaError
 from .catalog import Catalog, sha256_file
+from .tracks import entry_track
 
 PASS, FAIL, NOT_RUN = "pass", "FAIL", "not run"
 LAP_TOLERANCE = 0.02
@@ -117,20 +118,7 @@ def check_usd(entry: dict, yaml_path: Path) -> Check:
 CAUTIOUS = {"max_speed": 2.5, "lateral_accel": 2.5, "lookahead_min": 0.5}
 
 
-def _drive_target(entry: dict, yaml_path: Path, centreline: Path | None):
-    """What the driver follows. A grade-separated circuit follows its own centreline
-    (through the crossing: the planar corridor is open there) between the builder's walls;
-    every other track is the map itself (the builder's medial centreline)."""
-    if entry.get("grade_separated") and centreline is not None and centreline.is_file():
-        from ..corridor import extract_corridor
-        from ..envs.tracks import Track
-
-        line = np.loadtxt(centreline, delimiter=",", comments="#", ndmin=2)[:, :2]
-        return Track.from_polylines(extract_corridor(yaml_path).walls, line, name=entry["id"]), "circuit centreline"
-    return yaml_path, "corridor centreline"
-
-
-def check_drive(entry: dict, yaml_path: Path, centreline: Path | None = None) -> Check:
+def check_drive(cat: Catalog, entry: dict, sources: Path | None = None) -> Check:
     """Hook onto the simulator: the reference pure-pursuit driver completes one lap without
     a contact (default env: full vehicle model, 1081-beam lidar). After a collision it
     tries once more at cautious settings (:data:`CAUTIOUS`); a pass then says so."""
@@ -140,7 +128,7 @@ def check_drive(entry: dict, yaml_path: Path, centreline: Path | None = None) ->
     except ImportError:
         return Check(NOT_RUN, "not run: simulator not available (roboracer_arena.drivers / _core.Simulator)")
     try:
-        target, follows = _drive_target(entry, yaml_path, centreline)
+        target, follows = entry_track(cat, entry, sources)
         r = drive_laps(target, laps=1)
         how = "reference settings"
         if not r.completed:
@@ -167,8 +155,7 @@ def verify_entry(cat: Catalog, entry: dict, sources: Path | None = None, usd: bo
     else:
         res.checks["ring"] = Check(NOT_RUN, "not run: map did not load")
     res.checks["usd"] = check_usd(entry, yaml_path) if usd else Check(NOT_RUN, "not run: --no-usd")
-    line = cat.map_path({**entry, "map": entry["centreline"]}, sources) if entry.get("centreline") else None
-    res.checks["drive"] = check_drive(entry, yaml_path, line) if drive else Check(NOT_RUN, "not run: --no-drive")
+    res.checks["drive"] = check_drive(cat, entry, sources) if drive else Check(NOT_RUN, "not run: --no-drive")
     res.seconds = time.perf_counter() - t0
     return res
 
