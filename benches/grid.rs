@@ -28,15 +28,30 @@ fn bench_grid(c: &mut Criterion) {
         let free = ring(n);
         let wall: Vec<bool> = free.iter().map(|f| !f).collect();
         let seed = free.iter().position(|&f| f).unwrap();
-        c.bench_function(&format!("edt {n}x{n}"), |b| b.iter(|| edt(black_box(&wall), n, n)));
+        c.bench_function(&format!("edt {n}x{n}"), |b| {
+            b.iter(|| edt(black_box(&wall), n, n))
+        });
         c.bench_function(&format!("flood_fill {n}x{n}"), |b| {
             b.iter(|| flood_fill(black_box(&free), n, n, &[seed], Connectivity::Four))
         });
-        let data: Vec<u8> = free.iter().map(|&f| if f { FREE } else { OCCUPIED }).collect();
-        c.bench_function(&format!("region_tree {n}x{n}"), |b| b.iter(|| region_tree(black_box(&data), n, n, |v| v == FREE)));
+        let data: Vec<u8> = free
+            .iter()
+            .map(|&f| if f { FREE } else { OCCUPIED })
+            .collect();
+        c.bench_function(&format!("region_tree {n}x{n}"), |b| {
+            b.iter(|| region_tree(black_box(&data), n, n, |v| v == FREE))
+        });
         let field: Vec<f32> = edt(&wall, n, n);
-        c.bench_function(&format!("marching_squares {n}x{n}"), |b| b.iter(|| marching_squares(black_box(&field), n, n, 2.5)));
-        let g = OccupancyGrid { width: n, height: n, resolution: 0.05, origin: [0.0; 3], data };
+        c.bench_function(&format!("marching_squares {n}x{n}"), |b| {
+            b.iter(|| marching_squares(black_box(&field), n, n, 2.5))
+        });
+        let g = OccupancyGrid {
+            width: n,
+            height: n,
+            resolution: 0.05,
+            origin: [0.0; 3],
+            data,
+        };
         c.bench_function(&format!("build_geometry {n}x{n}"), |b| {
             b.iter(|| build_geometry(black_box(&g), &BuildParams::default(), None).unwrap())
         });

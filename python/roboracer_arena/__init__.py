@@ -21,12 +21,24 @@ from .spec import TrackSpec
 # user who only parses requests never imports pxr or gymnasium.
 _LAZY = {
     "load_map": "roboracer_arena.maps",
+    "OccupancyMap": "roboracer_arena.maps",
+    "extract_corridor": "roboracer_arena.corridor",
     "build_environment": "roboracer_arena.builder",
     "BuildConfig": "roboracer_arena.config",
     "BuildReport": "roboracer_arena.builder",
     "generate_track": "roboracer_arena.generate",
     "parse_request": "roboracer_arena.parse",
 }
+
+
+def _install_gym_registration() -> None:
+    # RoboRacerArena-v0 for gymnasium.make / make_vec, without importing gymnasium here.
+    from .envs._gym_hook import install
+
+    install()
+
+
+_install_gym_registration()
 
 
 def __getattr__(name: str) -> Any:

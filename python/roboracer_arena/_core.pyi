@@ -28,6 +28,84 @@ def rasterise_centreline(
     margin: float = 0.5,
 ) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]]:
     """Eq. 3 with per-vertex full widths; returns (data (H, W) uint8, origin (x, y, yaw))."""
+def screen(spec_json: str, config_json: str) -> str:
+    """Admissibility screen (Eqs. 1–2) as JSON: passed, violations, r_min_m, pitch_m, l_max_m, …"""
+
+def derived_geometry(spec_json: str, config_json: str) -> str:
+    """Derived geometry as JSON: r_min, pitch, l_max, s_min, corner_radius."""
+
+def generate_lattice(
+    spec_json: str, config_json: str, seed: int
+) -> tuple[
+    str,
+    str,
+    tuple[npt.NDArray[np.uint8], tuple[float, float, float]] | None,
+    npt.NDArray[np.float64] | None,
+]:
+    """Algorithm 1 (lattice): (kind "accepted"|"rejected"|"failed", info_json, map | None, centreline | None)."""
+
+def construct_lattice(
+    spec_json: str, config_json: str, seed: int
+) -> tuple[str, npt.NDArray[np.float64] | None]:
+    """Lattice constructor without raster validation in the loop: (info_json, centreline | None)."""
+
+def validate_map(
+    data: npt.NDArray[np.uint8],
+    resolution: float,
+    origin: tuple[float, float, float],
+    spec_json: str,
+    config_json: str,
+) -> tuple[str, npt.NDArray[np.float64]]:
+    """Raster validator: (report_json, measured centreline (N, 2) in the driving direction)."""
+
+def analyse_curve(xy: npt.NDArray[np.float64], corner_radius: float, exclude_m: float) -> str:
+    """Curvature analysis of a closed curve as JSON (turns, features, min radius, self_clearance_m)."""
+
+# --- maps (ROS map YAML + PGM/PNG, nav2 rules) ---------------------------------------
+def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], str]:
+    """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta_json)``."""
+
+def save_map(
+    data: npt.NDArray[np.uint8],
+    resolution: float,
+    origin: tuple[float, float, float],
+    yaml_path: str | os.PathLike[str],
+    image_format: str = "png",
+) -> str:
+    """Write a trinary map image (png/pgm) beside ``yaml_path`` and the YAML, atomically; returns the image path."""
+
+# --- builder (map → walls, ducts, centreline, meshes, round-trip check) ---------------
+class _Geometry(TypedDict):
+    walls: list[npt.NDArray[np.float64]]
+    ducts: list[npt.NDArray[np.float64]]
+    centreline: npt.NDArray[np.float64]
+    meshes: dict[str, tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]]
+    iou: float
+    max_wall_deviation_cells: float
+    corridor_mask: npt.NDArray[np.bool_]
+    border_contact_cells: int
+    timings: dict[str, float]
+    params_json: str
+
+def build_geometry(
+    data: npt.NDArray[np.uint8],
+    resolution: float,
+    origin: tuple[float, float, float],
+    params_json: str = "{}",
+    start: Sequence[float] | None = None,
+) -> _Geometry:
+    """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
+
+def default_build_params() -> str:
+    """The default geometry parameters (``BuildParams``) as JSON."""
+
+# --- library (circuits, catalog): raster measurement ---------------------------------
+def measure_map(
+    data: npt.NDArray[np.uint8],
+    resolution: float,
+    origin: tuple[float, float, float],
+) -> tuple[str, npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """(info_json, closed CCW medial centreline (N, 2), local free widths (N,)); CorridorError if no loop."""
 
 # --- sim (batched vehicle simulation) -------------------------------------------------
 STATE_FIELDS: tuple[str, ...]
@@ -106,40 +184,3 @@ def stadium_track(
     straight: float = 6.0, radius: float = 3.0, width: float = 2.0
 ) -> tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]:
     """Analytic stadium track ``(walls [outer, inner], centreline)`` for tests and benchmarks."""
-# --- maps (ROS map YAML + PGM/PNG, nav2 rules) ---------------------------------------
-def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], str]:
-    """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta_json)``."""
-
-def save_map(
-    data: npt.NDArray[np.uint8],
-    resolution: float,
-    origin: tuple[float, float, float],
-    yaml_path: str | os.PathLike[str],
-    image_format: str = "png",
-) -> str:
-    """Write a trinary map image (png/pgm) beside ``yaml_path`` and the YAML, atomically; returns the image path."""
-
-# --- builder (map → walls, ducts, centreline, meshes, round-trip check) ---------------
-class _Geometry(TypedDict):
-    walls: list[npt.NDArray[np.float64]]
-    ducts: list[npt.NDArray[np.float64]]
-    centreline: npt.NDArray[np.float64]
-    meshes: dict[str, tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]]
-    iou: float
-    max_wall_deviation_cells: float
-    corridor_mask: npt.NDArray[np.bool_]
-    border_contact_cells: int
-    timings: dict[str, float]
-    params_json: str
-
-def build_geometry(
-    data: npt.NDArray[np.uint8],
-    resolution: float,
-    origin: tuple[float, float, float],
-    params_json: str = "{}",
-    start: Sequence[float] | None = None,
-) -> _Geometry:
-    """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
-
-def default_build_params() -> str:
-    """The default geometry parameters (``BuildParams``) as JSON."""

@@ -29,7 +29,7 @@ raise :class:`~roboracer_arena.errors.InvalidArgumentError`.
 >>> from roboracer_arena.corridor import extract_corridor
 >>> geo = extract_corridor("maps/berlin.yaml")          # doctest: +SKIP
 >>> geo.iou, len(geo.walls), geo.centreline.shape      # doctest: +SKIP
-(0.99, 2, (1553, 2))
+(0.9987, 2, (709, 2))
 """
 
 from __future__ import annotations
@@ -96,8 +96,12 @@ def extract_corridor(
         map_or_path: an :class:`OccupancyMap` or the path of a ROS map YAML.
         params: geometry parameters overriding :data:`DEFAULT_PARAMS`.
         start: optional pose ``(x, y)`` or ``(x, y, yaw)`` in map metres inside the
-            corridor; without it the corridor is found automatically (the largest
-            outermost free region that encloses an infield and stays off the map border).
+            corridor (the yaw is accepted and ignored; the centreline is always
+            counter-clockwise). Without it the corridor is found automatically: the
+            largest outermost free region that encloses an infield and does not leak.
+            A region touching the map edge along more than 2 % of the border cells
+            leaks (the exterior of a thin-line map); a few cells of contact are
+            accepted, the map edge then acts as a wall (see ``border_contact_cells``).
 
     Raises:
         CorridorError: no closed corridor (blank or open map), walls that leak (the

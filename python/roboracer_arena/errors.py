@@ -30,6 +30,22 @@ class BackendError(ArenaError):
     """A parser backend (e.g. an Ollama server) failed: down, missing model, timeout."""
 
 
+class BackendUnavailableError(BackendError):
+    """The parser backend's server cannot be reached (down, wrong host)."""
+
+
+class ModelNotFoundError(BackendError):
+    """The backend server does not have the requested model (HTTP 404)."""
+
+
+class BackendTimeoutError(BackendError):
+    """The backend did not answer within the timeout."""
+
+
+class MalformedOutputError(BackendError):
+    """The backend answered, but not with a valid TrackSpec."""
+
+
 class GroundingError(ArenaError):
     """A parser produced a value that cannot be traced to the request (an invention)."""
 
@@ -37,12 +53,16 @@ class GroundingError(ArenaError):
 __all__ = [
     "ArenaError",
     "BackendError",
+    "BackendTimeoutError",
+    "BackendUnavailableError",
     "ConfigError",
     "CorridorError",
     "GroundingError",
     "InvalidArgumentError",
     "MapFormatError",
+    "MalformedOutputError",
     "MapIOError",
+    "ModelNotFoundError",
     "RequestParseError",
     "SimulationError",
     "SpecError",

@@ -14,8 +14,12 @@ pub fn atomic_write(path: &Path, bytes: &[u8]) -> Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    std::fs::create_dir_all(dir).map_err(|e| ArenaError::io(dir, format!("cannot create directory: {e}")))?;
-    let name = path.file_name().ok_or_else(|| ArenaError::io(path, "not a file path"))?.to_string_lossy();
+    std::fs::create_dir_all(dir)
+        .map_err(|e| ArenaError::io(dir, format!("cannot create directory: {e}")))?;
+    let name = path
+        .file_name()
+        .ok_or_else(|| ArenaError::io(path, "not a file path"))?
+        .to_string_lossy();
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
     let tmp = dir.join(format!(".{name}.{}.{n}.tmp", std::process::id()));
     let result = (|| {
@@ -41,7 +45,10 @@ mod tests {
         let p = dir.join("sub").join("x.txt");
         atomic_write(&p, b"hello").unwrap();
         assert_eq!(std::fs::read(&p).unwrap(), b"hello");
-        let names: Vec<_> = std::fs::read_dir(p.parent().unwrap()).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(p.parent().unwrap())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(names.len(), 1);
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -11,11 +11,23 @@ use arena_core::geometry::mesh::TriMesh;
 use arena_core::track::build;
 use arena_core::track::params::BuildParams;
 
-fn mesh_to_py<'py>(py: Python<'py>, m: TriMesh) -> (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>) {
+fn mesh_to_py<'py>(
+    py: Python<'py>,
+    m: TriMesh,
+) -> (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>) {
     let (nv, nt) = (m.vertices.len(), m.triangles.len());
-    let v = numpy::ndarray::Array2::from_shape_vec((nv, 3), m.vertices.into_iter().flatten().collect()).expect("shape");
-    let t = numpy::ndarray::Array2::from_shape_vec((nt, 3), m.triangles.into_iter().flatten().collect()).expect("shape");
-    (PyArray2::from_owned_array(py, v), PyArray2::from_owned_array(py, t))
+    let v =
+        numpy::ndarray::Array2::from_shape_vec((nv, 3), m.vertices.into_iter().flatten().collect())
+            .expect("shape");
+    let t = numpy::ndarray::Array2::from_shape_vec(
+        (nt, 3),
+        m.triangles.into_iter().flatten().collect(),
+    )
+    .expect("shape");
+    (
+        PyArray2::from_owned_array(py, v),
+        PyArray2::from_owned_array(py, t),
+    )
 }
 
 /// Build the environment geometry of a map; see ``roboracer_arena.corridor`` for the keys.
@@ -41,7 +53,9 @@ fn build_geometry<'py>(
     };
     let g = crate::maps::grid_from_py(&data, resolution, origin);
     let (w, h) = (g.width, g.height);
-    let geo = py.detach(move || build::build_geometry(&g, &params, start)).py()?;
+    let geo = py
+        .detach(move || build::build_geometry(&g, &params, start))
+        .py()?;
     let d = PyDict::new(py);
     let lines = |ls: &[Vec<[f64; 2]>]| PyList::new(py, ls.iter().map(|l| line_to_py(py, l)));
     d.set_item("walls", lines(&geo.walls)?)?;

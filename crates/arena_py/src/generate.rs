@@ -14,18 +14,27 @@ pub(crate) type MapTuple<'py> = (Bound<'py, PyArray2<u8>>, (f64, f64, f64));
 
 pub(crate) fn grid_to_py<'py>(py: Python<'py>, g: arena_core::grid::OccupancyGrid) -> MapTuple<'py> {
     let o = g.origin;
-    let arr = numpy::ndarray::Array2::from_shape_vec((g.height, g.width), g.data).expect("shape matches");
+    let arr =
+        numpy::ndarray::Array2::from_shape_vec((g.height, g.width), g.data).expect("shape matches");
     (PyArray2::from_owned_array(py, arr), (o[0], o[1], o[2]))
 }
 
-pub(crate) fn points_from_py(xy: &PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<Vec<[f64; 2]>> {
+pub(crate) fn points_from_py(
+    xy: &PyReadonlyArray2<'_, f64>,
+    what: &str,
+) -> PyResult<Vec<[f64; 2]>> {
     if xy.shape()[1] != 2 {
         return Err(crate::errors::InvalidArgumentError::new_err(format!(
             "{what} must have shape (N, 2), got {:?}",
             xy.shape()
         )));
     }
-    Ok(xy.as_array().rows().into_iter().map(|r| [r[0], r[1]]).collect())
+    Ok(xy
+        .as_array()
+        .rows()
+        .into_iter()
+        .map(|r| [r[0], r[1]])
+        .collect())
 }
 
 /// Rasterise a closed centreline with per-vertex full corridor widths (Eq. 3).
@@ -43,13 +52,24 @@ fn rasterise_centreline<'py>(
     let pts = points_from_py(&xy, "xy")?;
     let w: Vec<f64> = widths.as_array().iter().copied().collect();
     let g = py
-        .detach(move || arena_core::grid::rasterise::rasterise_centreline(&pts, &w, resolution, wall_thickness, margin))
+        .detach(move || {
+            arena_core::grid::rasterise::rasterise_centreline(
+                &pts,
+                &w,
+                resolution,
+                wall_thickness,
+                margin,
+            )
+        })
         .py()?;
     Ok(grid_to_py(py, g))
 }
 
 fn parse(spec_json: &str, config_json: &str) -> PyResult<(Spec, ConstructorConfig)> {
-    Ok((Spec::from_json(spec_json).py()?, ConstructorConfig::from_json(config_json).py()?))
+    Ok((
+        Spec::from_json(spec_json).py()?,
+        ConstructorConfig::from_json(config_json).py()?,
+    ))
 }
 
 fn to_json<T: serde::Serialize>(v: &T) -> String {
@@ -86,21 +106,64 @@ fn generate_lattice<'py>(
     spec_json: &str,
     config_json: &str,
     seed: u64,
-) -> PyResult<(&'static str, String, Option<MapTuple<'py>>, Option<Bound<'py, PyArray2<f64>>>)> {
+) -> PyResult<(
+    &'static str,
+    String,
+    Option<MapTuple<'py>>,
+    Option<Bound<'py, PyArray2<f64>>>,
+)> {
     let (spec, cfg) = parse(spec_json, config_json)?;
     let out = py.detach(move || construct::generate(&spec, &cfg, seed));
     Ok(match out {
-        Outcome::Accepted { grid, candidate, report, candidate_index, tried } => {
+        Outcome::Accepted {
+            grid,
+            candidate,
+            report,
+            candidate_index,
+            tried,
+        } => {
             let info = serde_json::json!({
                 "report": report, "candidate_index": candidate_index, "tried": tried, "pitch_m": candidate.pitch_m,
             });
             let line = line_to_py(py, &candidate.centreline);
-            ("accepted", info.to_string(), Some(grid_to_py(py, grid)), Some(line))
+            (
+                "accepted",
+                info.to_string(),
+                Some(grid_to_py(py, grid)),
+                Some(line),
+            )
         }
         Outcome::Rejected(sr) => ("rejected", to_json(&sr), None, None),
-        Outcome::Failed { tried, reasons } => {
-            ("failed", serde_json::json!({"tried": tried, "reasons": reasons}).to_string(), None, None)
-        }
+        Outcome::Failed { tried, reasons } => (
+            "failed",
+            serde_json::json!({"tried": tried, "reasons": reasons}).to_string(),
+            None,
+            None,
+        ),
+    })
+}
+
+/// The lattice constructor without the raster validator in its loop (the paper's
+/// constructor-comparison protocol). Returns ``(info_json, centreline | None)``; info has
+/// ``tried`` and, when no candidate passed the constructor's checks, ``reasons``.
+#[pyfunction]
+fn construct_lattice<'py>(
+    py: Python<'py>,
+    spec_json: &str,
+    config_json: &str,
+    seed: u64,
+) -> PyResult<(String, Option<Bound<'py, PyArray2<f64>>>)> {
+    let (spec, cfg) = parse(spec_json, config_json)?;
+    let out = py.detach(move || construct::first_candidate(&spec, &cfg, seed));
+    Ok(match out {
+        Ok((c, tried)) => (
+            serde_json::json!({"tried": tried, "pitch_m": c.pitch_m}).to_string(),
+            Some(line_to_py(py, &c.centreline)),
+        ),
+        Err((tried, reasons)) => (
+            serde_json::json!({"tried": tried, "reasons": reasons}).to_string(),
+            None,
+        ),
     })
 }
 
@@ -132,13 +195,23 @@ fn validate_map<'py>(
 /// radius, longest straight, total turn; plus its self-clearance outside `exclude_m`.
 #[pyfunction]
 #[pyo3(signature = (xy, corner_radius, exclude_m))]
-fn analyse_curve(py: Python<'_>, xy: PyReadonlyArray2<'_, f64>, corner_radius: f64, exclude_m: f64) -> PyResult<String> {
+fn analyse_curve(
+    py: Python<'_>,
+    xy: PyReadonlyArray2<'_, f64>,
+    corner_radius: f64,
+    exclude_m: f64,
+) -> PyResult<String> {
     let pts = points_from_py(&xy, "xy")?;
-    if pts.len() < 3 || !(corner_radius > 0.0) {
-        return Err(crate::errors::InvalidArgumentError::new_err("analyse_curve needs ≥ 3 points and corner_radius > 0"));
+    if pts.len() < 3 || !(corner_radius.is_finite() && corner_radius > 0.0) {
+        return Err(crate::errors::InvalidArgumentError::new_err(
+            "analyse_curve needs ≥ 3 points and corner_radius > 0",
+        ));
     }
     let (a, c) = py.detach(move || {
-        (features::analyse_closed_curve(&pts, corner_radius), features::self_clearance(&pts, exclude_m, 0.1))
+        (
+            features::analyse_closed_curve(&pts, corner_radius),
+            features::self_clearance(&pts, exclude_m, 0.1),
+        )
     });
     let mut v = serde_json::to_value(&a).expect("plain data");
     v["self_clearance_m"] = serde_json::json!(if c.is_finite() { c } else { -1.0 });
@@ -150,6 +223,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(screen, m)?)?;
     m.add_function(wrap_pyfunction!(derived_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;
+    m.add_function(wrap_pyfunction!(construct_lattice, m)?)?;
     m.add_function(wrap_pyfunction!(validate_map, m)?)?;
     m.add_function(wrap_pyfunction!(analyse_curve, m)?)?;
     Ok(())

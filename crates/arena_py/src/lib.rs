@@ -7,8 +7,9 @@ mod build;
 mod errors;
 mod generate;
 mod grid;
-mod sim;
+mod library;
 mod maps;
+mod sim;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -16,8 +17,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     grid::register(m)?;
     generate::register(m)?;
-    sim::register(m)?;
     maps::register(m)?;
     build::register(m)?;
+    library::register(m)?;
+    sim::register(m)?;
     Ok(())
 }

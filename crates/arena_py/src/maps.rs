@@ -9,20 +9,41 @@ use arena_core::grid::OccupancyGrid;
 
 /// A map from Python: `data` (H, W) uint8 (254 free, 0 occupied, 205 unknown, row 0 =
 /// top image row), resolution (m/cell) and origin (x, y, yaw).
-pub(crate) fn grid_from_py(data: &PyReadonlyArray2<'_, u8>, resolution: f64, origin: (f64, f64, f64)) -> OccupancyGrid {
+pub(crate) fn grid_from_py(
+    data: &PyReadonlyArray2<'_, u8>,
+    resolution: f64,
+    origin: (f64, f64, f64),
+) -> OccupancyGrid {
     let (h, w) = (data.shape()[0], data.shape()[1]);
     let cells: Vec<u8> = data.as_array().iter().copied().collect();
-    OccupancyGrid { width: w, height: h, resolution, origin: [origin.0, origin.1, origin.2], data: cells }
+    OccupancyGrid {
+        width: w,
+        height: h,
+        resolution,
+        origin: [origin.0, origin.1, origin.2],
+        data: cells,
+    }
 }
+
+/// `(data, resolution, origin, meta_json)` as returned to Python.
+type LoadedMap<'py> = (Bound<'py, PyArray2<u8>>, f64, (f64, f64, f64), String);
 
 /// Load a ROS map YAML and its image (nav2 rules for mode, negate and thresholds).
 /// Returns ``(data uint8 (H, W), resolution, origin (x, y, yaw), meta_json)``.
 #[pyfunction]
-fn load_map<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<(Bound<'py, PyArray2<u8>>, f64, (f64, f64, f64), String)> {
+fn load_map<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+) -> PyResult<LoadedMap<'py>> {
     let (g, meta) = py.detach(move || mapfile::load_map(&path)).py()?;
     let res = g.resolution;
     let (data, origin) = crate::generate::grid_to_py(py, g);
-    Ok((data, res, origin, serde_json::to_string(&meta).expect("meta serialises")))
+    Ok((
+        data,
+        res,
+        origin,
+        serde_json::to_string(&meta).expect("meta serialises"),
+    ))
 }
 
 /// Write a trinary map: ``STEM.png|pgm`` beside ``yaml_path``, then the YAML (atomically).
@@ -39,7 +60,9 @@ fn save_map(
 ) -> PyResult<String> {
     let fmt = ImageFormat::parse(image_format).py()?;
     let g = grid_from_py(&data, resolution, origin);
-    let img = py.detach(move || mapfile::save_map(&g, &yaml_path, fmt)).py()?;
+    let img = py
+        .detach(move || mapfile::save_map(&g, &yaml_path, fmt))
+        .py()?;
     Ok(img.display().to_string())
 }
 

@@ -16,7 +16,9 @@ from .. import __version__
 from ..errors import ArenaError
 
 # Subcommand modules, in the order `--help` lists them.
-COMMANDS: list[str] = ["bench", "generate", "validate"]
+COMMANDS: list[str] = [
+    "bench", "build", "circuits", "drive", "generate", "parse", "preview", "tracks", "validate",
+]
 
 EXIT_OK, EXIT_INTERNAL, EXIT_BAD_INPUT, EXIT_REJECTED, EXIT_GENERATION_FAILURE = 0, 1, 2, 3, 4
 

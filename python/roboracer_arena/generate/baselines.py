@@ -3,7 +3,7 @@
 Both share one parameter vector and its bounds:
 
 * ``n_links`` *links*, each a straight (0.3 m … L/4), then a turn of angle in
-  [−137°, 137°] at radius [r_c, 3 r_c];
+  [−137°, 137°] at radius [r_c, 1.4 r_c];
 * one *feature block* per requested feature, spread evenly between the links: a hairpin
   turn of 160°–200° at [r_c, 1.5 r_c]; a chicane as two opposite turns of 60°–110°
   (second/first ratio 0.8–1.2) at [r_c, 1.5 r_c]; a sweeper turn of 70°–110° at
@@ -13,13 +13,17 @@ The vector is integrated into a curvature profile (piecewise constant: 0 on stra
 ±1/ρ on turns) and then into a centreline.
 
 * **DE** (``scipy.optimize.differential_evolution``) projects every integrated curve
-  globally — link turns shifted equally so the total turn is exactly 2π, and the closing
-  gap distributed linearly along the arc length — and minimises the sum of penalties for
-  lap length, minimum radius, self-clearance, hall fit and squared feature-count error
-  (corridor width is imposed by the rasteriser, so its curve-level penalty is zero). It
-  emits its best curve unless that curve crosses itself. Budget: ``maxiter=20``,
-  ``popsize=5`` (≤ 2.6 k evaluations of ~1 ms), ``tol=0.01``, no polishing — a few
-  seconds per trial on one core, so ``bench constructors`` finishes in minutes.
+  globally — link turns shifted equally so the total turn is exactly 2π, then the link
+  straights changed by the least-norm correction that closes the loop (arcs stay exact;
+  a gap left by the straights' bounds is spread linearly along the arc length) — and
+  minimises the sum of penalties for lap length, minimum radius, self-clearance, hall
+  fit and squared feature-count error, each scaled to its validator tolerance (corridor
+  width is imposed by the rasteriser, so its curve-level penalty is zero). It
+  emits its best curve unless that curve crosses itself. Budget: ``maxiter=30``,
+  ``popsize=5`` (≈ 4 k evaluations of ~1–2 ms), ``tol=0.01``, no polishing — several
+  seconds per trial on one core, comparable to the paper's 5.1 s. Link radii are bounded
+  to [r_c, 1.4 r_c], below the detector's sweeper band, so only feature blocks make
+  sweepers (with [r_c, 3 r_c] most DE results grew unrequested sweepers).
 * **Random** draws the vector uniformly once, integrates it, and emits it: no
   optimisation, no projection (the rasteriser closes the loop with a straight segment).
   It is the performance floor.
@@ -38,9 +42,12 @@ from ..constructor_config import ConstructorConfig
 from ..spec import TrackSpec
 
 LINK_TURN_DEG = 137.0
-DE_MAXITER = 20
+# Link radii stay below the detector's sweeper band (1.5 r_c): only feature blocks make sweepers.
+LINK_RADIUS_MAX = 1.4
+DE_MAXITER = 30
 DE_POPSIZE = 5
 STEP_M = 0.1  # integration step along the centreline
+STRAIGHT_MIN_M = 0.3  # shortest link straight
 
 
 def _geometry(spec: TrackSpec, config: ConstructorConfig) -> tuple[float, float, float]:
@@ -73,7 +80,7 @@ def _layout(spec: TrackSpec, config: ConstructorConfig) -> tuple[list[str], int,
     rad = math.radians
     for b in seq:
         if b == "link":
-            bounds += [(0.3, L / 4), (-rad(LINK_TURN_DEG), rad(LINK_TURN_DEG)), (rc, 3 * rc)]
+            bounds += [(STRAIGHT_MIN_M, L / 4), (-rad(LINK_TURN_DEG), rad(LINK_TURN_DEG)), (rc, LINK_RADIUS_MAX * rc)]
         elif b == "hairpin":
             bounds += [(rad(160), rad(200)), (rc, 1.5 * rc), (0.0, 1.0)]
         elif b == "chicane":
@@ -123,12 +130,40 @@ def _integrate(segs: list[tuple[float, float]]) -> tuple[np.ndarray, np.ndarray]
     return np.column_stack([np.concatenate(xs), np.concatenate(ys)]), np.concatenate(ss)
 
 
-def _project(seq: list[str], n_links: int, x: np.ndarray, sense: float) -> np.ndarray:
-    """DE's global projection: total turn 2π (shift link turns), then close the loop."""
+def _endpoint(segs: list[tuple[float, float]]) -> tuple[np.ndarray, np.ndarray]:
+    """Heading at the start of every piece and the end point of the curve (closed form)."""
+    lk = np.array(segs, float).reshape(-1, 2)
+    turn = lk[:, 0] * lk[:, 1]
+    th = np.concatenate([[0.0], np.cumsum(turn)[:-1]])
+    straight = lk[:, 1] == 0.0
+    k = np.where(straight, 1.0, lk[:, 1])
+    dx = np.where(straight, lk[:, 0] * np.cos(th), (np.sin(th + turn) - np.sin(th)) / k)
+    dy = np.where(straight, lk[:, 0] * np.sin(th), -(np.cos(th + turn) - np.cos(th)) / k)
+    return th, np.array([dx.sum(), dy.sum()])
+
+
+def _project(seq: list[str], n_links: int, x: np.ndarray, sense: float, max_straight: float) -> np.ndarray:
+    """DE's global projection. Total turn: every link turn shifted equally so the curve
+    turns exactly 2π. Closure: the link straights (the only free lengths once headings
+    are fixed) change by the least-norm correction that closes the loop, kept within
+    [0.3 m, ``max_straight``];
+    any gap left by that floor is spread linearly along the arc length."""
     segs = _segments(seq, x, sense)
     total = sum(length * k for length, k in segs)
-    shift = (sense * 2 * math.pi - total) / n_links
-    pts, s = _integrate(_segments(seq, x, sense, shift))
+    segs = _segments(seq, x, sense, (sense * 2 * math.pi - total) / n_links)
+    for _ in range(3):
+        th, gap = _endpoint(segs)
+        free = [i for i, (length, k) in enumerate(segs) if k == 0.0 and (length > STRAIGHT_MIN_M + 1e-9 or gap @ [math.cos(th[i]), math.sin(th[i])] < 0)]
+        if np.hypot(*gap) < 1e-6 or len(free) < 2:
+            break
+        u = np.column_stack([np.cos(th[free]), np.sin(th[free])])
+        gram = u.T @ u
+        if abs(np.linalg.det(gram)) < 1e-9:
+            break
+        delta = -u @ np.linalg.solve(gram, gap)
+        for i, d in zip(free, delta):
+            segs[i] = (min(max_straight, max(STRAIGHT_MIN_M, segs[i][0] + d)), 0.0)
+    pts, s = _integrate(segs)
     gap = pts[-1] - pts[0]
     pts = pts - np.outer(s / s[-1], gap)
     return pts[:-1]
@@ -154,7 +189,7 @@ def _self_intersects(pts: np.ndarray) -> bool:
         with np.errstate(divide="ignore", invalid="ignore"):
             t = ((qq[:, 0] - p[0]) * sv[:, 1] - (qq[:, 1] - p[1]) * sv[:, 0]) / den
             u = ((qq[:, 0] - p[0]) * r[1] - (qq[:, 1] - p[1]) * r[0]) / den
-        if np.any((den != 0) & (t >= 0) & (t <= 1) & (u >= 0) & (u <= 1)):
+        if np.any((np.abs(den) > 1e-9) & (t >= 0) & (t <= 1) & (u >= 0) & (u <= 1)):
             return True
     return False
 
@@ -169,14 +204,16 @@ def _penalty(pts: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> flo
     for f in a["features"]:
         counts[f["kind"]] += 1
     feat = sum((counts[k] - getattr(spec, k + "s")) ** 2 for k in counts)
-    pen = 100 * ((length - L) / L) ** 2 + feat
-    pen += 10 * max(0.0, (r_min - a["min_radius_m"]) / r_min) ** 2
-    pen += 10 * max(0.0, (p - clearance) / p) ** 2
+    # Each term is scaled so that reaching the validator's tolerance costs about as much
+    # as one wrong feature count.
+    pen = feat + ((length - L) / (0.02 * L)) ** 2
+    pen += (max(0.0, r_min - a["min_radius_m"]) / (0.05 * r_min)) ** 2
+    pen += (max(0.0, p - clearance) / (0.05 * p)) ** 2
     wall = spec.corridor_width_m + 2 * config.wall_thickness_m
     ux, uy = spec.hall_x_m - 2 * config.hall_margin_m - wall, spec.hall_y_m - 2 * config.hall_margin_m - wall
     ex, ey = np.ptp(pts[:, 0]), np.ptp(pts[:, 1])
     over = min(max(0, ex - ux) + max(0, ey - uy), max(0, ey - ux) + max(0, ex - uy))
-    return pen + 10 * (over / p) ** 2
+    return pen + (over / 0.1) ** 2
 
 
 def _orient(pts: np.ndarray, spec: TrackSpec) -> np.ndarray:
@@ -194,7 +231,7 @@ def construct_baseline(spec: TrackSpec, config: ConstructorConfig, seed: int, ki
     if kind != "de":
         raise ValueError(f"unknown baseline {kind!r}")
     res = differential_evolution(
-        lambda x: _penalty(_project(seq, n_links, x, sense), spec, config),
+        lambda x: _penalty(_project(seq, n_links, x, sense, spec.lap_length_m / 2), spec, config),
         bounds,
         seed=seed,
         maxiter=DE_MAXITER,
@@ -203,7 +240,7 @@ def construct_baseline(spec: TrackSpec, config: ConstructorConfig, seed: int, ki
         polish=False,
         init="sobol",
     )
-    pts = _project(seq, n_links, res.x, sense)
+    pts = _project(seq, n_links, res.x, sense, spec.lap_length_m / 2)
     if _self_intersects(pts):
         return None
     return _orient(pts, spec)

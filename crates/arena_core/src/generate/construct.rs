@@ -32,9 +32,18 @@ pub struct Candidate {
 /// The three outcomes of the pipeline.
 #[derive(Debug)]
 pub enum Outcome {
-    Accepted { grid: OccupancyGrid, candidate: Candidate, report: ValidationReport, candidate_index: u32, tried: u32 },
+    Accepted {
+        grid: OccupancyGrid,
+        candidate: Candidate,
+        report: ValidationReport,
+        candidate_index: u32,
+        tried: u32,
+    },
     Rejected(ScreenResult),
-    Failed { tried: u32, reasons: BTreeMap<String, u32> },
+    Failed {
+        tried: u32,
+        reasons: BTreeMap<String, u32>,
+    },
 }
 
 /// Even perimeters (in lattice edges) whose pitch can land in `PITCH_RANGE`.
@@ -55,19 +64,29 @@ fn perimeter_options(spec: &Spec, d: &Derived) -> Vec<u32> {
 }
 
 /// Construct candidate `k` (lattice growth + rounding + analytic pre-checks).
-pub fn construct(spec: &Spec, cfg: &ConstructorConfig, seed: u64, k: u32) -> Result<Candidate, &'static str> {
+pub fn construct(
+    spec: &Spec,
+    cfg: &ConstructorConfig,
+    seed: u64,
+    k: u32,
+) -> Result<Candidate, &'static str> {
     let d = derive(spec, cfg);
     let options = perimeter_options(spec, &d);
     if options.is_empty() {
         return Err("no lattice perimeter fits the lap length");
     }
-    let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ (k as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+    let mut rng = ChaCha8Rng::seed_from_u64(
+        seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ (k as u64).wrapping_mul(0xD1B5_4A32_D192_ED03),
+    );
     // Larger perimeters (smaller pitch) fit halls better; cycle through all of them.
     let perimeter = options[options.len() - 1 - (k as usize % options.len())];
     let s_est = spec.lap_length_m / perimeter as f64 * 1.05;
     let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
     let box_dim = |b: f64| (((b - 2.0 * cfg.hall_margin_m - wall) / s_est).floor() as i32).max(0);
-    let (cols, rows) = (box_dim(spec.hall_x_m.max(spec.hall_y_m)), box_dim(spec.hall_x_m.min(spec.hall_y_m)));
+    let (cols, rows) = (
+        box_dim(spec.hall_x_m.max(spec.hall_y_m)),
+        box_dim(spec.hall_x_m.min(spec.hall_y_m)),
+    );
     if cols < 1 || rows < 1 {
         return Err("hall too small for one lattice cell");
     }
@@ -83,8 +102,16 @@ pub fn construct(spec: &Spec, cfg: &ConstructorConfig, seed: u64, k: u32) -> Res
     if spec.clockwise() {
         order.reverse();
     }
-    let target = Target { perimeter, hairpins: spec.hairpins, chicanes: spec.chicanes, sweepers: spec.sweepers, min_run, order };
-    let (_, b) = grow(cols, rows, &target, &mut rng).ok_or("lattice growth did not reach the target")?;
+    let target = Target {
+        perimeter,
+        hairpins: spec.hairpins,
+        chicanes: spec.chicanes,
+        sweepers: spec.sweepers,
+        min_run,
+        order,
+    };
+    let (_, b) =
+        grow(cols, rows, &target, &mut rng).ok_or("lattice growth did not reach the target")?;
     // Pick the sweeper corners among the eligible ones.
     let mut slots = b.sweeper_slots.clone();
     let mut is_sweeper = vec![false; b.corners.len()];
@@ -92,14 +119,24 @@ pub fn construct(spec: &Spec, cfg: &ConstructorConfig, seed: u64, k: u32) -> Res
         let i = (rand_chacha::rand_core::Rng::next_u32(&mut rng) as usize) % slots.len();
         is_sweeper[slots.swap_remove(i)] = true;
     }
-    let s = pitch_for_length(spec.lap_length_m, b.perimeter, b.corners.len(), spec.sweepers as usize, rc);
+    let s = pitch_for_length(
+        spec.lap_length_m,
+        b.perimeter,
+        b.corners.len(),
+        spec.sweepers as usize,
+        rc,
+    );
     if s < d.s_min * PITCH_RANGE.0 - 1e-9 || s > d.s_min * PITCH_RANGE.1 {
         return Err("pitch outside range");
     }
-    let mut line = rounded_centreline(&b.corners, &is_sweeper, s, rc, 0.02).ok_or("fillets overlap")?;
+    let mut line =
+        rounded_centreline(&b.corners, &is_sweeper, s, rc, 0.02).ok_or("fillets overlap")?;
     // Hall fit in the original or the 90°-rotated orientation (x along hall_x).
     let ext = extent(&line);
-    let (ux, uy) = (spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall, spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall);
+    let (ux, uy) = (
+        spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall,
+        spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall,
+    );
     if !(ext[0] <= ux && ext[1] <= uy) {
         if ext[1] <= ux && ext[0] <= uy {
             line = line.iter().map(|p| [-p[1], p[0]]).collect();
@@ -111,7 +148,11 @@ pub fn construct(spec: &Spec, cfg: &ConstructorConfig, seed: u64, k: u32) -> Res
         line.reverse();
     }
     let a = analyse_closed_curve(&line, rc);
-    for kind in [FeatureKind::Hairpin, FeatureKind::Chicane, FeatureKind::Sweeper] {
+    for kind in [
+        FeatureKind::Hairpin,
+        FeatureKind::Chicane,
+        FeatureKind::Sweeper,
+    ] {
         if a.count(kind) != spec.target(kind) as usize {
             return Err("analytic feature counts");
         }
@@ -125,7 +166,10 @@ pub fn construct(spec: &Spec, cfg: &ConstructorConfig, seed: u64, k: u32) -> Res
     if self_clearance(&line, PI * d.pitch / 2.0, 0.1) < d.pitch - 1e-6 {
         return Err("analytic self-clearance");
     }
-    Ok(Candidate { centreline: line, pitch_m: s })
+    Ok(Candidate {
+        centreline: line,
+        pitch_m: s,
+    })
 }
 
 fn extent(p: &[[f64; 2]]) -> [f64; 2] {
@@ -140,8 +184,37 @@ fn extent(p: &[[f64; 2]]) -> [f64; 2] {
 }
 
 /// Rasterise a candidate with the configured walls and resolution (Eq. 3).
-pub fn rasterise_candidate(c: &Candidate, spec: &Spec, cfg: &ConstructorConfig) -> crate::Result<OccupancyGrid> {
-    rasterise_constant(&c.centreline, spec.corridor_width_m, cfg.resolution_m, cfg.wall_thickness_m, cfg.map_margin_m)
+pub fn rasterise_candidate(
+    c: &Candidate,
+    spec: &Spec,
+    cfg: &ConstructorConfig,
+) -> crate::Result<OccupancyGrid> {
+    rasterise_constant(
+        &c.centreline,
+        spec.corridor_width_m,
+        cfg.resolution_m,
+        cfg.wall_thickness_m,
+        cfg.map_margin_m,
+    )
+}
+
+/// The lattice constructor on its own, as the paper's constructor comparison runs it:
+/// the first candidate (k < `max_candidates`) that passes the constructor's own analytic
+/// checks, *without* the raster validator in the loop. `Err` carries the number of
+/// candidates tried and why each failed. Algorithm 1 proper is [`generate`].
+pub fn first_candidate(
+    spec: &Spec,
+    cfg: &ConstructorConfig,
+    seed: u64,
+) -> Result<(Candidate, u32), (u32, BTreeMap<String, u32>)> {
+    let mut reasons: BTreeMap<String, u32> = BTreeMap::new();
+    for k in 0..cfg.max_candidates {
+        match construct(spec, cfg, seed, k) {
+            Ok(c) => return Ok((c, k + 1)),
+            Err(why) => *reasons.entry(why.to_string()).or_default() += 1,
+        }
+    }
+    Err((cfg.max_candidates, reasons))
 }
 
 /// Algorithm 1 with the lattice constructor.
@@ -168,12 +241,23 @@ pub fn generate(spec: &Spec, cfg: &ConstructorConfig, seed: u64) -> Outcome {
         };
         let report = validate_map(&grid, spec, cfg);
         if report.valid {
-            return Outcome::Accepted { grid, candidate: c, report, candidate_index: k, tried: k + 1 };
+            return Outcome::Accepted {
+                grid,
+                candidate: c,
+                report,
+                candidate_index: k,
+                tried: k + 1,
+            };
         }
         let failed: Vec<String> = report.failed().iter().map(|c| c.name.clone()).collect();
-        *reasons.entry(format!("raster {}", failed.join("+"))).or_default() += 1;
+        *reasons
+            .entry(format!("raster {}", failed.join("+")))
+            .or_default() += 1;
     }
-    Outcome::Failed { tried: cfg.max_candidates, reasons }
+    Outcome::Failed {
+        tried: cfg.max_candidates,
+        reasons,
+    }
 }
 
 #[cfg(test)]
@@ -210,15 +294,53 @@ mod tests {
     fn generation_is_deterministic_per_seed() {
         let s = spec(50.0, 1, 0, 1);
         let run = |seed| match generate(&s, &ConstructorConfig::default(), seed) {
-            Outcome::Accepted { grid, candidate_index, .. } => (grid.data, candidate_index),
+            Outcome::Accepted {
+                grid,
+                candidate_index,
+                ..
+            } => (grid.data, candidate_index),
             other => panic!("{other:?}"),
         };
         assert_eq!(run(7), run(7));
     }
 
     #[test]
+    fn impossible_counts_fail_with_a_full_histogram() {
+        // r_req = 0.1 m passes the screen; ~18 lattice edges cannot hold 12 hairpins.
+        let mut s = spec(40.0, 12, 0, 0);
+        s.min_radius_m = 0.1;
+        assert!(screen(&s, &ConstructorConfig::default()).passed);
+        match generate(&s, &ConstructorConfig::default(), 0) {
+            Outcome::Failed { tried, reasons } => {
+                assert_eq!(tried, 800);
+                assert_eq!(reasons.values().sum::<u32>(), 800);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(first_candidate(&s, &ConstructorConfig::default(), 0).is_err());
+    }
+
+    #[test]
+    fn clockwise_laps_run_clockwise() {
+        let mut s = spec(50.0, 1, 1, 0);
+        for (dir, sign) in [("counterclockwise", 1.0), ("clockwise", -1.0)] {
+            s.direction = dir.into();
+            let (c, _) =
+                first_candidate(&s, &ConstructorConfig::default(), 3).expect("a candidate");
+            assert_eq!(
+                crate::geometry::signed_area(&c.centreline).signum(),
+                sign,
+                "{dir}"
+            );
+        }
+    }
+
+    #[test]
     fn screen_rejection_comes_first() {
-        assert!(matches!(generate(&spec(200.0, 0, 0, 0), &ConstructorConfig::default(), 0), Outcome::Rejected(_)));
+        assert!(matches!(
+            generate(&spec(200.0, 0, 0, 0), &ConstructorConfig::default(), 0),
+            Outcome::Rejected(_)
+        ));
     }
 }
 #[cfg(test)]
@@ -227,7 +349,20 @@ mod debug_tests {
     #[test]
     #[ignore]
     fn debug_print() {
-        let s = Spec { name: "t".into(), lap_length_m: 40.0, corridor_width_m: 1.2, hall_x_m: 12.0, hall_y_m: 10.0, direction: "counterclockwise".into(), hairpins: 2, chicanes: 0, sweepers: 0, feature_order: vec![], min_radius_m: 0.0, longest_straight_m: 0.0 };
+        let s = Spec {
+            name: "t".into(),
+            lap_length_m: 40.0,
+            corridor_width_m: 1.2,
+            hall_x_m: 12.0,
+            hall_y_m: 10.0,
+            direction: "counterclockwise".into(),
+            hairpins: 2,
+            chicanes: 0,
+            sweepers: 0,
+            feature_order: vec![],
+            min_radius_m: 0.0,
+            longest_straight_m: 0.0,
+        };
         let cfg = ConstructorConfig::default();
         let d = derive(&s, &cfg);
         println!("{d:?} options {:?}", perimeter_options(&s, &d));
@@ -236,16 +371,36 @@ mod debug_tests {
             if let Ok(c) = construct(&s, &cfg, 0, k) {
                 let g = rasterise_candidate(&c, &s, &cfg).unwrap();
                 let r = validate_map(&g, &s, &cfg);
-                if r.valid { continue; }
+                if r.valid {
+                    continue;
+                }
                 let a = analyse_closed_curve(&c.centreline, d.corner_radius);
                 let rl = analyse_closed_curve(&r.centreline, d.corner_radius);
                 println!("k {k} pitch {:.3} failed {:?}", c.pitch_m, r.failed());
-                for t in &a.turns { print!(" [{:.1}° r{:.2} @{:.1}-{:.1}]", t.angle_rad.to_degrees(), t.peak_radius_m, t.start_m, t.end_m); }
+                for t in &a.turns {
+                    print!(
+                        " [{:.1}° r{:.2} @{:.1}-{:.1}]",
+                        t.angle_rad.to_degrees(),
+                        t.peak_radius_m,
+                        t.start_m,
+                        t.end_m
+                    );
+                }
                 println!();
-                for t in &rl.turns { print!(" [{:.1}° r{:.2} @{:.1}-{:.1}]", t.angle_rad.to_degrees(), t.peak_radius_m, t.start_m, t.end_m); }
+                for t in &rl.turns {
+                    print!(
+                        " [{:.1}° r{:.2} @{:.1}-{:.1}]",
+                        t.angle_rad.to_degrees(),
+                        t.peak_radius_m,
+                        t.start_m,
+                        t.end_m
+                    );
+                }
                 println!();
                 shown += 1;
-                if shown > 4 { break; }
+                if shown > 4 {
+                    break;
+                }
             }
         }
     }

@@ -66,7 +66,11 @@ pub struct Polyomino {
 
 impl Polyomino {
     pub fn new(cols: i32, rows: i32) -> Self {
-        Polyomino { cols, rows, cells: vec![false; ((cols + 2) * (rows + 2)) as usize] }
+        Polyomino {
+            cols,
+            rows,
+            cells: vec![false; ((cols + 2) * (rows + 2)) as usize],
+        }
     }
     #[inline]
     fn idx(&self, c: i32, r: i32) -> usize {
@@ -93,7 +97,10 @@ impl Polyomino {
         if c < 0 || r < 0 || c >= self.cols || r >= self.rows || self.get(c, r) {
             return false;
         }
-        let n4 = [(1, 0), (-1, 0), (0, 1), (0, -1)].iter().filter(|(dc, dr)| self.get(c + dc, r + dr)).count();
+        let n4 = [(1, 0), (-1, 0), (0, 1), (0, -1)]
+            .iter()
+            .filter(|(dc, dr)| self.get(c + dc, r + dr))
+            .count();
         if n4 == 0 && !self.is_empty() {
             return false;
         }
@@ -148,7 +155,13 @@ impl Polyomino {
             }
         }
         let Some((c0, r0)) = start else {
-            return Boundary { corners: vec![], perimeter: 0, features: vec![], sweeper_slots: vec![], longest_run: 0 };
+            return Boundary {
+                corners: vec![],
+                perimeter: 0,
+                features: vec![],
+                sweeper_slots: vec![],
+                longest_run: 0,
+            };
         };
         let v0 = (c0, r0);
         let (mut v, mut d) = (v0, (1i32, 0i32));
@@ -170,7 +183,13 @@ impl Polyomino {
             let al = cell(d.0 + n.0, d.1 + n.1);
             let ar = cell(d.0 - n.0, d.1 - n.1);
             let (fl, fr) = (self.get(al.0, al.1), self.get(ar.0, ar.1));
-            let turn: i8 = if fl && fr { -1 } else if fl { 0 } else { 1 };
+            let turn: i8 = if fl && fr {
+                -1
+            } else if fl {
+                0
+            } else {
+                1
+            };
             if turn != 0 {
                 d = if turn > 0 { (-d.1, d.0) } else { (d.1, -d.0) };
                 corners.push((v, turn));
@@ -188,11 +207,21 @@ impl Polyomino {
             run_lengths[0] += run;
         }
         let corners: Vec<Corner> = (0..m)
-            .map(|i| Corner { at: corners[i].0, sense: corners[i].1, run_after: run_lengths[(i + 1) % m] })
+            .map(|i| Corner {
+                at: corners[i].0,
+                sense: corners[i].1,
+                run_after: run_lengths[(i + 1) % m],
+            })
             .collect();
         let longest_run = corners.iter().map(|c| c.run_after).max().unwrap_or(0);
         let (features, sweeper_slots) = classify(&corners);
-        Boundary { corners, perimeter, features, sweeper_slots, longest_run }
+        Boundary {
+            corners,
+            perimeter,
+            features,
+            sweeper_slots,
+            longest_run,
+        }
     }
 }
 
@@ -203,7 +232,9 @@ pub fn classify(corners: &[Corner]) -> (Vec<(FeatureKind, usize)>, Vec<usize>) {
     if m == 0 {
         return (vec![], vec![]);
     }
-    let longest = (0..m).max_by_key(|&i| (corners[i].run_after, std::cmp::Reverse(i))).unwrap();
+    let longest = (0..m)
+        .max_by_key(|&i| (corners[i].run_after, std::cmp::Reverse(i)))
+        .unwrap();
     let first = (longest + 1) % m;
     let at = |k: usize| (first + k) % m;
     // Groups of same-sense corners linked by single edges.
@@ -211,7 +242,10 @@ pub fn classify(corners: &[Corner]) -> (Vec<(FeatureKind, usize)>, Vec<usize>) {
     let mut k = 0;
     while k < m {
         let start = k;
-        while k + 1 < m && corners[at(k)].run_after == 1 && corners[at(k + 1)].sense == corners[at(k)].sense {
+        while k + 1 < m
+            && corners[at(k)].run_after == 1
+            && corners[at(k + 1)].sense == corners[at(k)].sense
+        {
             k += 1;
         }
         groups.push((start, k - start + 1));
@@ -232,7 +266,12 @@ pub fn classify(corners: &[Corner]) -> (Vec<(FeatureKind, usize)>, Vec<usize>) {
         }
         let h = (g + 1) % groups.len();
         let c = corners[at(k0)];
-        if h != g && !used[h] && groups[h].1 == 1 && c.run_after == 1 && corners[at(groups[h].0)].sense != c.sense {
+        if h != g
+            && !used[h]
+            && groups[h].1 == 1
+            && c.run_after == 1
+            && corners[at(groups[h].0)].sense != c.sense
+        {
             used[h] = true;
             feats.push((FeatureKind::Chicane, at(k0)));
             continue;
@@ -249,7 +288,9 @@ pub fn classify(corners: &[Corner]) -> (Vec<(FeatureKind, usize)>, Vec<usize>) {
 pub fn score(b: &Boundary, t: &Target) -> u32 {
     let diff = |a: u32, b: u32| a.abs_diff(b);
     let mut s = diff(b.perimeter, t.perimeter) / 2;
-    s += 2 * (diff(b.count(FeatureKind::Hairpin), t.hairpins) + diff(b.count(FeatureKind::Chicane), t.chicanes));
+    s += 2
+        * (diff(b.count(FeatureKind::Hairpin), t.hairpins)
+            + diff(b.count(FeatureKind::Chicane), t.chicanes));
     s += 2 * t.sweepers.saturating_sub(b.sweeper_slots.len() as u32);
     if b.longest_run < t.min_run {
         s += 1;
@@ -264,16 +305,26 @@ pub fn score(b: &Boundary, t: &Target) -> u32 {
 }
 
 /// Grow one candidate; `None` if growth got stuck before matching the target.
-pub fn grow(cols: i32, rows: i32, target: &Target, rng: &mut ChaCha8Rng) -> Option<(Polyomino, Boundary)> {
+pub fn grow(
+    cols: i32,
+    rows: i32,
+    target: &Target,
+    rng: &mut ChaCha8Rng,
+) -> Option<(Polyomino, Boundary)> {
     let mut p = Polyomino::new(cols, rows);
-    let (c, r) = ((rng.next_u32() % cols as u32) as i32, (rng.next_u32() % rows as u32) as i32);
+    let (c, r) = (
+        (rng.next_u32() % cols as u32) as i32,
+        (rng.next_u32() % rows as u32) as i32,
+    );
     p.set(c, r, true);
     let max_steps = (cols * rows) as usize;
     for _ in 0..max_steps {
         let mut options: Vec<((i32, i32), u32)> = Vec::new();
         for r in 0..rows {
             for c in 0..cols {
-                let touches = [(1, 0), (-1, 0), (0, 1), (0, -1)].iter().any(|(dc, dr)| p.get(c + dc, r + dr));
+                let touches = [(1, 0), (-1, 0), (0, 1), (0, -1)]
+                    .iter()
+                    .any(|(dc, dr)| p.get(c + dc, r + dr));
                 if touches && p.can_add(c, r) {
                     p.set(c, r, true);
                     let b = p.boundary();
@@ -293,8 +344,18 @@ pub fn grow(cols: i32, rows: i32, target: &Target, rng: &mut ChaCha8Rng) -> Opti
         // Mostly greedy (a random best), sometimes exploratory (best + 1), rarely random.
         let best = options.iter().map(|o| o.1).min().unwrap();
         let roll = rng.next_u32() % 100;
-        let slack = if roll < 70 { 0 } else if roll < 95 { 1 } else { u32::MAX / 2 };
-        let pool: Vec<(i32, i32)> = options.iter().filter(|o| o.1 <= best + slack).map(|o| o.0).collect();
+        let slack = if roll < 70 {
+            0
+        } else if roll < 95 {
+            1
+        } else {
+            u32::MAX / 2
+        };
+        let pool: Vec<(i32, i32)> = options
+            .iter()
+            .filter(|o| o.1 <= best + slack)
+            .map(|o| o.0)
+            .collect();
         let (c, r) = pool[(rng.next_u32() as usize) % pool.len()];
         p.set(c, r, true);
         if p.boundary().perimeter > target.perimeter + 8 {
@@ -330,7 +391,11 @@ mod tests {
         assert_eq!(b.corners.len(), 4);
         assert!(b.corners.iter().all(|c| c.sense == 1));
         assert!(b.features.is_empty());
-        assert_eq!(b.sweeper_slots.len(), 4, "every corner has ≥ 2 edges on both sides");
+        assert_eq!(
+            b.sweeper_slots.len(),
+            4,
+            "every corner has ≥ 2 edges on both sides"
+        );
     }
 
     #[test]
@@ -352,10 +417,19 @@ mod tests {
 
     #[test]
     fn growth_is_deterministic_and_hits_the_target() {
-        let t = Target { perimeter: 18, hairpins: 1, chicanes: 0, sweepers: 0, min_run: 0, order: vec![] };
+        let t = Target {
+            perimeter: 18,
+            hairpins: 1,
+            chicanes: 0,
+            sweepers: 0,
+            min_run: 0,
+            order: vec![],
+        };
         let run = |seed| {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
-            (0..50).find_map(|_| grow(7, 5, &t, &mut rng)).map(|(p, b)| (p.cells.clone(), b.perimeter))
+            (0..50)
+                .find_map(|_| grow(7, 5, &t, &mut rng))
+                .map(|(p, b)| (p.cells.clone(), b.perimeter))
         };
         let a = run(3).expect("some candidate matches");
         assert_eq!(a.1, 18);

@@ -31,14 +31,26 @@ pub fn savings(rc: f64) -> (f64, f64) {
 }
 
 /// Lattice pitch `s` that makes the rounded loop exactly `lap` long.
-pub fn pitch_for_length(lap: f64, perimeter_edges: u32, corners: usize, sweepers: usize, rc: f64) -> f64 {
+pub fn pitch_for_length(
+    lap: f64,
+    perimeter_edges: u32,
+    corners: usize,
+    sweepers: usize,
+    rc: f64,
+) -> f64 {
     let (o, s) = savings(rc);
     (lap + (corners - sweepers) as f64 * o + sweepers as f64 * s) / perimeter_edges as f64
 }
 
 /// Build the rounded centreline (counter-clockwise, lattice origin at 0) with points at
 /// most `step` apart along arcs. `None` if some fillets would overlap on an edge.
-pub fn rounded_centreline(corners: &[Corner], is_sweeper: &[bool], s: f64, rc: f64, step: f64) -> Option<Vec<[f64; 2]>> {
+pub fn rounded_centreline(
+    corners: &[Corner],
+    is_sweeper: &[bool],
+    s: f64,
+    rc: f64,
+    step: f64,
+) -> Option<Vec<[f64; 2]>> {
     let m = corners.len();
     let mut verts: Vec<Vertex> = Vec::with_capacity(m + 4);
     for i in 0..m {
@@ -55,8 +67,14 @@ pub fn rounded_centreline(corners: &[Corner], is_sweeper: &[bool], s: f64, rc: f
             let din = unit(prev, corners[i].at);
             let dout = unit(corners[i].at, next);
             let r = SWEEPER_RADIUS * rc;
-            verts.push(Vertex { p: [p[0] - din[0] * a, p[1] - din[1] * a], radius: r });
-            verts.push(Vertex { p: [p[0] + dout[0] * a, p[1] + dout[1] * a], radius: r });
+            verts.push(Vertex {
+                p: [p[0] - din[0] * a, p[1] - din[1] * a],
+                radius: r,
+            });
+            verts.push(Vertex {
+                p: [p[0] + dout[0] * a, p[1] + dout[1] * a],
+                radius: r,
+            });
         } else {
             verts.push(Vertex { p, radius: rc });
         }
@@ -112,7 +130,11 @@ mod tests {
     fn square(n: i32) -> Vec<Corner> {
         [(n, 0), (n, n), (0, n), (0, 0)]
             .iter()
-            .map(|&at| Corner { at, sense: 1, run_after: n as u32 })
+            .map(|&at| Corner {
+                at,
+                sense: 1,
+                run_after: n as u32,
+            })
             .collect()
     }
 

@@ -24,7 +24,11 @@ pub const FEATURE_SHARE: f64 = 0.70;
 /// ℓ_i^min per feature kind (m): (hairpin, chicane, sweeper).
 pub fn feature_min_lengths(r_min: f64) -> (f64, f64, f64) {
     let lead = 2.0 * FEATURE_LEAD_M;
-    (PI * r_min + lead, PI / 2.0 * r_min + lead, PI / 2.0 * r_min + lead)
+    (
+        PI * r_min + lead,
+        PI / 2.0 * r_min + lead,
+        PI / 2.0 * r_min + lead,
+    )
 }
 
 /// Outcome of the screen with every quantity it computed.
@@ -50,7 +54,10 @@ pub fn screen(spec: &Spec, cfg: &ConstructorConfig) -> ScreenResult {
     let budget = FEATURE_SHARE * (1.0 - STRAIGHT_SHARE) * l;
     let mut v = Vec::new();
     if l < l_min {
-        v.push(format!("L = {l:.1} m < 2π r_min = {l_min:.1} m (r_min = {:.2} m)", d.r_min));
+        v.push(format!(
+            "L = {l:.1} m < 2π r_min = {l_min:.1} m (r_min = {:.2} m)",
+            d.r_min
+        ));
     }
     if l > d.l_max {
         v.push(format!(
@@ -82,7 +89,11 @@ pub fn screen(spec: &Spec, cfg: &ConstructorConfig) -> ScreenResult {
 }
 
 fn fmt_num(x: f64) -> String {
-    if x.fract() == 0.0 { format!("{x:.0}") } else { format!("{x}") }
+    if x.fract() == 0.0 {
+        format!("{x:.0}")
+    } else {
+        format!("{x}")
+    }
 }
 
 #[cfg(test)]
@@ -112,7 +123,10 @@ mod tests {
         assert!(!r.passed);
         assert!((r.pitch_m - 2.15).abs() < 1e-12);
         assert!((r.l_max_m - 123.72).abs() < 0.01, "{}", r.l_max_m);
-        assert_eq!(r.violations[0], "L = 200.0 m > L_max = 123.7 m for a 20×15 m hall (p = 2.15 m, m_h = 0.5 m)");
+        assert_eq!(
+            r.violations[0],
+            "L = 200.0 m > L_max = 123.7 m for a 20×15 m hall (p = 2.15 m, m_h = 0.5 m)"
+        );
     }
 
     #[test]

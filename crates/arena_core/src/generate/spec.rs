@@ -28,7 +28,8 @@ pub struct Spec {
 impl Spec {
     /// Parse the JSON produced by `TrackSpec.model_dump_json()`.
     pub fn from_json(text: &str) -> Result<Spec> {
-        let s: Spec = serde_json::from_str(text).map_err(|e| ArenaError::Spec(format!("spec JSON: {e}")))?;
+        let s: Spec =
+            serde_json::from_str(text).map_err(|e| ArenaError::Spec(format!("spec JSON: {e}")))?;
         for (name, v) in [
             ("lap_length_m", s.lap_length_m),
             ("corridor_width_m", s.corridor_width_m),
@@ -36,17 +37,28 @@ impl Spec {
             ("hall_y_m", s.hall_y_m),
         ] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(ArenaError::Spec(format!("{name}: must be a positive finite number (got {v})")));
+                return Err(ArenaError::Spec(format!(
+                    "{name}: must be a positive finite number (got {v})"
+                )));
             }
         }
         if !(s.min_radius_m.is_finite() && s.min_radius_m >= 0.0) {
-            return Err(ArenaError::Spec(format!("min_radius_m: must be ≥ 0 (got {})", s.min_radius_m)));
+            return Err(ArenaError::Spec(format!(
+                "min_radius_m: must be ≥ 0 (got {})",
+                s.min_radius_m
+            )));
         }
         if !(s.longest_straight_m.is_finite() && s.longest_straight_m >= 0.0) {
-            return Err(ArenaError::Spec(format!("longest_straight_m: must be ≥ 0 (got {})", s.longest_straight_m)));
+            return Err(ArenaError::Spec(format!(
+                "longest_straight_m: must be ≥ 0 (got {})",
+                s.longest_straight_m
+            )));
         }
         if s.direction != "clockwise" && s.direction != "counterclockwise" {
-            return Err(ArenaError::Spec(format!("direction: must be clockwise or counterclockwise (got {:?})", s.direction)));
+            return Err(ArenaError::Spec(format!(
+                "direction: must be clockwise or counterclockwise (got {:?})",
+                s.direction
+            )));
         }
         Ok(s)
     }
@@ -97,19 +109,27 @@ impl Default for ConstructorConfig {
 
 impl ConstructorConfig {
     pub fn from_json(text: &str) -> Result<ConstructorConfig> {
-        let c: ConstructorConfig =
-            serde_json::from_str(text).map_err(|e| ArenaError::invalid(format!("constructor config JSON: {e}")))?;
+        let c: ConstructorConfig = serde_json::from_str(text)
+            .map_err(|e| ArenaError::invalid(format!("constructor config JSON: {e}")))?;
         for (name, v) in [
             ("wall_thickness_m", c.wall_thickness_m),
             ("resolution_m", c.resolution_m),
         ] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(ArenaError::invalid(format!("constructor config {name}: must be > 0 (got {v})")));
+                return Err(ArenaError::invalid(format!(
+                    "constructor config {name}: must be > 0 (got {v})"
+                )));
             }
         }
-        for (name, v) in [("clearance_m", c.clearance_m), ("hall_margin_m", c.hall_margin_m), ("map_margin_m", c.map_margin_m)] {
+        for (name, v) in [
+            ("clearance_m", c.clearance_m),
+            ("hall_margin_m", c.hall_margin_m),
+            ("map_margin_m", c.map_margin_m),
+        ] {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(ArenaError::invalid(format!("constructor config {name}: must be ≥ 0 (got {v})")));
+                return Err(ArenaError::invalid(format!(
+                    "constructor config {name}: must be ≥ 0 (got {v})"
+                )));
             }
         }
         Ok(c)
@@ -133,10 +153,20 @@ pub struct Derived {
 
 pub fn derive(spec: &Spec, cfg: &ConstructorConfig) -> Derived {
     let w = spec.corridor_width_m;
-    let r_min = if spec.min_radius_m > 0.0 { spec.min_radius_m } else { (0.75 * w).max(0.9) };
+    let r_min = if spec.min_radius_m > 0.0 {
+        spec.min_radius_m
+    } else {
+        (0.75 * w).max(0.9)
+    };
     let pitch = w + 2.0 * cfg.wall_thickness_m + cfg.clearance_m;
     let m = cfg.hall_margin_m;
     let l_max = ((spec.hall_x_m - 2.0 * m).max(0.0) * (spec.hall_y_m - 2.0 * m).max(0.0)) / pitch;
     let s_min = pitch.max(2.0 * r_min);
-    Derived { r_min, pitch, l_max, s_min, corner_radius: s_min / 2.0 }
+    Derived {
+        r_min,
+        pitch,
+        l_max,
+        s_min,
+        corner_radius: s_min / 2.0,
+    }
 }

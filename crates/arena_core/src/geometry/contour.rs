@@ -36,10 +36,14 @@ type KeyMap<V> = HashMap<u64, V, BuildHasherDefault<KeyHasher>>;
 /// Loops are returned in raster order of their first crossing, without a repeated end
 /// point; degenerate loops of fewer than 3 points are dropped.
 pub fn marching_squares(f: &[f32], width: usize, height: usize, level: f32) -> Vec<Vec<[f64; 2]>> {
-    assert_eq!(f.len(), width * height, "field size does not match width × height");
+    assert_eq!(
+        f.len(),
+        width * height,
+        "field size does not match width × height"
+    );
     let (w, h) = (width as i64, height as i64);
     let nw = w + 2; // lattice nodes (i, j) with i in 0..=w+1, j in 0..=h+1 (padding ring)
-    // Value at lattice node (i, j); None outside the grid (= not inside).
+                    // Value at lattice node (i, j); None outside the grid (= not inside).
     let at = |i: i64, j: i64| -> Option<f32> {
         (i >= 1 && i <= w && j >= 1 && j <= h).then(|| f[((h - j) * w + (i - 1)) as usize])
     };
@@ -52,7 +56,11 @@ pub fn marching_squares(f: &[f32], width: usize, height: usize, level: f32) -> V
             _ => 0.5, // one end in the padding: the crossing is the grid edge
         };
         let (u, v) = (i as f64 - 0.5, j as f64 - 0.5);
-        if dir == 0 { [u + t, v] } else { [u, v + t] }
+        if dir == 0 {
+            [u + t, v]
+        } else {
+            [u, v + t]
+        }
     };
 
     // next[start edge] = (end edge, point on start edge); order = starts in raster order.
@@ -86,15 +94,22 @@ pub fn marching_squares(f: &[f32], width: usize, height: usize, level: f32) -> V
             // Square edge k runs from corner k to corner k+1 (counter-clockwise).
             let edges = [(i, j, 0), (i + 1, j, 1), (i, j + 1, 0), (i, j, 1)];
             let saddle = case == 5 || case == 10;
-            let centre_inside = saddle && v.iter().map(|x| x.unwrap_or(level) as f64).sum::<f64>() / 4.0 < level as f64;
+            let centre_inside = saddle
+                && v.iter().map(|x| x.unwrap_or(level) as f64).sum::<f64>() / 4.0 < level as f64;
             for k in 0..4 {
-                if !(b[k] && !b[(k + 1) % 4]) {
+                if !b[k] || b[(k + 1) % 4] {
                     continue; // not an out-edge (inside → outside walking counter-clockwise)
                 }
                 let end = if saddle {
-                    if centre_inside { (k + 1) % 4 } else { (k + 3) % 4 }
+                    if centre_inside {
+                        (k + 1) % 4
+                    } else {
+                        (k + 3) % 4
+                    }
                 } else {
-                    (0..4).find(|&m| !b[m] && b[(m + 1) % 4]).expect("one in-edge")
+                    (0..4)
+                        .find(|&m| !b[m] && b[(m + 1) % 4])
+                        .expect("one in-edge")
                 };
                 let (si, sj, sd) = edges[k];
                 let (ei, ej, ed) = edges[end];
@@ -106,7 +121,9 @@ pub fn marching_squares(f: &[f32], width: usize, height: usize, level: f32) -> V
     }
     let mut loops = Vec::new();
     for s in order {
-        let Some(&(mut nxt, p)) = next.get(&s) else { continue };
+        let Some(&(mut nxt, p)) = next.get(&s) else {
+            continue;
+        };
         next.remove(&s);
         let mut pts = vec![p];
         while nxt != s {
@@ -150,7 +167,11 @@ mod tests {
         assert_eq!(loops.len(), 1);
         let l = &loops[0];
         assert!((polyline_length(l, true) - 2.0 * PI * r).abs() / (2.0 * PI * r) < 0.005);
-        assert!((signed_area(l) - PI * r * r).abs() / (PI * r * r) < 0.005, "area {}", signed_area(l));
+        assert!(
+            (signed_area(l) - PI * r * r).abs() / (PI * r * r) < 0.005,
+            "area {}",
+            signed_area(l)
+        );
         for p in l {
             assert!(((p[0] - 40.3).hypot(p[1] - 38.9) - r).abs() < 0.05);
         }

@@ -50,7 +50,11 @@ pub fn iou(a: &[bool], b: &[bool]) -> f64 {
         inter += (x && y) as usize;
         uni += (x || y) as usize;
     }
-    if uni == 0 { 1.0 } else { inter as f64 / uni as f64 }
+    if uni == 0 {
+        1.0
+    } else {
+        inter as f64 / uni as f64
+    }
 }
 
 #[cfg(test)]

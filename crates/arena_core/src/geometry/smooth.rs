@@ -20,7 +20,9 @@ pub fn simplify_closed(p: &[[f64; 2]], tol: f64) -> Vec<[f64; 2]> {
     if n <= 4 || tol <= 0.0 {
         return p.to_vec();
     }
-    let far = (1..n).max_by(|&a, &b| dist(p[0], p[a]).total_cmp(&dist(p[0], p[b]))).unwrap();
+    let far = (1..n)
+        .max_by(|&a, &b| dist(p[0], p[a]).total_cmp(&dist(p[0], p[b])))
+        .unwrap();
     let mut keep = vec![false; n];
     keep[0] = true;
     keep[far] = true;
@@ -46,7 +48,11 @@ pub fn simplify_closed(p: &[[f64; 2]], tol: f64) -> Vec<[f64; 2]> {
         }
     }
     let out: Vec<[f64; 2]> = (0..n).filter(|&i| keep[i]).map(|i| p[i]).collect();
-    if out.len() < 3 { p.to_vec() } else { out }
+    if out.len() < 3 {
+        p.to_vec()
+    } else {
+        out
+    }
 }
 
 /// Taubin smoothing (λ = 0.5, μ = −0.53) of a closed polyline: removes the staircase of
@@ -62,7 +68,10 @@ pub fn smooth_closed(p: &[[f64; 2]], iterations: usize) -> Vec<[f64; 2]> {
         for factor in [0.5, -0.53] {
             for i in 0..n {
                 let (a, b, c) = (cur[(i + n - 1) % n], cur[i], cur[(i + 1) % n]);
-                tmp[i] = [b[0] + factor * ((a[0] + c[0]) / 2.0 - b[0]), b[1] + factor * ((a[1] + c[1]) / 2.0 - b[1])];
+                tmp[i] = [
+                    b[0] + factor * ((a[0] + c[0]) / 2.0 - b[0]),
+                    b[1] + factor * ((a[1] + c[1]) / 2.0 - b[1]),
+                ];
             }
             std::mem::swap(&mut cur, &mut tmp);
         }
@@ -108,7 +117,11 @@ pub fn resample_closed(p: &[[f64; 2]], spacing: f64) -> Vec<[f64; 2]> {
 pub fn hausdorff_to_closed(fine: &[[f64; 2]], coarse: &[[f64; 2]]) -> f64 {
     let m = coarse.len();
     fine.iter()
-        .map(|&q| (0..m).map(|i| seg_dist(q, coarse[i], coarse[(i + 1) % m])).fold(f64::INFINITY, f64::min))
+        .map(|&q| {
+            (0..m)
+                .map(|i| seg_dist(q, coarse[i], coarse[(i + 1) % m]))
+                .fold(f64::INFINITY, f64::min)
+        })
         .fold(0.0, f64::max)
 }
 
@@ -120,16 +133,29 @@ mod tests {
     use std::f64::consts::PI;
 
     fn circle(n: usize, r: f64) -> Vec<[f64; 2]> {
-        (0..n).map(|i| { let a = 2.0 * PI * i as f64 / n as f64; [r * a.cos(), r * a.sin()] }).collect()
+        (0..n)
+            .map(|i| {
+                let a = 2.0 * PI * i as f64 / n as f64;
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect()
     }
 
     #[test]
     fn square_with_collinear_points_simplifies_to_corners() {
         let mut sq = Vec::new();
-        for i in 0..10 { sq.push([i as f64, 0.0]); }
-        for i in 0..10 { sq.push([10.0, i as f64]); }
-        for i in 0..10 { sq.push([10.0 - i as f64, 10.0]); }
-        for i in 0..10 { sq.push([0.0, 10.0 - i as f64]); }
+        for i in 0..10 {
+            sq.push([i as f64, 0.0]);
+        }
+        for i in 0..10 {
+            sq.push([10.0, i as f64]);
+        }
+        for i in 0..10 {
+            sq.push([10.0 - i as f64, 10.0]);
+        }
+        for i in 0..10 {
+            sq.push([0.0, 10.0 - i as f64]);
+        }
         let s = simplify_closed(&sq, 0.01);
         assert_eq!(s.len(), 4);
         assert_eq!(signed_area(&s), 100.0);
@@ -142,8 +168,12 @@ mod tests {
         assert!((polyline_length(&s, true) - polyline_length(&c, true)).abs() < 0.01);
         let r = resample_closed(&c, 0.5);
         assert_eq!(r.len(), (2.0 * PI * 10.0 / 0.5).round() as usize);
-        let gaps: Vec<f64> = (0..r.len()).map(|i| dist(r[i], r[(i + 1) % r.len()])).collect();
-        let (lo, hi) = gaps.iter().fold((f64::MAX, 0.0f64), |(a, b), &g| (a.min(g), b.max(g)));
+        let gaps: Vec<f64> = (0..r.len())
+            .map(|i| dist(r[i], r[(i + 1) % r.len()]))
+            .collect();
+        let (lo, hi) = gaps
+            .iter()
+            .fold((f64::MAX, 0.0f64), |(a, b), &g| (a.min(g), b.max(g)));
         assert!(hi - lo < 1e-3, "{lo} {hi}");
     }
 

@@ -34,7 +34,14 @@ pub fn sweep_closed_tube(path: &[[f64; 2]], radius: f64, z: f64, segments: usize
 
 /// Rings every `spacing` metres of arc length along a closed path: open bands of
 /// length `width` and radius `radius`, each two cross-sections joined by quads.
-pub fn rings_along(path: &[[f64; 2]], spacing: f64, width: f64, radius: f64, z: f64, segments: usize) -> TriMesh {
+pub fn rings_along(
+    path: &[[f64; 2]],
+    spacing: f64,
+    width: f64,
+    radius: f64,
+    z: f64,
+    segments: usize,
+) -> TriMesh {
     let mut m = TriMesh::default();
     let n = path.len();
     if n < 2 || spacing <= 0.0 || width <= 0.0 {
@@ -73,21 +80,38 @@ pub fn rings_along(path: &[[f64; 2]], spacing: f64, width: f64, radius: f64, z: 
 /// A flat rectangle at z = 0 covering `[x0, x1] × [y0, y1]`, facing +z.
 pub fn floor_quad(x0: f64, y0: f64, x1: f64, y1: f64) -> TriMesh {
     let v = |x: f64, y: f64| [x as f32, y as f32, 0.0];
-    TriMesh { vertices: vec![v(x0, y0), v(x1, y0), v(x1, y1), v(x0, y1)], triangles: vec![[0, 1, 2], [0, 2, 3]] }
+    TriMesh {
+        vertices: vec![v(x0, y0), v(x1, y0), v(x1, y1), v(x0, y1)],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+    }
 }
 
 /// Bounding box (min x, min y, max x, max y) of a set of polylines.
 pub fn bounds(lines: &[Polyline]) -> Option<[f64; 4]> {
-    let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
     for p in lines.iter().flatten() {
-        b = [b[0].min(p[0]), b[1].min(p[1]), b[2].max(p[0]), b[3].max(p[1])];
+        b = [
+            b[0].min(p[0]),
+            b[1].min(p[1]),
+            b[2].max(p[0]),
+            b[3].max(p[1]),
+        ];
     }
     b[0].is_finite().then_some(b)
 }
 
 fn unit(v: [f64; 2]) -> [f64; 2] {
     let l = v[0].hypot(v[1]);
-    if l > 0.0 { [v[0] / l, v[1] / l] } else { [0.0, 0.0] }
+    if l > 0.0 {
+        [v[0] / l, v[1] / l]
+    } else {
+        [0.0, 0.0]
+    }
 }
 
 /// Cross-section around `c`: angle θ from the lateral direction towards +z.
@@ -95,7 +119,11 @@ fn push_section(m: &mut TriMesh, c: [f64; 2], lat: [f64; 2], r: f64, z: f64, s: 
     for k in 0..s {
         let th = std::f64::consts::TAU * k as f64 / s as f64;
         let (sn, cs) = th.sin_cos();
-        m.vertices.push([(c[0] + r * cs * lat[0]) as f32, (c[1] + r * cs * lat[1]) as f32, (z + r * sn) as f32]);
+        m.vertices.push([
+            (c[0] + r * cs * lat[0]) as f32,
+            (c[1] + r * cs * lat[1]) as f32,
+            (z + r * sn) as f32,
+        ]);
     }
 }
 
@@ -115,15 +143,25 @@ mod tests {
     use std::f64::consts::PI;
 
     fn circle(n: usize, r: f64) -> Vec<[f64; 2]> {
-        (0..n).map(|i| { let a = 2.0 * PI * i as f64 / n as f64; [r * a.cos(), r * a.sin()] }).collect()
+        (0..n)
+            .map(|i| {
+                let a = 2.0 * PI * i as f64 / n as f64;
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect()
     }
 
     /// Signed volume of a closed mesh (positive when triangles face outward).
     fn volume(m: &TriMesh) -> f64 {
-        m.triangles.iter().map(|t| {
-            let [a, b, c] = t.map(|i| m.vertices[i as usize].map(|x| x as f64));
-            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0
-        }).sum()
+        m.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| m.vertices[i as usize].map(|x| x as f64));
+                (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                    + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                    / 6.0
+            })
+            .sum()
     }
 
     #[test]
@@ -134,8 +172,14 @@ mod tests {
         assert_eq!(m.triangles.len(), 2 * 200 * 16);
         let exact = 2.0 * PI * big_r * PI * r * r;
         let v = volume(&m);
-        assert!(v > 0.0 && (v - exact).abs() / exact < 0.03, "{v} vs {exact}");
-        assert!(m.vertices.iter().all(|p| p[2] >= -1e-6 && p[2] <= (2.0 * r) as f32 + 1e-6));
+        assert!(
+            v > 0.0 && (v - exact).abs() / exact < 0.03,
+            "{v} vs {exact}"
+        );
+        assert!(m
+            .vertices
+            .iter()
+            .all(|p| p[2] >= -1e-6 && p[2] <= (2.0 * r) as f32 + 1e-6));
     }
 
     #[test]

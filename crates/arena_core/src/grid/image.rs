@@ -59,7 +59,12 @@ pub struct Thresholds {
 
 impl Default for Thresholds {
     fn default() -> Self {
-        Thresholds { mode: MapMode::Trinary, negate: false, occupied_thresh: 0.65, free_thresh: 0.196 }
+        Thresholds {
+            mode: MapMode::Trinary,
+            negate: false,
+            occupied_thresh: 0.65,
+            free_thresh: 0.196,
+        }
     }
 }
 
@@ -110,9 +115,18 @@ fn convert<T: Copy + Into<f64>>(s: &[T], channels: usize, maxval: f64, t: &Thres
     s.chunks_exact(channels)
         .map(|px| {
             // Grey images have R = G = B = grey, so their mean is the grey value itself.
-            let rgb_sum: f64 = px[..colour].iter().map(|&v| v.into()).sum::<f64>() * (3 / colour) as f64;
-            let a = if alpha { px[channels - 1].into() } else { maxval };
-            let shade = if t.mode == MapMode::Trinary && alpha { (rgb_sum + a) / 4.0 } else { rgb_sum / 3.0 } / maxval;
+            let rgb_sum: f64 =
+                px[..colour].iter().map(|&v| v.into()).sum::<f64>() * (3 / colour) as f64;
+            let a = if alpha {
+                px[channels - 1].into()
+            } else {
+                maxval
+            };
+            let shade = if t.mode == MapMode::Trinary && alpha {
+                (rgb_sum + a) / 4.0
+            } else {
+                rgb_sum / 3.0
+            } / maxval;
             occupancy(shade, a < maxval, t)
         })
         .collect()
@@ -156,16 +170,28 @@ mod tests {
     use super::*;
 
     fn img(channels: usize, px: Vec<u8>) -> PixelImage {
-        PixelImage { width: px.len() / channels, height: 1, channels, maxval: 255, samples: Samples::U8(px) }
+        PixelImage {
+            width: px.len() / channels,
+            height: 1,
+            channels,
+            maxval: 255,
+            samples: Samples::U8(px),
+        }
     }
 
     #[test]
     fn trinary_grey_thresholds() {
         let t = Thresholds::default();
         // 254 → occ 0.004 free; 0 → occ 1 occupied; 205 → occ 0.196 (not < 0.196) unknown.
-        assert_eq!(img(1, vec![254, 0, 205, 255, 60]).to_occupancy(&t), vec![FREE, OCCUPIED, UNKNOWN, FREE, OCCUPIED]);
+        assert_eq!(
+            img(1, vec![254, 0, 205, 255, 60]).to_occupancy(&t),
+            vec![FREE, OCCUPIED, UNKNOWN, FREE, OCCUPIED]
+        );
         let neg = Thresholds { negate: true, ..t };
-        assert_eq!(img(1, vec![254, 0]).to_occupancy(&neg), vec![OCCUPIED, FREE]);
+        assert_eq!(
+            img(1, vec![254, 0]).to_occupancy(&neg),
+            vec![OCCUPIED, FREE]
+        );
     }
 
     #[test]
@@ -173,9 +199,18 @@ mod tests {
         let t = Thresholds::default();
         // white but fully transparent: shade = (3·255 + 0)/4/255 = 0.75 → occ 0.25 → unknown
         assert_eq!(img(2, vec![255, 0]).to_occupancy(&t), vec![UNKNOWN]);
-        assert_eq!(img(4, vec![255, 255, 255, 255, 0, 0, 0, 255]).to_occupancy(&t), vec![FREE, OCCUPIED]);
-        let s = Thresholds { mode: MapMode::Scale, ..t };
-        assert_eq!(img(2, vec![255, 254, 255, 255, 128, 255]).to_occupancy(&s), vec![UNKNOWN, FREE, UNKNOWN]);
+        assert_eq!(
+            img(4, vec![255, 255, 255, 255, 0, 0, 0, 255]).to_occupancy(&t),
+            vec![FREE, OCCUPIED]
+        );
+        let s = Thresholds {
+            mode: MapMode::Scale,
+            ..t
+        };
+        assert_eq!(
+            img(2, vec![255, 254, 255, 255, 128, 255]).to_occupancy(&s),
+            vec![UNKNOWN, FREE, UNKNOWN]
+        );
     }
 
     #[test]
@@ -183,14 +218,26 @@ mod tests {
         let t = Thresholds::default();
         // mean(255, 255, 0) = 170 → occ 0.333 → unknown
         assert_eq!(img(3, vec![255, 255, 0]).to_occupancy(&t), vec![UNKNOWN]);
-        let r = Thresholds { mode: MapMode::Raw, ..t };
-        assert_eq!(img(1, vec![0, 100, 50, 19, 65, 101, 255]).to_occupancy(&r), vec![FREE, OCCUPIED, UNKNOWN, FREE, OCCUPIED, UNKNOWN, UNKNOWN]);
+        let r = Thresholds {
+            mode: MapMode::Raw,
+            ..t
+        };
+        assert_eq!(
+            img(1, vec![0, 100, 50, 19, 65, 101, 255]).to_occupancy(&r),
+            vec![FREE, OCCUPIED, UNKNOWN, FREE, OCCUPIED, UNKNOWN, UNKNOWN]
+        );
     }
 
     #[test]
     fn sixteen_bit_scales_by_maxval() {
         let t = Thresholds::default();
-        let im = PixelImage { width: 3, height: 1, channels: 1, maxval: 65535, samples: Samples::U16(vec![65535, 0, 52000]) };
+        let im = PixelImage {
+            width: 3,
+            height: 1,
+            channels: 1,
+            maxval: 65535,
+            samples: Samples::U16(vec![65535, 0, 52000]),
+        };
         assert_eq!(im.to_occupancy(&t), vec![FREE, OCCUPIED, UNKNOWN]);
     }
 }

@@ -50,7 +50,9 @@ impl ImageFormat {
         match s.to_ascii_lowercase().as_str() {
             "png" => Ok(ImageFormat::Png),
             "pgm" => Ok(ImageFormat::Pgm),
-            _ => Err(ArenaError::invalid(format!("image_format must be 'png' or 'pgm', got {s:?}"))),
+            _ => Err(ArenaError::invalid(format!(
+                "image_format must be 'png' or 'pgm', got {s:?}"
+            ))),
         }
     }
     fn extension(self) -> &'static str {
@@ -80,32 +82,59 @@ fn number(v: &Value) -> Option<f64> {
 fn parse_yaml(path: &Path, text: &str) -> Result<YamlFields> {
     let bad = |m: String| ArenaError::map_format(path, m);
     let doc: Value = serde_yaml::from_str(text).map_err(|e| bad(format!("not valid YAML: {e}")))?;
-    let map = doc.as_mapping().ok_or_else(|| bad("expected a YAML mapping of map_server keys (image, resolution, origin, ...)".into()))?;
+    let map = doc.as_mapping().ok_or_else(|| {
+        bad("expected a YAML mapping of map_server keys (image, resolution, origin, ...)".into())
+    })?;
     let get = |k: &str| map.get(Value::String(k.into()));
     let mut defaulted = Vec::new();
 
     let image = match get("image") {
-        None => return Err(bad("missing required key 'image' (the map image file)".into())),
+        None => {
+            return Err(bad(
+                "missing required key 'image' (the map image file)".into()
+            ))
+        }
         Some(Value::String(s)) if !s.trim().is_empty() => s.trim().to_string(),
         Some(v) => return Err(bad(format!("'image' must be a file name, got {}", show(v)))),
     };
     let resolution = match get("resolution") {
-        None => return Err(bad("missing required key 'resolution' (metres per pixel)".into())),
-        Some(v) => number(v).ok_or_else(|| bad(format!("'resolution' must be a number, got {}", show(v))))?,
+        None => {
+            return Err(bad(
+                "missing required key 'resolution' (metres per pixel)".into()
+            ))
+        }
+        Some(v) => number(v)
+            .ok_or_else(|| bad(format!("'resolution' must be a number, got {}", show(v))))?,
     };
     if !(resolution.is_finite() && resolution > 0.0) {
-        return Err(bad(format!("'resolution' must be a finite number > 0, got {resolution}")));
+        return Err(bad(format!(
+            "'resolution' must be a finite number > 0, got {resolution}"
+        )));
     }
     let origin = match get("origin") {
-        None => return Err(bad("missing required key 'origin' ([x, y, yaw] of the lower-left pixel)".into())),
+        None => {
+            return Err(bad(
+                "missing required key 'origin' ([x, y, yaw] of the lower-left pixel)".into(),
+            ))
+        }
         Some(Value::Sequence(s)) if s.len() == 2 || s.len() == 3 => {
             let mut o = [0.0; 3];
             for (k, v) in s.iter().enumerate() {
-                o[k] = number(v).filter(|x| x.is_finite()).ok_or_else(|| bad(format!("'origin' must hold finite numbers, got {}", show(v))))?;
+                o[k] = number(v).filter(|x| x.is_finite()).ok_or_else(|| {
+                    bad(format!(
+                        "'origin' must hold finite numbers, got {}",
+                        show(v)
+                    ))
+                })?;
             }
             o
         }
-        Some(v) => return Err(bad(format!("'origin' must be a list [x, y, yaw], got {}", show(v)))),
+        Some(v) => {
+            return Err(bad(format!(
+                "'origin' must be a list [x, y, yaw], got {}",
+                show(v)
+            )))
+        }
     };
     let mut thresh = |k: &str, default: f64| -> Result<f64> {
         match get(k) {
@@ -115,7 +144,10 @@ fn parse_yaml(path: &Path, text: &str) -> Result<YamlFields> {
             }
             Some(v) => match number(v) {
                 Some(x) if (0.0..=1.0).contains(&x) => Ok(x),
-                _ => Err(bad(format!("'{k}' must be a number in [0, 1], got {}", show(v)))),
+                _ => Err(bad(format!(
+                    "'{k}' must be a number in [0, 1], got {}",
+                    show(v)
+                ))),
             },
         }
     };
@@ -129,7 +161,12 @@ fn parse_yaml(path: &Path, text: &str) -> Result<YamlFields> {
         Some(Value::Bool(b)) => *b,
         Some(v) => match number(v) {
             Some(x) if x == 0.0 || x == 1.0 => x == 1.0,
-            _ => return Err(bad(format!("'negate' must be 0, 1, true or false, got {}", show(v)))),
+            _ => {
+                return Err(bad(format!(
+                    "'negate' must be 0, 1, true or false, got {}",
+                    show(v)
+                )))
+            }
         },
     };
     let mode = match get("mode") {
@@ -139,24 +176,49 @@ fn parse_yaml(path: &Path, text: &str) -> Result<YamlFields> {
         }
         Some(Value::String(s)) => MapMode::parse(s.trim())
             .ok_or_else(|| bad(format!("'mode' must be trinary, scale or raw, got {s:?}")))?,
-        Some(v) => return Err(bad(format!("'mode' must be trinary, scale or raw, got {}", show(v)))),
+        Some(v) => {
+            return Err(bad(format!(
+                "'mode' must be trinary, scale or raw, got {}",
+                show(v)
+            )))
+        }
     };
-    Ok(YamlFields { image, resolution, origin, thresholds: Thresholds { mode, negate, occupied_thresh, free_thresh }, defaulted })
+    Ok(YamlFields {
+        image,
+        resolution,
+        origin,
+        thresholds: Thresholds {
+            mode,
+            negate,
+            occupied_thresh,
+            free_thresh,
+        },
+        defaulted,
+    })
 }
 
 fn show(v: &Value) -> String {
-    serde_yaml::to_string(v).map(|s| s.trim().to_string()).unwrap_or_else(|_| format!("{v:?}"))
+    serde_yaml::to_string(v)
+        .map(|s| s.trim().to_string())
+        .unwrap_or_else(|_| format!("{v:?}"))
 }
 
 /// A helpful sentence when the image named by the YAML does not exist: the yaml's
 /// stem with an image extension, or any lone image in the folder.
 fn missing_image_hint(yaml: &Path) -> String {
     let dir = yaml.parent().unwrap_or(Path::new("."));
-    let stem = yaml.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or_default();
+    let stem = yaml
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_default();
     for ext in ["pgm", "png", "PGM", "PNG"] {
         let cand = dir.join(format!("{stem}.{ext}"));
         if cand.is_file() {
-            return format!("; '{}' exists beside the YAML: did you mean `image: {}`?", cand.display(), format_args!("{stem}.{ext}"));
+            return format!(
+                "; '{}' exists beside the YAML: did you mean `image: {}`?",
+                cand.display(),
+                format_args!("{stem}.{ext}")
+            );
         }
     }
     String::new()
@@ -164,7 +226,8 @@ fn missing_image_hint(yaml: &Path) -> String {
 
 /// Decode an image file by its content (PNG signature or P2/P5 magic).
 pub fn read_image(path: &Path) -> Result<(PixelImage, &'static str)> {
-    let bytes = std::fs::read(path).map_err(|e| ArenaError::io(path, format!("cannot read map image: {e}")))?;
+    let bytes = std::fs::read(path)
+        .map_err(|e| ArenaError::io(path, format!("cannot read map image: {e}")))?;
     let bad = |m: String| ArenaError::map_format(path, m);
     if bytes.is_empty() {
         return Err(bad("map image is empty (0 bytes)".into()));
@@ -174,7 +237,9 @@ pub fn read_image(path: &Path) -> Result<(PixelImage, &'static str)> {
     } else if bytes.first() == Some(&b'P') {
         Ok((pgm::decode(&bytes).map_err(bad)?, "pgm"))
     } else {
-        Err(bad("unsupported or corrupt map image: neither PNG nor PGM (P2/P5)".into()))
+        Err(bad(
+            "unsupported or corrupt map image: neither PNG nor PGM (P2/P5)".into(),
+        ))
     }
 }
 
@@ -182,9 +247,13 @@ pub fn read_image(path: &Path) -> Result<(PixelImage, &'static str)> {
 pub fn load_map(yaml_path: impl AsRef<Path>) -> Result<(OccupancyGrid, MapMeta)> {
     let yaml_path = yaml_path.as_ref();
     if yaml_path.is_dir() {
-        return Err(ArenaError::io(yaml_path, "is a directory, expected a map YAML file"));
+        return Err(ArenaError::io(
+            yaml_path,
+            "is a directory, expected a map YAML file",
+        ));
     }
-    let text = std::fs::read_to_string(yaml_path).map_err(|e| ArenaError::io(yaml_path, format!("cannot read map YAML: {e}")))?;
+    let text = std::fs::read_to_string(yaml_path)
+        .map_err(|e| ArenaError::io(yaml_path, format!("cannot read map YAML: {e}")))?;
     let y = parse_yaml(yaml_path, &text)?;
     let image_path: PathBuf = match Path::new(&y.image) {
         p if p.is_absolute() => p.to_path_buf(),
@@ -193,12 +262,23 @@ pub fn load_map(yaml_path: impl AsRef<Path>) -> Result<(OccupancyGrid, MapMeta)>
     if !image_path.is_file() {
         return Err(ArenaError::map_format(
             yaml_path,
-            format!("map image '{}' (from `image: {}`) does not exist{}", image_path.display(), y.image, missing_image_hint(yaml_path)),
+            format!(
+                "map image '{}' (from `image: {}`) does not exist{}",
+                image_path.display(),
+                y.image,
+                missing_image_hint(yaml_path)
+            ),
         ));
     }
     let (img, format) = read_image(&image_path)?;
     let data = img.to_occupancy(&y.thresholds);
-    let grid = OccupancyGrid { width: img.width, height: img.height, resolution: y.resolution, origin: y.origin, data };
+    let grid = OccupancyGrid {
+        width: img.width,
+        height: img.height,
+        resolution: y.resolution,
+        origin: y.origin,
+        data,
+    };
     let meta = MapMeta {
         yaml_path: yaml_path.display().to_string(),
         image_path: image_path.display().to_string(),
@@ -225,22 +305,47 @@ pub fn map_yaml(grid: &OccupancyGrid, image_name: &str) -> String {
 
 /// Write `grid` as a trinary map: `STEM.png|pgm` beside `yaml_path`, then the YAML.
 /// Returns the image path. Values other than 254/0/205 are refused.
-pub fn save_map(grid: &OccupancyGrid, yaml_path: impl AsRef<Path>, format: ImageFormat) -> Result<PathBuf> {
+pub fn save_map(
+    grid: &OccupancyGrid,
+    yaml_path: impl AsRef<Path>,
+    format: ImageFormat,
+) -> Result<PathBuf> {
     let yaml_path = yaml_path.as_ref();
     if grid.width == 0 || grid.height == 0 || grid.data.len() != grid.width * grid.height {
-        return Err(ArenaError::invalid(format!("cannot save a {}×{} map holding {} cells", grid.width, grid.height, grid.data.len())));
+        return Err(ArenaError::invalid(format!(
+            "cannot save a {}×{} map holding {} cells",
+            grid.width,
+            grid.height,
+            grid.data.len()
+        )));
     }
-    if !(grid.resolution.is_finite() && grid.resolution > 0.0) || grid.origin.iter().any(|v| !v.is_finite()) {
-        return Err(ArenaError::invalid(format!("resolution must be finite > 0 and origin finite, got {} and {:?}", grid.resolution, grid.origin)));
+    if !(grid.resolution.is_finite() && grid.resolution > 0.0)
+        || grid.origin.iter().any(|v| !v.is_finite())
+    {
+        return Err(ArenaError::invalid(format!(
+            "resolution must be finite > 0 and origin finite, got {} and {:?}",
+            grid.resolution, grid.origin
+        )));
     }
-    if let Some(v) = grid.data.iter().find(|&&v| v != FREE && v != OCCUPIED && v != UNKNOWN) {
-        return Err(ArenaError::invalid(format!("map data must be trinary (254 free, 0 occupied, 205 unknown), found {v}")));
+    if let Some(v) = grid
+        .data
+        .iter()
+        .find(|&&v| v != FREE && v != OCCUPIED && v != UNKNOWN)
+    {
+        return Err(ArenaError::invalid(format!(
+            "map data must be trinary (254 free, 0 occupied, 205 unknown), found {v}"
+        )));
     }
-    let stem = yaml_path.file_stem().ok_or_else(|| ArenaError::io(yaml_path, "not a file path"))?.to_string_lossy().to_string();
+    let stem = yaml_path
+        .file_stem()
+        .ok_or_else(|| ArenaError::io(yaml_path, "not a file path"))?
+        .to_string_lossy()
+        .to_string();
     let image_name = format!("{stem}.{}", format.extension());
     let image_path = yaml_path.with_file_name(&image_name);
     let bytes = match format {
-        ImageFormat::Png => png_io::encode(&grid.data, grid.width, grid.height).map_err(|e| ArenaError::io(&image_path, e))?,
+        ImageFormat::Png => png_io::encode(&grid.data, grid.width, grid.height)
+            .map_err(|e| ArenaError::io(&image_path, e))?,
         ImageFormat::Pgm => pgm::encode(&grid.data, grid.width, grid.height),
     };
     atomic_write(&image_path, &bytes)?;

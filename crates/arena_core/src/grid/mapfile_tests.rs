@@ -8,7 +8,8 @@ impl TmpDir {
     fn new(tag: &str) -> Self {
         static N: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
         let n = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let d = std::env::temp_dir().join(format!("arena_mapfile_{tag}_{}_{n}", std::process::id()));
+        let d =
+            std::env::temp_dir().join(format!("arena_mapfile_{tag}_{}_{n}", std::process::id()));
         std::fs::create_dir_all(&d).unwrap();
         TmpDir(d)
     }
@@ -30,7 +31,9 @@ fn yaml(image: &str, extra: &str) -> String {
 
 fn expect_format_err(r: Result<(OccupancyGrid, MapMeta)>, needle: &str) {
     match r {
-        Err(ArenaError::MapFormat { message, .. }) => assert!(message.contains(needle), "{message:?} lacks {needle:?}"),
+        Err(ArenaError::MapFormat { message, .. }) => {
+            assert!(message.contains(needle), "{message:?} lacks {needle:?}")
+        }
         other => panic!("expected MapFormat error containing {needle:?}, got {other:?}"),
     }
 }
@@ -51,19 +54,46 @@ fn every_png_layout_and_depth_loads_like_nav2() {
                     s16.push(65535);
                 }
             }
-            let samples = if sixteen { Samples::U16(s16) } else { Samples::U8(s16.iter().map(|v| (v / 257) as u8).collect()) };
+            let samples = if sixteen {
+                Samples::U16(s16)
+            } else {
+                Samples::U8(s16.iter().map(|v| (v / 257) as u8).collect())
+            };
             let maxval = if sixteen { 65535 } else { 255 };
-            let img = PixelImage { width: 2, height: 2, channels, maxval, samples };
+            let img = PixelImage {
+                width: 2,
+                height: 2,
+                channels,
+                maxval,
+                samples,
+            };
             let name = format!("m{channels}_{sixteen}.png");
             d.write(&name, &png_io::encode_any(&img).unwrap());
-            let y = d.write(&format!("m{channels}_{sixteen}.yaml"), yaml(&name, "").as_bytes());
+            let y = d.write(
+                &format!("m{channels}_{sixteen}.yaml"),
+                yaml(&name, "").as_bytes(),
+            );
             let (g, meta) = load_map(&y).unwrap();
             // nav2 averages an opaque alpha (= white) into the shade in trinary mode, so
             // 205 becomes free and 60 unknown when the image has an alpha channel.
-            let want = if channels % 2 == 0 { [FREE, OCCUPIED, FREE, UNKNOWN] } else { [FREE, OCCUPIED, UNKNOWN, OCCUPIED] };
+            let want = if channels % 2 == 0 {
+                [FREE, OCCUPIED, FREE, UNKNOWN]
+            } else {
+                [FREE, OCCUPIED, UNKNOWN, OCCUPIED]
+            };
             assert_eq!(g.data, want, "channels {channels} 16-bit {sixteen}");
-            assert_eq!((g.width, g.height, g.resolution, g.origin), (2, 2, 0.1, [1.0, -2.0, 0.5]));
-            assert_eq!((meta.image_channels, meta.image_bit_depth, meta.image_format.as_str()), (channels, if sixteen { 16 } else { 8 }, "png"));
+            assert_eq!(
+                (g.width, g.height, g.resolution, g.origin),
+                (2, 2, 0.1, [1.0, -2.0, 0.5])
+            );
+            assert_eq!(
+                (
+                    meta.image_channels,
+                    meta.image_bit_depth,
+                    meta.image_format.as_str()
+                ),
+                (channels, if sixteen { 16 } else { 8 }, "png")
+            );
         }
     }
 }
@@ -83,7 +113,10 @@ fn pgm_p2_p5_eight_and_sixteen_bit() {
         let (g, meta) = load_map(&y).unwrap();
         assert_eq!(g.data, vec![FREE, OCCUPIED, UNKNOWN, OCCUPIED], "{name}");
         assert_eq!(meta.image_format, "pgm");
-        assert_eq!(meta.defaulted, vec!["occupied_thresh", "free_thresh", "negate", "mode"]);
+        assert_eq!(
+            meta.defaulted,
+            vec!["occupied_thresh", "free_thresh", "negate", "mode"]
+        );
     }
 }
 
@@ -91,13 +124,25 @@ fn pgm_p2_p5_eight_and_sixteen_bit() {
 fn modes_negate_and_thresholds() {
     let d = TmpDir::new("modes");
     // grey+alpha: (255, opaque), (255, transparent), (0, opaque), (140, opaque)
-    let img = PixelImage { width: 4, height: 1, channels: 2, maxval: 255, samples: Samples::U8(vec![255, 255, 255, 0, 0, 255, 140, 255]) };
+    let img = PixelImage {
+        width: 4,
+        height: 1,
+        channels: 2,
+        maxval: 255,
+        samples: Samples::U8(vec![255, 255, 255, 0, 0, 255, 140, 255]),
+    };
     d.write("ga.png", &png_io::encode_any(&img).unwrap());
     let cases: [(&str, [u8; 4]); 5] = [
         ("mode: trinary", [FREE, UNKNOWN, OCCUPIED, UNKNOWN]),
         ("mode: scale", [FREE, UNKNOWN, OCCUPIED, UNKNOWN]),
-        ("mode: trinary\nnegate: 1", [OCCUPIED, OCCUPIED, UNKNOWN, OCCUPIED]),
-        ("negate: true\noccupied_thresh: 0.5\nfree_thresh: 0.3", [OCCUPIED, OCCUPIED, FREE, OCCUPIED]),
+        (
+            "mode: trinary\nnegate: 1",
+            [OCCUPIED, OCCUPIED, UNKNOWN, OCCUPIED],
+        ),
+        (
+            "negate: true\noccupied_thresh: 0.5\nfree_thresh: 0.3",
+            [OCCUPIED, OCCUPIED, FREE, OCCUPIED],
+        ),
         ("mode: raw", [UNKNOWN, UNKNOWN, FREE, UNKNOWN]),
     ];
     for (extra, want) in cases {
@@ -107,7 +152,10 @@ fn modes_negate_and_thresholds() {
     // raw on a grey image: pixel value = percentage
     d.write("raw.pgm", &pgm::encode(&[0, 100, 50, 200], 4, 1));
     let y = d.write("r.yaml", yaml("raw.pgm", "mode: raw\n").as_bytes());
-    assert_eq!(load_map(&y).unwrap().0.data, vec![FREE, OCCUPIED, UNKNOWN, UNKNOWN]);
+    assert_eq!(
+        load_map(&y).unwrap().0.data,
+        vec![FREE, OCCUPIED, UNKNOWN, UNKNOWN]
+    );
 }
 
 #[test]
@@ -131,7 +179,10 @@ fn one_by_one_map_and_round_trip_both_formats() {
     }
     let mut bad = g.clone();
     bad.data[1] = 17;
-    assert!(matches!(save_map(&bad, d.0.join("bad.yaml"), ImageFormat::Png), Err(ArenaError::InvalidArgument(_))));
+    assert!(matches!(
+        save_map(&bad, d.0.join("bad.yaml"), ImageFormat::Png),
+        Err(ArenaError::InvalidArgument(_))
+    ));
     assert!(!d.0.join("bad.yaml").exists());
 }
 
@@ -139,30 +190,90 @@ fn one_by_one_map_and_round_trip_both_formats() {
 fn broken_yaml_and_images_say_what_is_wrong() {
     let d = TmpDir::new("bad");
     d.write("ok.pgm", &pgm::encode(&[254; 4], 2, 2));
-    expect_format_err(load_map(d.write("a.yaml", b"resolution: 0.1\norigin: [0, 0, 0]\n")), "missing required key 'image'");
-    expect_format_err(load_map(d.write("b.yaml", b"image: ok.pgm\norigin: [0, 0, 0]\n")), "missing required key 'resolution'");
-    expect_format_err(load_map(d.write("c.yaml", b"image: ok.pgm\nresolution: .nan\norigin: [0, 0, 0]\n")), "finite number > 0");
-    expect_format_err(load_map(d.write("c2.yaml", b"image: ok.pgm\nresolution: -1\norigin: [0, 0, 0]\n")), "finite number > 0");
-    expect_format_err(load_map(d.write("d.yaml", b"image: ok.pgm\nresolution: fast\norigin: [0, 0, 0]\n")), "'resolution' must be a number");
-    expect_format_err(load_map(d.write("e.yaml", b"image: ok.pgm\nresolution: 0.1\norigin: 3\n")), "'origin' must be a list");
-    expect_format_err(load_map(d.write("f.yaml", yaml("ok.pgm", "mode: fuzzy\n").as_bytes())), "trinary, scale or raw");
-    expect_format_err(load_map(d.write("g.yaml", yaml("ok.pgm", "negate: 2\n").as_bytes())), "'negate'");
-    expect_format_err(load_map(d.write("h.yaml", yaml("ok.pgm", "free_thresh: 3\n").as_bytes())), "'free_thresh'");
-    expect_format_err(load_map(d.write("i.yaml", b"image: [unclosed\n")), "not valid YAML");
-    expect_format_err(load_map(d.write("j.yaml", b"- just\n- a list\n")), "mapping");
+    expect_format_err(
+        load_map(d.write("a.yaml", b"resolution: 0.1\norigin: [0, 0, 0]\n")),
+        "missing required key 'image'",
+    );
+    expect_format_err(
+        load_map(d.write("b.yaml", b"image: ok.pgm\norigin: [0, 0, 0]\n")),
+        "missing required key 'resolution'",
+    );
+    expect_format_err(
+        load_map(d.write(
+            "c.yaml",
+            b"image: ok.pgm\nresolution: .nan\norigin: [0, 0, 0]\n",
+        )),
+        "finite number > 0",
+    );
+    expect_format_err(
+        load_map(d.write(
+            "c2.yaml",
+            b"image: ok.pgm\nresolution: -1\norigin: [0, 0, 0]\n",
+        )),
+        "finite number > 0",
+    );
+    expect_format_err(
+        load_map(d.write(
+            "d.yaml",
+            b"image: ok.pgm\nresolution: fast\norigin: [0, 0, 0]\n",
+        )),
+        "'resolution' must be a number",
+    );
+    expect_format_err(
+        load_map(d.write("e.yaml", b"image: ok.pgm\nresolution: 0.1\norigin: 3\n")),
+        "'origin' must be a list",
+    );
+    expect_format_err(
+        load_map(d.write("f.yaml", yaml("ok.pgm", "mode: fuzzy\n").as_bytes())),
+        "trinary, scale or raw",
+    );
+    expect_format_err(
+        load_map(d.write("g.yaml", yaml("ok.pgm", "negate: 2\n").as_bytes())),
+        "'negate'",
+    );
+    expect_format_err(
+        load_map(d.write("h.yaml", yaml("ok.pgm", "free_thresh: 3\n").as_bytes())),
+        "'free_thresh'",
+    );
+    expect_format_err(
+        load_map(d.write("i.yaml", b"image: [unclosed\n")),
+        "not valid YAML",
+    );
+    expect_format_err(
+        load_map(d.write("j.yaml", b"- just\n- a list\n")),
+        "mapping",
+    );
     // the image is missing, but one named after the YAML exists (porto.yaml → map.pgm)
     d.write("porto.pgm", &pgm::encode(&[254; 4], 2, 2));
-    expect_format_err(load_map(d.write("porto.yaml", yaml("map.pgm", "").as_bytes())), "did you mean `image: porto.pgm`");
-    expect_format_err(load_map(d.write("k.yaml", yaml("nothere.png", "").as_bytes())), "does not exist");
+    expect_format_err(
+        load_map(d.write("porto.yaml", yaml("map.pgm", "").as_bytes())),
+        "did you mean `image: porto.pgm`",
+    );
+    expect_format_err(
+        load_map(d.write("k.yaml", yaml("nothere.png", "").as_bytes())),
+        "does not exist",
+    );
     // corrupt / empty / zero-size images
     d.write("corrupt.png", b"\x89PNG\r\n\x1a\n garbage garbage");
-    expect_format_err(load_map(d.write("l.yaml", yaml("corrupt.png", "").as_bytes())), "corrupt PNG");
+    expect_format_err(
+        load_map(d.write("l.yaml", yaml("corrupt.png", "").as_bytes())),
+        "corrupt PNG",
+    );
     d.write("empty.pgm", b"");
-    expect_format_err(load_map(d.write("m.yaml", yaml("empty.pgm", "").as_bytes())), "empty");
+    expect_format_err(
+        load_map(d.write("m.yaml", yaml("empty.pgm", "").as_bytes())),
+        "empty",
+    );
     d.write("zero.pgm", b"P5 0 0 255\n");
-    expect_format_err(load_map(d.write("n.yaml", yaml("zero.pgm", "").as_bytes())), "zero size");
+    expect_format_err(
+        load_map(d.write("n.yaml", yaml("zero.pgm", "").as_bytes())),
+        "zero size",
+    );
     d.write("pic.jpg", b"\xff\xd8\xff\xe0 jpeg");
-    expect_format_err(load_map(d.write("o.yaml", yaml("pic.jpg", "").as_bytes())), "neither PNG nor PGM");
+    expect_format_err(
+        load_map(d.write("o.yaml", yaml("pic.jpg", "").as_bytes())),
+        "neither PNG nor PGM",
+    );
     // a YAML that does not exist is an I/O error naming it
     match load_map(d.0.join("absent.yaml")) {
         Err(ArenaError::Io { path, .. }) => assert!(path.ends_with("absent.yaml")),

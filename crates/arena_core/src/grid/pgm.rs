@@ -11,14 +11,21 @@ pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
         b"P2" => true,
         b"P5" => false,
         b"P1" | b"P4" | b"P3" | b"P6" => {
-            return Err(format!("{} is a Netpbm bitmap/colour image; only grey maps (P2, P5) are supported", String::from_utf8_lossy(magic)))
+            return Err(format!(
+                "{} is a Netpbm bitmap/colour image; only grey maps (P2, P5) are supported",
+                String::from_utf8_lossy(magic)
+            ))
         }
         _ => return Err("not a PGM image (missing P2/P5 magic number)".into()),
     };
     let mut header = [0u64; 3];
     for (k, name) in ["width", "height", "maxval"].iter().enumerate() {
-        let t = token(bytes, &mut pos).ok_or_else(|| format!("truncated PGM header (no {name})"))?;
-        header[k] = std::str::from_utf8(t).ok().and_then(|s| s.parse().ok()).ok_or_else(|| format!("PGM header {name} is not a number"))?;
+        let t =
+            token(bytes, &mut pos).ok_or_else(|| format!("truncated PGM header (no {name})"))?;
+        header[k] = std::str::from_utf8(t)
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .ok_or_else(|| format!("PGM header {name} is not a number"))?;
     }
     let [w, h, maxval] = header;
     if w == 0 || h == 0 {
@@ -27,12 +34,18 @@ pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
     if maxval == 0 || maxval > 65535 {
         return Err(format!("PGM maxval {maxval} is outside 1..=65535"));
     }
-    let n = (w as usize).checked_mul(h as usize).ok_or("PGM size overflows")?;
+    let n = (w as usize)
+        .checked_mul(h as usize)
+        .ok_or("PGM size overflows")?;
     let samples = if ascii {
         let mut v = Vec::with_capacity(n);
         for i in 0..n {
-            let t = token(bytes, &mut pos).ok_or_else(|| format!("PGM data truncated: {i} of {n} samples"))?;
-            let x: u32 = std::str::from_utf8(t).ok().and_then(|s| s.parse().ok()).ok_or("PGM data holds a non-number")?;
+            let t = token(bytes, &mut pos)
+                .ok_or_else(|| format!("PGM data truncated: {i} of {n} samples"))?;
+            let x: u32 = std::str::from_utf8(t)
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .ok_or("PGM data holds a non-number")?;
             v.push(x.min(maxval as u32) as u16);
         }
         if maxval < 256 {
@@ -46,15 +59,30 @@ pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
         let need = n * bps;
         let data = bytes.get(pos..).unwrap_or(&[]);
         if data.len() < need {
-            return Err(format!("PGM data truncated: {} of {} bytes", data.len(), need));
+            return Err(format!(
+                "PGM data truncated: {} of {} bytes",
+                data.len(),
+                need
+            ));
         }
         if bps == 1 {
             Samples::U8(data[..need].to_vec())
         } else {
-            Samples::U16(data[..need].chunks_exact(2).map(|c| u16::from_be_bytes([c[0], c[1]])).collect())
+            Samples::U16(
+                data[..need]
+                    .chunks_exact(2)
+                    .map(|c| u16::from_be_bytes([c[0], c[1]]))
+                    .collect(),
+            )
         }
     };
-    Ok(PixelImage { width: w as usize, height: h as usize, channels: 1, maxval: maxval as u32, samples })
+    Ok(PixelImage {
+        width: w as usize,
+        height: h as usize,
+        channels: 1,
+        maxval: maxval as u32,
+        samples,
+    })
 }
 
 /// Next whitespace-separated header/ASCII token, skipping `#` comments to end of line.
@@ -80,7 +108,8 @@ fn token<'a>(b: &'a [u8], pos: &mut usize) -> Option<&'a [u8]> {
 
 /// Encode 8-bit grey samples as binary P5.
 pub fn encode(data: &[u8], width: usize, height: usize) -> Vec<u8> {
-    let mut out = format!("P5\n# RoboRacer Arena occupancy map\n{width} {height}\n255\n").into_bytes();
+    let mut out =
+        format!("P5\n# RoboRacer Arena occupancy map\n{width} {height}\n255\n").into_bytes();
     out.extend_from_slice(data);
     out
 }
@@ -112,8 +141,12 @@ mod tests {
     fn errors_name_the_problem() {
         assert!(decode(b"").unwrap_err().contains("empty"));
         assert!(decode(b"P5 0 3 255\n").unwrap_err().contains("zero size"));
-        assert!(decode(b"P5 4 4 255\n\x00\x00").unwrap_err().contains("truncated"));
+        assert!(decode(b"P5 4 4 255\n\x00\x00")
+            .unwrap_err()
+            .contains("truncated"));
         assert!(decode(b"GIF89a").unwrap_err().contains("not a PGM"));
-        assert!(decode(b"P6 1 1 255\n\x00\x00\x00").unwrap_err().contains("P6"));
+        assert!(decode(b"P6 1 1 255\n\x00\x00\x00")
+            .unwrap_err()
+            .contains("P6"));
     }
 }

@@ -10,12 +10,21 @@ const DECODE_LIMIT: usize = 2 << 30;
 
 /// Decode a PNG. The error string names the problem (the caller adds the path).
 pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
-    let mut dec = png::Decoder::new_with_limits(Cursor::new(bytes), png::Limits { bytes: DECODE_LIMIT });
+    let mut dec = png::Decoder::new_with_limits(
+        Cursor::new(bytes),
+        png::Limits {
+            bytes: DECODE_LIMIT,
+        },
+    );
     dec.set_transformations(png::Transformations::EXPAND);
     let mut reader = dec.read_info().map_err(|e| format!("corrupt PNG: {e}"))?;
-    let size = reader.output_buffer_size().ok_or("PNG too large to decode")?;
+    let size = reader
+        .output_buffer_size()
+        .ok_or("PNG too large to decode")?;
     let mut buf = vec![0u8; size];
-    let info = reader.next_frame(&mut buf).map_err(|e| format!("corrupt PNG: {e}"))?;
+    let info = reader
+        .next_frame(&mut buf)
+        .map_err(|e| format!("corrupt PNG: {e}"))?;
     let (w, h) = (info.width as usize, info.height as usize);
     if w == 0 || h == 0 {
         return Err(format!("PNG image has zero size ({w}×{h})"));
@@ -32,7 +41,11 @@ pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
         png::BitDepth::Sixteen => {
             let mut v = Vec::with_capacity(row_samples * h);
             for row in buf.chunks(info.line_size).take(h) {
-                v.extend(row[..row_samples * 2].chunks_exact(2).map(|c| u16::from_be_bytes([c[0], c[1]])));
+                v.extend(
+                    row[..row_samples * 2]
+                        .chunks_exact(2)
+                        .map(|c| u16::from_be_bytes([c[0], c[1]])),
+                );
             }
             (Samples::U16(v), 65535)
         }
@@ -45,7 +58,13 @@ pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
         }
         d => return Err(format!("unexpected PNG bit depth {d:?} after expansion")),
     };
-    Ok(PixelImage { width: w, height: h, channels, maxval, samples })
+    Ok(PixelImage {
+        width: w,
+        height: h,
+        channels,
+        maxval,
+        samples,
+    })
 }
 
 /// Encode 8-bit grey samples as PNG.
@@ -74,7 +93,10 @@ pub fn encode_any(img: &PixelImage) -> Result<Vec<u8>, String> {
     };
     let (depth, bytes): (_, Vec<u8>) = match &img.samples {
         Samples::U8(s) => (png::BitDepth::Eight, s.clone()),
-        Samples::U16(s) => (png::BitDepth::Sixteen, s.iter().flat_map(|v| v.to_be_bytes()).collect()),
+        Samples::U16(s) => (
+            png::BitDepth::Sixteen,
+            s.iter().flat_map(|v| v.to_be_bytes()).collect(),
+        ),
     };
     let mut out = Vec::new();
     {
@@ -96,9 +118,22 @@ mod tests {
     fn every_layout_round_trips() {
         for channels in 1..=4 {
             let n = 3 * 2 * channels;
-            for samples in [Samples::U8((0..n as u8).collect()), Samples::U16((0..n as u16).map(|v| v * 1000).collect())] {
-                let maxval = if matches!(samples, Samples::U8(_)) { 255 } else { 65535 };
-                let im = PixelImage { width: 3, height: 2, channels, maxval, samples };
+            for samples in [
+                Samples::U8((0..n as u8).collect()),
+                Samples::U16((0..n as u16).map(|v| v * 1000).collect()),
+            ] {
+                let maxval = if matches!(samples, Samples::U8(_)) {
+                    255
+                } else {
+                    65535
+                };
+                let im = PixelImage {
+                    width: 3,
+                    height: 2,
+                    channels,
+                    maxval,
+                    samples,
+                };
                 let back = decode(&encode_any(&im).unwrap()).unwrap();
                 assert_eq!(back, im);
             }
@@ -108,8 +143,13 @@ mod tests {
     #[test]
     fn grey8_encode_and_corrupt_input() {
         let png = encode(&[0, 254, 205, 7], 2, 2).unwrap();
-        assert_eq!(decode(&png).unwrap().samples, Samples::U8(vec![0, 254, 205, 7]));
+        assert_eq!(
+            decode(&png).unwrap().samples,
+            Samples::U8(vec![0, 254, 205, 7])
+        );
         assert!(decode(&png[..20]).unwrap_err().contains("corrupt PNG"));
-        assert!(decode(b"definitely not a png").unwrap_err().contains("corrupt PNG"));
+        assert!(decode(b"definitely not a png")
+            .unwrap_err()
+            .contains("corrupt PNG"));
     }
 }

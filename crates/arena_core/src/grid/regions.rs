@@ -76,8 +76,17 @@ impl UnionFind {
 }
 
 /// Build the region tree of `data` (row-major `width × height`), free where `is_free`.
-pub fn region_tree(data: &[u8], width: usize, height: usize, is_free: impl Fn(u8) -> bool) -> RegionTree {
-    assert_eq!(data.len(), width * height, "data size does not match width × height");
+pub fn region_tree(
+    data: &[u8],
+    width: usize,
+    height: usize,
+    is_free: impl Fn(u8) -> bool,
+) -> RegionTree {
+    assert_eq!(
+        data.len(),
+        width * height,
+        "data size does not match width × height"
+    );
     let mut runs = Vec::new();
     let mut row_start = Vec::with_capacity(height + 1);
     for r in 0..height {
@@ -90,7 +99,12 @@ pub fn region_tree(data: &[u8], width: usize, height: usize, is_free: impl Fn(u8
             while c < width && is_free(row[c]) == f {
                 c += 1;
             }
-            runs.push(Run { row: r as u32, start: s as u32, end: c as u32, free: f });
+            runs.push(Run {
+                row: r as u32,
+                start: s as u32,
+                end: c as u32,
+                free: f,
+            });
         }
     }
     row_start.push(runs.len());
@@ -117,7 +131,10 @@ pub fn region_tree(data: &[u8], width: usize, height: usize, is_free: impl Fn(u8
         if r == 0 {
             continue;
         }
-        let (prev, cur) = (row_start[r - 1]..row_start[r], row_start[r]..row_start[r + 1]);
+        let (prev, cur) = (
+            row_start[r - 1]..row_start[r],
+            row_start[r]..row_start[r + 1],
+        );
         let mut p0 = prev.start;
         for j in cur {
             let b = runs[j];
@@ -156,7 +173,13 @@ pub fn region_tree(data: &[u8], width: usize, height: usize, is_free: impl Fn(u8
     }
     let root = id[uf.find(pad) as usize];
     let n = free.len();
-    let region = |e: u32| if (e as usize) < nr { run_region[e as usize] } else { root };
+    let region = |e: u32| {
+        if (e as usize) < nr {
+            run_region[e as usize]
+        } else {
+            root
+        }
+    };
     let mut size = vec![0usize; n];
     let mut border_contact = vec![0usize; n];
     for (run, &reg) in runs.iter().zip(&run_region) {
@@ -167,10 +190,17 @@ pub fn region_tree(data: &[u8], width: usize, height: usize, is_free: impl Fn(u8
             (run.start == 0) as usize + (run.end == w && !(run.start == 0 && w == 1)) as usize
         };
     }
-    let mut pairs: Vec<(u32, u32)> = edges.into_iter().map(|(a, b)| {
-        let (x, y) = (region(a), region(b));
-        if x < y { (x, y) } else { (y, x) }
-    }).collect();
+    let mut pairs: Vec<(u32, u32)> = edges
+        .into_iter()
+        .map(|(a, b)| {
+            let (x, y) = (region(a), region(b));
+            if x < y {
+                (x, y)
+            } else {
+                (y, x)
+            }
+        })
+        .collect();
     pairs.sort_unstable();
     pairs.dedup();
     let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n];
@@ -202,7 +232,20 @@ pub fn region_tree(data: &[u8], width: usize, height: usize, is_free: impl Fn(u8
             subtree[parent[u as usize] as usize] += subtree[u as usize];
         }
     }
-    RegionTree { width, height, runs, row_start, run_region, free, size, parent, children, subtree, border_contact, root }
+    RegionTree {
+        width,
+        height,
+        runs,
+        row_start,
+        run_region,
+        free,
+        size,
+        parent,
+        children,
+        subtree,
+        border_contact,
+        root,
+    }
 }
 
 impl RegionTree {

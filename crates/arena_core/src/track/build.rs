@@ -2,15 +2,18 @@
 //!
 //! 1. `corridor`: isolate the drivable ring ([`isolate_corridor`]);
 //! 2. `crop`: work on the corridor's bounding box plus the margin the barriers need;
-//! 3. `distance`: exact EDTs to the corridor, the infield and the outer side, giving the
-//!    signed free-space distance `φ` (cells; < 0 in the corridor, 0 on its boundary);
+//! 3. `distance`: three exact EDTs, each capped where larger values are never read:
+//!    to the infield and to the outer side (up to the widest inscribed radius), whose
+//!    minimum is φ inside the corridor, and to the corridor (up to the duct level), φ
+//!    outside — the signed free-space distance `φ` (cells; < 0 in the corridor);
 //! 4. `walls`: marching squares on `φ = wall_offset / Δ`, Douglas–Peucker simplified —
 //!    the collision walls (free space on the left of each loop);
 //! 5. `ducts`: the level set `φ = (wall_offset + tube radius) / Δ` — the corridor border
 //!    offset outward by the tube radius, without self-intersections — smoothed and
 //!    simplified: the centre lines of the visual air-duct tubes;
-//! 6. `centreline`: the medial loop between infield and outer side, smoothed, counter-
-//!    clockwise, resampled at `centreline_spacing_m`;
+//! 6. `centreline`: the medial loop between infield and outer side, smoothed
+//!    (5 × `smoothing_iterations` Taubin passes), counter-clockwise, resampled at
+//!    `centreline_spacing_m`;
 //! 7. `meshes`: extruded walls, swept tubes with rings, floor quad;
 //! 8. `roundtrip`: walls re-rasterised (even–odd) → IoU with the corridor, and the
 //!    worst deviation of the walls from the exact level set (cells).
@@ -25,7 +28,7 @@ use crate::geometry::mesh::{extrude_walls, TriMesh};
 use crate::geometry::smooth::{resample_closed, simplify_closed, smooth_closed};
 use crate::geometry::tube::{bounds, floor_quad, rings_along, sweep_closed_tube};
 use crate::geometry::{signed_area, Polyline};
-use crate::grid::edt::edt;
+use crate::grid::edt::edt_within;
 use crate::grid::{bilinear, OccupancyGrid};
 use std::time::Instant;
 
@@ -53,31 +56,69 @@ pub struct Geometry {
     pub params: BuildParams,
 }
 
+/// Smoothing passes of the centreline per `smoothing_iterations`.
+const CENTRELINE_SMOOTHING: usize = 5;
+
+/// The working window: the corridor's bounding box plus a margin, extending at most
+/// one cell beyond the map where the corridor touches its edge. Cells beyond the map
+/// count as outer (the map edge is a wall), so every distance sees it.
 struct Crop {
-    c0: usize,
-    r0: usize,
+    /// Column and row of the window's top-left cell in the map (may be −1).
+    c0: i64,
+    r0: i64,
     w: usize,
     h: usize,
-    /// Grid units of the crop's lower-left corner in the full grid.
+    /// Grid units of the window's lower-left corner in the map.
     u0: f64,
     v0: f64,
 }
 
 impl Crop {
-    fn take<T: Copy>(&self, full: &[T], full_w: usize) -> Vec<T> {
-        let mut out = Vec::with_capacity(self.w * self.h);
-        for r in self.r0..self.r0 + self.h {
-            out.extend_from_slice(&full[r * full_w + self.c0..r * full_w + self.c0 + self.w]);
+    fn new(g: &OccupancyGrid, bbox: (usize, usize, usize, usize), margin: usize) -> Self {
+        let (bc0, br0, bc1, br1) = bbox;
+        let m = margin as i64;
+        let c0 = (bc0 as i64 - m).max(-1);
+        let r0 = (br0 as i64 - m).max(-1);
+        let c1 = (bc1 as i64 + m).min(g.width as i64);
+        let r1 = (br1 as i64 + m).min(g.height as i64);
+        let (w, h) = ((c1 - c0 + 1) as usize, (r1 - r0 + 1) as usize);
+        Crop {
+            c0,
+            r0,
+            w,
+            h,
+            u0: c0 as f64,
+            v0: (g.height as i64 - 1 - r1) as f64,
+        }
+    }
+    /// The window of a full-map mask; `false` beyond the map.
+    fn take(&self, full: &[bool], full_w: usize, full_h: usize) -> Vec<bool> {
+        let mut out = vec![false; self.w * self.h];
+        let cols = self.c0.max(0)..(self.c0 + self.w as i64).min(full_w as i64);
+        for (k, r) in (self.r0..self.r0 + self.h as i64).enumerate() {
+            if r < 0 || r >= full_h as i64 {
+                continue;
+            }
+            let dst = k * self.w + (cols.start - self.c0) as usize;
+            let src = r as usize * full_w;
+            out[dst..dst + cols.clone().count()]
+                .copy_from_slice(&full[src + cols.start as usize..src + cols.end as usize]);
         }
         out
     }
     fn to_world(&self, g: &OccupancyGrid, l: &[[f64; 2]]) -> Polyline {
-        l.iter().map(|p| g.grid_to_world(self.u0 + p[0], self.v0 + p[1])).collect()
+        l.iter()
+            .map(|p| g.grid_to_world(self.u0 + p[0], self.v0 + p[1]))
+            .collect()
     }
 }
 
 /// Run the whole pipeline. `start` = optional (x, y) seed of the corridor (map metres).
-pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f64; 2]>) -> Result<Geometry> {
+pub fn build_geometry(
+    g: &OccupancyGrid,
+    params: &BuildParams,
+    start: Option<[f64; 2]>,
+) -> Result<Geometry> {
     let t_start = Instant::now();
     let mut timings: Vec<(&'static str, f64)> = Vec::new();
     let mut t = Instant::now();
@@ -87,7 +128,13 @@ pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f6
     };
     params.validate()?;
     if !(g.resolution.is_finite() && g.resolution > 0.0) || g.data.len() != g.width * g.height {
-        return Err(ArenaError::invalid(format!("invalid map: resolution {} and {} cells for {}×{}", g.resolution, g.data.len(), g.width, g.height)));
+        return Err(ArenaError::invalid(format!(
+            "invalid map: resolution {} and {} cells for {}×{}",
+            g.resolution,
+            g.data.len(),
+            g.width,
+            g.height
+        )));
     }
     let p = params.effective(g.resolution);
     let res = g.resolution;
@@ -97,41 +144,73 @@ pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f6
     let radius = p.tube_diameter_m / 2.0;
     let reach = p.wall_offset_m.max(0.0) + radius * p.ring_scale.max(1.0) + 2.0 * res;
     let margin = (reach / res).ceil() as usize + 2;
-    let (bc0, br0, bc1, br1) = corridor.bbox;
-    let (c0, r0) = (bc0.saturating_sub(margin), br0.saturating_sub(margin));
-    let (c1, r1) = ((bc1 + margin).min(g.width - 1), (br1 + margin).min(g.height - 1));
-    let crop = Crop { c0, r0, w: c1 - c0 + 1, h: r1 - r0 + 1, u0: c0 as f64, v0: (g.height - 1 - r1) as f64 };
+    let crop = Crop::new(g, corridor.bbox, margin);
     let (cw, ch) = (crop.w, crop.h);
-    let corr = crop.take(&corridor.mask, g.width);
-    let infield = crop.take(&corridor.infield, g.width);
+    let corr = crop.take(&corridor.mask, g.width, g.height);
+    let infield = crop.take(&corridor.infield, g.width, g.height);
     let outer: Vec<bool> = corr.iter().zip(&infield).map(|(&c, &i)| !c && !i).collect();
     lap("crop", &mut timings);
 
-    let d_corr = edt(&corr, cw, ch);
-    let d_inf = edt(&infield, cw, ch);
-    let d_out = edt(&outer, cw, ch);
+    // Distances to the infield and to the outer side. Inside the corridor their minimum
+    // is the distance to the nearest non-corridor cell (φ inside), and the medial loop
+    // lies where they are equal, i.e. at most the widest inscribed radius r_max away.
+    // So both are needed only up to r_max + 2 (u8 column distances for corridors up to
+    // ~500 cells wide); a cheap upper bound of r_max sets the cap.
+    let cap = inscribed_radius_bound(&corr, cw, ch) + 2.0;
+    // φ outside is only read up to the duct level (+ a margin for interpolation).
+    let level = (p.wall_offset_m / res) as f32;
+    let duct_level = level + (radius / res) as f32;
+    let band = (duct_level.max(level) as f64).max(0.0) + 3.0;
+    // The three transforms are independent: run them side by side when threads allow.
+    let ((d_inf, d_out), d_corr) = rayon::join(
+        || {
+            rayon::join(
+                || edt_within(&infield, cw, ch, cap),
+                || edt_within(&outer, cw, ch, cap),
+            )
+        },
+        || edt_within(&corr, cw, ch, band),
+    );
+    let d_nc: Vec<f32> = d_inf.iter().zip(&d_out).map(|(a, b)| a.min(*b)).collect();
     let phi: Vec<f32> = (0..cw * ch)
-        .map(|i| if corr[i] { 0.5 - d_inf[i].min(d_out[i]) } else { d_corr[i] - 0.5 })
+        .map(|i| {
+            if corr[i] {
+                0.5 - d_nc[i]
+            } else {
+                d_corr[i] - 0.5
+            }
+        })
         .collect();
-    drop(d_corr);
+    drop((d_corr, d_nc));
     lap("distance", &mut timings);
 
-    let level = (p.wall_offset_m / res) as f32;
     let tol = p.simplify_tolerance_m / res;
-    let walls_uv: Vec<Polyline> = marching_squares(&phi, cw, ch, level).iter().map(|l| simplify_closed(l, tol)).collect();
+    let walls_uv: Vec<Polyline> = marching_squares(&phi, cw, ch, level)
+        .iter()
+        .map(|l| simplify_closed(l, tol))
+        .collect();
     let walls: Vec<Polyline> = walls_uv.iter().map(|l| crop.to_world(g, l)).collect();
     lap("walls", &mut timings);
 
-    let duct_level = level + (radius / res) as f32;
     let ducts: Vec<Polyline> = marching_squares(&phi, cw, ch, duct_level)
         .iter()
-        .map(|l| crop.to_world(g, &simplify_closed(&smooth_closed(l, p.smoothing_iterations), tol)))
+        .map(|l| {
+            crop.to_world(
+                g,
+                &simplify_closed(&smooth_closed(l, p.smoothing_iterations), tol),
+            )
+        })
         .collect();
     lap("ducts", &mut timings);
 
-    let medial = medial_loop(&d_inf, &d_out, cw, ch)
-        .ok_or_else(|| ArenaError::Corridor("no closed centreline found between the inner and outer walls".into()))?;
-    let mut centreline = crop.to_world(g, &smooth_closed(&medial, p.smoothing_iterations));
+    let medial = medial_loop(&d_inf, &d_out, cw, ch).ok_or_else(|| {
+        ArenaError::Corridor("no closed centreline found between the inner and outer walls".into())
+    })?;
+    // The medial curve of a raster corridor zig-zags by up to half a cell: smooth it more.
+    let mut centreline = crop.to_world(
+        g,
+        &smooth_closed(&medial, CENTRELINE_SMOOTHING * p.smoothing_iterations),
+    );
     if signed_area(&centreline) < 0.0 {
         centreline.reverse();
     }
@@ -142,19 +221,88 @@ pub fn build_geometry(g: &OccupancyGrid, params: &BuildParams, start: Option<[f6
     let mut barriers = TriMesh::default();
     for d in &ducts {
         barriers.append(&sweep_closed_tube(d, radius, radius, p.tube_segments));
-        barriers.append(&rings_along(d, p.ring_spacing_m, p.ring_width_m, radius * p.ring_scale, radius, p.tube_segments));
+        barriers.append(&rings_along(
+            d,
+            p.ring_spacing_m,
+            p.ring_width_m,
+            radius * p.ring_scale,
+            radius,
+            p.tube_segments,
+        ));
     }
     let pad = radius * p.ring_scale + p.floor_margin_m;
-    let b = bounds(&ducts).or_else(|| bounds(&walls)).expect("a corridor has walls");
+    let b = bounds(&ducts)
+        .or_else(|| bounds(&walls))
+        .expect("a corridor has walls");
     let floor = floor_quad(b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad);
     lap("meshes", &mut timings);
 
     let filled = fill_even_odd(&walls_uv, cw, ch);
     let iou = iou(&filled, &corr);
-    let max_wall_deviation_cells = walls_uv.iter().map(|l| max_deviation(l, &phi, cw, ch, level)).fold(0.0, f64::max);
+    let max_wall_deviation_cells = walls_uv
+        .iter()
+        .map(|l| max_deviation(l, &phi, cw, ch, level))
+        .fold(0.0, f64::max);
     lap("roundtrip", &mut timings);
     timings.push(("total", t_start.elapsed().as_secs_f64()));
-    Ok(Geometry { walls, ducts, centreline, floor, wall_mesh, barriers, iou, max_wall_deviation_cells, corridor, timings, params: p })
+    Ok(Geometry {
+        walls,
+        ducts,
+        centreline,
+        floor,
+        wall_mesh,
+        barriers,
+        iou,
+        max_wall_deviation_cells,
+        corridor,
+        timings,
+        params: p,
+    })
+}
+
+/// An upper bound (cells) of the largest disc inside the corridor: at every corridor
+/// cell the distance to the nearest other cell is at most the distance along its
+/// column and along its row. Linear (three sweeps), no square roots.
+fn inscribed_radius_bound(corr: &[bool], w: usize, h: usize) -> f64 {
+    // down[i]: corridor cells from i upwards to the nearest non-corridor cell (1 = adjacent)
+    let mut down = vec![0u16; w * h];
+    for r in 0..h {
+        for c in 0..w {
+            let i = r * w + c;
+            down[i] = if !corr[i] {
+                0
+            } else if r == 0 {
+                1
+            } else {
+                down[i - w].saturating_add(1)
+            };
+        }
+    }
+    let mut up = vec![0u16; w];
+    let mut left = vec![0u16; w];
+    let mut best = 0u16;
+    for r in (0..h).rev() {
+        let row = &corr[r * w..(r + 1) * w];
+        for c in 0..w {
+            up[c] = if row[c] { up[c].saturating_add(1) } else { 0 };
+            left[c] = if !row[c] {
+                0
+            } else if c == 0 {
+                1
+            } else {
+                left[c - 1].saturating_add(1)
+            };
+        }
+        let mut right = 0u16;
+        for c in (0..w).rev() {
+            right = if row[c] { right.saturating_add(1) } else { 0 };
+            if row[c] {
+                let d = down[r * w + c].min(up[c]).min(left[c]).min(right);
+                best = best.max(d);
+            }
+        }
+    }
+    best as f64
 }
 
 /// Largest |φ − level| (cells) sampled along a closed loop at ≤ ½-cell spacing.
@@ -166,7 +314,13 @@ fn max_deviation(l: &[[f64; 2]], phi: &[f32], w: usize, h: usize, level: f32) ->
         let steps = ((a[0] - b[0]).hypot(a[1] - b[1]) * 2.0).ceil().max(1.0) as usize;
         for k in 0..steps {
             let s = k as f64 / steps as f64;
-            let v = bilinear(phi, w, h, a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]));
+            let v = bilinear(
+                phi,
+                w,
+                h,
+                a[0] + s * (b[0] - a[0]),
+                a[1] + s * (b[1] - a[1]),
+            );
             worst = worst.max((v - level as f64).abs());
         }
     }

@@ -10,10 +10,12 @@ const CX: f64 = 1.0;
 const CY: f64 = -2.0;
 
 fn ring(r: f64, w: f64, res: f64) -> OccupancyGrid {
-    let c: Vec<[f64; 2]> = (0..2000).map(|i| {
-        let a = 2.0 * PI * i as f64 / 2000.0;
-        [r * a.cos() + CX, r * a.sin() + CY]
-    }).collect();
+    let c: Vec<[f64; 2]> = (0..2000)
+        .map(|i| {
+            let a = 2.0 * PI * i as f64 / 2000.0;
+            [r * a.cos() + CX, r * a.sin() + CY]
+        })
+        .collect();
     rasterise_constant(&c, w, res, 0.15, 0.6).unwrap()
 }
 
@@ -27,35 +29,61 @@ fn filled_ring_builds_with_high_iou_and_correct_geometry() {
     let g = ring(r, w, res);
     let geo = build_geometry(&g, &BuildParams::default(), None).unwrap();
     assert!(geo.iou >= 0.97, "iou {}", geo.iou);
-    assert!(geo.max_wall_deviation_cells <= 0.6, "deviation {}", geo.max_wall_deviation_cells);
+    assert!(
+        geo.max_wall_deviation_cells <= 0.6,
+        "deviation {}",
+        geo.max_wall_deviation_cells
+    );
     assert_eq!(geo.walls.len(), 2);
     let mut areas: Vec<f64> = geo.walls.iter().map(|l| signed_area(l)).collect();
     areas.sort_by(f64::total_cmp);
-    assert!(areas[0] < 0.0 && areas[1] > 0.0, "outer CCW, inner CW: {areas:?}");
+    assert!(
+        areas[0] < 0.0 && areas[1] > 0.0,
+        "outer CCW, inner CW: {areas:?}"
+    );
     // Eq. 3 frees d ≤ w/2 − Δ/2 at cell centres: the boundary lies ~w/2 from the centreline.
     for l in &geo.walls {
         let mean = l.iter().map(|&p| radius(p)).sum::<f64>() / l.len() as f64;
-        let want = if signed_area(l) > 0.0 { r + w / 2.0 } else { r - w / 2.0 };
+        let want = if signed_area(l) > 0.0 {
+            r + w / 2.0
+        } else {
+            r - w / 2.0
+        };
         assert!((mean - want).abs() < 0.05, "wall radius {mean} vs {want}");
     }
     assert_eq!(geo.ducts.len(), 2);
     for l in &geo.ducts {
         let mean = l.iter().map(|&p| radius(p)).sum::<f64>() / l.len() as f64;
-        let want = if signed_area(l) > 0.0 { r + w / 2.0 + 0.165 } else { r - w / 2.0 - 0.165 };
+        let want = if signed_area(l) > 0.0 {
+            r + w / 2.0 + 0.165
+        } else {
+            r - w / 2.0 - 0.165
+        };
         assert!((mean - want).abs() < 0.05, "duct radius {mean} vs {want}");
     }
     let cl = &geo.centreline;
     assert!(signed_area(cl) > 0.0);
     let len = polyline_length(cl, true);
-    assert!((len - 2.0 * PI * r).abs() / (2.0 * PI * r) < 0.01, "centreline length {len}");
+    assert!(
+        (len - 2.0 * PI * r).abs() / (2.0 * PI * r) < 0.01,
+        "centreline length {len}"
+    );
     assert!(cl.iter().all(|&p| (radius(p) - r).abs() < 0.05));
     assert!((len / cl.len() as f64 - 0.1).abs() < 0.002);
     assert_ne!(cl[0], cl[cl.len() - 1]);
     for m in [&geo.floor, &geo.wall_mesh, &geo.barriers] {
         assert!(!m.triangles.is_empty());
-        assert!(m.triangles.iter().flatten().all(|&i| (i as usize) < m.vertices.len()));
+        assert!(m
+            .triangles
+            .iter()
+            .flatten()
+            .all(|&i| (i as usize) < m.vertices.len()));
     }
-    assert!(geo.wall_mesh.vertices.iter().all(|v| v[2] == 0.0 || v[2] == 0.5));
+    assert!(geo
+        .wall_mesh
+        .vertices
+        .iter()
+        .all(|v| v[2] == 0.0 || v[2] == 0.5));
     assert_eq!(geo.timings.last().unwrap().0, "total");
     assert_eq!(geo.params.simplify_tolerance_m, 0.025);
 }
@@ -63,12 +91,19 @@ fn filled_ring_builds_with_high_iou_and_correct_geometry() {
 #[test]
 fn wall_offset_moves_walls_into_the_wall_cells() {
     let g = ring(4.0, 1.5, 0.05);
-    let p = BuildParams { wall_offset_m: 0.1, ..BuildParams::default() };
+    let p = BuildParams {
+        wall_offset_m: 0.1,
+        ..BuildParams::default()
+    };
     let geo = build_geometry(&g, &p, None).unwrap();
     let outer = geo.walls.iter().find(|l| signed_area(l) > 0.0).unwrap();
     let mean = outer.iter().map(|&q| radius(q)).sum::<f64>() / outer.len() as f64;
     assert!((mean - (4.0 + 0.75 + 0.1)).abs() < 0.05, "{mean}");
-    assert!(geo.iou < 0.97 && geo.iou > 0.8, "walls moved out: IoU drops to {}", geo.iou);
+    assert!(
+        geo.iou < 0.97 && geo.iou > 0.8,
+        "walls moved out: IoU drops to {}",
+        geo.iou
+    );
 }
 
 #[test]
@@ -92,5 +127,38 @@ fn thin_line_ring_and_start_seed() {
 #[test]
 fn open_map_is_refused() {
     let g = OccupancyGrid::filled(40, 30, 0.05, [0.0; 3], OCCUPIED);
-    assert!(matches!(build_geometry(&g, &BuildParams::default(), None), Err(ArenaError::Corridor(_))));
+    assert!(matches!(
+        build_geometry(&g, &BuildParams::default(), None),
+        Err(ArenaError::Corridor(_))
+    ));
+}
+
+#[test]
+fn corridor_wider_than_the_first_distance_cap_is_exact() {
+    // 14 m wide at 5 cm: inscribed radius 140 cells > the first cap of 128
+    let (r, w) = (9.0, 14.0);
+    let g = ring(r, w, 0.05);
+    let geo = build_geometry(&g, &BuildParams::default(), None).unwrap();
+    assert!(geo.iou >= 0.97, "iou {}", geo.iou);
+    assert!(geo.centreline.iter().all(|&p| (radius(p) - r).abs() < 0.05));
+    let outer = geo.walls.iter().find(|l| signed_area(l) > 0.0).unwrap();
+    let mean = outer.iter().map(|&q| radius(q)).sum::<f64>() / outer.len() as f64;
+    assert!((mean - (r + w / 2.0)).abs() < 0.05, "{mean}");
+}
+
+#[test]
+fn origin_yaw_rotates_every_output() {
+    let mut g = ring(4.0, 1.5, 0.05);
+    let [u, v] = g.world_to_grid(CX, CY); // ring centre in grid units
+    g.origin = [2.0, -1.0, 0.7];
+    let centre = g.grid_to_world(u, v);
+    let geo = build_geometry(&g, &BuildParams::default(), None).unwrap();
+    let rad = |p: [f64; 2]| (p[0] - centre[0]).hypot(p[1] - centre[1]);
+    assert!(geo.centreline.iter().all(|&p| (rad(p) - 4.0).abs() < 0.05));
+    assert!(signed_area(&geo.centreline) > 0.0);
+    for l in &geo.walls {
+        let want = if signed_area(l) > 0.0 { 4.75 } else { 3.25 };
+        assert!(l.iter().all(|&p| (rad(p) - want).abs() < 0.06));
+    }
+    assert!(geo.iou >= 0.97);
 }

@@ -57,13 +57,20 @@ impl Tree {
     fn new(g: &OccupancyGrid) -> Self {
         let t = region_tree(&g.data, g.width, g.height, |v| v == FREE);
         let border_total = (2 * (g.width + g.height)).saturating_sub(4).max(1);
-        Tree { t, leak_threshold: MAX_BORDER_FRACTION * border_total as f64 }
+        Tree {
+            t,
+            leak_threshold: MAX_BORDER_FRACTION * border_total as f64,
+        }
     }
     /// The child subtree of free region `f` with most cells, if it qualifies as an infield.
     fn infield_of(&self, f: u32) -> Option<u32> {
         let t = &self.t;
-        let best = t.children[f as usize].iter().copied().max_by_key(|&c| (t.subtree[c as usize], u32::MAX - c))?;
-        (t.subtree[best as usize] as f64 >= MIN_INFIELD_FRACTION * t.size[f as usize] as f64 && t.subtree[best as usize] >= 4)
+        let best = t.children[f as usize]
+            .iter()
+            .copied()
+            .max_by_key(|&c| (t.subtree[c as usize], u32::MAX - c))?;
+        (t.subtree[best as usize] as f64 >= MIN_INFIELD_FRACTION * t.size[f as usize] as f64
+            && t.subtree[best as usize] >= 4)
             .then_some(best)
     }
     fn leaks(&self, f: u32) -> bool {
@@ -84,7 +91,9 @@ pub fn isolate_corridor(g: &OccupancyGrid, start: Option<[f64; 2]>) -> Result<Co
         return Err(ArenaError::Corridor("empty map: it has no cells".into()));
     }
     if !g.data.contains(&FREE) {
-        return Err(ArenaError::Corridor("empty map: no free cells, nothing to drive on".into()));
+        return Err(ArenaError::Corridor(
+            "empty map: no free cells (value 254), nothing to drive on".into(),
+        ));
     }
     let t = Tree::new(g);
     let chosen = match start {
@@ -93,16 +102,25 @@ pub fn isolate_corridor(g: &OccupancyGrid, start: Option<[f64; 2]>) -> Result<Co
                 ArenaError::Corridor(format!("start {} is outside the map", fmt_xy([x, y])))
             })?;
             if g.get(c, r) != FREE {
-                return Err(ArenaError::Corridor(format!("start {} is not on a free cell (value {})", fmt_xy([x, y]), g.get(c, r))));
+                return Err(ArenaError::Corridor(format!(
+                    "start {} is not on a free cell (value {})",
+                    fmt_xy([x, y]),
+                    g.get(c, r)
+                )));
             }
             let f = t.t.region_at(c, r);
             if t.leaks(f) {
                 // Report the border cell of the leaking region nearest to the start.
-                let leak = t.t.border_cells_of(f)
-                    .into_iter()
-                    .map(|(c, r)| g.cell_center(c, r))
-                    .min_by(|a, b| (a[0] - x).hypot(a[1] - y).total_cmp(&(b[0] - x).hypot(b[1] - y)))
-                    .expect("a leaking region has border cells");
+                let leak =
+                    t.t.border_cells_of(f)
+                        .into_iter()
+                        .map(|(c, r)| g.cell_center(c, r))
+                        .min_by(|a, b| {
+                            (a[0] - x)
+                                .hypot(a[1] - y)
+                                .total_cmp(&(b[0] - x).hypot(b[1] - y))
+                        })
+                        .expect("a leaking region has border cells");
                 return Err(ArenaError::Corridor(format!(
                     "the walls leak: the free region around the start {} reaches the map border at {} — close the gap in the walls",
                     fmt_xy([x, y]),
@@ -176,7 +194,10 @@ fn auto_select(g: &OccupancyGrid, t: &Tree) -> Result<u32> {
         )));
     }
     let free = g.data.iter().filter(|&&v| v == FREE).count();
-    let largest = (0..tt.len()).filter(|&f| tt.free[f]).max_by_key(|&f| tt.size[f]).expect("the map has free cells");
+    let largest = (0..tt.len())
+        .filter(|&f| tt.free[f])
+        .max_by_key(|&f| tt.size[f])
+        .expect("the map has free cells");
     let blank = free * 100 >= g.data.len() * 99;
     Err(ArenaError::Corridor(format!(
         "no closed corridor: no free region encloses an infield{} ({:.1} % of the map is free; the largest free region has {} cells{})",

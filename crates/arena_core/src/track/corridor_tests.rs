@@ -25,7 +25,10 @@ fn ring_map(n: usize, r0: f64, r1: f64, t: f64, ring: u8, rest: u8) -> Occupancy
 fn corridor_err(r: Result<Corridor>) -> String {
     match r {
         Err(ArenaError::Corridor(m)) => m,
-        other => panic!("expected a corridor error, got {:?}", other.map(|c| c.cells)),
+        other => panic!(
+            "expected a corridor error, got {:?}",
+            other.map(|c| c.cells)
+        ),
     }
 }
 
@@ -46,13 +49,18 @@ fn thin_line_map_drops_exterior_and_infield() {
     let g = ring_map(70, 14.0, 22.0, 1.5, FREE, FREE);
     let c = isolate_corridor(&g, None).unwrap();
     assert!(c.mask[g.index(35 + 18, 35)], "a ring cell");
-    assert!(!c.mask[g.index(35, 35)] && c.infield[g.index(35, 35)], "infield centre");
+    assert!(
+        !c.mask[g.index(35, 35)] && c.infield[g.index(35, 35)],
+        "infield centre"
+    );
     assert!(!c.mask[0] && !c.infield[0], "exterior corner");
-    let ring_cells = (0..g.data.len()).filter(|&i| {
-        let (col, row) = (i % 70, i / 70);
-        let r = ((col as f64 + 0.5 - 35.0).powi(2) + (row as f64 + 0.5 - 35.0).powi(2)).sqrt();
-        (14.0..=22.0).contains(&r)
-    }).count();
+    let ring_cells = (0..g.data.len())
+        .filter(|&i| {
+            let (col, row) = (i % 70, i / 70);
+            let r = ((col as f64 + 0.5 - 35.0).powi(2) + (row as f64 + 0.5 - 35.0).powi(2)).sqrt();
+            (14.0..=22.0).contains(&r)
+        })
+        .count();
     assert_eq!(c.cells, ring_cells);
 }
 
@@ -60,7 +68,10 @@ fn thin_line_map_drops_exterior_and_infield() {
 fn start_pose_seeds_the_ring_and_bad_starts_are_explained() {
     let g = ring_map(70, 14.0, 22.0, 1.5, FREE, FREE);
     let on_ring = g.cell_center(35 + 18, 35);
-    assert_eq!(isolate_corridor(&g, Some(on_ring)).unwrap().cells, isolate_corridor(&g, None).unwrap().cells);
+    assert_eq!(
+        isolate_corridor(&g, Some(on_ring)).unwrap().cells,
+        isolate_corridor(&g, None).unwrap().cells
+    );
     let m = corridor_err(isolate_corridor(&g, Some(g.cell_center(1, 1))));
     assert!(m.contains("leak") && m.contains("border"), "{m}");
     let m = corridor_err(isolate_corridor(&g, Some(g.cell_center(35, 35))));
@@ -90,7 +101,10 @@ fn leaking_walls_are_reported_with_a_location() {
 fn blank_and_empty_maps_are_refused() {
     let blank = OccupancyGrid::filled(30, 20, 0.1, [0.0; 3], FREE);
     let m = corridor_err(isolate_corridor(&blank, None));
-    assert!(m.contains("no closed corridor") && m.contains("blank"), "{m}");
+    assert!(
+        m.contains("no closed corridor") && m.contains("blank"),
+        "{m}"
+    );
     let walls = OccupancyGrid::filled(30, 20, 0.1, [0.0; 3], OCCUPIED);
     assert!(corridor_err(isolate_corridor(&walls, None)).contains("no free cells"));
     let none = OccupancyGrid::filled(0, 0, 0.1, [0.0; 3], FREE);
@@ -134,5 +148,8 @@ fn a_ring_grazing_the_map_edge_is_closed_by_it_but_a_wide_opening_leaks() {
     let m = corridor_err(isolate_corridor(&g, None));
     assert!(m.contains("leak"), "{m}");
     let m = corridor_err(isolate_corridor(&g, Some(g.cell_center(50, 50 + 25))));
-    assert!(m.contains("leak") && m.contains("reaches the map border at"), "{m}");
+    assert!(
+        m.contains("leak") && m.contains("reaches the map border at"),
+        "{m}"
+    );
 }

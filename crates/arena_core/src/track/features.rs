@@ -96,7 +96,11 @@ pub fn resample_closed(p: &[[f64; 2]], ds: f64) -> Vec<[f64; 2]> {
             seg += 1;
             seg_len = dist(p[seg], p[(seg + 1) % n]);
         }
-        let t = if seg_len > 0.0 { ((s - seg_start) / seg_len).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if seg_len > 0.0 {
+            ((s - seg_start) / seg_len).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         let (a, b) = (p[seg], p[(seg + 1) % n]);
         out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
     }
@@ -188,7 +192,9 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
     let total_turn: f64 = kappa.iter().sum::<f64>() * ds;
 
     // Start the scan on the sample that is most straight so no turn wraps around 0.
-    let start = (0..n).min_by(|&a, &b| kappa[a].abs().partial_cmp(&kappa[b].abs()).unwrap()).unwrap_or(0);
+    let start = (0..n)
+        .min_by(|&a, &b| kappa[a].abs().partial_cmp(&kappa[b].abs()).unwrap())
+        .unwrap_or(0);
     let at = |k: usize| kappa[(start + k) % n];
 
     // Raw turns (hysteresis) and straights.
@@ -248,7 +254,10 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
             let chicane = turns.len() > 1 && j != i && !used[j] && {
                 let u = turns[j];
                 let gap = ((u.0 + n - t.1) % n) as f64 * ds;
-                u.2.signum() != t.2.signum() && deg(u.2) >= 45.0 && deg(u.2) < 135.0 && gap < gap_max
+                u.2.signum() != t.2.signum()
+                    && deg(u.2) >= 45.0
+                    && deg(u.2) < 135.0
+                    && gap < gap_max
             };
             if chicane {
                 used[j] = true;
@@ -264,16 +273,30 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
         used[i] = true;
         if let Some(kind) = kind {
             let p = pos(t.0);
-            features.push(Feature { kind, at_m: to_m(t.0), x: p[0], y: p[1] });
+            features.push(Feature {
+                kind,
+                at_m: to_m(t.0),
+                x: p[0],
+                y: p[1],
+            });
         }
     }
     let turns = turns
         .iter()
-        .map(|t| Turn { start_m: to_m(t.0), end_m: to_m(t.1), angle_rad: t.2, peak_radius_m: 1.0 / t.3 })
+        .map(|t| Turn {
+            start_m: to_m(t.0),
+            end_m: to_m(t.1),
+            angle_rad: t.2,
+            peak_radius_m: 1.0 / t.3,
+        })
         .collect();
     CurveAnalysis {
         length_m: length,
-        min_radius_m: if max_k > 0.0 { 1.0 / max_k } else { f64::INFINITY },
+        min_radius_m: if max_k > 0.0 {
+            1.0 / max_k
+        } else {
+            f64::INFINITY
+        },
         turns,
         features,
         longest_straight_m: longest_straight,
@@ -312,7 +335,8 @@ pub fn is_cyclic_order(measured: &[FeatureKind], wanted: &[FeatureKind]) -> bool
     if wanted.is_empty() {
         return true;
     }
-    (0..measured.len()).any(|r| (0..wanted.len()).all(|i| measured[(i + r) % measured.len()] == wanted[i]))
+    (0..measured.len())
+        .any(|r| (0..wanted.len()).all(|i| measured[(i + r) % measured.len()] == wanted[i]))
 }
 
 #[cfg(test)]
@@ -339,7 +363,11 @@ mod tests {
         assert_eq!(a.count(FeatureKind::Hairpin), 2, "{:?}", a.turns);
         assert_eq!(a.features.len(), 2);
         assert!((a.min_radius_m - 1.2).abs() < 0.1, "{}", a.min_radius_m);
-        assert!(a.longest_straight_m > 9.0 && a.longest_straight_m <= 10.0, "{}", a.longest_straight_m);
+        assert!(
+            a.longest_straight_m > 9.0 && a.longest_straight_m <= 10.0,
+            "{}",
+            a.longest_straight_m
+        );
         assert!((a.total_turn_rad - 2.0 * PI).abs() < 1e-6);
         // Legs are 2.4 m apart; the hairpin itself is excluded by the window.
         let c = self_clearance(&stadium(1.2, 10.0), PI * 1.2, 0.05);
@@ -349,8 +377,14 @@ mod tests {
     #[test]
     fn cyclic_order_matches_rotations_only() {
         use FeatureKind::*;
-        assert!(is_cyclic_order(&[Chicane, Hairpin, Hairpin], &[Hairpin, Chicane, Hairpin]));
-        assert!(!is_cyclic_order(&[Chicane, Hairpin, Sweeper], &[Chicane, Sweeper, Hairpin]));
+        assert!(is_cyclic_order(
+            &[Chicane, Hairpin, Hairpin],
+            &[Hairpin, Chicane, Hairpin]
+        ));
+        assert!(!is_cyclic_order(
+            &[Chicane, Hairpin, Sweeper],
+            &[Chicane, Sweeper, Hairpin]
+        ));
         assert!(is_cyclic_order(&[], &[]));
     }
 
@@ -358,7 +392,10 @@ mod tests {
     fn resample_keeps_length() {
         let s = stadium(1.0, 5.0);
         let r = resample_closed(&s, 0.05);
-        let (l0, l1) = (crate::geometry::polyline_length(&s, true), crate::geometry::polyline_length(&r, true));
+        let (l0, l1) = (
+            crate::geometry::polyline_length(&s, true),
+            crate::geometry::polyline_length(&r, true),
+        );
         assert!((l0 - l1).abs() / l0 < 1e-3);
     }
 }

@@ -24,7 +24,7 @@ pub struct BuildParams {
     pub ring_scale: f64,
     /// Douglas–Peucker tolerance for walls and ducts (m); 0 = half a map cell.
     pub simplify_tolerance_m: f64,
-    /// Taubin smoothing passes applied to the duct paths and the centreline.
+    /// Taubin smoothing passes applied to the duct paths (the centreline gets 5 × as many).
     pub smoothing_iterations: usize,
     /// Spacing of the resampled centreline (m).
     pub centreline_spacing_m: f64,
@@ -56,7 +56,8 @@ impl BuildParams {
         let p: BuildParams = if s.trim().is_empty() {
             BuildParams::default()
         } else {
-            serde_json::from_str(s).map_err(|e| ArenaError::invalid(format!("build params: {e}")))?
+            serde_json::from_str(s)
+                .map_err(|e| ArenaError::invalid(format!("build params: {e}")))?
         };
         p.validate()?;
         Ok(p)
@@ -68,12 +69,19 @@ impl BuildParams {
 
     /// The simplification tolerance in metres after resolving the "0 = half a cell" rule.
     pub fn simplify_tolerance(&self, resolution: f64) -> f64 {
-        if self.simplify_tolerance_m > 0.0 { self.simplify_tolerance_m } else { 0.5 * resolution }
+        if self.simplify_tolerance_m > 0.0 {
+            self.simplify_tolerance_m
+        } else {
+            0.5 * resolution
+        }
     }
 
     /// A copy with every automatic value resolved for a map of `resolution`.
     pub fn effective(&self, resolution: f64) -> Self {
-        BuildParams { simplify_tolerance_m: self.simplify_tolerance(resolution), ..self.clone() }
+        BuildParams {
+            simplify_tolerance_m: self.simplify_tolerance(resolution),
+            ..self.clone()
+        }
     }
 
     pub fn validate(&self) -> Result<()> {
@@ -86,7 +94,9 @@ impl BuildParams {
         ];
         for (k, v) in positive {
             if !(v.is_finite() && v > 0.0) {
-                return Err(ArenaError::invalid(format!("build params: {k} must be a finite number > 0, got {v}")));
+                return Err(ArenaError::invalid(format!(
+                    "build params: {k} must be a finite number > 0, got {v}"
+                )));
             }
         }
         let non_negative = [
@@ -96,17 +106,26 @@ impl BuildParams {
         ];
         for (k, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(ArenaError::invalid(format!("build params: {k} must be a finite number ≥ 0, got {v}")));
+                return Err(ArenaError::invalid(format!(
+                    "build params: {k} must be a finite number ≥ 0, got {v}"
+                )));
             }
         }
         if !self.wall_offset_m.is_finite() {
-            return Err(ArenaError::invalid("build params: wall_offset_m must be finite"));
+            return Err(ArenaError::invalid(
+                "build params: wall_offset_m must be finite",
+            ));
         }
         if !(3..=64).contains(&self.tube_segments) {
-            return Err(ArenaError::invalid(format!("build params: tube_segments must be in 3..=64, got {}", self.tube_segments)));
+            return Err(ArenaError::invalid(format!(
+                "build params: tube_segments must be in 3..=64, got {}",
+                self.tube_segments
+            )));
         }
         if self.smoothing_iterations > 100 {
-            return Err(ArenaError::invalid("build params: smoothing_iterations must be ≤ 100"));
+            return Err(ArenaError::invalid(
+                "build params: smoothing_iterations must be ≤ 100",
+            ));
         }
         Ok(())
     }
@@ -122,9 +141,15 @@ mod tests {
         assert_eq!(p.wall_height_m, 0.8);
         assert_eq!(p.tube_diameter_m, 0.33);
         assert_eq!(BuildParams::from_json(&p.to_json()).unwrap(), p);
-        assert!(BuildParams::from_json(r#"{"wall_hieght_m": 0.8}"#).unwrap_err().to_string().contains("unknown field"));
+        assert!(BuildParams::from_json(r#"{"wall_hieght_m": 0.8}"#)
+            .unwrap_err()
+            .to_string()
+            .contains("unknown field"));
         assert!(BuildParams::from_json(r#"{"tube_diameter_m": -1}"#).is_err());
-        assert_eq!(BuildParams::default().effective(0.05).simplify_tolerance_m, 0.025);
+        assert_eq!(
+            BuildParams::default().effective(0.05).simplify_tolerance_m,
+            0.025
+        );
         assert_eq!(BuildParams::from_json("").unwrap(), BuildParams::default());
     }
 }

@@ -49,7 +49,12 @@ impl ValidationReport {
 }
 
 fn check(name: &str, measured: String, bound: String, passed: bool) -> Check {
-    Check { name: name.into(), measured, bound, passed }
+    Check {
+        name: name.into(),
+        measured,
+        bound,
+        passed,
+    }
 }
 
 /// Validate a map against a spec. Never panics on odd maps: a map without a closed
@@ -61,8 +66,18 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
     let t = match measure_raster(g) {
         Ok(t) => t,
         Err(e) => {
-            checks.push(check("corridor", format!("{e}"), "one closed corridor".into(), false));
-            return ValidationReport { valid: false, checks, features: vec![], centreline: vec![] };
+            checks.push(check(
+                "corridor",
+                format!("{e}"),
+                "one closed corridor".into(),
+                false,
+            ));
+            return ValidationReport {
+                valid: false,
+                checks,
+                features: vec![],
+                centreline: vec![],
+            };
         }
     };
     checks.push(check(
@@ -71,7 +86,12 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
         "exactly 1".into(),
         t.corridor_components == 1,
     ));
-    checks.push(check("infield", format!("{} enclosed region(s)", t.infields), "exactly 1".into(), t.infields == 1));
+    checks.push(check(
+        "infield",
+        format!("{} enclosed region(s)", t.infields),
+        "exactly 1".into(),
+        t.infields == 1,
+    ));
 
     let mut line = t.centreline.clone();
     if spec.clockwise() {
@@ -82,14 +102,22 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
     checks.push(check(
         "lap_length",
         format!("{:.2} m", a.length_m),
-        format!("{:.2} m ± 3 % [{:.2}, {:.2}]", l, l * (1.0 - LAP_TOLERANCE), l * (1.0 + LAP_TOLERANCE)),
+        format!(
+            "{:.2} m ± 3 % [{:.2}, {:.2}]",
+            l,
+            l * (1.0 - LAP_TOLERANCE),
+            l * (1.0 + LAP_TOLERANCE)
+        ),
         (a.length_m - l).abs() <= LAP_TOLERANCE * l,
     ));
     let w = spec.corridor_width_m;
     let min_local = t.widths.iter().cloned().fold(f64::INFINITY, f64::min);
     checks.push(check(
         "width",
-        format!("{:.3} m mean (local min {:.3} m)", t.mean_width_m, min_local),
+        format!(
+            "{:.3} m mean (local min {:.3} m)",
+            t.mean_width_m, min_local
+        ),
         format!("{w:.3} m ± 5 %"),
         (t.mean_width_m - w).abs() <= WIDTH_TOLERANCE * w,
     ));
@@ -102,9 +130,18 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
         format!("≥ {:.2} m (r_min {:.2} m − 5 % − Δ)", r_bound, d.r_min),
         a.min_radius_m >= r_bound,
     ));
-    for kind in [FeatureKind::Hairpin, FeatureKind::Chicane, FeatureKind::Sweeper] {
+    for kind in [
+        FeatureKind::Hairpin,
+        FeatureKind::Chicane,
+        FeatureKind::Sweeper,
+    ] {
         let (got, want) = (a.count(kind), spec.target(kind) as usize);
-        checks.push(check(&format!("{}s", kind.name()), format!("{got}"), format!("= {want}"), got == want));
+        checks.push(check(
+            &format!("{}s", kind.name()),
+            format!("{got}"),
+            format!("= {want}"),
+            got == want,
+        ));
     }
     if !spec.feature_order.is_empty() {
         let got: Vec<&str> = a.order().iter().map(|k| k.name()).collect();
@@ -131,11 +168,18 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
     let c_bound = d.pitch * 0.97 - res;
     checks.push(check(
         "self_clearance",
-        if clearance.is_finite() { format!("{clearance:.2} m") } else { "no non-local passes".into() },
+        if clearance.is_finite() {
+            format!("{clearance:.2} m")
+        } else {
+            "no non-local passes".into()
+        },
         format!("≥ {c_bound:.2} m (p = {:.2} m − 3 % − Δ)", d.pitch),
         clearance >= c_bound,
     ));
-    let (ux, uy) = (spec.hall_x_m - 2.0 * cfg.hall_margin_m, spec.hall_y_m - 2.0 * cfg.hall_margin_m);
+    let (ux, uy) = (
+        spec.hall_x_m - 2.0 * cfg.hall_margin_m,
+        spec.hall_y_m - 2.0 * cfg.hall_margin_m,
+    );
     let [ex, ey] = t.extent_m;
     let fits = (ex <= ux + res && ey <= uy + res) || (ey <= ux + res && ex <= uy + res);
     checks.push(check(
@@ -145,6 +189,20 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
         fits,
     ));
     let valid = checks.iter().all(|c| c.passed);
-    let features = a.features.iter().map(|f| FeatureAt { kind: f.kind, at_m: f.at_m, x: f.x, y: f.y }).collect();
-    ValidationReport { valid, checks, features, centreline: line }
+    let features = a
+        .features
+        .iter()
+        .map(|f| FeatureAt {
+            kind: f.kind,
+            at_m: f.at_m,
+            x: f.x,
+            y: f.y,
+        })
+        .collect();
+    ValidationReport {
+        valid,
+        checks,
+        features,
+        centreline: line,
+    }
 }

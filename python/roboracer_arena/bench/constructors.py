@@ -1,0 +1,218 @@
+"""``roboracer-arena bench constructors``: the paper's Table "Constructor comparison".
+
+Every constructor gets the same specifications and seeds. How trials are counted:
+
+* A spec the admissibility screen rejects (e.g. the 200 m lap in a 20 × 15 m hall) is a
+  *correct rejection*, reported on its own line, and is **not a trial**: no constructor
+  runs on it. The paper's 30 trials are 10 admissible specs × 3 seeds; ``benches/specs.jsonl``
+  holds 11 specs of which one is screen-rejected, so it gives the same 30.
+* A trial is one (admissible spec, seed, constructor). *Built*: the constructor emitted a
+  centreline, it was rasterised (Eq. 3) and the ROS map was written to disk. *Valid*: that
+  map, read back from its PNG + YAML, passed the raster validator (the same for every
+  constructor). Seconds per trial cover construction, rasterisation, map writing and the
+  external validation (the paper's "construction, map writing, and validation").
+
+Constructors:
+
+* ``lattice`` — Algorithm 1 as shipped (``generate_track``): at most 800 lattice candidates,
+  each rasterised and validated, the first valid map returned. Built ⇒ passed the raster
+  validator inside the loop, so valid/built re-checks the written file.
+* ``lattice-raw`` — the paper's protocol for this table: the lattice constructor alone,
+  emitting the first candidate that passes its *own analytic* checks (hall fit,
+  self-clearance, curvature feature counts on the analytic curve), with no raster
+  validation in the loop. Its valid/built says how well the constructor predicts the
+  raster validator.
+* ``de`` / ``random`` — the scipy baselines of :mod:`roboracer_arena.generate.baselines`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import statistics
+import sys
+import tempfile
+import time
+from collections import Counter
+from pathlib import Path
+from typing import Any
+
+from tqdm import tqdm
+
+from .. import _core
+from ..constructor_config import ConstructorConfig
+from ..errors import SpecError
+from ..fileio import atomic_write_text
+from ..generate import Acceptance, generate_track, load_ros_map, rasterise, save_ros_map, screen, validate_map
+from ..generate.baselines import construct_baseline
+from ..spec import TrackSpec
+
+CONSTRUCTOR_CHOICES = ("lattice", "lattice-raw", "de", "random")
+# The paper's Table "Constructor comparison": (valid, built, trials, seconds per trial).
+PAPER = {"lattice": (21, 21, 30, 3.7), "de": (15, 27, 30, 5.1), "random": (11, 30, 30, 11.2)}
+QUICK_SPECS = ("paper-teaser-3h1c-20x15", "paper-200m-in-20x15", "narrow-1.2m-small-hall")
+
+
+def default_specs_path() -> Path:
+    """``benches/specs.jsonl`` in the current directory, else beside the source tree."""
+    here = Path("benches/specs.jsonl")
+    if here.is_file():
+        return here
+    return Path(__file__).resolve().parents[3] / "benches" / "specs.jsonl"
+
+
+def load_specs(path: str | Path) -> list[TrackSpec]:
+    """One TrackSpec JSON object per non-blank line; errors name the file and line."""
+    p = Path(path)
+    try:
+        lines = p.read_text(encoding="utf-8").splitlines()
+    except OSError as e:
+        raise SpecError(f"{p}: cannot read spec file: {e.strerror or e}") from e
+    specs = []
+    for i, line in enumerate(lines, 1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        try:
+            data = json.loads(line)
+        except json.JSONDecodeError as e:
+            raise SpecError(f"{p}:{i}: not valid JSON (column {e.colno}): {e.msg}") from e
+        specs.append(TrackSpec.from_dict(data, source=f"{p}:{i}"))
+    if not specs:
+        raise SpecError(f"{p}: no specifications")
+    return specs
+
+
+def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConfig) -> tuple[Any, str, int]:
+    """(GeneratedMap or None, why not built, lattice candidates tried)."""
+    if constructor == "lattice":
+        out = generate_track(spec, seed=seed, config=config)
+        if isinstance(out, Acceptance):
+            return out.map, "", out.candidates_tried
+        reasons = getattr(out, "reasons", {}) or {out.kind: 1}
+        return None, max(reasons, key=reasons.get), getattr(out, "candidates_tried", 0)
+    if constructor == "lattice-raw":
+        info, line = _core.construct_lattice(spec.model_dump_json(), config.model_dump_json(), seed)
+        tried = json.loads(info)["tried"]
+        if line is None:
+            reasons = json.loads(info)["reasons"]
+            return None, max(reasons, key=reasons.get), tried
+        return rasterise(line, spec, config), "", tried
+    line = construct_baseline(spec, config, seed, constructor)
+    if line is None:
+        return None, "self-intersecting curve", 1
+    return rasterise(line, spec, config), "", 1
+
+
+def run_trial(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConfig, workdir: Path) -> dict[str, Any]:
+    """One matched trial: build, write the map, read it back, validate it."""
+    t0 = time.perf_counter()
+    m, why, tried = _build(spec, seed, constructor, config)
+    row: dict[str, Any] = {"spec": spec.name, "seed": seed, "constructor": constructor, "built": m is not None, "candidates": tried}
+    if m is None:
+        row.update(valid=False, failed_checks=[], not_built_reason=why)
+    else:
+        yaml_path = save_ros_map(m, workdir / f"{constructor}-{spec.name}-{seed}.yaml")
+        report, _ = validate_map(load_ros_map(yaml_path), spec, config)
+        row.update(valid=bool(report["valid"]), failed_checks=[c["name"] for c in report["checks"] if not c["passed"]])
+    row["seconds"] = time.perf_counter() - t0
+    return row
+
+
+def summarise(rows: list[dict[str, Any]], constructor: str) -> dict[str, Any]:
+    mine = [r for r in rows if r["constructor"] == constructor]
+    n = len(mine)
+    built = sum(r["built"] for r in mine)
+    valid = sum(r["valid"] for r in mine)
+    secs = sorted(r["seconds"] for r in mine)
+    cands = sorted(r["candidates"] for r in mine)
+    return {
+        "constructor": constructor,
+        "trials": n,
+        "built": built,
+        "valid": valid,
+        "seconds_per_trial_mean": sum(secs) / n if n else float("nan"),
+        "seconds_per_trial_median": statistics.median(secs) if n else float("nan"),
+        "candidates_median": statistics.median(cands) if n else 0,
+        "candidates_max": cands[-1] if n else 0,
+        "failed_checks": dict(Counter(c for r in mine for c in r["failed_checks"])),
+        "not_built": dict(Counter(r["not_built_reason"] for r in mine if not r["built"])),
+    }
+
+
+def run(specs: list[TrackSpec], seeds: list[int], constructors: list[str], config: ConstructorConfig | None = None, progress: bool = True) -> dict[str, Any]:
+    """Run every (admissible spec, seed, constructor) trial; returns rows and summaries."""
+    config = config or ConstructorConfig()
+    admissible, rejections = [], []
+    for s in specs:
+        sr = screen(s, config)
+        (admissible.append(s) if sr["passed"] else rejections.append({"spec": s.name, "violations": sr["violations"]}))
+    jobs = [(s, seed, c) for c in constructors for s in admissible for seed in seeds]
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="bench-constructors-") as tmp:
+        for s, seed, c in tqdm(jobs, desc="constructor trials", unit="trial", file=sys.stderr, disable=not progress):
+            rows.append(run_trial(s, seed, c, config, Path(tmp)))
+    return {
+        "specs": len(specs),
+        "admissible_specs": len(admissible),
+        "seeds": seeds,
+        "screen_rejections": rejections,
+        "summary": [summarise(rows, c) for c in constructors],
+        "trials": rows,
+        "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
+    }
+
+
+def print_table(result: dict[str, Any]) -> None:
+    print(
+        f"{result['admissible_specs']} admissible specs × {len(result['seeds'])} seeds = trials per constructor; "
+        f"{len(result['screen_rejections'])} spec(s) rejected by the screen (not trials)"
+    )
+    for r in result["screen_rejections"][:5]:
+        print(f"  rejected {r['spec']}: {'; '.join(r['violations'])}")
+    if len(result["screen_rejections"]) > 5:
+        print(f"  … and {len(result['screen_rejections']) - 5} more (see --json)")
+    head = f"{'constructor':<12} {'valid trials':>12} {'valid/built':>11} {'s/trial':>8} {'median s':>8}   {'paper':>22}"
+    print(head)
+    print("-" * len(head))
+    for s in result["summary"]:
+        paper = PAPER.get(s["constructor"])
+        ptxt = f"{paper[0]}/{paper[2]}  {paper[0]}/{paper[1]}  {paper[3]:.1f} s" if paper else ""
+        print(
+            f"{s['constructor']:<12} {s['valid']:>5}/{s['trials']:<6} {s['valid']:>5}/{s['built']:<5} "
+            f"{s['seconds_per_trial_mean']:>8.3f} {s['seconds_per_trial_median']:>8.3f}   {ptxt:>22}"
+        )
+    for s in result["summary"]:
+        if s["constructor"].startswith("lattice"):
+            print(f"  {s['constructor']}: candidates per trial median {s['candidates_median']:g}, max {s['candidates_max']} (cap 800)")
+        if s["failed_checks"] or s["not_built"]:
+            print(f"  {s['constructor']}: failed checks {s['failed_checks'] or '{}'}; not built {s['not_built'] or '{}'}")
+
+
+def register(kinds) -> None:
+    p = kinds.add_parser("constructors", help="lattice vs DE vs random sampling (the paper's Table 3)", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--specs", type=Path, default=None, metavar="FILE.jsonl", help="one TrackSpec JSON per line (default benches/specs.jsonl)")
+    p.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], metavar="S", help="seeds (default 0 1 2)")
+    p.add_argument("--constructors", nargs="+", choices=CONSTRUCTOR_CHOICES, default=list(CONSTRUCTOR_CHOICES), metavar="C", help=f"subset of {', '.join(CONSTRUCTOR_CHOICES)} (default all)")
+    p.add_argument("--json", type=Path, metavar="FILE", help="write the summary and every trial to FILE")
+    p.set_defaults(func=_cli)
+
+
+def _cli(args: argparse.Namespace) -> int:
+    if any(s < 0 for s in args.seeds):
+        raise SpecError(f"--seeds must be ≥ 0, got {args.seeds}")
+    specs = load_specs(args.specs or default_specs_path())
+    result = run(specs, args.seeds, args.constructors)
+    print_table(result)
+    if args.json:
+        atomic_write_text(args.json, json.dumps(result, indent=2) + "\n")
+        print(f"wrote {args.json}")
+    return 0
+
+
+def run_quick() -> dict[str, Any]:
+    """Three specs (one screen-rejected) × seed 0, every constructor: a smoke run."""
+    specs = [s for s in load_specs(default_specs_path()) if s.name in QUICK_SPECS]
+    result = run(specs, [0], list(CONSTRUCTOR_CHOICES))
+    print_table(result)
+    return result

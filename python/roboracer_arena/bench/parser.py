@@ -1,0 +1,212 @@
+"""``roboracer-arena bench parser``: the paper's Table 2 ("Local parser evaluation") for
+our backends -- exact parses on the parse set, invention-audit passes over repeated
+calls, median latency per call and, where known, memory.
+
+A request line (JSONL) holds ``id``, ``set`` ("parse" or "audit"), ``text`` and
+``expected`` (the stated fields only). *Exact*: every stated field matches and every
+unstated field keeps its default. *Audit pass*: no field outside ``expected`` differs
+from its default (no invented constraint); a call that errors is not a pass.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import statistics
+import time
+import warnings
+from pathlib import Path
+from typing import Any, Callable
+
+from ..errors import ArenaError, InvalidArgumentError
+from ..fileio import atomic_write_text
+from ..parse.result import DEFAULTS
+
+REPO_REQUESTS = Path(__file__).resolve().parents[3] / "benches" / "requests.jsonl"
+
+# The paper's Table 2 (Gemma 4 31B etc. through Ollama on an RTX PRO 6000).
+PAPER_ROWS = [
+    ("gemma4:31b (paper)", "12/12", "51/51", "9.3 s", "19.0 GB VRAM"),
+    ("qwen3.6:35b (paper)", "12/12", "51/51", "12.5 s", "23.9 GB VRAM"),
+    ("gpt-oss:120b (paper)", "12/12", "51/51", "3.7 s", "65.4 GB VRAM"),
+    ("mistral:7b (paper)", "12/12", "45/51", "0.8 s", "4.4 GB VRAM"),
+]
+_REL_TOL = 1e-3
+
+
+def load_requests(path: Path) -> list[dict[str, Any]]:
+    """Read a JSONL request file; errors name the file and line."""
+    out = []
+    for n, line in enumerate(Path(path).read_text(encoding="utf-8").splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            d = json.loads(line)
+            assert d["set"] in ("parse", "audit") and isinstance(d["text"], str) and isinstance(d["expected"], dict)
+        except (json.JSONDecodeError, KeyError, AssertionError) as e:
+            raise InvalidArgumentError(f"{path}:{n}: not a request line ({e})") from None
+        out.append(d)
+    return out
+
+
+def _same(a: Any, b: Any) -> bool:
+    if isinstance(b, float) or isinstance(a, float):
+        return abs(float(a) - float(b)) <= _REL_TOL * max(1.0, abs(float(b)))
+    return a == b
+
+
+def score(got: dict[str, Any] | None, expected: dict[str, Any]) -> tuple[bool, bool, list[str]]:
+    """(exact, no invention, the fields that differ) for one call's spec dump."""
+    if got is None:
+        return False, False, ["(error)"]
+    want = {**DEFAULTS, **expected}
+    wrong = [k for k in want if not _same(got[k], want[k])]
+    invented = [k for k in wrong if k not in expected]
+    return not wrong, not invented, wrong
+
+
+def _rules_call(text: str) -> dict[str, Any]:
+    from ..parse import parse_request
+
+    return parse_request(text, backend="rules").spec.model_dump()
+
+
+def _ollama_call(host: str | None, model: str, timeout: float) -> Callable[[str], dict[str, Any]]:
+    from ..parse.ollama_backend import ask_ollama
+
+    def call(text: str) -> dict[str, Any]:
+        spec, _ = ask_ollama(text, host=host, model=model, timeout=timeout)
+        return spec.model_dump()
+
+    return call
+
+
+def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any]], repeats: int) -> dict[str, Any]:
+    """Run the parse set once and the audit set ``repeats`` times through ``call``."""
+    from ..parse import ground
+    from ..spec import TrackSpec
+
+    rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    times: list[float] = []
+    parse_ok, parse_n, audit_ok, audit_n, guard_caught, guard_false = 0, 0, 0, 0, 0, 0
+    misses: list[dict[str, Any]] = []
+    for req in requests:
+        for rep in range(1 if req["set"] == "parse" else repeats):
+            t0 = time.perf_counter()
+            try:
+                got, err = call(req["text"]), None
+            except ArenaError as e:
+                got, err = None, f"{type(e).__name__}: {e}"
+            times.append(time.perf_counter() - t0)
+            exact, clean, wrong = score(got, req["expected"])
+            if got is not None and not clean:  # would the grounding guard have caught it?
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    flagged = ground(req["text"], TrackSpec(**got), strict=False, rules_reading=False).invented
+                guard_caught += int(bool(flagged))
+                guard_false += int(not flagged)
+            if req["set"] == "parse":
+                parse_n += 1
+                parse_ok += int(exact)
+            else:
+                audit_n += 1
+                audit_ok += int(clean)
+            if (req["set"] == "parse" and not exact) or (req["set"] == "audit" and not clean):
+                if rep == 0 or not any(m["id"] == req["id"] for m in misses):
+                    misses.append({"id": req["id"], "set": req["set"], "fields": wrong, "error": err})
+    rss1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return {
+        "parse": f"{parse_ok}/{parse_n}",
+        "parse_exact": parse_ok,
+        "parse_total": parse_n,
+        "audit": f"{audit_ok}/{audit_n}",
+        "audit_pass": audit_ok,
+        "audit_calls": audit_n,
+        "latency_median_s": statistics.median(times) if times else None,
+        "latency_max_s": max(times) if times else None,
+        "peak_rss_delta_mb": round((rss1 - rss0) / 1024, 2),
+        "inventions_caught_by_guard": guard_caught,
+        "inventions_missed_by_guard": guard_false,
+        "misses": misses,
+    }
+
+
+def _fmt_latency(s: float | None) -> str:
+    if s is None:
+        return "-"
+    return f"{s * 1e3:.2f} ms" if s < 1 else f"{s:.1f} s"
+
+
+def run(
+    requests_path: Path = REPO_REQUESTS,
+    backends: tuple[str, ...] = ("rules",),
+    repeats: int = 3,
+    ollama_host: str | None = None,
+    model: str = "gemma4:31b",
+    timeout: float = 120.0,
+) -> dict[str, Any]:
+    """Evaluate each backend on ``requests_path``; print the table; return the results."""
+    from ..parse.ollama_backend import reachable, resolve_host
+
+    requests = load_requests(requests_path)
+    results: dict[str, Any] = {"requests": str(requests_path), "repeats": repeats, "rows": {}}
+    for backend in backends:
+        if backend == "rules":
+            _rules_call(requests[0]["text"])  # warm the imports and regex caches
+            results["rows"]["rules"] = evaluate(_rules_call, requests, repeats)
+        elif backend == "ollama":
+            key = f"ollama {model}"
+            if not reachable(ollama_host, timeout=2):
+                results["rows"][key] = {"status": f"not reachable at {resolve_host(ollama_host)}"}
+                continue
+            results["rows"][key] = evaluate(_ollama_call(ollama_host, model, timeout), requests, repeats)
+        else:
+            raise InvalidArgumentError(f"unknown backend {backend!r} (rules, ollama)")
+    print_table(results)
+    return results
+
+
+def print_table(results: dict[str, Any]) -> None:
+    print(f"requests: {results['requests']}  (audit repeated {results['repeats']}×)")
+    head = f"{'parser':<24} {'parse':>7} {'audit pass':>11} {'latency':>10}  memory"
+    print(head)
+    print("-" * len(head))
+    for name, r in results["rows"].items():
+        if "status" in r:
+            print(f"{name:<24} {r['status']}")
+            continue
+        mem = f"{r['peak_rss_delta_mb']:.1f} MB peak RSS delta"
+        print(f"{name:<24} {r['parse']:>7} {r['audit']:>11} {_fmt_latency(r['latency_median_s']):>10}  {mem}")
+    for row in PAPER_ROWS:
+        print(f"{row[0]:<24} {row[1]:>7} {row[2]:>11} {row[3]:>10}  {row[4]}")
+    for name, r in results["rows"].items():
+        for m in r.get("misses", []):
+            print(f"  miss [{name}] {m['id']} ({m['set']}): {', '.join(m['fields'])}" + (f" — {m['error']}" if m["error"] else ""))
+
+
+def run_quick() -> dict[str, Any]:
+    """``bench all``: the rules backend on the shipped request set."""
+    return run()
+
+
+def register(kinds) -> None:
+    p = kinds.add_parser("parser", help="parser evaluation (the paper's Table 2)", description=__doc__)
+    p.add_argument("--requests", type=Path, default=REPO_REQUESTS, metavar="FILE.jsonl", help="request set")
+    p.add_argument("--backend", nargs="+", default=["rules"], choices=["rules", "ollama"], help="backends to evaluate")
+    p.add_argument("--repeats", type=int, default=3, help="repeats of the audit set (default 3, as in the paper)")
+    p.add_argument("--ollama-host", metavar="URL", help="Ollama server (default $OLLAMA_HOST)")
+    p.add_argument("--model", default="gemma4:31b", help="Ollama model (default gemma4:31b)")
+    p.add_argument("--timeout", type=float, default=120.0, help="seconds per model call")
+    p.add_argument("--json", type=Path, metavar="FILE", help="write the results as JSON")
+    p.set_defaults(func=_cli)
+
+
+def _cli(args: argparse.Namespace) -> int:
+    if args.repeats < 1:
+        raise InvalidArgumentError(f"--repeats must be ≥ 1, got {args.repeats}")
+    results = run(args.requests, tuple(args.backend), args.repeats, args.ollama_host, args.model, args.timeout)
+    if args.json:
+        atomic_write_text(args.json, json.dumps(results, indent=2))
+        print(f"wrote {args.json}")
+    return 0

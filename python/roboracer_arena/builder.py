@@ -1,0 +1,213 @@
+"""Map → environment: ``build_environment(map, out.usdc)`` loads a ROS occupancy map,
+extracts the corridor and its meshes in Rust, and writes a physics-ready USD stage.
+
+Stages timed in the report: ``load`` (map I/O), ``geometry`` (Rust: flood fill, EDT,
+marching squares, smoothing, meshes, IoU check; its own sub-stages are reported as
+``geometry.<name>``), ``usd_author`` (stage in memory, incl. textures) and ``usd_write``
+(encoding + atomic rename).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+from pydantic import BaseModel, Field
+
+from . import __version__
+from .config import BuildConfig
+from .errors import ConfigError, InvalidArgumentError
+
+MapLike = Any  # OccupancyMap | str | Path
+ConfigLike = BuildConfig | Mapping[str, Any] | str | Path | None
+
+
+class MeshCount(BaseModel):
+    vertices: int
+    triangles: int
+
+
+class BuildReport(BaseModel):
+    """What a build produced and what it cost."""
+
+    source: str = Field(description="The map YAML the environment was built from ('' for an in-memory map).")
+    output: str = Field(description="The USD file written.")
+    usd_format: str
+    usd_bytes: int = Field(description="Size of the USD file (textures not counted).")
+    textures: list[str] = Field(default_factory=list, description="Texture files written beside the stage.")
+    raster_px: tuple[int, int] = Field(description="(width, height) of the source raster in cells.")
+    raster_mp: float = Field(description="Raster size in megapixels (width × height / 1e6).")
+    resolution_m: float
+    origin: tuple[float, float, float]
+    timings_s: dict[str, float] = Field(description="Seconds per stage; 'total' is load + geometry + usd.")
+    meshes: dict[str, MeshCount]
+    walls: int = Field(description="Number of closed collision-wall polylines.")
+    ducts: int = Field(description="Number of duct polylines (visual barriers).")
+    centreline_length_m: float
+    iou: float = Field(description="IoU of the drivable region re-rasterised from the collision walls with the source corridor.")
+    max_wall_deviation_cells: float = Field(description="Worst distance (cells) from a wall vertex to the corridor border.")
+    border_contact_cells: int = Field(
+        0, description="Corridor cells on the map edge; > 0 means the map edge closes the corridor there (it acts as a wall)."
+    )
+
+    def summary(self) -> str:
+        """A few human-readable lines."""
+        t = self.timings_s
+        stages = ", ".join(f"{k} {v * 1e3:.0f} ms" for k, v in t.items() if "." not in k and k != "total")
+        counts = ", ".join(f"{k} {m.vertices:,} v / {m.triangles:,} t" for k, m in self.meshes.items())
+        return (
+            f"built {self.output} from {self.source or 'an in-memory map'}: "
+            f"{self.raster_px[0]}x{self.raster_px[1]} cells ({self.raster_mp:.3f} MP) in {t['total']:.3f} s\n"
+            f"  stages: {stages}\n"
+            f"  meshes: {counts}\n"
+            f"  USD {self.usd_bytes / 1e6:.2f} MB ({self.usd_format}), IoU {self.iou:.4f}, "
+            f"worst wall deviation {self.max_wall_deviation_cells:.2f} cells"
+            + (f"\n  note: the corridor meets the map edge on {self.border_contact_cells} cells; the edge acts as a wall there"
+               if self.border_contact_cells else "")
+        )
+
+
+def resolve_config(config: ConfigLike) -> BuildConfig:
+    """``None`` → defaults; a mapping is validated; a path is loaded (TOML/JSON)."""
+    if config is None:
+        return BuildConfig()
+    if isinstance(config, BuildConfig):
+        return config
+    if isinstance(config, Mapping):
+        return BuildConfig.from_dict(dict(config))
+    if isinstance(config, (str, Path)):
+        return BuildConfig.from_file(config)
+    raise ConfigError(f"config must be a BuildConfig, a mapping or a file path, not {type(config).__name__}")
+
+
+def parse_start(start: Sequence[float] | str | None) -> tuple[float, ...] | None:
+    """A start pose ``(x, y)`` or ``(x, y, yaw)``; also accepts the CLI text ``"x,y[,yaw]"``."""
+    if start is None:
+        return None
+    if isinstance(start, str):
+        try:
+            start = [float(s) for s in start.split(",")]
+        except ValueError as e:
+            raise InvalidArgumentError(f"start pose must be 'x,y' or 'x,y,yaw' in metres/radians, got {start!r}") from e
+    vals = tuple(float(v) for v in start)
+    if len(vals) not in (2, 3) or not all(np.isfinite(vals)):
+        raise InvalidArgumentError(f"start pose must be finite (x, y) or (x, y, yaw), got {vals!r}")
+    return vals
+
+
+def build_environment(
+    map_or_path: MapLike,
+    out_path: str | Path,
+    config: ConfigLike = None,
+    start: Sequence[float] | str | None = None,
+) -> BuildReport:
+    """Build the USD environment of a ROS occupancy map.
+
+    ``map_or_path`` is a map YAML path or an :class:`~roboracer_arena.maps.OccupancyMap`;
+    ``out_path`` ends in ``.usdc`` (default encoding), ``.usda`` or ``.usd`` (encoding from
+    ``config.usd_format``); ``config`` is a :class:`BuildConfig`, a mapping or a TOML/JSON
+    file; ``start`` optionally seeds the corridor from a pose ``(x, y[, yaw])``.
+
+    Raises a :class:`~roboracer_arena.errors.ArenaError` subclass on bad input (unreadable
+    map, no closed corridor, leaking walls, bad config); nothing is written then.
+    """
+    from .corridor import extract_corridor
+    from .maps import load_map
+    from .usd import write_stage
+    from .usd.stage import resolve_format
+
+    cfg = resolve_config(config)
+    pose = parse_start(start)
+    out = Path(out_path)
+    resolve_format(out, cfg)  # refuse a bad suffix before any work
+
+    t0 = time.perf_counter()
+    occ = load_map(map_or_path) if isinstance(map_or_path, (str, Path)) else map_or_path
+    t1 = time.perf_counter()
+    geo = extract_corridor(occ, params=cfg.geometry_params(), start=pose)
+    t2 = time.perf_counter()
+    meshes = stage_meshes(geo, cfg)
+    t3 = time.perf_counter()
+    source = str(getattr(occ, "path", "") or "")
+    metadata = {
+        "generator": f"roboracer-arena {__version__}",
+        "source_map": source,
+        "resolution": float(occ.resolution),
+        "origin": [float(v) for v in occ.origin],
+        "raster_px": [int(occ.data.shape[1]), int(occ.data.shape[0])],
+        "build_config": cfg.model_dump_json(),
+        "geometry_params": json.dumps(geo.params, sort_keys=True),
+        "iou": float(geo.iou),
+        "max_wall_deviation_cells": float(geo.max_wall_deviation_cells),
+        "border_contact_cells": int(getattr(geo, "border_contact_cells", 0)),
+    }
+    if pose is not None:
+        metadata["start"] = list(pose)
+    written = write_stage(out, meshes, cfg, metadata)
+
+    h, w = occ.data.shape
+    timings = {"load": t1 - t0, "geometry": t2 - t1}
+    timings.update({f"geometry.{k}": float(v) for k, v in dict(getattr(geo, "timings", {}) or {}).items()})
+    timings["usd_author"] = (t3 - t2) + written.seconds_author  # mesh records + stage in memory
+    timings["usd_write"] = written.seconds_write
+    timings["total"] = timings["load"] + timings["geometry"] + timings["usd_author"] + timings["usd_write"]
+    return BuildReport(
+        source=source,
+        output=str(out),
+        usd_format=written.usd_format,
+        usd_bytes=written.usd_bytes,
+        textures=[str(p) for p in written.textures],
+        raster_px=(int(w), int(h)),
+        raster_mp=w * h / 1e6,
+        resolution_m=float(occ.resolution),
+        origin=tuple(float(v) for v in occ.origin),  # type: ignore[arg-type]
+        timings_s=timings,
+        meshes={k: MeshCount(vertices=len(v), triangles=len(t)) for k, (v, t) in geo.meshes.items()},
+        walls=len(geo.walls),
+        ducts=len(geo.ducts),
+        centreline_length_m=geo.centreline_length if len(geo.centreline) > 1 else 0.0,
+        iou=float(geo.iou),
+        max_wall_deviation_cells=float(geo.max_wall_deviation_cells),
+        border_contact_cells=int(getattr(geo, "border_contact_cells", 0)),
+    )
+
+
+def stage_meshes(geo: Any, cfg: BuildConfig) -> list:
+    """Turn the corridor meshes (``floor``, ``walls``, ``barriers``) into stage records
+    with their looks and physics roles; the barriers are split into textured ducts and
+    rings when their layout checks out (see :mod:`roboracer_arena.usd.barriers`)."""
+    from .usd import StageMesh
+    from .usd.barriers import split_barriers
+
+    meshes = geo.meshes
+    g = cfg.geometry
+    out = []
+    if "floor" in meshes:
+        v, t = meshes["floor"]
+        st = np.asarray(v, dtype=np.float32)[:, :2] / np.float32(cfg.materials.floor_texture_tile_m)
+        out.append(StageMesh("/World/Track/Floor", v, t, "Floor", collider=True, st=st))
+    if "walls" in meshes:
+        v, t = meshes["walls"]
+        out.append(StageMesh("/World/Track/Walls", v, t, "Wall", collider=True, guide=True))
+    if "barriers" in meshes:
+        v, t = meshes["barriers"]
+        parts = split_barriers(v, t, geo.ducts, g.tube_segments, g.ring_spacing_m, g.ring_width_m)
+        if parts is None:
+            out.append(StageMesh("/World/Track/Barriers", v, t, "Duct"))
+        else:
+            out.append(
+                StageMesh(
+                    "/World/Track/Barriers/Ducts",
+                    parts.duct_points,
+                    parts.duct_triangles,
+                    "Duct",
+                    st=parts.duct_st,
+                    st_indices=parts.duct_st_indices,
+                )
+            )
+            if len(parts.ring_triangles):
+                out.append(StageMesh("/World/Track/Barriers/Rings", parts.ring_points, parts.ring_triangles, "Ring"))
+    return out

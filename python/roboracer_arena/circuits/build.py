@@ -1,0 +1,195 @@
+"""Build the circuit library: scale 1:10, smooth and resample, narrow where sections
+would merge, rasterise with variable width (Eq. 3), measure the raster, write the ROS map,
+the scaled centreline CSV and a per-circuit JSON report (all atomically)."""
+
+from __future__ import annotations
+
+import hashlib
+import io
+import json
+import os
+import time
+from dataclasses import asdict, dataclass
+from multiprocessing import get_context
+from pathlib import Path
+from typing import Callable, Iterator
+
+import numpy as np
+
+from .. import _core
+from ..errors import CorridorError
+from ..fileio import atomic_write_text
+from ..generate.mapfile import save_ros_map
+from ..generate.outcomes import GeneratedMap
+from .geometry import loop_length, reduce_widths, self_intersections, smooth_resample
+from .sources import CircuitInput, circuit_inputs
+
+
+@dataclass(frozen=True)
+class CircuitConfig:
+    """How circuits are turned into maps. Lengths in metres at vehicle scale."""
+
+    scale: float = 0.1  # uniform 1:10
+    resolution: float = 0.05  # Δ (m per cell)
+    wall_thickness: float = 0.15  # t_w
+    margin: float = 0.5  # unknown border around the outer wall
+    spacing: float = 0.1  # resampled vertex spacing along the centreline
+    tolerance_tum: float = 0.01  # spline RMS tolerance, TUM data (already smoothed, 5 m spacing)
+    tolerance_geojson: float = 0.05  # spline RMS tolerance, GeoJSON (hand-traced, ~30 m spacing)
+    csv_spacing: float = 0.5  # vertex spacing of the written centreline CSV (keeps the repo small)
+
+
+def _csv(xy: np.ndarray, widths: np.ndarray) -> str:
+    buf = io.StringIO()
+    buf.write("# x_m, y_m, w_tr_right_m, w_tr_left_m\n")
+    for (x, y), w in zip(xy, widths):
+        buf.write(f"{x:.3f},{y:.3f},{w / 2:.3f},{w / 2:.3f}\n")
+    return buf.getvalue()
+
+
+def _orient_ccw(xy: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    x, y = xy[:, 0], xy[:, 1]
+    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    if area < 0:
+        return (xy[::-1].copy(), *(a[::-1].copy() for a in arrays))
+    return (xy, *arrays)
+
+
+def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = CircuitConfig()) -> dict:
+    """Build one circuit into ``outdir/<id>/`` and return its report (also written as
+    ``circuit.json``). Raises :class:`CorridorError` if the raster has no closed corridor."""
+    t0 = time.perf_counter()
+    raw = c.xy * cfg.scale
+    tol = cfg.tolerance_tum if c.source == "tumftm" else cfg.tolerance_geojson
+    xy, w_nom = smooth_resample(raw, c.widths * cfg.scale, cfg.spacing, tol)
+    xy, w_nom = _orient_ccw(xy - xy.mean(axis=0), w_nom)
+    coarse_step = max(1, int(round(1.0 / cfg.spacing)))  # crossings on a 1 m loop
+    crossings = self_intersections(xy, step=coarse_step)
+    nar = reduce_widths(xy, w_nom, cfg.wall_thickness, cfg.spacing, crossings)
+    data, origin = _core.rasterise_centreline(xy, nar.widths, cfg.resolution, cfg.wall_thickness, cfg.margin)
+    t_raster = time.perf_counter() - t0
+    ref_len = loop_length(xy)
+    raw_len = loop_length(raw)
+    grade_separated = len(crossings) > 0
+    measured: dict = {}
+    try:
+        info_json, line, local_w = _core.measure_map(data, cfg.resolution, origin)
+        info = json.loads(info_json)
+        measured = {
+            "corridor_components": info["corridor_components"],
+            "infields": info["infields"],
+            "raster_centreline_m": round(info["centreline_length_m"], 4),
+            "mean_width_m": round(info["mean_width_m"], 4),
+            "min_width_m": round(float(np.percentile(local_w, 0.5)), 4),
+        }
+    except CorridorError as e:
+        measured = {"corridor_components": 0, "infields": 0, "error": str(e)}
+    err = None
+    if "raster_centreline_m" in measured and not grade_separated:
+        err = abs(measured["raster_centreline_m"] - ref_len) / ref_len
+    one_corridor = measured.get("corridor_components") == 1 and measured.get("infields", 0) >= 1
+    if not grade_separated:
+        one_corridor = one_corridor and measured.get("infields") == 1
+    # Minimum radius of the smoothed centreline (three-point circumradius over ±0.5 m).
+    k = max(1, int(round(0.5 / cfg.spacing)))
+    a, b, cc = np.roll(xy, k, axis=0), xy, np.roll(xy, -k, axis=0)
+    cross = np.abs((b[:, 0] - a[:, 0]) * (cc[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (cc[:, 0] - a[:, 0]))
+    la, lb, lc = (np.hypot(*(b - a).T), np.hypot(*(cc - b).T), np.hypot(*(cc - a).T))
+    with np.errstate(divide="ignore"):
+        radius = np.where(cross > 1e-12, la * lb * lc / (2 * cross), np.inf)
+
+    out = Path(outdir) / c.id
+    out.mkdir(parents=True, exist_ok=True)
+    yaml_path = save_ros_map(GeneratedMap(data, cfg.resolution, tuple(origin)), out / "map.yaml")
+    png = (out / "map.png").read_bytes()
+    every = max(1, int(round(cfg.csv_spacing / cfg.spacing)))
+    atomic_write_text(out / "centreline.csv", _csv(xy[::every], nar.widths[::every]))
+    h, wpx = data.shape
+    report = {
+        "id": c.id,
+        "name": c.name,
+        "source": c.source,
+        "source_file": f"{c.path.parent.parent.name}/{c.path.parent.name}/{c.path.name}",
+        "scale": cfg.scale,
+        "resolution_m": cfg.resolution,
+        "width_note": c.width_note,
+        "full_scale_length_m": round(c.length_m, 2),
+        "input_length_m": round(raw_len, 4),
+        "lap_length_m": round(ref_len, 4),
+        "nominal_width_mean_m": round(float(w_nom.mean()), 4),
+        "nominal_width_min_m": round(float(w_nom.min()), 4),
+        "width_mean_m": round(float(nar.widths.mean()), 4),
+        "width_min_m": round(float(nar.widths.min()), 4),
+        "min_radius_m": round(float(radius.min()), 3),
+        "narrowed_fraction": round(nar.narrowed_fraction, 4),
+        "unresolved_fraction": round(nar.unresolved_fraction, 4),
+        "min_separation_m": round(nar.min_separation_m, 3) if np.isfinite(nar.min_separation_m) else None,
+        "grade_separated": grade_separated,
+        "crossings": [[round(float(p[0]), 2), round(float(p[1]), 2)] for _, _, p in crossings],
+        "raster": {"width_px": wpx, "height_px": h, "origin": [round(v, 4) for v in origin]},
+        "measured": measured,
+        "length_error": None if err is None else round(err, 6),
+        "one_corridor": bool(one_corridor),
+        "map_sha256": hashlib.sha256(png).hexdigest(),
+        "map_yaml": f"{c.id}/{yaml_path.name}",
+        "seconds": round(time.perf_counter() - t0, 3),
+        "seconds_raster": round(t_raster, 3),
+        "meta": c.meta,
+    }
+    atomic_write_text(out / "circuit.json", json.dumps(report, indent=2) + "\n")
+    return report
+
+
+def _work(args: tuple[CircuitInput, str, CircuitConfig]) -> dict:
+    c, outdir, cfg = args
+    try:
+        return build_circuit(c, outdir, cfg)
+    except Exception as e:  # reported per circuit, never kills the batch
+        return {"id": c.id, "name": c.name, "source": c.source, "error": f"{type(e).__name__}: {e}"}
+
+
+def build_all(
+    sources: str | Path | None,
+    outdir: str | Path,
+    cfg: CircuitConfig = CircuitConfig(),
+    jobs: int | None = None,
+    only: list[str] | None = None,
+    progress: Callable[[Iterator[dict], int], Iterator[dict]] | None = None,
+) -> dict:
+    """Build every circuit (optionally ``only`` some ids) in ``jobs`` processes; write
+    ``outdir/index.json`` and return the summary with per-circuit reports."""
+    t0 = time.perf_counter()
+    inputs, skipped = circuit_inputs(sources)
+    if only:
+        inputs = [c for c in inputs if c.id in set(only)]
+    jobs = max(1, min(jobs or os.cpu_count() or 1, len(inputs) or 1))
+    # Biggest first keeps the pool busy to the end.
+    inputs.sort(key=lambda c: -c.length_m)
+    tasks = [(c, str(outdir), cfg) for c in inputs]
+    Path(outdir).mkdir(parents=True, exist_ok=True)
+    if jobs == 1:
+        it: Iterator[dict] = map(_work, tasks)
+        results = list(progress(it, len(tasks)) if progress else it)
+    else:
+        with get_context("spawn").Pool(jobs) as pool:  # fork can deadlock on threads (rayon, usd)
+            it = pool.imap_unordered(_work, tasks)
+            results = list(progress(it, len(tasks)) if progress else it)
+    results.sort(key=lambda r: r["id"])
+    errs = [r["length_error"] for r in results if r.get("length_error") is not None]
+    summary = {
+        "circuits": len(results),
+        "built": sum(1 for r in results if "error" not in r),
+        "one_corridor": sum(1 for r in results if r.get("one_corridor")),
+        "grade_separated": [r["id"] for r in results if r.get("grade_separated")],
+        "mean_length_error": float(np.mean(errs)) if errs else None,
+        "max_length_error": float(np.max(errs)) if errs else None,
+        "seconds": round(time.perf_counter() - t0, 3),
+        "jobs": jobs,
+        "config": asdict(cfg),
+        "skipped_as_covered": skipped,
+        "results": results,
+    }
+    index = {k: v for k, v in summary.items() if k not in ("results", "seconds", "jobs")}
+    index["ids"] = [r["id"] for r in results]
+    atomic_write_text(Path(outdir) / "index.json", json.dumps(index, indent=2) + "\n")
+    return summary

@@ -1,0 +1,43 @@
+"""``roboracer-arena build MAP.yaml -o OUT.usdc``: any ROS occupancy map → a physics-ready
+USD stage (floor, invisible collision walls, visual air-duct barriers, materials, physics
+scene). Prints the build report (per-stage times, mesh sizes, USD size, round-trip IoU)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ._common import add_json_flag, print_json
+from ..errors import InvalidArgumentError
+
+
+def register(sub) -> None:
+    p = sub.add_parser("build", help="ROS occupancy map → physics-ready USD stage", description=__doc__)
+    p.add_argument("map", type=Path, metavar="MAP.yaml", help="ROS map YAML (image beside it)")
+    p.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.usdc", help="output stage (.usdc, .usda or .usd)")
+    p.add_argument("--config", type=Path, metavar="F", help="BuildConfig file (.toml or .json)")
+    p.add_argument(
+        "--start", metavar="x,y[,yaw]", help="seed the corridor from this pose (map frame, m/rad) instead of finding the ring; write --start=-1.5,2 when x is negative"
+    )
+    p.add_argument("--usda", action="store_true", help="write text USD (the output must end in .usda or .usd)")
+    p.add_argument("--no-textures", action="store_true", help="plain colours, no PNG textures beside the stage")
+    add_json_flag(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..builder import build_environment, resolve_config
+
+    cfg = resolve_config(args.config)
+    if args.usda:
+        if args.out.suffix.lower() == ".usdc":
+            raise InvalidArgumentError(f"{args.out}: --usda asks for text USD but the output ends in .usdc; use .usda")
+        cfg = cfg.model_copy(update={"usd_format": "usda"})
+    if args.no_textures:
+        cfg = cfg.model_copy(update={"materials": cfg.materials.model_copy(update={"textures": False})})
+    report = build_environment(args.map, args.out, cfg, start=args.start)
+    if args.json:
+        print_json(report.model_dump(mode="json"))
+    else:
+        print(report.summary())
+    return 0

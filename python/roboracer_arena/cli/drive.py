@@ -1,0 +1,55 @@
+"""``roboracer-arena drive MAP``: drive the reference pure-pursuit car around any map
+(ROS map YAML, or a catalog id once the track library is installed) and report lap
+times and contacts; optionally write a GIF/MP4 of the drive."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ._common import add_json_flag, print_json
+
+
+def register(sub) -> None:
+    p = sub.add_parser("drive", help="drive the reference pure-pursuit car around a map (lap time, GIF)",
+                       description=__doc__)
+    p.add_argument("map", metavar="MAP", help="ROS map YAML (or a catalog id)")
+    p.add_argument("--laps", type=int, default=1, help="laps to drive (default 1)")
+    p.add_argument("--gif", type=Path, metavar="OUT.gif", help="write the drive to OUT.gif (or .mp4)")
+    p.add_argument("--fps", type=float, default=10.0, help="frames per second of the video (default 10)")
+    p.add_argument("--max-speed", type=float, default=None, help="speed cap of the driver (m/s, default 5)")
+    p.add_argument("--max-time", type=float, default=None, help="give up after this much simulated time (s)")
+    add_json_flag(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..drivers import PurePursuitParams, drive_laps
+    from ..errors import InvalidArgumentError
+
+    if args.laps < 1:
+        raise InvalidArgumentError(f"--laps must be >= 1, got {args.laps}")
+    params = None
+    if args.max_speed is not None:
+        if not args.max_speed > 0:
+            raise InvalidArgumentError(f"--max-speed must be > 0, got {args.max_speed}")
+        params = PurePursuitParams(max_speed=args.max_speed)
+    res = drive_laps(args.map, args.laps, params=params, video=args.gif, video_fps=args.fps,
+                     max_time_s=args.max_time, progress=not args.json)
+    if args.json:
+        print_json(res.to_dict())
+        return 0
+    verdict = "completed" if res.completed else ("COLLIDED" if res.collided else "did not finish")
+    print(f"{res.track}: {verdict} {res.laps_completed}/{res.laps_requested} laps of {res.track_length:.1f} m "
+          f"in {res.sim_time:.2f} s simulated ({res.wall_time:.2f} s wall), top speed {res.max_speed:.2f} m/s")
+    for i, t in enumerate(res.lap_times, 1):
+        print(f"  lap {i}: {t:.2f} s")
+    if res.collided:
+        print(f"  contact on {res.contact_steps} control step(s), first at (x, y) = {tuple(res.contact_at or ())}")
+        w = res.corridor_width_at_contact
+        if w is not None and res.vehicle_width is not None and w < res.vehicle_width + 0.2:
+            print(f"  the corridor there is only {w:.2f} m wide for a {res.vehicle_width:.2f} m wide car: "
+                  "the map's drivable path is too narrow at that point")
+    if res.video:
+        print(f"  wrote {res.video}")
+    return 0

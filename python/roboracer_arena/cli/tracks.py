@@ -1,0 +1,244 @@
+"""``roboracer-arena tracks``: the track library catalog (tracks/catalog.json).
+
+  list                      every track (filter with --kind)
+  show ID                   one catalog entry in full
+  build ID -o OUT.usdc      build a track's USD environment with the builder
+  verify                    load, corridor ring, USD build and pure-pursuit lap per track
+  sheet -o sheet.png        contact sheet of every track with name and lap length
+  catalog                   rebuild tracks/catalog.json (--generate reruns the generated sweep)
+
+A track id or a selection (circuits, recorded, generated, all) is what the gymnasium env
+accepts as ``track=``. Recorded maps are read from --sources (default
+$ROBORACER_ARENA_SOURCES or ../shared/track-sources)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from . import EXIT_BAD_INPUT, EXIT_OK
+from ._common import add_json_flag, print_json
+
+
+def _common(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--catalog", type=Path, default=None, metavar="FILE", help="catalog JSON (default tracks/catalog.json)")
+    p.add_argument("--sources", type=Path, default=None, metavar="DIR", help="track-sources directory for recorded maps")
+    add_json_flag(p)
+
+
+def _subset(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--kind", choices=["circuit", "recorded", "generated"], help="only tracks of this kind")
+    p.add_argument("--limit", type=int, default=None, metavar="N", help="at most N tracks of each kind")
+    p.add_argument("--ids", nargs="+", metavar="ID", help="only these ids")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("tracks", help="the track library: list, show, build, verify, sheet", description=__doc__,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    t = p.add_subparsers(dest="tracks_cmd", metavar="ACTION", required=True)
+    a = t.add_parser("list", help="list catalog tracks")
+    _common(a)
+    _subset(a)
+    a.set_defaults(func=run_list)
+    a = t.add_parser("show", help="show one catalog entry")
+    a.add_argument("id", help="track id")
+    _common(a)
+    a.set_defaults(func=run_show)
+    a = t.add_parser("build", help="build a track's USD environment")
+    a.add_argument("id", help="track id")
+    a.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.usdc", help="output USD file")
+    _common(a)
+    a.set_defaults(func=run_build)
+    a = t.add_parser("verify", help="verify tracks end to end; prints a table and a summary")
+    _common(a)
+    _subset(a)
+    a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
+    a.add_argument("--no-usd", action="store_true", help="skip the USD build check")
+    a.add_argument("--no-drive", action="store_true", help="skip the pure-pursuit lap")
+    a.add_argument("--update-catalog", action="store_true",
+                   help="record the results in the catalog; recorded maps that fail move to left_out")
+    a.set_defaults(func=run_verify)
+    a = t.add_parser("sheet", help="contact sheet of every track")
+    a.add_argument("-o", "--out", type=Path, required=True, metavar="sheet.png", help="output PNG")
+    a.add_argument("--columns", type=int, default=12, help="thumbnails per row (default 12)")
+    _common(a)
+    _subset(a)
+    a.set_defaults(func=run_sheet)
+    a = t.add_parser("catalog", help="rebuild tracks/catalog.json from tracks/ and the sources")
+    _common(a)
+    a.add_argument("--tracks", type=Path, default=None, metavar="DIR", help="tracks directory (default tracks/)")
+    a.add_argument("--generate", action="store_true", help="rerun the generated-track sweep first")
+    a.add_argument("--count", type=int, default=60, help="generated tracks to keep (default 60)")
+    a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
+    a.set_defaults(func=run_catalog)
+
+
+def _progress(desc: str):
+    from tqdm import tqdm
+
+    return lambda it, total: tqdm(it, total=total, desc=desc, unit="track", disable=None)
+
+
+def _load(args):
+    from ..library import load_catalog
+
+    return load_catalog(args.catalog)
+
+
+def _select(cat, args) -> list[dict]:
+    entries = cat.entries
+    if getattr(args, "ids", None):
+        entries = [cat.get(i) for i in args.ids]
+    if getattr(args, "kind", None):
+        entries = [e for e in entries if e["kind"] == args.kind]
+    if getattr(args, "limit", None) is not None:
+        out, seen = [], {}
+        for e in entries:  # spread over the kinds: every n-th entry of each kind
+            seen[e["kind"]] = seen.get(e["kind"], 0) + 1
+        step = {k: max(1, n // args.limit) for k, n in seen.items()}
+        count: dict[str, int] = {}
+        for e in entries:
+            i = count.get(e["kind"], 0)
+            count[e["kind"]] = i + 1
+            if i % step[e["kind"]] == 0 and sum(1 for o in out if o["kind"] == e["kind"]) < args.limit:
+                out.append(e)
+        entries = out
+    return entries
+
+
+def _fmt(v, spec: str) -> str:
+    return format(v, spec) if isinstance(v, (int, float)) else "-"
+
+
+def run_list(args) -> int:
+    cat = _load(args)
+    entries = _select(cat, args)
+    if args.json:
+        print_json([{k: e.get(k) for k in ("id", "name", "kind", "lap_length_m", "width_mean_m", "map")} for e in entries])
+        return EXIT_OK
+    print(f"{'id':<42}{'kind':<10}{'lap m':>9}{'w mean':>8}{'w min':>7}{'r min':>7}{'raster':>11}  source")
+    for e in entries:
+        r = e.get("raster") or {}
+        print(f"{e['id']:<42}{e['kind']:<10}{_fmt(e.get('lap_length_m'), '9.1f')}{_fmt(e.get('width_mean_m'), '8.2f')}"
+              f"{_fmt(e.get('width_min_m'), '7.2f')}{_fmt(e.get('min_radius_m'), '7.2f')}"
+              f"{str(r.get('width_px', '')) + 'x' + str(r.get('height_px', '')):>11}  {e['source'].get('licence', '')[:24]}")
+    counts = {k: sum(e["kind"] == k for e in entries) for k in ("circuit", "recorded", "generated")}
+    print(f"\n{len(entries)} tracks: " + ", ".join(f"{n} {k}" for k, n in counts.items())
+          + f"; {len(cat.left_out)} recorded maps left out (see 'tracks list --json' / catalog.json 'left_out')")
+    return EXIT_OK
+
+
+def run_show(args) -> int:
+    cat = _load(args)
+    e = cat.get(args.id)
+    path = cat.map_path(e, args.sources)
+    if args.json:
+        print_json({**e, "map_path": str(path)})
+        return EXIT_OK
+    for k, v in e.items():
+        if k == "notes":
+            for n in v:
+                print(f"{'note':<19}{n}")
+        elif isinstance(v, dict):
+            print(f"{k:<19}" + ", ".join(f"{kk}={vv}" for kk, vv in v.items()))
+        else:
+            print(f"{k:<19}{v}")
+    print(f"{'map_path':<19}{path}")
+    return EXIT_OK
+
+
+def run_build(args) -> int:
+    from ..errors import ArenaError
+
+    cat = _load(args)
+    e = cat.get(args.id)
+    try:
+        from ..builder import build_environment  # type: ignore[attr-defined]
+    except ImportError:
+        raise ArenaError("the USD builder (roboracer_arena.builder) is not installed in this build") from None
+    report = build_environment(cat.map_path(e, args.sources), args.out)
+    if args.json:
+        print_json({"id": e["id"], "out": str(args.out), "report": getattr(report, "__dict__", str(report))})
+    else:
+        print(f"built {e['id']} -> {args.out}")
+    return EXIT_OK
+
+
+def run_verify(args) -> int:
+    import os
+
+    from ..library.verify import verify
+
+    cat = _load(args)
+    entries = _select(cat, args)
+    jobs = args.jobs or os.cpu_count() or 1
+    s = verify(cat, entries, args.sources, jobs=jobs, usd=not args.no_usd, drive=not args.no_drive,
+               progress=_progress("verify"))
+    if args.update_catalog:
+        from ..fileio import atomic_write_text
+        from ..library.verify import prune_catalog
+
+        moved = prune_catalog(cat, s)
+        atomic_write_text(cat.path, cat.to_json())
+        s["moved_to_left_out"] = moved
+        if not args.json:
+            print(f"updated {cat.path}: {len(moved)} recorded map(s) moved to left_out: {', '.join(moved) or '-'}")
+    if args.json:
+        print_json(s)
+    else:
+        print(f"{'id':<42}{'kind':<10}{'load':<9}{'ring':<9}{'usd':<9}{'drive':<9}  detail")
+        for r in s["results"]:
+            c = r["checks"]
+            st = [c.get(n, {}).get("status", "-") for n in ("load", "ring", "usd", "drive")]
+            bad = [f"{n}: {v['detail']}" for n, v in c.items() if v["status"] == "FAIL"]
+            print(f"{r['id']:<42}{r['kind']:<10}" + "".join(f"{x:<9}" for x in st) + "  " + "; ".join(bad))
+        print()
+        for n, d in s["per_check"].items():
+            print(f"{n:<6} pass {d['pass']:>4}  FAIL {d['FAIL']:>4}  not run {d['not run']:>4}")
+        reasons = {v["detail"] for r in s["results"] for v in r["checks"].values() if v["status"] == "not run"}
+        for why in sorted(reasons):
+            print(f"  ({why})")
+        if s["drive_cautious"]:
+            print(f"  {len(s['drive_cautious'])} lap(s) needed the cautious retry: {', '.join(s['drive_cautious'])}")
+        print(f"{s['passed']}/{s['tracks']} tracks without a failed check in {s['seconds']:.1f} s "
+              f"({s['jobs']} process(es)); by kind: " + ", ".join(f"{k} {v['passed']}/{v['tracks']}" for k, v in s["by_kind"].items()))
+    return EXIT_OK if not s["failed"] else EXIT_BAD_INPUT
+
+
+def run_sheet(args) -> int:
+    from ..library.sheet import contact_sheet
+
+    cat = _load(args)
+    entries = _select(cat, args)
+    out = contact_sheet(cat, entries, args.out, args.sources, columns=args.columns, progress=_progress("sheet"))
+    if args.json:
+        print_json({"out": str(out), "tracks": len(entries)})
+    else:
+        print(f"wrote {out} ({len(entries)} tracks)")
+    return EXIT_OK
+
+
+def run_catalog(args) -> int:
+    import os
+
+    from ..circuits.sources import default_sources_dir
+    from ..library import default_tracks_dir
+    from ..library.generated import build_generated
+    from ..library.index import build_catalog
+
+    tracks = args.tracks or (args.catalog.parent if args.catalog else default_tracks_dir())
+    sources = args.sources or default_sources_dir()
+    jobs = args.jobs or os.cpu_count() or 1
+    if args.generate:
+        g = build_generated(tracks / "generated", count=args.count, jobs=jobs, progress=_progress("generate"))
+        if not args.json:
+            print(f"generated sweep: {g['specs_tried']} specs, {g['accepted']} accepted, {g['failed']} failed, "
+                  f"{g['rejected']} rejected; kept {g['kept']} ({g['seconds']:.1f} s)")
+    cat = build_catalog(Path(sources), Path(tracks), jobs=jobs, progress=_progress("recorded maps"))
+    if args.json:
+        print_json({**cat.meta, "count": len(cat.entries), "left_out": cat.left_out})
+    else:
+        print(f"wrote {cat.path}: {len(cat.entries)} tracks {cat.meta['counts']}; {len(cat.left_out)} recorded maps left out:")
+        for lo in cat.left_out:
+            print(f"  {lo['source_path']}: {lo['reason']}")
+    return EXIT_OK

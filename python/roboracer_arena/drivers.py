@@ -1,0 +1,298 @@
+"""Reference drivers. :class:`PurePursuitDriver` follows a track's centreline: the pose
+comes from the odometry observation, the lookahead grows with speed, and the speed
+command comes from a curvature-limited speed profile (lateral-acceleration limit,
+braking and acceleration passes around the closed loop).
+
+>>> env = gymnasium.make("RoboRacerArena-v0", track="berlin.yaml")
+>>> driver = PurePursuitDriver.for_env(env)
+>>> obs, info = env.reset(seed=0)
+>>> obs, reward, terminated, truncated, info = env.step(driver.act(obs))
+
+The same ``for_env`` works on the native vector env (every env and vehicle, each on its
+own track). :func:`drive_laps` drives whole laps and reports lap times and contacts (the
+``roboracer-arena drive`` command and the track library's drivability check).
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = ["DriveResult", "EnvPurePursuit", "PurePursuitDriver", "PurePursuitParams", "drive_laps"]
+
+
+@dataclass(frozen=True)
+class PurePursuitParams:
+    """Tuning of the reference driver (SI units). Defaults suit the Traxxas 1:10 car."""
+
+    wheelbase: float = 0.3275
+    rear_axle_offset: float = 0.1522  # CoM to rear axle: pure pursuit steers the rear axle
+    max_steer: float = 0.524
+    lookahead_min: float = 0.7
+    lookahead_gain: float = 0.3  # s: lookahead = min + gain * speed
+    lookahead_max: float = 2.5
+    max_speed: float = 5.0
+    min_speed: float = 1.0
+    lateral_accel: float = 4.0  # m/s^2, well under mu*g = 8.1 so the car stays on the line
+    brake_decel: float = 4.0
+    accel: float = 3.0
+    spacing: float = 0.05  # resampling of the centreline (m)
+    curvature_window: float = 0.4  # half-width of the curvature smoothing window (m)
+
+
+class PurePursuitDriver:
+    """Pure pursuit on one closed centreline ((M, 2), map frame, driving direction = vertex order)."""
+
+    def __init__(self, centreline: Any, params: PurePursuitParams | None = None) -> None:
+        self.params = p = params or PurePursuitParams()
+        self.points, self.length = _resample_closed(np.asarray(centreline, dtype=np.float64), p.spacing)
+        self.ds = self.length / len(self.points)
+        self.curvature = _smoothed_curvature(self.points, self.ds, max(1, round(p.curvature_window / self.ds)))
+        self.speed_profile = _speed_profile(self.curvature, self.ds, p)
+        self._idx: int | None = None
+
+    @staticmethod
+    def for_env(env: Any, params: PurePursuitParams | None = None) -> EnvPurePursuit:
+        """A pure-pursuit policy for a RoboRacer env (see :class:`EnvPurePursuit`)."""
+        return EnvPurePursuit(env, params)
+
+    def reset(self) -> None:
+        """Forget the last projection (call at the start of an episode)."""
+        self._idx = None
+
+    def project(self, x: float, y: float) -> int:
+        """Index of the resampled centreline point nearest (x, y); searches near the last one."""
+        n = len(self.points)
+        if self._idx is not None:
+            window = int(3.0 / self.ds) + 1
+            cand = (self._idx + np.arange(-window // 3, window)) % n
+            d = np.hypot(self.points[cand, 0] - x, self.points[cand, 1] - y)
+            k = int(np.argmin(d))
+            if d[k] < 1.0:
+                self._idx = int(cand[k])
+                return self._idx
+        d = np.hypot(self.points[:, 0] - x, self.points[:, 1] - y)
+        self._idx = int(np.argmin(d))
+        return self._idx
+
+    def act_pose(self, x: float, y: float, yaw: float, speed: float) -> np.ndarray:
+        """``[steer (rad), speed (m/s)]`` for a vehicle at pose (x, y, yaw) (CoM) moving at ``speed``."""
+        p = self.params
+        if not np.isfinite([x, y, yaw, speed]).all():
+            return np.zeros(2)
+        rx, ry = x - p.rear_axle_offset * np.cos(yaw), y - p.rear_axle_offset * np.sin(yaw)
+        i = self.project(rx, ry)
+        lookahead = float(np.clip(p.lookahead_min + p.lookahead_gain * max(speed, 0.0), p.lookahead_min, p.lookahead_max))
+        n = len(self.points)
+        tx, ty = self.points[(i + max(1, round(lookahead / self.ds))) % n]
+        dx, dy = tx - rx, ty - ry
+        c, s = np.cos(yaw), np.sin(yaw)
+        lx, ly = c * dx + s * dy, -s * dx + c * dy
+        steer = float(np.arctan2(2.0 * p.wheelbase * ly, lx * lx + ly * ly))
+        steer = float(np.clip(steer, -p.max_steer, p.max_steer))
+        ahead = (i + np.arange(0, max(1, round(0.6 / self.ds)))) % n
+        v = float(self.speed_profile[ahead].min())
+        return np.array([steer, v])
+
+
+def _resample_closed(c: np.ndarray, spacing: float) -> tuple[np.ndarray, float]:
+    if len(c) > 3 and np.allclose(c[0], c[-1]):
+        c = c[:-1]
+    ring = np.vstack([c, c[:1]])
+    seg = np.linalg.norm(np.diff(ring, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    length = float(s[-1])
+    n = max(8, int(round(length / spacing)))
+    t = np.linspace(0.0, length, n, endpoint=False)
+    pts = np.column_stack([np.interp(t, s, ring[:, 0]), np.interp(t, s, ring[:, 1])])
+    return pts, length
+
+
+def _smoothed_curvature(pts: np.ndarray, ds: float, half: int) -> np.ndarray:
+    """Signed curvature from heading change over ±``half`` points (a smoothed estimate)."""
+    fwd = np.roll(pts, -half, axis=0) - pts
+    back = pts - np.roll(pts, half, axis=0)
+    dh = np.arctan2(fwd[:, 1], fwd[:, 0]) - np.arctan2(back[:, 1], back[:, 0])
+    dh = (dh + np.pi) % (2 * np.pi) - np.pi
+    return dh / (half * ds)
+
+
+def _speed_profile(curv: np.ndarray, ds: float, p: PurePursuitParams) -> np.ndarray:
+    v = np.sqrt(p.lateral_accel / np.maximum(np.abs(curv), 1e-6))
+    v = np.clip(v, p.min_speed, p.max_speed)
+    n = len(v)
+    for _ in range(2):  # two laps so the passes wrap around the closed loop
+        for k in range(2 * n - 1, -1, -1):  # braking: v_i^2 <= v_{i+1}^2 + 2 a ds
+            i, j = k % n, (k + 1) % n
+            v[i] = min(v[i], np.sqrt(v[j] ** 2 + 2 * p.brake_decel * ds))
+        for k in range(1, 2 * n):  # acceleration
+            i, j = k % n, (k - 1) % n
+            v[i] = min(v[i], np.sqrt(v[j] ** 2 + 2 * p.accel * ds))
+    return v
+
+
+class EnvPurePursuit:
+    """Drives a RoboRacer env — single env or native vector env, every vehicle — with pure pursuit.
+
+    Reads the pose and speed from the odometry observation (raw or normalised), follows
+    the centreline of the track each environment is currently on, and returns an action
+    in the env's action mode. Create it with :meth:`PurePursuitDriver.for_env`.
+    """
+
+    def __init__(self, env: Any, params: PurePursuitParams | None = None) -> None:
+        self.env = env.unwrapped
+        self.params = params or PurePursuitParams(
+            max_steer=float(self.env.max_steer), wheelbase=float(self.env.wheelbase)
+        )
+        self._vector = hasattr(self.env, "num_envs")
+        self._geometry: dict[int, PurePursuitDriver] = {}  # one resampled centreline per track
+        self._slots: dict[tuple[int, int], tuple[int, PurePursuitDriver]] = {}  # (env, vehicle) -> state
+        f = self.env.odometry_index
+        missing = [k for k in ("x", "y", "yaw") if k not in f]
+        if missing:
+            from .errors import ConfigError
+
+            raise ConfigError(f"pure pursuit needs the odometry fields x, y, yaw in the observation (missing {missing})")
+        self._cols = (f["x"], f["y"], f["yaw"], f.get("speed", f.get("vx")))
+
+    def _driver(self, e: int, k: int, track_id: int) -> PurePursuitDriver:
+        slot = self._slots.get((e, k))
+        if slot is None or slot[0] != track_id:
+            base = self._geometry.get(track_id)
+            if base is None:
+                base = self._geometry[track_id] = PurePursuitDriver(self.env.tracks[track_id].centreline, self.params)
+            slot = (track_id, copy.copy(base))  # shares the geometry, own projection state
+            slot[1].reset()
+            self._slots[(e, k)] = slot
+        return slot[1]
+
+    def act(self, obs: Any) -> np.ndarray:
+        """An action for ``obs`` (the env's last observation)."""
+        env = self.env
+        odo = np.asarray(env.odometry_raw(obs), dtype=np.float64)  # (V, K) or (E, V, K), SI units
+        track_ids = np.atleast_1d(env.current_track_ids if self._vector else env.current_track_id)
+        if not self._vector:
+            odo = odo[None]
+        cx, cy, cyaw, cv = self._cols
+        cmds = np.zeros((*odo.shape[:2], 2))
+        for e, tid in enumerate(track_ids):
+            for k, row in enumerate(odo[e]):
+                speed = row[cv] if cv is not None else 0.0
+                cmds[e, k] = self._driver(e, k, int(tid)).act_pose(row[cx], row[cy], row[cyaw], speed)
+        return env.from_ackermann(cmds if self._vector else cmds[0])
+
+    def reset(self) -> None:
+        """Forget every vehicle's last projection (optional: a jump is detected anyway)."""
+        for _, d in self._slots.values():
+            d.reset()
+
+
+@dataclass
+class DriveResult:
+    """Outcome of :func:`drive_laps` (times in simulated seconds)."""
+
+    track: str
+    track_length: float
+    laps_requested: int
+    laps_completed: int
+    lap_times: list[float]
+    collided: bool
+    contact_steps: int
+    sim_time: float
+    distance: float
+    max_speed: float
+    wall_time: float
+    video: str | None = None
+    contact_at: list[float] | None = None  # (x, y) of the first contact
+    corridor_width_at_contact: float | None = None  # narrowest corridor width within 1 m of it
+    vehicle_width: float | None = None
+
+    @property
+    def completed(self) -> bool:
+        """All requested laps driven without a contact."""
+        return self.laps_completed >= self.laps_requested and not self.collided
+
+    def to_dict(self) -> dict[str, Any]:
+        from dataclasses import asdict
+
+        return {**asdict(self), "completed": self.completed}
+
+
+def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = None, video: Any = None,
+               video_fps: float = 10.0, render_size: int = 500, max_time_s: float | None = None,
+               progress: bool = False, **env_kwargs: Any) -> DriveResult:
+    """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
+    list) with :class:`PurePursuitDriver` from the centreline start, stopping at the first
+    contact. Optionally writes a GIF/MP4 of the drive. ``env_kwargs`` go to the env."""
+    import time
+
+    from .envs.single import RoboRacerEnv
+
+    if laps < 1:
+        from .errors import InvalidArgumentError
+
+        raise InvalidArgumentError(f"laps must be >= 1, got {laps}")
+    env = RoboRacerEnv(track=track, render_mode="rgb_array" if video else None, render_size=render_size,
+                       **{"reset_poses": "grid", "collision_ends_episode": True, "time_limit_s": None, **env_kwargs})
+    length = env.tracks[0].length
+    limit = max_time_s if max_time_s is not None else laps * (length / 0.5 + 30.0)  # >= 0.5 m/s average
+    dt = env.config.control_dt
+    driver = PurePursuitDriver.for_env(env) if params is None else EnvPurePursuit(env, params)
+    every = max(1, round(env.config.control_rate_hz / video_fps))
+    frames: list[np.ndarray] = []
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=round(laps * length, 1), unit="m", desc=f"driving {env.tracks[0].name}", leave=False)
+    t0 = time.perf_counter()
+    obs, info = env.reset(seed=0, options={"track_id": 0})
+    if video:
+        frames.append(env.render())
+    lap_times: list[float] = []
+    steps, contacts, vmax, collided = 0, 0, 0.0, False
+    contact_at: list[float] | None = None
+    width_at_contact: float | None = None
+    state_speed = env.odometry_index.get("speed", env.odometry_index.get("vx"))
+    while steps * dt < limit:
+        obs, _, terminated, truncated, info = env.step(driver.act(obs))
+        steps += 1
+        progressed = float(np.min(info["progress"]))
+        while len(lap_times) < laps and progressed >= (len(lap_times) + 1) * length:
+            lap_times.append(round(steps * dt, 3))
+        contact = bool(np.any(info["contact_wall"]) or np.any(info["contact_vehicle"]))
+        contacts += contact
+        if contact and not collided:
+            state, f = env.simulator_state
+            x, y = float(state[0, f["x"]]), float(state[0, f["y"]])
+            contact_at = [round(x, 3), round(y, 3)]
+            width_at_contact = round(env.tracks[0].corridor_width_near(x, y), 3)
+        collided = collided or contact
+        if state_speed is not None:
+            vmax = max(vmax, float(np.max(np.abs(env.odometry_raw(obs)[:, state_speed]))))
+        if bar is not None:
+            bar.update(round(min(progressed, laps * length), 1) - bar.n)
+        if video and steps % every == 0:
+            frames.append(env.render())
+        if terminated or truncated or len(lap_times) >= laps:
+            break
+    if bar is not None:
+        bar.close()
+    out = None
+    if video:
+        from .render.video import write_video
+
+        frames.append(env.render())
+        out = str(write_video(frames, video, fps=env.config.control_rate_hz / every))
+    env.close()
+    return DriveResult(
+        track=env.tracks[0].name, track_length=round(length, 3), laps_requested=laps, laps_completed=len(lap_times),
+        lap_times=[round(b - a, 3) for a, b in zip([0.0, *lap_times[:-1]], lap_times)], collided=collided,
+        contact_steps=contacts, sim_time=round(steps * dt, 3), distance=round(float(np.min(info["progress"])), 3),
+        max_speed=round(vmax, 3), wall_time=round(time.perf_counter() - t0, 3), video=out,
+        contact_at=contact_at, corridor_width_at_contact=width_at_contact,
+        vehicle_width=env.config.sim.vehicle.chassis_width,
+    )

@@ -1,0 +1,275 @@
+"""The batch engine behind both gymnasium envs: one native ``_core.Simulator`` holding
+``E`` environments of ``V`` vehicles, preallocated buffers, action sanitising, reset
+poses, track sampling, reward and observation assembly. The single env is this with
+``E = 1``; the vector env adds autoreset on top.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+
+from .env_config import EnvConfig
+from .tracks import Track
+
+CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
+#: Simulator state columns copied into ``info`` when present.
+STATE_INFO = ("laps", "lap_time", "last_lap_time", "progress_s")
+
+
+class SimBatch:
+    """``E`` environments × ``V`` vehicles on one native simulator (see module docstring)."""
+
+    def __init__(self, tracks: list[Track], num_envs: int, config: EnvConfig, seed: int) -> None:
+        from .._core import Simulator
+
+        self._Simulator = Simulator
+        self.tracks = tracks
+        self.config = config
+        self.num_envs = E = int(num_envs)
+        self.vehicles = V = config.vehicles_per_env
+        self._natives = [t.native() for t in tracks]
+        self.seed = int(seed)
+        self.sim = Simulator(self._natives, E, V, config.sim.to_json(), self.seed)
+        self.num_beams = B = int(self.sim.num_beams)
+        self.fields = tuple(self.sim.state_fields)
+        self.field_index = {f: i for i, f in enumerate(self.fields)}
+        missing = [f for f in (*config.observation.odometry, "x", "y", "yaw", "progress_s") if f not in self.field_index]
+        if missing:
+            raise RuntimeError(f"the simulator's state lacks fields {missing} (it has {self.fields})")
+        self.substeps = config.substeps
+        self.lengths = np.array([self.sim.centreline_length(i) for i in range(len(tracks))], dtype=np.float64)
+
+        self.actions = np.zeros((E, V, 2), np.float64)
+        self.scans = np.zeros((E, V, B), np.float32)
+        self.state = np.zeros((E, V, len(self.fields)), np.float64)
+        self.events = np.zeros((E, V), np.uint8)
+        self.track_ids = np.zeros(E, np.int64)
+        self.prev_s = np.zeros((E, V), np.float64)
+        self.progress = np.zeros((E, V), np.float64)  # metres since reset
+        self.elapsed = np.zeros(E, np.int64)
+        self.vehicle_rewards = np.zeros((E, V), np.float64)
+        self._len = np.ones((E, 1), np.float64)  # lap length of each env's track
+        self._half_len = np.full((E, 1), 0.5)
+        self._no_contact = np.zeros((E, V), bool)
+        self._no_env = np.zeros(E, bool)
+
+        veh, lid = config.sim.vehicle, config.sim.lidar
+        self._lo = np.array([-veh.max_steer, veh.min_speed])
+        self._hi = np.array([veh.max_steer, veh.max_speed])
+        self._scalar_actions = E * V == 1
+        self._bounds = (tuple(self._lo.tolist()), tuple(self._hi.tolist()))
+        # "travel" (signed metres along the centreline since reset, wrap handled natively)
+        # when the simulator has it; otherwise the lap-wrapped change of "progress_s".
+        self._wrap = "travel" not in self.field_index
+        self._s_col = self.field_index["progress_s" if self._wrap else "travel"]
+        self._info_names = [f for f in STATE_INFO if f in self.field_index]
+        self._info_cols = np.array([self.field_index[f] for f in self._info_names], dtype=np.intp)
+        self._odo_cols = np.array([self.field_index[f] for f in config.observation.odometry], dtype=np.intp)
+        self._odo_offset = np.zeros((E, 1, len(self._odo_cols)), np.float64)
+        self._odo_scale = np.ones((E, 1, len(self._odo_cols)), np.float64)
+        self._range_max = float(lid.range_max)
+        self._clip_scan = lid.noise_std > 0
+        self.max_steps = config.max_episode_steps
+
+    # ------------------------------------------------------------------ spaces
+    def single_spaces(self) -> tuple[spaces.Space, spaces.Space]:
+        """(observation_space, action_space) of one environment."""
+        cfg, V = self.config, self.vehicles
+        lead = () if V == 1 else (V,)
+        if cfg.action_mode == "ackermann":
+            lo, hi = np.broadcast_to(self._lo, (*lead, 2)), np.broadcast_to(self._hi, (*lead, 2))
+            act = spaces.Box(lo.astype(np.float32), hi.astype(np.float32), dtype=np.float32)
+        else:
+            act = spaces.Box(-1.0, 1.0, shape=(*lead, 2), dtype=np.float32)
+        obs: dict[str, spaces.Space] = {}
+        if cfg.observation.scan:
+            high = 1.0 if cfg.observation.normalise else self._range_max
+            obs["scan"] = spaces.Box(0.0, high, shape=(*lead, self.num_beams), dtype=np.float32)
+        if cfg.observation.odometry:
+            obs["odometry"] = spaces.Box(-np.inf, np.inf, shape=(*lead, len(self._odo_cols)), dtype=np.float32)
+        return spaces.Dict(obs), act
+
+    # ------------------------------------------------------------------ actions
+    def set_actions(self, actions: Any) -> None:
+        """Sanitise and store actions ((E, V, 2) after reshape): NaN -> 0 (straight, stop),
+        ±inf and out-of-range values clipped to the action bounds; then mapped to
+        [steer rad, speed m/s] for the simulator."""
+        out = self.actions
+        if self._scalar_actions and self.config.action_mode == "ackermann":
+            try:  # one vehicle: plain floats are several times faster than numpy calls
+                steer, speed = actions.tolist() if hasattr(actions, "tolist") else actions
+                steer, speed = float(steer), float(speed)
+            except (TypeError, ValueError):
+                pass
+            else:  # NaN (x != x) becomes 0
+                (slo, vlo), (shi, vhi) = self._bounds
+                out[0, 0, 0] = (slo if steer < slo else shi if steer > shi else steer) if steer == steer else 0.0
+                out[0, 0, 1] = (vlo if speed < vlo else vhi if speed > vhi else speed) if speed == speed else 0.0
+                return
+        a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, self.vehicles, 2)
+        if self.config.action_mode == "ackermann":
+            np.clip(a, self._lo, self._hi, out=out)  # ±inf -> bounds; NaN stays NaN
+        else:
+            n = np.clip(a, -1.0, 1.0)
+            out[..., 0] = n[..., 0] * self._hi[0]
+            sp = n[..., 1]
+            out[..., 1] = np.where(sp >= 0.0, sp * self._hi[1], -sp * self._lo[1])
+        if np.isnan(out).any():
+            out[np.isnan(out)] = 0.0
+
+    def from_ackermann(self, cmds: np.ndarray) -> np.ndarray:
+        """Convert [steer rad, speed m/s] commands to this env's action mode (float32)."""
+        c = np.clip(np.asarray(cmds, dtype=np.float64), self._lo, self._hi)
+        if self.config.action_mode == "normalised":
+            c = np.stack([c[..., 0] / self._hi[0], np.where(c[..., 1] >= 0, c[..., 1] / self._hi[1], -c[..., 1] / self._lo[1])], axis=-1)
+        return c.astype(np.float32)
+
+    # ------------------------------------------------------------------ reset
+    def reset(self, mask: np.ndarray, rngs: list[np.random.Generator], fixed_track: int | None = None) -> None:
+        """Reset the environments where ``mask`` is True (new track and start poses drawn
+        from each env's own RNG), then observe every environment into the buffers."""
+        cfg, V = self.config, self.vehicles
+        poses = np.zeros((self.num_envs, V, 3), np.float64)
+        idx = np.flatnonzero(mask)
+        for e in idx:
+            rng = rngs[e]
+            tid = fixed_track if fixed_track is not None else (int(rng.integers(len(self.tracks))) if len(self.tracks) > 1 else 0)
+            self.track_ids[e] = tid
+            length = self.lengths[tid]
+            self._len[e], self._half_len[e] = length, length / 2
+            s0 = float(rng.uniform(0.0, length)) if cfg.reset_poses == "random" else 0.0
+            for k in range(V):
+                s = (s0 - k * cfg.grid_spacing) % length
+                x, y, yaw = self.sim.centreline_pose(tid, s)
+                lat = 0.0 if V == 1 else (cfg.grid_offset if k % 2 == 0 else -cfg.grid_offset)
+                poses[e, k] = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
+            self._set_odometry_norm(e, tid)
+        self.sim.set_tracks(self.track_ids)
+        self.sim.reset(np.asarray(mask, dtype=bool), poses)
+        self.observe()
+        self.prev_s[idx] = self.state[idx, :, self._s_col]
+        self.progress[idx] = 0.0
+        self.elapsed[idx] = 0
+
+    def observe(self) -> None:
+        self.sim.observe(self.scans if self.config.observation.scan else None, self.state, self.events)
+
+    def _set_odometry_norm(self, e: int, tid: int) -> None:
+        if not self.config.observation.normalise:
+            return
+        veh = self.config.sim.vehicle
+        xmin, ymin, xmax, ymax = self.tracks[tid].bounds
+        half = max(xmax - xmin, ymax - ymin) / 2 or 1.0
+        centre = {"x": (xmin + xmax) / 2, "y": (ymin + ymax) / 2}
+        scale = {"x": half, "y": half, "yaw": math.pi, "vx": veh.max_speed, "vy": veh.max_speed,
+                 "speed": veh.max_speed, "yaw_rate": 2 * math.pi, "steer": veh.max_steer}
+        for j, f in enumerate(self.config.observation.odometry):
+            self._odo_offset[e, 0, j] = centre.get(f, 0.0)
+            self._odo_scale[e, 0, j] = scale[f]
+
+    # ------------------------------------------------------------------ step
+    def step(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Step all environments with the stored actions. Returns (reward (E,), terminated
+        (E,), truncated (E,), contact (E, V) bool)."""
+        self.sim.step(self.actions, self.substeps, self.scans if self.config.observation.scan else None,
+                      self.state, self.events)
+        s = self.state[:, :, self._s_col]
+        ds = s - self.prev_s
+        if self._wrap:
+            np.remainder(ds + self._half_len, self._len, out=ds)  # wrap at the lap
+            ds -= self._half_len
+        self.prev_s[:] = s
+        self.progress += ds
+        self.elapsed += 1
+        r = self.config.reward
+        vr = self.vehicle_rewards
+        np.multiply(ds, r.progress, out=vr)
+        if r.time_penalty:
+            vr -= r.time_penalty * self.config.control_dt
+        if self.events.any():
+            contact = (self.events & (CONTACT_WALL | CONTACT_VEHICLE)) != 0
+            vr -= r.collision_penalty * contact
+            terminated = contact.any(axis=1) & self.config.collision_ends_episode
+        else:
+            contact, terminated = self._no_contact, self._no_env
+        reward = vr[:, 0].copy() if self.vehicles == 1 else vr.sum(axis=1)
+        if self.max_steps is None:
+            return reward, terminated, self._no_env, contact
+        truncated = self.elapsed >= self.max_steps
+        return reward, terminated, truncated & ~terminated, contact
+
+    # ------------------------------------------------------------------ observation
+    def observation(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:
+        """Observation dict for ``envs`` (a slice or index array), shapes (e, V, ·) — fresh arrays."""
+        cfg = self.config.observation
+        out: dict[str, np.ndarray] = {}
+        if cfg.scan:
+            scan = self.scans[envs]
+            if self._clip_scan:
+                scan = np.clip(scan, 0.0, self._range_max)
+            out["scan"] = scan * np.float32(1.0 / self._range_max) if cfg.normalise else scan.copy()
+        if cfg.odometry:
+            odo = self.state[envs][..., self._odo_cols]
+            if cfg.normalise:
+                odo = (odo - self._odo_offset[envs]) / self._odo_scale[envs]
+            out["odometry"] = odo.astype(np.float32)
+        return out
+
+    def odometry_raw(self, odo: np.ndarray, env: int) -> np.ndarray:
+        """Undo the observation normalisation of env ``env``'s odometry rows."""
+        if not self.config.observation.normalise:
+            return np.asarray(odo, dtype=np.float64)
+        return np.asarray(odo, dtype=np.float64) * self._odo_scale[env] + self._odo_offset[env]
+
+    def info(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:
+        """Per-env diagnostics, fresh arrays with leading env axis (then vehicle axis):
+        track_id, progress (m since reset), contact_wall / contact_vehicle / lap_completed
+        (this step), the simulator's laps / lap_time / last_lap_time / progress_s and, with
+        several vehicles, vehicle_rewards."""
+        ev = self.events[envs]
+        info = {
+            "track_id": self.track_ids[envs].copy(),
+            "progress": self.progress[envs].copy(),
+            "contact_wall": (ev & CONTACT_WALL) != 0,
+            "contact_vehicle": (ev & CONTACT_VEHICLE) != 0,
+            "lap_completed": (ev & LAP_COMPLETED) != 0,
+        }
+        if self.vehicles > 1:
+            info["vehicle_rewards"] = self.vehicle_rewards[envs].copy()
+        cols = self.state[envs][..., self._info_cols]  # one gather; the columns are views of it
+        for j, name in enumerate(self._info_names):
+            info[name] = cols[..., j]
+        return info
+
+    def rebuild(self, seed: int) -> None:
+        """Recreate the native simulator with ``seed`` (same tracks, counts and config), so
+        its per-vehicle noise streams restart: the same seed gives the same episode."""
+        self.seed = int(seed)
+        self.sim = self._Simulator(self._natives, self.num_envs, self.vehicles, self.config.sim.to_json(), self.seed)
+
+
+class EnvHelpers:
+    """Properties both envs expose to drivers and tools (they hold ``config``)."""
+
+    config: EnvConfig
+
+    @property
+    def vehicles_per_env(self) -> int:
+        return self.config.vehicles_per_env
+
+    @property
+    def max_steer(self) -> float:
+        return self.config.sim.vehicle.max_steer
+
+    @property
+    def wheelbase(self) -> float:
+        return self.config.sim.vehicle.wheelbase
+
+    @property
+    def odometry_index(self) -> dict[str, int]:
+        """Column of each odometry field in ``obs["odometry"]``."""
+        return {f: i for i, f in enumerate(self.config.observation.odometry)}

@@ -1,0 +1,129 @@
+"""``RoboRacerArena-v0``: one environment (one track, ``vehicles_per_env`` cars) as a
+:class:`gymnasium.Env` on the native simulator.
+
+Spaces (``V`` = vehicles per env; the vehicle axis is dropped when ``V == 1``):
+
+* action: ``(V, 2)`` float32 — ``[steer rad, speed m/s]`` (``action_mode="ackermann"``) or
+  both in [-1, 1] (``"normalised"``). NaN becomes 0 (straight, stop); ±inf and
+  out-of-range values are clipped to the bounds. The observation never holds NaN.
+* observation: ``Dict(scan=(V, B) ranges, odometry=(V, K))`` as configured in
+  :class:`~roboracer_arena.envs.env_config.ObservationConfig`.
+* reward: progress along the centreline (m) minus a collision penalty, summed over the
+  env's vehicles; ``terminated`` on a contact (if ``collision_ends_episode``), ``truncated``
+  at ``time_limit_s``.
+
+``reset(options={"track_id": k})`` picks a track of the list; otherwise each reset draws
+one with the env's RNG. ``reset(seed=s)`` also reseeds the simulator (lidar noise).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from .batch import CONTACT_VEHICLE, CONTACT_WALL, LAP_COMPLETED, STATE_INFO, EnvHelpers, SimBatch
+from .env_config import EnvConfig
+from .tracks import resolve_tracks
+
+
+class RoboRacerEnv(EnvHelpers, gym.Env):
+    """Single RoboRacer environment (see module docstring)."""
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 20}
+
+    def __init__(
+        self,
+        track: Any = None,
+        config: EnvConfig | dict | None = None,
+        render_mode: str | None = None,
+        corridor_params: Any = None,
+        render_size: int = 600,
+        **overrides: Any,
+    ) -> None:
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be one of {self.metadata['render_modes']}, got {render_mode!r}")
+        self.config = EnvConfig.build(config, **overrides)
+        self.tracks = resolve_tracks(track, corridor_params)
+        self._batch = SimBatch(self.tracks, 1, self.config, seed=0)
+        self.observation_space, self.action_space = self._batch.single_spaces()
+        self.render_mode = render_mode
+        self.metadata = {**self.metadata, "render_fps": self.config.control_rate_hz}
+        self._render_size = render_size
+        self._view: Any = None
+        self._squeeze = self.config.vehicles_per_env == 1
+        self._state_info = [f for f in STATE_INFO if f in self._batch.field_index]
+
+    # ------------------------------------------------------------ gymnasium API
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        if seed is not None:
+            self._batch.rebuild(seed)
+        track_id = (options or {}).get("track_id")
+        if track_id is not None and not 0 <= int(track_id) < len(self.tracks):
+            raise ValueError(f"track_id {track_id} out of range (0..{len(self.tracks) - 1})")
+        self._batch.reset(np.ones(1, bool), [self.np_random], None if track_id is None else int(track_id))
+        return self._obs(), self._info()
+
+    def step(self, action: Any):
+        self._batch.set_actions(action)
+        reward, terminated, truncated, _ = self._batch.step()
+        return self._obs(), float(reward[0]), bool(terminated[0]), bool(truncated[0]), self._info()
+
+    def render(self) -> np.ndarray | None:
+        if self.render_mode != "rgb_array":
+            return None
+        if self._view is None:
+            from ..render.sim_view import SimView
+
+            self._view = SimView(self.tracks, self.config.sim, size=self._render_size)
+        b = self._batch
+        return self._view.draw(int(b.track_ids[0]), b.state[0], b.field_index,
+                               b.scans[0] if self.config.observation.scan else None)
+
+    # ------------------------------------------------------------ helpers (drivers, tools)
+    def _obs(self) -> dict[str, np.ndarray]:
+        obs = self._batch.observation(0)
+        return {k: v[0] for k, v in obs.items()} if self._squeeze else obs
+
+    def _info(self) -> dict[str, Any]:
+        b = self._batch
+        tid = int(b.track_ids[0])
+        if not self._squeeze:
+            info = b.info(0)
+            info.update(track_id=tid, track=self.tracks[tid].name)
+            return info
+        ev, st, f = int(b.events[0, 0]), b.state[0, 0], b.field_index
+        info = {
+            "track_id": tid,
+            "track": self.tracks[tid].name,
+            "progress": float(b.progress[0, 0]),
+            "contact_wall": bool(ev & CONTACT_WALL),
+            "contact_vehicle": bool(ev & CONTACT_VEHICLE),
+            "lap_completed": bool(ev & LAP_COMPLETED),
+        }
+        for name in self._state_info:
+            info[name] = float(st[f[name]])
+        return info
+
+    @property
+    def current_track_id(self) -> int:
+        """Index (into :attr:`tracks`) of the track of the current episode."""
+        return int(self._batch.track_ids[0])
+
+    def odometry_raw(self, obs: dict[str, np.ndarray]) -> np.ndarray:
+        """``obs["odometry"]`` in SI units, shape (V, K), whatever the normalisation."""
+        if "odometry" not in obs:
+            raise ValueError("the observation has no odometry (ObservationConfig.odometry is empty)")
+        return self._batch.odometry_raw(np.reshape(obs["odometry"], (self.vehicles_per_env, -1)), 0)
+
+    def from_ackermann(self, cmds: Any) -> np.ndarray:
+        """``[steer rad, speed m/s]`` commands ((V, 2) or (2,)) as an action of this env."""
+        a = self._batch.from_ackermann(np.reshape(cmds, (self.vehicles_per_env, 2)))
+        return a[0] if self._squeeze else a
+
+    @property
+    def simulator_state(self) -> tuple[np.ndarray, dict[str, int]]:
+        """The raw simulator state (V, S) of this env and the column of each field."""
+        return self._batch.state[0].copy(), dict(self._batch.field_index)

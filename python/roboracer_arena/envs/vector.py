@@ -1,0 +1,187 @@
+"""Native vector env: ``num_envs`` RoboRacer environments on ONE batched
+``_core.Simulator`` (rayon-parallel, GIL released), not Sync/AsyncVectorEnv.
+
+Autoreset mode (``metadata["autoreset_mode"]``), chosen with ``autoreset_mode=``:
+
+* **NEXT_STEP** (default, like gymnasium's own vector envs, and the only mode gymnasium's
+  vector observation wrappers accept): the step that ends an episode returns its last
+  observation; the *next* step resets that environment, ignores its action and returns
+  the first observation of the new episode with reward 0 and ``terminated = truncated =
+  False``.
+* **SAME_STEP**: the step that ends an episode resets the environment before returning;
+  the returned observation is the new episode's first, ``infos["final_obs"]`` (object
+  array, ``None`` elsewhere) and ``infos["final_info"]`` hold the last ones, with
+  ``_final_obs`` / ``_final_info`` masks.
+
+A reset environment is re-observed with the others (one extra scan pass on steps that
+contain a reset; the simulator has no masked observe). With lidar noise (``noise_std >
+0``) that extra pass also draws from the other environments' noise streams, so
+bit-identical results across ``num_envs`` hold for noise-free lidar (the default).
+
+Seeding: ``reset(seed=s)`` gives environment ``i`` the RNG ``default_rng([s, i])`` for its
+track and start-pose draws and reseeds the simulator with ``s``, so environment ``i``
+sees the same episode whatever ``num_envs`` is.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from .batch import EnvHelpers, SimBatch
+from .env_config import EnvConfig
+from .tracks import resolve_tracks
+
+
+class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
+    """Batched RoboRacer environments (see module docstring); spaces as in
+    :class:`~roboracer_arena.envs.single.RoboRacerEnv` with a leading env axis."""
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 20, "autoreset_mode": AutoresetMode.NEXT_STEP}
+
+    def __init__(
+        self,
+        num_envs: int = 1,
+        track: Any = None,
+        config: EnvConfig | dict | None = None,
+        render_mode: str | None = None,
+        corridor_params: Any = None,
+        render_size: int = 400,
+        max_episode_steps: int | None = None,
+        autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
+        **overrides: Any,
+    ) -> None:
+        if num_envs < 1:
+            raise ValueError(f"num_envs must be >= 1, got {num_envs}")
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be one of {self.metadata['render_modes']}, got {render_mode!r}")
+        self.config = EnvConfig.build(config, **overrides)
+        if max_episode_steps is not None:  # gymnasium.make_vec passes the spec's limit
+            self.config = EnvConfig.build(self.config, time_limit_s=max_episode_steps * self.config.control_dt)
+        self.tracks = resolve_tracks(track, corridor_params)
+        self.num_envs = int(num_envs)
+        self._batch = SimBatch(self.tracks, self.num_envs, self.config, seed=0)
+        self.single_observation_space, self.single_action_space = self._batch.single_spaces()
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self.render_mode = render_mode
+        mode = _autoreset_mode(autoreset_mode)
+        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP):
+            raise ValueError(f"autoreset_mode must be NEXT_STEP or SAME_STEP, got {autoreset_mode!r}")
+        self.autoreset_mode = mode
+        self._autoreset = np.zeros(self.num_envs, bool)
+        self.metadata = {**self.metadata, "render_fps": self.config.control_rate_hz, "autoreset_mode": mode}
+        self._render_size = render_size
+        self._view: Any = None
+        self._squeeze = self.config.vehicles_per_env == 1
+        self._rngs: list[np.random.Generator] = []
+        self._all = np.ones(self.num_envs, bool)
+
+    def reset(self, *, seed: int | list[int] | None = None, options: dict[str, Any] | None = None):
+        if isinstance(seed, (list, tuple)):
+            raise ValueError("pass one integer seed; environment i is seeded with (seed, i)")
+        if seed is None and not self._rngs:
+            seed = int(np.random.SeedSequence().entropy % (2**63))
+        if seed is not None:
+            self._np_random_seed = int(seed)
+            self._np_random = np.random.default_rng(seed)
+            self._rngs = [np.random.default_rng([int(seed), i]) for i in range(self.num_envs)]
+            self._batch.rebuild(int(seed))
+        mask = self._all
+        if options and "reset_mask" in options:
+            mask = np.asarray(options["reset_mask"], dtype=bool).reshape(self.num_envs)
+        track_id = (options or {}).get("track_id")
+        self._batch.reset(mask, self._rngs, None if track_id is None else int(track_id))
+        self._autoreset &= ~mask
+        return self._obs(), self._info()
+
+    def step(self, actions: Any):
+        b = self._batch
+        b.set_actions(actions)
+        reward, terminated, truncated, _ = b.step()
+        infos: dict[str, Any] = {}
+        if self.autoreset_mode == AutoresetMode.NEXT_STEP:
+            pending = self._autoreset
+            if pending.any():  # episodes that ended last step start now; their action was moot
+                b.reset(pending, self._rngs)
+                reward[pending] = 0.0
+                terminated[pending] = False
+                truncated[pending] = False
+            self._autoreset = terminated | truncated
+        else:
+            done = terminated | truncated
+            if done.any():
+                idx = np.flatnonzero(done)
+                final_obs = np.full(self.num_envs, None, dtype=object)
+                last = self._obs(idx)
+                for j, e in enumerate(idx):
+                    final_obs[e] = {k: v[j] for k, v in last.items()}
+                final_info = self._masked(self._info(), done)
+                b.reset(done, self._rngs)
+                infos = {"final_obs": final_obs, "_final_obs": done.copy(), "final_info": final_info,
+                         "_final_info": done.copy()}
+        infos.update(self._info())
+        return self._obs(), reward.astype(np.float64), terminated.copy(), truncated.copy(), infos
+
+    def render(self) -> tuple[np.ndarray, ...] | None:
+        if self.render_mode != "rgb_array":
+            return None
+        if self._view is None:
+            from ..render.sim_view import SimView
+
+            self._view = SimView(self.tracks, self.config.sim, size=self._render_size)
+        b = self._batch
+        scans = b.scans if self.config.observation.scan else [None] * self.num_envs
+        return tuple(self._view.draw(int(b.track_ids[e]), b.state[e], b.field_index, scans[e]) for e in range(self.num_envs))
+
+    # ------------------------------------------------------------------ helpers
+    def _obs(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:
+        obs = self._batch.observation(envs)
+        return {k: v[:, 0] for k, v in obs.items()} if self._squeeze else obs
+
+    def _info(self) -> dict[str, Any]:
+        info = self._batch.info()
+        if self._squeeze:
+            info = {k: (v[:, 0] if v.ndim == 2 else v) for k, v in info.items()}
+        return self._masked(info, self._all)
+
+    @staticmethod
+    def _masked(info: dict[str, Any], mask: np.ndarray) -> dict[str, Any]:
+        """Add gymnasium's ``_key`` masks (one shared read-only array for all keys)."""
+        mask = mask.copy()
+        mask.flags.writeable = False
+        out = dict(info)
+        for k in info:
+            out[f"_{k}"] = mask
+        return out
+
+    # ------------------------------------------------------------------ drivers, tools
+    @property
+    def current_track_ids(self) -> np.ndarray:
+        """Index (into :attr:`tracks`) of each environment's current track, (E,)."""
+        return self._batch.track_ids.copy()
+
+    def odometry_raw(self, obs: dict[str, np.ndarray]) -> np.ndarray:
+        """``obs["odometry"]`` in SI units, shape (E, V, K), whatever the normalisation."""
+        if "odometry" not in obs:
+            raise ValueError("the observation has no odometry (ObservationConfig.odometry is empty)")
+        odo = np.reshape(obs["odometry"], (self.num_envs, self.vehicles_per_env, -1))
+        return self._batch.odometry_raw(odo, slice(None))
+
+    def from_ackermann(self, cmds: Any) -> np.ndarray:
+        """``[steer rad, speed m/s]`` commands ((E, V, 2)) as an action of this vector env."""
+        a = self._batch.from_ackermann(np.reshape(cmds, (self.num_envs, self.vehicles_per_env, 2)))
+        return a[:, 0] if self._squeeze else a
+
+
+def _autoreset_mode(value: AutoresetMode | str) -> AutoresetMode | None:
+    """An AutoresetMode from the enum, its value ("NextStep") or its name ("next_step")."""
+    if isinstance(value, AutoresetMode):
+        return value
+    for m in AutoresetMode:
+        if str(value) in (m.value, m.name, m.name.lower()):
+            return m
+    return None

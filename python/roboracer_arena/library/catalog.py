@@ -1,0 +1,125 @@
+"""The track catalog (``tracks/catalog.json``): one entry per track with its kind
+(``recorded`` | ``circuit`` | ``generated``), provenance (repository, commit, licence),
+scale, resolution, lap length, width statistics, minimum radius, raster size, the
+sha256 of its map image, and notes; plus the recorded maps left out, with the reason.
+
+Project-derived maps live under ``tracks/`` (paths relative to it); recorded maps are
+referenced by their path relative to the sources directory and never copied.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..errors import InvalidArgumentError, MapIOError
+
+TRACKS_ENV = "ROBORACER_ARENA_TRACKS"
+KINDS = ("recorded", "circuit", "generated")
+#: Selections accepted by :func:`resolve` besides single ids.
+SELECTIONS = {"all": KINDS, "recorded": ("recorded",), "circuits": ("circuit",), "circuit": ("circuit",),
+              "generated": ("generated",)}
+
+#: Licence of each source folder (from ../shared/track-sources/SOURCES.md).
+LICENCES = {
+    "tumftm-racetrack-database": "LGPL-3.0",
+    "bacinger-f1-circuits": "MIT",
+    "f1tenth-racetracks": "GPL-3.0",
+    "f1tenth-gym": "MIT",
+    "f1tenth-gym-ros": "MIT",
+    "f1tenth-simulator": "MIT (declared in package.xml; no LICENSE file)",
+    "cps-tuwien-f1tenth-maps": "MIT (declared in package.xml; no LICENSE file; f1_* traced from Wikimedia Commons SVGs, licences unchecked)",
+    "bdevan5-f1tenth-benchmarks": "Apache-2.0",
+}
+
+
+def default_tracks_dir() -> Path:
+    """``$ROBORACER_ARENA_TRACKS``, else ``tracks/`` in the repository checkout."""
+    env = os.environ.get(TRACKS_ENV)
+    return Path(env) if env else Path(__file__).resolve().parents[3] / "tracks"
+
+
+def provenance(sources: Path, folder: str) -> dict[str, str]:
+    """Repository URL, commit and licence of a source folder (its PROVENANCE.txt)."""
+    text = ""
+    try:
+        text = (sources / folder / "PROVENANCE.txt").read_text(encoding="utf-8")
+    except OSError:
+        pass
+    repo = re.search(r"^Source:\s*(\S+)", text, re.M)
+    commit = re.search(r"\b([0-9a-f]{40})\b", text)
+    return {"repository": repo.group(1) if repo else "", "commit": commit.group(1) if commit else "",
+            "licence": LICENCES.get(folder, "unknown")}
+
+
+def sha256_file(path: Path) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+@dataclass
+class Catalog:
+    """The loaded catalog. ``entries`` keeps file order; ``path`` is where it was read."""
+
+    entries: list[dict[str, Any]]
+    left_out: list[dict[str, Any]] = field(default_factory=list)
+    meta: dict[str, Any] = field(default_factory=dict)
+    path: Path | None = None
+
+    def get(self, track_id: str) -> dict[str, Any]:
+        for e in self.entries:
+            if e["id"] == track_id:
+                return e
+        close = [e["id"] for e in self.entries if track_id.lower() in e["id"]][:5]
+        hint = f"; did you mean {', '.join(close)}?" if close else "; see 'roboracer-arena tracks list'"
+        raise InvalidArgumentError(f"unknown track id {track_id!r}{hint}")
+
+    def select(self, selection: str) -> list[dict[str, Any]]:
+        """Entries of a selection (``all``, ``circuits``, ``recorded``, ``generated``) or one id."""
+        kinds = SELECTIONS.get(selection)
+        if kinds is not None:
+            return [e for e in self.entries if e["kind"] in kinds]
+        return [self.get(selection)]
+
+    def map_path(self, entry: dict[str, Any], sources: Path | None = None, tracks: Path | None = None) -> Path:
+        """Absolute path of an entry's map YAML."""
+        if entry["kind"] == "recorded":
+            from ..circuits.sources import default_sources_dir
+
+            return (Path(sources) if sources else default_sources_dir()) / entry["map"]
+        base = Path(tracks) if tracks else (self.path.parent if self.path else default_tracks_dir())
+        return base / entry["map"]
+
+    def to_json(self) -> str:
+        return json.dumps({**self.meta, "count": len(self.entries), "tracks": self.entries,
+                           "left_out": self.left_out}, indent=2) + "\n"
+
+
+def load_catalog(path: str | Path | None = None) -> Catalog:
+    """Read ``tracks/catalog.json`` (or ``path``)."""
+    p = Path(path) if path else default_tracks_dir() / "catalog.json"
+    try:
+        doc = json.loads(p.read_text(encoding="utf-8"))
+    except OSError as e:
+        raise MapIOError(f"{p}: cannot read the track catalog: {e.strerror or e}") from e
+    except json.JSONDecodeError as e:
+        raise MapIOError(f"{p}: the track catalog is not valid JSON (line {e.lineno}): {e.msg}") from e
+    meta = {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count")}
+    return Catalog(entries=list(doc.get("tracks", [])), left_out=list(doc.get("left_out", [])), meta=meta, path=p)
+
+
+def resolve(id_or_selection: str | list[str], catalog: str | Path | Catalog | None = None,
+            sources: str | Path | None = None) -> list[Path]:
+    """Map YAML paths for a catalog id, a list of ids, or a selection (``"circuits"``,
+    ``"generated"``, ``"recorded"``, ``"all"``). Raises ``InvalidArgumentError`` for an
+    unknown id."""
+    cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)
+    items = [id_or_selection] if isinstance(id_or_selection, str) else list(id_or_selection)
+    out: list[Path] = []
+    for item in items:
+        out.extend(cat.map_path(e, Path(sources) if sources else None) for e in cat.select(item))
+    return out

@@ -1,0 +1,121 @@
+"""The generated part of the track library: a documented sweep of requirement specs and
+seeds, each turned into a validated map with :func:`roboracer_arena.generate_track`.
+
+The sweep crosses eight venues (lap length, corridor width, hall size: ``VENUES``) with
+six feature mixes and directions (``FEATURES``) and two seeds (``SEEDS``): 96 requests.
+The first ``count`` acceptances are kept, every seed-0 one before any seed-1 one. Each
+track goes to ``tracks/generated/<id>/`` with its map, centreline, spec and report."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import time
+from pathlib import Path
+from typing import Callable, Iterator
+
+import numpy as np
+
+from ..fileio import atomic_write_text
+from ..spec import TrackSpec
+
+#: (lap length m, corridor width m, hall x m, hall y m): small to large venues.
+VENUES = [
+    (40.0, 1.2, 12.0, 10.0),
+    (50.0, 1.5, 15.0, 12.0),
+    (60.0, 1.5, 20.0, 15.0),
+    (70.0, 2.0, 25.0, 20.0),
+    (80.0, 1.5, 25.0, 18.0),
+    (100.0, 1.5, 30.0, 20.0),
+    (120.0, 2.0, 35.0, 25.0),
+    (150.0, 1.8, 40.0, 30.0),
+]
+#: (hairpins, chicanes, sweepers, direction)
+FEATURES = [
+    (0, 0, 0, "counterclockwise"),
+    (2, 0, 0, "clockwise"),
+    (1, 1, 0, "counterclockwise"),
+    (0, 1, 1, "clockwise"),
+    (3, 1, 0, "counterclockwise"),
+    (2, 1, 1, "clockwise"),
+]
+SEEDS = (0, 1)
+#: Vertex spacing (m) of the committed centreline CSVs.
+CSV_SPACING = 0.25
+
+
+def sweep() -> Iterator[tuple[str, TrackSpec, int]]:
+    """``(id, spec, seed)`` in sweep order."""
+    for (vi, venue), (fi, feat), seed in itertools.product(enumerate(VENUES), enumerate(FEATURES), SEEDS):
+        lap, width, hx, hy = venue
+        h, c, s, direction = feat
+        tid = f"gen-l{int(lap):03d}-w{int(round(width * 10)):02d}-h{h}c{c}s{s}-{direction[:3] if direction == 'clockwise' else 'ccw'}-s{seed}"
+        spec = TrackSpec(name=tid, lap_length_m=lap, corridor_width_m=width, hall_x_m=hx, hall_y_m=hy,
+                         hairpins=h, chicanes=c, sweepers=s, direction=direction)  # type: ignore[arg-type]
+        yield tid, spec, seed
+
+
+def _one(args: tuple[str, TrackSpec, int, str]) -> dict:
+    from ..generate import generate_track, write_outputs
+    from ..generate.outputs import centreline_csv
+
+    tid, spec, seed, outdir = args
+    out = generate_track(spec, seed)
+    rec = {"id": tid, "seed": seed, "outcome": out.kind, "seconds": round(out.seconds, 3),
+           "spec": json.loads(spec.model_dump_json())}
+    if out.kind == "accepted":
+        paths = write_outputs(out, Path(outdir) / tid, stem="map")
+        # The committed centreline is thinned to ~CSV_SPACING m (the map is the reference).
+        line = np.asarray(out.centreline, float)
+        step = np.median(np.hypot(*np.diff(line, axis=0).T))
+        every = max(1, int(round(CSV_SPACING / step))) if step > 0 else 1
+        atomic_write_text(paths["centreline_csv"], centreline_csv(line[::every], spec.corridor_width_m))
+        rec["candidates_tried"] = out.candidates_tried
+    elif out.kind == "rejected":
+        rec["violations"] = out.violations
+    return rec
+
+
+def build_generated(
+    outdir: str | Path,
+    count: int = 60,
+    jobs: int = 1,
+    progress: Callable[[Iterator[dict], int], Iterator[dict]] | None = None,
+) -> dict:
+    """Run the whole sweep (in ``jobs`` processes), keep the first ``count`` acceptances
+    (delete nothing else: outputs of dropped acceptances are removed), write
+    ``outdir/sweep.json`` with every outcome, and return it."""
+    import os
+    import shutil
+    from multiprocessing import get_context
+
+    t0 = time.perf_counter()
+    tasks = [(tid, spec, seed, str(outdir)) for tid, spec, seed in sweep()]
+    Path(outdir).mkdir(parents=True, exist_ok=True)
+    if jobs > 1:
+        with get_context("spawn").Pool(jobs) as pool:
+            it: Iterator[dict] = pool.imap(_one, tasks)
+            recs = list(progress(it, len(tasks)) if progress else it)
+    else:
+        it = map(_one, tasks)
+        recs = list(progress(it, len(tasks)) if progress else it)
+    # Every seed-0 acceptance first (one per spec: the widest spread), then seed 1.
+    accepted = sorted((r for r in recs if r["outcome"] == "accepted"), key=lambda r: r["seed"])
+    kept = {r["id"] for r in accepted[:count]}
+    for r in accepted[count:]:
+        shutil.rmtree(Path(outdir) / r["id"], ignore_errors=True)
+        r["kept"] = False
+    for r in recs:
+        r.setdefault("kept", r["id"] in kept)
+    summary = {
+        "sweep": {"venues": VENUES, "features": FEATURES, "seeds": list(SEEDS)},
+        "specs_tried": len(recs),
+        "accepted": len(accepted),
+        "rejected": sum(r["outcome"] == "rejected" for r in recs),
+        "failed": sum(r["outcome"] == "failed" for r in recs),
+        "kept": len(kept),
+        "seconds": round(time.perf_counter() - t0, 2),
+        "records": recs,
+    }
+    atomic_write_text(Path(outdir) / "sweep.json", json.dumps(summary, indent=2) + "\n")
+    return summary

@@ -1,0 +1,133 @@
+"""Building ``tracks/catalog.json`` from the circuit reports (``tracks/circuits``), the
+generated sweep (``tracks/generated``) and an assessment of every recorded map in the
+sources directory."""
+
+from __future__ import annotations
+
+import json
+import re
+import time
+from pathlib import Path
+from typing import Any
+
+from .. import __version__
+from ..fileio import atomic_write_text
+from .catalog import Catalog, provenance, sha256_file
+from .recorded import assess_all
+
+PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
+
+
+def _circuit_entries(tracks: Path, sources: Path) -> list[dict[str, Any]]:
+    out = []
+    for f in sorted((tracks / "circuits").glob("*/circuit.json")):
+        r = json.loads(f.read_text(encoding="utf-8"))
+        folder = r["source_file"].split("/")[0]
+        prov = provenance(sources, folder)
+        notes = [f"width: {r['width_note']}"]
+        if r["grade_separated"]:
+            notes.append("grade-separated crossing: the centreline crosses itself (a bridge); the planar map "
+                         "overlaps there and the raster length check does not apply")
+        if r["narrowed_fraction"] > 0:
+            notes.append(f"narrowed where sections would merge: {100 * r['narrowed_fraction']:.1f} % of the lap "
+                         f"(never below 60 % of nominal)")
+        if r.get("meta", {}).get("differs_from"):
+            notes.append(f"layout differs from TUM '{r['meta']['differs_from']['tum']}'")
+        out.append({
+            "id": r["id"], "name": r["name"], "kind": "circuit",
+            "source": {**prov, "path": r["source_file"],
+                       "derived": "scaled 1:10, periodic cubic spline, rasterised by roboracer-arena"},
+            "scale": r["scale"], "resolution_m": r["resolution_m"], "lap_length_m": r["lap_length_m"],
+            "width_mean_m": r["width_mean_m"], "width_min_m": r["width_min_m"], "min_radius_m": r["min_radius_m"],
+            "raster": {"width_px": r["raster"]["width_px"], "height_px": r["raster"]["height_px"]},
+            "sha256": r["map_sha256"], "map": f"circuits/{r['map_yaml']}",
+            "centreline": f"circuits/{r['id']}/centreline.csv",
+            "grade_separated": r["grade_separated"], "narrowed_fraction": r["narrowed_fraction"],
+            "length_error": r["length_error"], "notes": notes,
+        })
+    return out
+
+
+def _num(text: str) -> float | None:
+    m = re.search(r"[-+]?\d+(?:\.\d+)?", text or "")
+    return float(m.group()) if m else None
+
+
+def _generated_entries(tracks: Path) -> list[dict[str, Any]]:
+    out = []
+    for spec_f in sorted((tracks / "generated").glob("*/spec.json")):
+        d = spec_f.parent
+        spec = json.loads(spec_f.read_text(encoding="utf-8"))
+        rep = json.loads((d / "report.json").read_text(encoding="utf-8"))
+        checks = {c["name"]: c["measured"] for c in rep["checks"]}
+        wm = re.findall(r"[-+]?\d+(?:\.\d+)?", checks.get("width", ""))
+        yaml = (d / "map.yaml").read_text(encoding="utf-8")
+        res = _num(re.search(r"resolution:\s*(\S+)", yaml).group(1))  # type: ignore[union-attr]
+        from PIL import Image
+
+        with Image.open(d / "map.png") as im:
+            w, h = im.size
+        feats = f"{spec['hairpins']} hairpin(s), {spec['chicanes']} chicane(s), {spec['sweepers']} sweeper(s)"
+        out.append({
+            "id": d.name, "name": spec["name"], "kind": "generated",
+            "source": {**PROJECT, "path": f"generated/{d.name}/spec.json",
+                       "derived": f"generate_track(spec, seed={rep['seed']}) with the {rep['constructor']} constructor"},
+            "scale": 1.0, "resolution_m": res, "lap_length_m": _num(checks.get("lap_length", "")),
+            "width_mean_m": float(wm[0]) if wm else None, "width_min_m": float(wm[1]) if len(wm) > 1 else None,
+            "min_radius_m": _num(checks.get("min_radius", "")),
+            "raster": {"width_px": w, "height_px": h}, "sha256": sha256_file(d / "map.png"),
+            "map": f"generated/{d.name}/map.yaml", "centreline": f"generated/{d.name}/centreline.csv",
+            "spec": f"generated/{d.name}/spec.json", "seed": rep["seed"],
+            "notes": [f"{spec['lap_length_m']:g} m lap, {spec['corridor_width_m']:g} m wide, {spec['direction']}, {feats}, "
+                      f"in a {spec['hall_x_m']:g} x {spec['hall_y_m']:g} m hall"],
+        })
+    return out
+
+
+def _recorded_entries(sources: Path, jobs: int, progress) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
+    entries, left_out = [], []
+    for r in assess_all(sources, jobs=jobs, progress=progress):
+        prov = provenance(sources, r["source_dir"])
+        if not r.get("usable"):
+            left_out.append({"id": r["id"], "source_path": r["source_path"], "reason": r["reason"]})
+            continue
+        yaml_path = sources / r["source_path"]
+        img = re.search(r"^\s*image:\s*['\"]?([^'\"\n]+?)['\"]?\s*$", yaml_path.read_text(encoding="utf-8"), re.M)
+        img_path = yaml_path.parent / img.group(1).strip()  # type: ignore[union-attr]
+        notes = [f"corridor checked with {r['corridor_check']}"]
+        if r.get("infields", 1) > 1:
+            notes.append(f"{r['infields']} enclosed regions (obstacles or islands in the corridor)")
+        out = {
+            "id": r["id"], "name": r["name"], "kind": "recorded",
+            "source": {**prov, "path": r["source_path"]},
+            "scale": None, "resolution_m": r["resolution_m"], "lap_length_m": r["lap_length_m"],
+            "width_mean_m": r["width_mean_m"], "width_min_m": r["width_min_m"], "min_radius_m": r["min_radius_m"],
+            "raster": r["raster"], "sha256": sha256_file(img_path), "map": r["source_path"], "notes": notes,
+        }
+        entries.append(out)
+    return entries, left_out
+
+
+def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress=None) -> Catalog:
+    """Assemble every entry and write ``tracks/catalog.json`` atomically."""
+    t0 = time.perf_counter()
+    circuits = _circuit_entries(tracks, sources)
+    generated = _generated_entries(tracks)
+    recorded, left_out = _recorded_entries(sources, jobs, progress)
+    entries = circuits + recorded + generated
+    ids = [e["id"] for e in entries]
+    dup = {i for i in ids if ids.count(i) > 1}
+    if dup:
+        raise RuntimeError(f"duplicate catalog ids: {sorted(dup)}")
+    meta = {
+        "schema": "roboracer-arena track catalog v1",
+        "built_with": f"roboracer-arena {__version__}",
+        "sources_note": "recorded maps: 'map' is relative to the sources directory (--sources / "
+                        "$ROBORACER_ARENA_SOURCES, default ../shared/track-sources); circuits and generated: "
+                        "relative to this file's directory",
+        "counts": {k: sum(e["kind"] == k for e in entries) for k in ("circuit", "recorded", "generated")},
+        "seconds": round(time.perf_counter() - t0, 2),
+    }
+    cat = Catalog(entries=entries, left_out=left_out, meta=meta, path=tracks / "catalog.json")
+    atomic_write_text(tracks / "catalog.json", cat.to_json())
+    return cat

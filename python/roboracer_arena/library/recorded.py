@@ -1,0 +1,206 @@
+"""Recorded third-party ROS maps in ``../shared/track-sources``: find every map YAML,
+load it, decide whether it holds one closed racing corridor, and measure it. The maps
+are referenced by their path relative to the sources directory and never copied.
+
+A map is *usable* when its free space holds a ring-shaped corridor: the builder's
+``roboracer_arena.corridor.extract_corridor`` decides when it is installed; otherwise
+:func:`isolate_corridor` does (free regions touching the map border are outside; the
+corridor is the largest remaining free region with a hole). Either way the statistics
+come from the raster measurement shared with the circuits (``_core.measure_map``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from pathlib import Path
+
+import numpy as np
+from scipy import ndimage
+
+from .. import _core
+from ..errors import ArenaError
+from ..generate.mapfile import load_ros_map
+
+#: Source folders in order of preference (an identical map later on is a duplicate).
+SOURCE_DIRS = {
+    "f1tenth-racetracks": "racetracks",
+    "f1tenth-gym": "gym",
+    "f1tenth-gym-ros": "gym-ros",
+    "f1tenth-simulator": "simulator",
+    "cps-tuwien-f1tenth-maps": "cps",
+    "bdevan5-f1tenth-benchmarks": "bdevan5",
+}
+FREE, UNKNOWN = 254, 205
+#: A corridor's hole (infield) must be at least this large (m²) to count as a ring.
+MIN_INFIELD_M2 = 1.0
+#: ... and the corridor at least this long (m) and wide on average (m) for a 1:10 car.
+MIN_LAP_M = 8.0
+MIN_MEAN_WIDTH_M = 0.5
+#: Wider than this on average is an open area (a lobby), not a racing corridor.
+MAX_MEAN_WIDTH_M = 6.0
+
+
+def find_map_yamls(sources: Path) -> list[Path]:
+    """Every ROS map YAML (a YAML with an ``image:`` key) under the known source folders."""
+    out = []
+    for folder in SOURCE_DIRS:
+        for y in sorted((sources / folder).rglob("*.yaml")):
+            try:
+                text = y.read_text(encoding="utf-8", errors="replace")
+            except OSError:
+                continue
+            if any(line.strip().startswith("image:") for line in text.splitlines()):
+                out.append(y)
+    return out
+
+
+def record_id(sources: Path, yaml_path: Path) -> str:
+    from ..circuits.sources import slug
+
+    rel = yaml_path.relative_to(sources)
+    stem = yaml_path.stem[:-4] if yaml_path.stem.endswith("_map") else yaml_path.stem
+    return f"{SOURCE_DIRS[rel.parts[0]]}-{slug(stem.replace('_', '-'))}"
+
+
+def isolate_corridor(data: np.ndarray, resolution: float) -> tuple[np.ndarray | None, str]:
+    """Keep only the ring-shaped corridor free; other free cells become unknown.
+    Returns ``(grid or None, reason)``."""
+    free = data == FREE
+    lab, n = ndimage.label(free)
+    if n == 0:
+        return None, "no free cells"
+    border = np.unique(np.concatenate([lab[0], lab[-1], lab[:, 0], lab[:, -1]]))
+    sizes = np.bincount(lab.ravel(), minlength=n + 1)
+    sizes[0] = 0
+    sizes[border] = 0
+    min_hole = MIN_INFIELD_M2 / resolution**2
+    best, best_size = 0, 0
+    for k in np.argsort(sizes)[::-1]:
+        if sizes[k] == 0 or sizes[k] < best_size:
+            break
+        sl = ndimage.find_objects((lab == k).astype(np.int8))[0]
+        comp = lab[sl] == k
+        holes = ndimage.binary_fill_holes(comp) & ~comp
+        if holes.sum() >= min_hole:
+            best, best_size = k, sizes[k]
+            break
+    if best == 0:
+        if sizes.max() == 0:
+            return None, "all free space touches the map border (no enclosed corridor)"
+        return None, "no free region encloses an infield (no closed corridor)"
+    out = data.copy()
+    out[free & (lab != best)] = UNKNOWN
+    return out, ""
+
+
+def corridor_grid(yaml_path: Path, data: np.ndarray, resolution: float) -> tuple[np.ndarray | None, str, str]:
+    """The map with only its corridor free: ``(grid or None, reason, which check decided)``.
+
+    Uses the builder's ``extract_corridor`` (its ``corridor_mask``) when installed, else
+    :func:`isolate_corridor`."""
+    try:
+        from ..corridor import extract_corridor
+    except ImportError:
+        iso, why = isolate_corridor(data, resolution)
+        return iso, why, "library.recorded.isolate_corridor"
+    check = "corridor.extract_corridor"
+    try:
+        geo = extract_corridor(yaml_path)
+    except ArenaError as e:
+        return None, f"no closed corridor (extract_corridor: {e})", check
+    mask = np.asarray(geo.corridor_mask, bool)
+    if mask.shape != data.shape:
+        return None, f"corridor mask {mask.shape} does not match the map {data.shape}", check
+    iso = np.where(mask, FREE, np.where(data == FREE, UNKNOWN, data)).astype(np.uint8)
+    return iso, "", check
+
+
+def assess_map(sources: Path, yaml_path: Path) -> dict:
+    """Load one recorded map and measure it; ``usable`` False comes with a ``reason``."""
+    rel = str(yaml_path.relative_to(sources))
+    name = yaml_path.stem[:-4] if yaml_path.stem.endswith("_map") else yaml_path.stem
+    rec: dict = {"id": record_id(sources, yaml_path), "name": name, "source_path": rel,
+                 "source_dir": rel.split("/")[0]}
+    try:
+        m = load_ros_map(yaml_path)
+    except (ArenaError, OSError, ValueError) as e:
+        rec.update(usable=False, reason=f"broken YAML or image: {e}".replace(str(sources) + "/", ""))
+        return rec
+    data = np.asarray(m.data, np.uint8)
+    h, w = data.shape
+    img_bytes = data.tobytes()
+    rec.update(resolution_m=float(m.resolution), raster={"width_px": w, "height_px": h},
+               grid_sha256=hashlib.sha256(img_bytes + repr(float(m.resolution)).encode()).hexdigest())
+    iso, why, check = corridor_grid(yaml_path, data, float(m.resolution))
+    rec["corridor_check"] = check
+    if iso is None:
+        rec.update(usable=False, reason=why)
+        return rec
+    try:
+        info_json, line, widths = _core.measure_map(iso, float(m.resolution), tuple(m.origin))
+    except ArenaError as e:
+        rec.update(usable=False, reason=f"no closed corridor: {e}")
+        return rec
+    info = json.loads(info_json)
+    lap = float(info["centreline_length_m"])
+    rec.update(
+        lap_length_m=round(lap, 3),
+        width_mean_m=round(float(info["mean_width_m"]), 3),
+        width_min_m=round(float(np.percentile(widths, 0.5)), 3),
+        min_radius_m=round(min_radius(np.asarray(line)), 3),
+        infields=int(info["infields"]),
+    )
+    if lap < MIN_LAP_M:
+        rec.update(usable=False, reason=f"corridor loop only {lap:.1f} m long (< {MIN_LAP_M} m)")
+    elif info["mean_width_m"] < MIN_MEAN_WIDTH_M:
+        rec.update(usable=False, reason=f"corridor {info['mean_width_m']:.2f} m wide on average (< {MIN_MEAN_WIDTH_M} m)")
+    elif info["mean_width_m"] > MAX_MEAN_WIDTH_M:
+        rec.update(usable=False, reason=f"open area, not a corridor: {info['mean_width_m']:.1f} m wide on average "
+                                        f"(> {MAX_MEAN_WIDTH_M} m) around a {lap:.1f} m loop")
+    else:
+        rec.update(usable=True, reason=None)
+    return rec
+
+
+def min_radius(line: np.ndarray, span_m: float = 0.5) -> float:
+    """Smallest three-point circumradius of a closed polyline over chords of ~``span_m``."""
+    if len(line) < 5:
+        return float("nan")
+    step = np.median(np.hypot(*np.diff(line, axis=0).T))
+    k = max(1, int(round(span_m / max(step, 1e-9))))
+    a, b, c = np.roll(line, k, axis=0), line, np.roll(line, -k, axis=0)
+    cross = np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
+    la, lb, lc = np.hypot(*(b - a).T), np.hypot(*(c - b).T), np.hypot(*(c - a).T)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(cross > 1e-12, la * lb * lc / (2 * cross), np.inf)
+    return float(np.min(r))
+
+
+def assess_all(sources: Path, jobs: int = 1, progress=None) -> list[dict]:
+    """Assess every recorded map; identical grids after the first are marked duplicates."""
+    import os
+    from functools import partial
+    from multiprocessing import get_context
+
+    yamls = find_map_yamls(sources)
+    fn = partial(assess_map, sources)
+    if jobs > 1:
+        with get_context("spawn").Pool(jobs) as pool:
+            it = pool.imap(fn, yamls)
+            recs = list(progress(it, len(yamls)) if progress else it)
+    else:
+        recs = list(progress(map(fn, yamls), len(yamls)) if progress else map(fn, yamls))
+    seen: dict[str, str] = {}
+    ids: set[str] = set()
+    for r in recs:
+        g = r.get("grid_sha256")
+        if g and g in seen:
+            if r.get("usable"):
+                r.update(usable=False, reason=f"duplicate of {seen[g]} (identical grid)")
+        elif g:
+            seen[g] = r["id"]
+        while r["id"] in ids:
+            r["id"] += "-2"
+        ids.add(r["id"])
+    return recs

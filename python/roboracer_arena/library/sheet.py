@@ -1,0 +1,73 @@
+"""``tracks sheet``: a contact sheet of every catalog track (thumbnail, id, lap length)."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import numpy as np
+from PIL import Image, ImageDraw, ImageFont
+
+from ..fileio import atomic_write_bytes
+from .catalog import Catalog
+
+KIND_COLOUR = {"circuit": (200, 40, 40), "recorded": (40, 90, 200), "generated": (30, 140, 60)}
+
+
+def thumbnail(yaml_path: Path, size: tuple[int, int]) -> Image.Image:
+    """The map's corridor (free space elsewhere blanked), cropped to its known cells, as a
+    greyscale thumbnail."""
+    from ..generate.mapfile import load_ros_map
+    from .recorded import corridor_grid
+
+    m = load_ros_map(yaml_path)
+    data = np.asarray(m.data, np.uint8)
+    iso, _, _ = corridor_grid(yaml_path, data, float(m.resolution))
+    if iso is not None:
+        data = iso
+        # Walls not bordering the corridor (thin-line maps' far side, clutter) are blanked too.
+        from scipy import ndimage
+
+        near = ndimage.binary_dilation(data == 254, iterations=max(2, int(round(0.3 / m.resolution))))
+        data = np.where((data == 0) & ~near, 205, data).astype(np.uint8)
+    known = data != 205
+    if known.any():
+        rows, cols = np.nonzero(known.any(axis=1))[0], np.nonzero(known.any(axis=0))[0]
+        data = data[rows[0]: rows[-1] + 1, cols[0]: cols[-1] + 1]
+    # Drivable space dark, walls mid-grey, unknown white; shrink by block minimum first so
+    # a corridor a few cells wide stays visible at thumbnail size.
+    shade = np.where(data == 254, 30, np.where(data == 0, 150, 255)).astype(np.uint8)
+    f = max(1, int(min(shade.shape[1] / size[0], shade.shape[0] / size[1])))
+    if f > 1:
+        h, w = (shade.shape[0] // f) * f, (shade.shape[1] // f) * f
+        shade = shade[:h, :w].reshape(h // f, f, w // f, f).min(axis=(1, 3))
+    img = Image.fromarray(shade, "L")
+    img.thumbnail(size, Image.Resampling.LANCZOS)
+    return img
+
+
+def contact_sheet(cat: Catalog, entries: list[dict], out: Path, sources: Path | None = None, columns: int = 12,
+                  cell: tuple[int, int] = (180, 150), progress=None) -> Path:
+    """Draw every entry as a thumbnail with its id and lap length; write a PNG atomically."""
+    rows = (len(entries) + columns - 1) // columns
+    label_h = 28
+    sheet = Image.new("RGB", (columns * cell[0], rows * (cell[1] + label_h)), "white")
+    draw = ImageDraw.Draw(sheet)
+    font = ImageFont.load_default()
+    it = progress(entries, len(entries)) if progress else entries
+    for k, e in enumerate(it):
+        x0, y0 = (k % columns) * cell[0], (k // columns) * (cell[1] + label_h)
+        try:
+            th = thumbnail(cat.map_path(e, sources), (cell[0] - 8, cell[1] - 8)).convert("RGB")
+            sheet.paste(th, (x0 + (cell[0] - th.width) // 2, y0 + (cell[1] - th.height) // 2))
+        except Exception as ex:  # a broken map still gets its cell, with the error
+            draw.text((x0 + 4, y0 + cell[1] // 2), f"cannot load: {type(ex).__name__}", fill=(200, 0, 0), font=font)
+        colour = KIND_COLOUR.get(e["kind"], (0, 0, 0))
+        draw.rectangle([x0 + 1, y0 + 1, x0 + cell[0] - 2, y0 + cell[1] + label_h - 2], outline=colour)
+        lap = e.get("lap_length_m")
+        draw.text((x0 + 4, y0 + cell[1]), e["id"][:28], fill=(0, 0, 0), font=font)
+        draw.text((x0 + 4, y0 + cell[1] + 13), f"{e['kind']} · {lap:.1f} m" if lap else e["kind"], fill=colour, font=font)
+    buf = io.BytesIO()
+    sheet.save(buf, format="PNG", optimize=True)
+    atomic_write_bytes(out, buf.getvalue())
+    return out

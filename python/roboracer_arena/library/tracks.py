@@ -1,0 +1,46 @@
+"""Catalog entries as drivable tracks for the simulator (``track="monaco"``, ``"circuits"``).
+
+A track is named by its catalog id. A grade-separated circuit (Suzuka's bridge) follows
+its own centreline through the crossing, between the builder's walls: the planar map is
+open there, so the builder's medial centreline would lap only one lobe of the figure 8.
+Every other track uses the builder's corridor centreline.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .catalog import Catalog, load_catalog
+
+
+def centreline_path(cat: Catalog, entry: dict[str, Any], sources: Path | None = None) -> Path | None:
+    """The entry's own centreline CSV (circuits and generated tracks), if it has one."""
+    return cat.map_path({**entry, "map": entry["centreline"]}, sources) if entry.get("centreline") else None
+
+
+def entry_track(cat: Catalog, entry: dict[str, Any], sources: Path | None = None) -> tuple[Any, str]:
+    """``(Track, what its centreline is)`` for one catalog entry."""
+    from ..envs.tracks import Track, track_from_map_path
+
+    yaml_path = cat.map_path(entry, sources)
+    line_csv = centreline_path(cat, entry, sources)
+    if entry.get("grade_separated") and line_csv is not None and line_csv.is_file():
+        line = np.loadtxt(line_csv, delimiter=",", comments="#", ndmin=2)[:, :2]
+        walls = track_from_map_path(yaml_path).walls
+        return Track.from_polylines(walls, line, name=entry["id"]), "circuit centreline"
+    t = track_from_map_path(yaml_path)
+    return dataclasses.replace(t, name=entry["id"]), "corridor centreline"
+
+
+def resolve_tracks(selection: str | list[str], catalog: str | Path | Catalog | None = None,
+                   sources: str | Path | None = None) -> list[Any]:
+    """Tracks (named by catalog id) for an id, a list of ids, or a selection
+    (``"circuits"``, ``"recorded"``, ``"generated"``, ``"all"``)."""
+    cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)
+    items = [selection] if isinstance(selection, str) else list(selection)
+    src = Path(sources) if sources else None
+    return [entry_track(cat, e, src)[0] for item in items for e in cat.select(item)]

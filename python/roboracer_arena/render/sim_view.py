@@ -1,0 +1,94 @@
+"""Top-down drawing of a simulated episode with PIL: track walls, centreline, vehicles
+as oriented rectangles and lidar rays. Used by the envs' ``render()`` (rgb_array)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+from PIL import Image, ImageDraw
+
+from ..envs.config import SimConfig
+
+BACKGROUND = (246, 246, 242)
+WALL = (40, 40, 48)
+CENTRELINE = (190, 190, 200)
+RAY = (255, 140, 40)
+VEHICLE_COLOURS = [(214, 39, 40), (31, 119, 180), (44, 160, 44), (148, 103, 189), (140, 86, 75), (227, 119, 194)]
+
+
+class SimView:
+    """Draws frames of any of ``tracks`` at about ``size`` pixels along the longer side."""
+
+    def __init__(self, tracks: Sequence[Any], sim: SimConfig | None = None, size: int = 600,
+                 margin: float = 0.5, max_rays: int = 90) -> None:
+        self.tracks = list(tracks)
+        self.sim = sim or SimConfig()
+        self.size = int(size)
+        self.margin = float(margin)
+        self.max_rays = int(max_rays)
+        self._backgrounds: dict[int, tuple[Image.Image, tuple[float, float, float]]] = {}
+
+    def _background(self, track_id: int) -> tuple[Image.Image, tuple[float, float, float]]:
+        cached = self._backgrounds.get(track_id)
+        if cached is not None:
+            return cached
+        t = self.tracks[track_id]
+        xmin, ymin, xmax, ymax = t.bounds
+        xmin, ymin, xmax, ymax = xmin - self.margin, ymin - self.margin, xmax + self.margin, ymax + self.margin
+        scale = self.size / max(xmax - xmin, ymax - ymin, 1e-6)
+        w, h = max(1, math.ceil((xmax - xmin) * scale)), max(1, math.ceil((ymax - ymin) * scale))
+        tf = (xmin, ymax, scale)  # pixel = ((x - xmin) * s, (ymax - y) * s)
+        img = Image.new("RGB", (w, h), BACKGROUND)
+        d = ImageDraw.Draw(img)
+        loop = np.vstack([t.centreline, t.centreline[:1]])
+        d.line(_px(loop, tf), fill=CENTRELINE, width=1)
+        lw = max(1, round(scale * 0.05))
+        for wall in t.walls:
+            d.line(_px(wall, tf), fill=WALL, width=lw)
+        self._backgrounds[track_id] = (img, tf)
+        return img, tf
+
+    def draw(self, track_id: int, state: np.ndarray, field_index: Mapping[str, int],
+             scans: np.ndarray | None = None) -> np.ndarray:
+        """One frame, (H, W, 3) uint8: vehicles from ``state`` (V, S) rows, rays from ``scans`` (V, B)."""
+        bg, tf = self._background(track_id)
+        veh, lid = self.sim.vehicle, self.sim.lidar
+        fx, fy, fyaw = field_index["x"], field_index["y"], field_index["yaw"]
+        poses = [(float(r[fx]), float(r[fy]), float(r[fyaw])) for r in np.asarray(state)]
+        img = bg.copy()
+        if scans is not None:
+            rays = Image.new("RGBA", img.size, (0, 0, 0, 0))
+            d = ImageDraw.Draw(rays)
+            for k, (x, y, yaw) in enumerate(poses):
+                if not math.isfinite(x + y + yaw):
+                    continue
+                r = np.asarray(scans[k], dtype=np.float64)
+                step = max(1, len(r) // self.max_rays)
+                ang = yaw + np.linspace(-lid.fov / 2, lid.fov / 2, len(r))[::step]
+                ox, oy = x + lid.mount_x * math.cos(yaw), y + lid.mount_x * math.sin(yaw)
+                rr = np.nan_to_num(r[::step], nan=0.0, posinf=lid.range_max)
+                ends = np.column_stack([ox + rr * np.cos(ang), oy + rr * np.sin(ang)])
+                o = _px(np.array([[ox, oy]]), tf)[0]
+                for e in _px(ends, tf):
+                    d.line([o, e], fill=(*RAY, 110), width=1)
+            img = Image.alpha_composite(img.convert("RGBA"), rays).convert("RGB")
+        d = ImageDraw.Draw(img)
+        hl, hw = veh.chassis_length / 2, veh.chassis_width / 2
+        body = np.array([[hl, hw], [hl, -hw], [-hl, -hw], [-hl, hw]])
+        for k, (x, y, yaw) in enumerate(poses):
+            if not math.isfinite(x + y + yaw):
+                continue
+            c, s = math.cos(yaw), math.sin(yaw)
+            rot = np.column_stack([x + body[:, 0] * c - body[:, 1] * s, y + body[:, 0] * s + body[:, 1] * c])
+            d.polygon(_px(rot, tf), fill=VEHICLE_COLOURS[k % len(VEHICLE_COLOURS)], outline=(0, 0, 0))
+            nose = np.array([[x, y], [x + hl * c, y + hl * s]])
+            d.line(_px(nose, tf), fill=(255, 255, 255), width=max(1, round(tf[2] * 0.04)))
+        return np.asarray(img, dtype=np.uint8)
+
+
+def _px(pts: np.ndarray, tf: tuple[float, float, float]) -> list[tuple[float, float]]:
+    xmin, ymax, s = tf
+    p = np.asarray(pts, dtype=np.float64)
+    return list(zip(((p[:, 0] - xmin) * s).tolist(), ((ymax - p[:, 1]) * s).tolist()))

@@ -1,0 +1,18 @@
+"""``roboracer-arena bench env`` runs end to end (tiny budget; the figures live in BENCHMARKS.md)."""
+
+import json
+
+from roboracer_arena.cli import main
+
+
+def test_bench_env_smoke(sources, tmp_path, capsys):
+    out = tmp_path / "env.json"
+    berlin = sources / "f1tenth-gym" / "maps" / "berlin.yaml"
+    code = main(["bench", "env", "--map", str(berlin), "--num-envs", "2", "--seconds", "0.2", "--beams", "109",
+                 "--json", str(out)])
+    assert code == 0
+    assert "F1TENTH Gym" in capsys.readouterr().out
+    res = json.loads(out.read_text())
+    assert [r["num_envs"] for r in res["rows"]] == [1, 2]
+    assert all(r["env_steps_per_s"] > 0 and r["steps"] > 0 for r in res["rows"])
+    assert res["recorded_lap_steps"] > 1000  # a full lap at 100 Hz

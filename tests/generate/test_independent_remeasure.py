@@ -1,0 +1,69 @@
+"""Every accepted map passes an independent re-measurement of the written PNG/YAML
+(``independent_measure``: Pillow + numpy + scipy.ndimage, no code shared with the Rust
+validator)."""
+
+import json
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+
+from roboracer_arena import TrackSpec
+from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.generate import Acceptance, GenerationFailure, generate_track, screen, write_outputs
+from independent_measure import measure
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def assert_independently_valid(acc: Acceptance, outdir: Path) -> None:
+    spec, cfg = acc.spec, ConstructorConfig()
+    m = measure(write_outputs(acc, outdir)["map_yaml"])
+    assert m.free_components == 1, "one connected corridor"
+    assert m.infields == 1, "one enclosed infield"
+    w = spec.corridor_width_m
+    assert abs(m.width_m - w) <= 0.05 * w + m.resolution, f"width {m.width_m} vs {w}"
+    # No merged passes: nowhere is the corridor much wider than requested.
+    assert m.max_width_m <= w + 2 * m.resolution, f"widest spot {m.max_width_m} vs {w}"
+    assert abs(m.lap_length_m - spec.lap_length_m) <= 0.04 * spec.lap_length_m, f"lap {m.lap_length_m} vs {spec.lap_length_m}"
+    ux, uy = spec.hall_x_m - 2 * cfg.hall_margin_m, spec.hall_y_m - 2 * cfg.hall_margin_m
+    ex, ey = m.extent_m
+    assert (ex <= ux + m.resolution and ey <= uy + m.resolution) or (ey <= ux + m.resolution and ex <= uy + m.resolution)
+
+
+def _bench_specs() -> list[TrackSpec]:
+    lines = (REPO / "benches" / "specs.jsonl").read_text().splitlines()
+    return [TrackSpec.from_dict(json.loads(s)) for s in lines if s.strip()]
+
+
+@pytest.mark.parametrize("spec", [s for s in _bench_specs() if screen(s)["passed"]], ids=lambda s: s.name)
+def test_bench_specs_accepted_maps_remeasure(spec, tmp_path):
+    out = generate_track(spec, seed=0)
+    assert isinstance(out, Acceptance), out.summary()
+    assert_independently_valid(out, tmp_path)
+
+
+specs = st.builds(
+    TrackSpec,
+    lap_length_m=st.floats(25, 70),
+    corridor_width_m=st.sampled_from([1.2, 1.5, 1.8]),
+    hall_x_m=st.floats(14, 24),
+    hall_y_m=st.floats(10, 18),
+    direction=st.sampled_from(["clockwise", "counterclockwise"]),
+    hairpins=st.integers(0, 3),
+    chicanes=st.integers(0, 2),
+    sweepers=st.integers(0, 2),
+)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.filter_too_much])
+@given(spec=specs, seed=st.integers(0, 2**32 - 1))
+def test_every_accepted_map_passes_independent_remeasurement(spec, seed, tmp_path_factory):
+    assume(screen(spec)["passed"])
+    out = generate_track(spec, seed=seed)
+    if isinstance(out, GenerationFailure):
+        assert out.candidates_tried == 800 and sum(out.reasons.values()) == 800
+        return
+    assert isinstance(out, Acceptance) and out.report["valid"]
+    assert_independently_valid(out, tmp_path_factory.mktemp("map"))

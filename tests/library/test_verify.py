@@ -1,0 +1,64 @@
+"""``tracks verify`` on a sample of each kind (load, ring, USD, pure-pursuit lap)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from roboracer_arena.cli import main
+from roboracer_arena.library import load_catalog
+from roboracer_arena.library.verify import verify
+
+
+def test_verify_one_track_of_each_kind():
+    cat = load_catalog()
+    picks = [cat.get("norisring"), cat.select("generated")[0], cat.get("gym-berlin")]
+    s = verify(cat, picks, jobs=1)
+    assert s["tracks"] == 3 and s["passed"] == 3, s["failed"]
+    for r in s["results"]:
+        assert {k: v["status"] for k, v in r["checks"].items()} == {"load": "pass", "ring": "pass", "usd": "pass",
+                                                                  "drive": "pass"}, r
+
+
+def test_verify_catches_a_tampered_map(tmp_path):
+    cat = load_catalog()
+    e = dict(cat.select("generated")[0], sha256="0" * 64)
+    s = verify(cat, [e], jobs=1, usd=False, drive=False)
+    assert s["failed"] == [e["id"]]
+    assert "checksum" in s["results"][0]["checks"]["load"]["detail"]
+
+
+@pytest.mark.slow
+def test_cli_verify_subset(capsys):
+    rc = main(["tracks", "verify", "--limit", "1", "--no-drive", "--jobs", "1", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["tracks"] == 3 and out["passed"] == 3
+    assert out["per_check"]["drive"]["not run"] == 3
+
+
+def test_sheet(tmp_path):
+    out = tmp_path / "sheet.png"
+    assert main(["tracks", "sheet", "-o", str(out), "--limit", "2", "--columns", "3"]) == 0
+    from PIL import Image
+
+    with Image.open(out) as im:
+        assert im.size[0] == 3 * 180 and im.size[1] >= 2 * 178
+
+
+def test_prune_moves_failed_recorded_maps_only():
+    from roboracer_arena.library.verify import prune_catalog
+
+    cat = load_catalog()
+    rec, gen = cat.select("recorded")[0], cat.select("generated")[0]
+    bad = {"status": "FAIL", "detail": "lap not completed"}
+    ok = {"status": "pass", "detail": "fine"}
+    summary = {"results": [
+        {"id": rec["id"], "kind": "recorded", "passed": False, "checks": {"load": ok, "drive": bad}},
+        {"id": gen["id"], "kind": "generated", "passed": False, "checks": {"load": ok, "drive": bad}},
+    ]}
+    n = len(cat.entries)
+    assert prune_catalog(cat, summary) == [rec["id"]]
+    assert len(cat.entries) == n - 1 and cat.left_out[-1]["id"] == rec["id"]
+    assert "drive: lap not completed" in cat.left_out[-1]["reason"]
+    assert cat.get(gen["id"])["verified"]["drive"] == "FAIL"
