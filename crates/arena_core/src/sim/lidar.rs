@@ -15,6 +15,10 @@ use super::sweep::sweep;
 pub struct SegmentGrid {
     /// (ax, ay, bx - ax, by - ay) per segment.
     segs: Vec<[f64; 4]>,
+    /// Polyline vertices and each segment's (start, end) vertex: the sweep computes one
+    /// angle per vertex instead of two per segment.
+    verts: Vec<[f64; 2]>,
+    seg_verts: Vec<[u32; 2]>,
     x0: f64,
     y0: f64,
     cell: f64,
@@ -31,12 +35,17 @@ impl SegmentGrid {
     /// Grid over the edges of closed polylines (each closes back to its first point).
     pub fn new(walls: &[Vec<[f64; 2]>]) -> Self {
         let mut segs = Vec::new();
+        let mut verts: Vec<[f64; 2]> = Vec::new();
+        let mut seg_verts: Vec<[u32; 2]> = Vec::new();
         for w in walls {
             let n = w.len();
             let m = if n == 2 { 1 } else { n };
+            let base = verts.len() as u32;
+            verts.extend_from_slice(w);
             for i in 0..m {
                 let (a, b) = (w[i], w[(i + 1) % n]);
                 segs.push([a[0], a[1], b[0] - a[0], b[1] - a[1]]);
+                seg_verts.push([base + i as u32, base + ((i + 1) % n) as u32]);
             }
         }
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -86,7 +95,7 @@ impl SegmentGrid {
             start.push(items.len() as u32);
         }
         let cell_segs = items.iter().map(|&k| segs[k as usize]).collect();
-        SegmentGrid { segs, x0, y0, cell, nx, ny, start, items, cell_segs }
+        SegmentGrid { segs, verts, seg_verts, x0, y0, cell, nx, ny, start, items, cell_segs }
     }
 
     pub fn num_segments(&self) -> usize {
@@ -96,6 +105,11 @@ impl SegmentGrid {
     /// All wall segments as (ax, ay, bx - ax, by - ay).
     pub fn segments(&self) -> &[[f64; 4]] {
         &self.segs
+    }
+
+    /// Polyline vertices, and the (start, end) vertex of every segment.
+    pub fn vertices(&self) -> (&[[f64; 2]], &[[u32; 2]]) {
+        (&self.verts, &self.seg_verts)
     }
 
     /// True when no wall segment comes within `r` of `(x, y)`.

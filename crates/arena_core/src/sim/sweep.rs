@@ -49,6 +49,10 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
     // Pass 1: segments within range and the field of view, with their nearest distance
     // and angular interval.
     let segs = grid.segments();
+    // One arctangent per polyline vertex (shared by its two segments), as seen from the
+    // sensor; only used for the conservative beam ranges.
+    let (verts, seg_verts) = grid.vertices();
+    let angles: Vec<f64> = verts.iter().map(|v| fast_atan2(v[1] - oy, v[0] - ox)).collect();
     let mut cands: Vec<Candidate> = Vec::with_capacity(segs.len());
     for (i, s) in segs.iter().enumerate() {
         let (ax, ay) = (s[0] - ox, s[1] - oy);
@@ -62,10 +66,11 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
             continue;
         }
         // Angular interval swept counter-clockwise from p to q as seen from the origin.
-        let ((px, py), (qx, qy)) = if ax * by - ay * bx >= 0.0 { ((ax, ay), (bx, by)) } else { ((bx, by), (ax, ay)) };
-        let ap = fast_atan2(py, px);
+        let [va, vb] = seg_verts[i];
+        let (aa, ab) = (angles[va as usize], angles[vb as usize]);
+        let (ap, aq) = if ax * by - ay * bx >= 0.0 { (aa, ab) } else { (ab, aa) };
         let start = wrap_tau(ap - theta0);
-        let len = wrap_tau(fast_atan2(qy, qx) - ap);
+        let len = wrap_tau(aq - ap);
         let (lo, hi) = (start - margin, start + len + margin);
         if [-TAU, 0.0, TAU].iter().all(|sh| hi + sh < 0.0 || lo + sh > span) {
             continue; // outside the field of view
