@@ -147,3 +147,24 @@ def test_grid_start_and_track_choice(oval):
     assert (gaps > 0.9).all()  # grid slots 1 m apart along the line, staggered
     with pytest.raises(ValueError):
         env.reset(options={"track_id": 5})
+
+
+def test_lidar_rate_holds_the_scan_under_a_faster_control_loop(oval):
+    # 100 Hz control, 40 Hz scanner: 2 fresh scans in every 5 steps, the rest repeat the last one.
+    env = RoboRacerEnv(track=oval, control_rate_hz=100.0,
+                       sim={"physics": {"dt": 0.01}, "lidar": {"num_beams": 61, "rate_hz": 40.0}})
+    obs, _ = env.reset(seed=0)
+    scans = [obs["scan"].copy()]
+    for _ in range(10):
+        obs, *_ = env.step(np.array([0.0, 3.0]))
+        scans.append(obs["scan"].copy())
+    fresh = [not np.array_equal(a, b) for a, b in zip(scans, scans[1:])]
+    assert sum(fresh) == 4, fresh
+    # At or below the scan rate every step scans (the default: 20 Hz control, 40 Hz scanner).
+    env = RoboRacerEnv(track=oval, sim={"lidar": {"num_beams": 61}})
+    obs, _ = env.reset(seed=0)
+    prev = obs["scan"].copy()
+    for _ in range(3):
+        obs, *_ = env.step(np.array([0.0, 3.0]))
+        assert not np.array_equal(obs["scan"], prev)
+        prev = obs["scan"].copy()

@@ -45,7 +45,7 @@ def _default_map() -> Path:
 def _env_kwargs(beams: int) -> dict[str, Any]:
     return {
         "control_rate_hz": 100.0,
-        "sim": {"physics": {"dt": 0.01}, "lidar": {"num_beams": beams}},
+        "sim": {"physics": {"dt": 0.01}, "lidar": {"num_beams": beams, "rate_hz": 100.0}},
         "reset_poses": "grid",
         "time_limit_s": None,
     }

@@ -73,6 +73,12 @@ class SimBatch:
         self._odo_scale = np.ones((E, 1, len(self._odo_cols)), np.float64)
         self._range_max = float(lid.range_max)
         self._clip_scan = lid.noise_std > 0
+        # The scanner runs at its own rate: under a faster control loop the observation
+        # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control
+        # scans on 2 of every 5 steps). Scan ticks count on one clock for the whole batch.
+        self._scan_every_step = lid.rate_hz * config.control_dt >= 1.0 - 1e-9
+        self._scan_ticks_per_step = lid.rate_hz * config.control_dt
+        self._scan_clock = 0.0
         self.max_steps = config.max_episode_steps
 
     # ------------------------------------------------------------------ spaces
@@ -155,6 +161,16 @@ class SimBatch:
         self.progress[idx] = 0.0
         self.elapsed[idx] = 0
 
+    def _scan_due(self) -> bool:
+        """Whether the scanner produces a new scan at the end of this step."""
+        if not self.config.observation.scan:
+            return False
+        if self._scan_every_step:
+            return True
+        before = self._scan_clock
+        self._scan_clock += self._scan_ticks_per_step
+        return math.floor(self._scan_clock + 1e-9) > math.floor(before + 1e-9)
+
     def observe(self) -> None:
         self.sim.observe(self.scans if self.config.observation.scan else None, self.state, self.events)
 
@@ -175,7 +191,7 @@ class SimBatch:
     def step(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Step all environments with the stored actions. Returns (reward (E,), terminated
         (E,), truncated (E,), contact (E, V) bool)."""
-        self.sim.step(self.actions, self.substeps, self.scans if self.config.observation.scan else None,
+        self.sim.step(self.actions, self.substeps, self.scans if self._scan_due() else None,
                       self.state, self.events)
         s = self.state[:, :, self._s_col]
         ds = s - self.prev_s

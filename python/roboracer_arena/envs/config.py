@@ -100,7 +100,9 @@ class LidarConfig(BaseModel):
     noise_std: float = Field(0.0, ge=0, description="Std of additive Gaussian range noise (m); 0 = exact.")
     mount_x: float = Field(0.12, description="Forward offset of the scanner from the CoM (m).")
     mount_z: float = Field(0.12, description="Scanner height above the ground (m); informational in the 2D scan.")
-    rate_hz: float = Field(40.0, gt=0, description="Scan rate (Hz) the env should request scans at (paper: 39.9 Hz).")
+    rate_hz: float = Field(40.0, gt=0, description=(
+        "Scan rate (Hz; paper: 39.9 Hz). Under a faster control loop the env holds the latest scan "
+        "until the next is due; at or below the scan rate every step gets a fresh scan."))
 
 
 class PhysicsConfig(BaseModel):
