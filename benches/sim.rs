@@ -38,34 +38,50 @@ fn bench_sim(c: &mut Criterion) {
             if n % 2000 == 0 {
                 sim = simulator(1, 1);
             }
-            sim.step(black_box(&[0.0, 1.0]), 1, None, &mut state, &mut events).unwrap()
+            sim.step(black_box(&[0.0, 1.0]), 1, None, &mut state, &mut events)
+                .unwrap()
         })
     });
 
     let mut scans = vec![0.0f32; sim.num_beams()];
     c.bench_function("lidar scan (1081 beams)", |b| {
-        b.iter(|| sim.observe(Some(&mut scans), &mut state, &mut events).unwrap())
+        b.iter(|| {
+            sim.observe(Some(&mut scans), &mut state, &mut events)
+                .unwrap()
+        })
     });
 
     // The alternatives, from the same pose: the per-beam grid walk, and ray casts on the
     // rapier/parry trimesh (the 3D collision walls) as a reference.
     let track = sim.tracks()[0].clone();
-    let (ox, oy, yaw) = (state[0] + 0.12 * state[2].cos(), state[1] + 0.12 * state[2].sin(), state[2]);
+    let (ox, oy, yaw) = (
+        state[0] + 0.12 * state[2].cos(),
+        state[1] + 0.12 * state[2].sin(),
+        state[2],
+    );
     let dirs: Vec<(f64, f64)> = (0..1081)
         .map(|k| {
-            let a = yaw - 0.75 * std::f64::consts::PI + k as f64 * 1.5 * std::f64::consts::PI / 1080.0;
+            let a =
+                yaw - 0.75 * std::f64::consts::PI + k as f64 * 1.5 * std::f64::consts::PI / 1080.0;
             (a.cos(), a.sin())
         })
         .collect();
     c.bench_function("lidar scan (1081 beams, per-beam grid walk)", |b| {
-        b.iter(|| dirs.iter().map(|&(dx, dy)| track.grid.cast(ox, oy, dx, dy, 30.0)).fold(0.0, f64::max))
+        b.iter(|| {
+            dirs.iter()
+                .map(|&(dx, dy)| track.grid.cast(ox, oy, dx, dy, 30.0))
+                .fold(0.0, f64::max)
+        })
     });
     let mesh = track.wall_shape.as_trimesh().unwrap();
     c.bench_function("lidar scan (1081 beams, parry trimesh ray casts)", |b| {
         b.iter(|| {
             dirs.iter()
                 .map(|&(dx, dy)| {
-                    let ray = Ray::new(Vector::new(ox as f32, oy as f32, 0.12), Vector::new(dx as f32, dy as f32, 0.0));
+                    let ray = Ray::new(
+                        Vector::new(ox as f32, oy as f32, 0.12),
+                        Vector::new(dx as f32, dy as f32, 0.0),
+                    );
                     mesh.cast_local_ray(&ray, 30.0, true).unwrap_or(30.0)
                 })
                 .fold(0.0, f32::max)
@@ -78,15 +94,19 @@ fn bench_sim(c: &mut Criterion) {
         let actions: Vec<f64> = (0..n).flat_map(|_| [0.0, 1.0]).collect();
         let (mut state, mut events) = (vec![0.0; n * STATE_SIZE], vec![0u8; n]);
         let mut k = 0;
-        c.bench_function(&format!("batched step ({envs} envs x {per_env} cars, 10 substeps)"), |b| {
-            b.iter(|| {
-                k += 1;
-                if k % 200 == 0 {
-                    sim = simulator(envs, per_env);
-                }
-                sim.step(&actions, 10, None, &mut state, &mut events).unwrap()
-            })
-        });
+        c.bench_function(
+            &format!("batched step ({envs} envs x {per_env} cars, 10 substeps)"),
+            |b| {
+                b.iter(|| {
+                    k += 1;
+                    if k % 200 == 0 {
+                        sim = simulator(envs, per_env);
+                    }
+                    sim.step(&actions, 10, None, &mut state, &mut events)
+                        .unwrap()
+                })
+            },
+        );
     }
 }
 

@@ -31,10 +31,16 @@ pub enum ArenaError {
 
 impl ArenaError {
     pub fn io(path: impl AsRef<Path>, err: impl std::fmt::Display) -> Self {
-        ArenaError::Io { path: path.as_ref().display().to_string(), message: err.to_string() }
+        ArenaError::Io {
+            path: path.as_ref().display().to_string(),
+            message: err.to_string(),
+        }
     }
     pub fn map_format(path: impl AsRef<Path>, message: impl Into<String>) -> Self {
-        ArenaError::MapFormat { path: path.as_ref().display().to_string(), message: message.into() }
+        ArenaError::MapFormat {
+            path: path.as_ref().display().to_string(),
+            message: message.into(),
+        }
     }
     pub fn invalid(message: impl Into<String>) -> Self {
         ArenaError::InvalidArgument(message.into())

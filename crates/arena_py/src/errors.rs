@@ -5,13 +5,48 @@ use arena_core::ArenaError as CoreError;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
-pyo3::create_exception!(_core, ArenaError, PyException, "Base class of every RoboRacer Arena error.");
-pyo3::create_exception!(_core, MapIOError, ArenaError, "A map or output file could not be read or written.");
-pyo3::create_exception!(_core, MapFormatError, ArenaError, "A map YAML or image is malformed.");
-pyo3::create_exception!(_core, CorridorError, ArenaError, "The map has no usable closed corridor.");
-pyo3::create_exception!(_core, InvalidArgumentError, ArenaError, "An argument is outside its domain.");
-pyo3::create_exception!(_core, SpecError, ArenaError, "A track specification is malformed.");
-pyo3::create_exception!(_core, SimulationError, ArenaError, "The simulator refused a track, config or call.");
+pyo3::create_exception!(
+    _core,
+    ArenaError,
+    PyException,
+    "Base class of every RoboRacer Arena error."
+);
+pyo3::create_exception!(
+    _core,
+    MapIOError,
+    ArenaError,
+    "A map or output file could not be read or written."
+);
+pyo3::create_exception!(
+    _core,
+    MapFormatError,
+    ArenaError,
+    "A map YAML or image is malformed."
+);
+pyo3::create_exception!(
+    _core,
+    CorridorError,
+    ArenaError,
+    "The map has no usable closed corridor."
+);
+pyo3::create_exception!(
+    _core,
+    InvalidArgumentError,
+    ArenaError,
+    "An argument is outside its domain."
+);
+pyo3::create_exception!(
+    _core,
+    SpecError,
+    ArenaError,
+    "A track specification is malformed."
+);
+pyo3::create_exception!(
+    _core,
+    SimulationError,
+    ArenaError,
+    "The simulator refused a track, config or call."
+);
 
 /// Converts a core error into the matching Python exception.
 pub fn to_py(err: CoreError) -> PyErr {
@@ -43,7 +78,10 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MapIOError", py.get_type::<MapIOError>())?;
     m.add("MapFormatError", py.get_type::<MapFormatError>())?;
     m.add("CorridorError", py.get_type::<CorridorError>())?;
-    m.add("InvalidArgumentError", py.get_type::<InvalidArgumentError>())?;
+    m.add(
+        "InvalidArgumentError",
+        py.get_type::<InvalidArgumentError>(),
+    )?;
     m.add("SpecError", py.get_type::<SpecError>())?;
     m.add("SimulationError", py.get_type::<SimulationError>())?;
     Ok(())

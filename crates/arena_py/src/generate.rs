@@ -12,7 +12,10 @@ use arena_core::track::{features, validate};
 
 pub(crate) type MapTuple<'py> = (Bound<'py, PyArray2<u8>>, (f64, f64, f64));
 
-pub(crate) fn grid_to_py<'py>(py: Python<'py>, g: arena_core::grid::OccupancyGrid) -> MapTuple<'py> {
+pub(crate) fn grid_to_py<'py>(
+    py: Python<'py>,
+    g: arena_core::grid::OccupancyGrid,
+) -> MapTuple<'py> {
     let o = g.origin;
     let arr =
         numpy::ndarray::Array2::from_shape_vec((g.height, g.width), g.data).expect("shape matches");

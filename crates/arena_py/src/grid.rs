@@ -5,7 +5,10 @@ use pyo3::prelude::*;
 
 /// Exact Euclidean distance (in cells) from every cell to the nearest True cell.
 #[pyfunction]
-fn distance_transform<'py>(py: Python<'py>, feature: PyReadonlyArray2<'py, bool>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+fn distance_transform<'py>(
+    py: Python<'py>,
+    feature: PyReadonlyArray2<'py, bool>,
+) -> PyResult<Bound<'py, PyArray2<f32>>> {
     let (h, w) = (feature.shape()[0], feature.shape()[1]);
     let mask: Vec<bool> = feature.as_array().iter().copied().collect();
     let d = py.detach(move || arena_core::grid::edt::edt(&mask, w, h));

@@ -31,10 +31,7 @@ type LoadedMap<'py> = (Bound<'py, PyArray2<u8>>, f64, (f64, f64, f64), String);
 /// Load a ROS map YAML and its image (nav2 rules for mode, negate and thresholds).
 /// Returns ``(data uint8 (H, W), resolution, origin (x, y, yaw), meta_json)``.
 #[pyfunction]
-fn load_map<'py>(
-    py: Python<'py>,
-    path: std::path::PathBuf,
-) -> PyResult<LoadedMap<'py>> {
+fn load_map<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<LoadedMap<'py>> {
     let (g, meta) = py.detach(move || mapfile::load_map(&path)).py()?;
     let res = g.resolution;
     let (data, origin) = crate::generate::grid_to_py(py, g);

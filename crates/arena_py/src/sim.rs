@@ -6,11 +6,16 @@ use std::sync::Arc;
 
 use arena_core::sim::{SimParams, Simulator as CoreSim, Track, STATE_FIELDS, STATE_SIZE};
 use arena_core::ArenaError as CoreError;
-use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{
+    PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::errors::{to_py, IntoPyResult};
+
+/// (vertices (V, 3) float32, triangles (T, 3) uint32) of a mesh.
+type MeshArrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
 
 fn invalid(msg: impl Into<String>) -> PyErr {
     to_py(CoreError::invalid(msg))
@@ -20,31 +25,44 @@ fn invalid(msg: impl Into<String>) -> PyErr {
 fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f64; 2]>> {
     if let Ok(a) = obj.extract::<PyReadonlyArray2<'_, f64>>() {
         if a.shape()[1] != 2 {
-            return Err(invalid(format!("{what} must have shape (N, 2), got {:?}", a.shape())));
+            return Err(invalid(format!(
+                "{what} must have shape (N, 2), got {:?}",
+                a.shape()
+            )));
         }
         let v = a.as_array();
         return Ok(v.rows().into_iter().map(|r| [r[0], r[1]]).collect());
     }
-    obj.extract::<Vec<[f64; 2]>>()
-        .map_err(|_| invalid(format!("{what} must be an (N, 2) float64 array or a sequence of (x, y) pairs")))
+    obj.extract::<Vec<[f64; 2]>>().map_err(|_| {
+        invalid(format!(
+            "{what} must be an (N, 2) float64 array or a sequence of (x, y) pairs"
+        ))
+    })
 }
 
 fn check_shape(name: &str, got: &[usize], want: &[usize]) -> PyResult<()> {
     if got == want {
         Ok(())
     } else {
-        Err(invalid(format!("{name} must have shape {want:?}, got {got:?}")))
+        Err(invalid(format!(
+            "{name} must have shape {want:?}, got {got:?}"
+        )))
     }
 }
 
 /// Borrow `obj` as a writable C-contiguous array of element type T and the given shape.
 macro_rules! out_array {
     ($obj:expr, $ty:ty, $arr:ident, $name:expr, $shape:expr, $dtype:expr) => {{
-        let a = $obj
-            .cast::<$arr<$ty>>()
-            .map_err(|_| invalid(format!("{} must be a numpy {} array of shape {:?}", $name, $dtype, $shape)))?;
+        let a = $obj.cast::<$arr<$ty>>().map_err(|_| {
+            invalid(format!(
+                "{} must be a numpy {} array of shape {:?}",
+                $name, $dtype, $shape
+            ))
+        })?;
         check_shape($name, a.shape(), &$shape)?;
-        let rw = a.try_readwrite().map_err(|e| invalid(format!("{} cannot be written: {e}", $name)))?;
+        let rw = a
+            .try_readwrite()
+            .map_err(|e| invalid(format!("{} cannot be written: {e}", $name)))?;
         if !rw.is_c_contiguous() {
             return Err(invalid(format!("{} must be C-contiguous", $name)));
         }
@@ -62,13 +80,21 @@ pub struct Simulator {
 impl Simulator {
     #[new]
     #[pyo3(signature = (tracks, num_envs, vehicles_per_env, config_json = "{}", seed = 0))]
-    fn new(py: Python<'_>, tracks: &Bound<'_, PyAny>, num_envs: usize, vehicles_per_env: usize, config_json: &str, seed: u64) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        tracks: &Bound<'_, PyAny>,
+        num_envs: usize,
+        vehicles_per_env: usize,
+        config_json: &str,
+        seed: u64,
+    ) -> PyResult<Self> {
         let params = SimParams::from_json(config_json).py()?;
         let mut raw = Vec::new();
         for (i, item) in tracks.try_iter()?.enumerate() {
             let item = item?;
-            let (walls, centre): (Bound<'_, PyAny>, Bound<'_, PyAny>) =
-                item.extract().map_err(|_| invalid(format!("tracks[{i}] must be a (walls, centreline) pair")))?;
+            let (walls, centre): (Bound<'_, PyAny>, Bound<'_, PyAny>) = item
+                .extract()
+                .map_err(|_| invalid(format!("tracks[{i}] must be a (walls, centreline) pair")))?;
             let mut ws = Vec::new();
             for (j, w) in walls.try_iter()?.enumerate() {
                 ws.push(points(&w?, &format!("tracks[{i}] wall {j}"))?);
@@ -82,7 +108,9 @@ impl Simulator {
                     .iter()
                     .enumerate()
                     .map(|(i, (w, c))| {
-                        Track::new(w, c, h).map(Arc::new).map_err(|e| CoreError::invalid(format!("tracks[{i}]: {e}")))
+                        Track::new(w, c, h)
+                            .map(Arc::new)
+                            .map_err(|e| CoreError::invalid(format!("tracks[{i}]: {e}")))
                     })
                     .collect();
                 CoreSim::new(built?, num_envs, vehicles_per_env, params, seed)
@@ -130,27 +158,52 @@ impl Simulator {
 
     /// Track id of every env.
     fn track_ids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        let ids: Vec<i64> = (0..self.inner.num_envs()).map(|e| self.inner.track_of(e) as i64).collect();
+        let ids: Vec<i64> = (0..self.inner.num_envs())
+            .map(|e| self.inner.track_of(e) as i64)
+            .collect();
         PyArray1::from_vec(py, ids)
     }
 
     fn set_tracks(&mut self, track_ids: &Bound<'_, PyAny>) -> PyResult<()> {
-        let ids: Vec<i64> = track_ids.extract().map_err(|_| invalid("track_ids must be a sequence of int"))?;
+        let ids: Vec<i64> = track_ids
+            .extract()
+            .map_err(|_| invalid("track_ids must be a sequence of int"))?;
         self.inner.set_tracks(&ids).py()
     }
 
-    fn reset(&mut self, py: Python<'_>, env_mask: &Bound<'_, PyAny>, poses: &Bound<'_, PyAny>) -> PyResult<()> {
+    fn reset(
+        &mut self,
+        py: Python<'_>,
+        env_mask: &Bound<'_, PyAny>,
+        poses: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
-        let mask = env_mask
-            .cast::<PyArray1<bool>>()
-            .map_err(|_| invalid(format!("env_mask must be a numpy bool array of shape ({e},)")))?;
+        let mask = env_mask.cast::<PyArray1<bool>>().map_err(|_| {
+            invalid(format!(
+                "env_mask must be a numpy bool array of shape ({e},)"
+            ))
+        })?;
         check_shape("env_mask", mask.shape(), &[e])?;
-        let mask: Vec<bool> = mask.try_readonly().map_err(|e| invalid(e.to_string()))?.as_array().iter().copied().collect();
-        let poses = poses
-            .cast::<PyArray3<f64>>()
-            .map_err(|_| invalid(format!("poses must be a numpy float64 array of shape ({e}, {v}, 3)")))?;
+        let mask: Vec<bool> = mask
+            .try_readonly()
+            .map_err(|e| invalid(e.to_string()))?
+            .as_array()
+            .iter()
+            .copied()
+            .collect();
+        let poses = poses.cast::<PyArray3<f64>>().map_err(|_| {
+            invalid(format!(
+                "poses must be a numpy float64 array of shape ({e}, {v}, 3)"
+            ))
+        })?;
         check_shape("poses", poses.shape(), &[e, v, 3])?;
-        let poses: Vec<f64> = poses.try_readonly().map_err(|e| invalid(e.to_string()))?.as_array().iter().copied().collect();
+        let poses: Vec<f64> = poses
+            .try_readonly()
+            .map_err(|e| invalid(e.to_string()))?
+            .as_array()
+            .iter()
+            .copied()
+            .collect();
         let inner = &mut self.inner;
         py.detach(move || inner.reset(&mask, &poses)).py()
     }
@@ -166,15 +219,29 @@ impl Simulator {
         events: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
-        let a = actions
-            .cast::<PyArray3<f64>>()
-            .map_err(|_| invalid(format!("actions must be a numpy float64 array of shape ({e}, {v}, 2)")))?;
+        let a = actions.cast::<PyArray3<f64>>().map_err(|_| {
+            invalid(format!(
+                "actions must be a numpy float64 array of shape ({e}, {v}, 2)"
+            ))
+        })?;
         check_shape("actions", a.shape(), &[e, v, 2])?;
-        let acts: Vec<f64> = a.try_readonly().map_err(|e| invalid(e.to_string()))?.as_array().iter().copied().collect();
+        let acts: Vec<f64> = a
+            .try_readonly()
+            .map_err(|e| invalid(e.to_string()))?
+            .as_array()
+            .iter()
+            .copied()
+            .collect();
         self.run(py, Some((acts, substeps)), scans, state, events)
     }
 
-    fn observe(&mut self, py: Python<'_>, scans: &Bound<'_, PyAny>, state: &Bound<'_, PyAny>, events: &Bound<'_, PyAny>) -> PyResult<()> {
+    fn observe(
+        &mut self,
+        py: Python<'_>,
+        scans: &Bound<'_, PyAny>,
+        state: &Bound<'_, PyAny>,
+        events: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
         self.run(py, None, scans, state, events)
     }
 
@@ -189,7 +256,11 @@ impl Simulator {
     }
 
     /// The (closed) centreline points of a track, (M, 2) float64.
-    fn centreline<'py>(&self, py: Python<'py>, track_id: usize) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn centreline<'py>(
+        &self,
+        py: Python<'py>,
+        track_id: usize,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let c = &self.inner.track(track_id).py()?.centreline;
         let n = c.num_segments();
         let rows: Vec<Vec<f64>> = (0..n).map(|i| c.point(i).to_vec()).collect();
@@ -198,7 +269,7 @@ impl Simulator {
 
     /// The collision wall mesh of a track as the physics engine holds it (shared by all
     /// envs on that track): (vertices (V, 3) float32, triangles (T, 3) uint32).
-    fn wall_mesh<'py>(&self, py: Python<'py>, track_id: usize) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>)> {
+    fn wall_mesh<'py>(&self, py: Python<'py>, track_id: usize) -> PyResult<MeshArrays<'py>> {
         let (v, t) = self.inner.track(track_id).py()?.wall_mesh();
         let v: Vec<Vec<f32>> = v.iter().map(|p| p.to_vec()).collect();
         let t: Vec<Vec<u32>> = t.iter().map(|p| p.to_vec()).collect();
@@ -229,10 +300,25 @@ impl Simulator {
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
-        let (e, v, b) = (self.inner.num_envs(), self.inner.vehicles_per_env(), self.inner.num_beams());
+        let (e, v, b) = (
+            self.inner.num_envs(),
+            self.inner.vehicles_per_env(),
+            self.inner.num_beams(),
+        );
         let mut st = out_array!(state, f64, PyArray3, "state", [e, v, STATE_SIZE], "float64");
         let mut ev = out_array!(events, u8, PyArray2, "events", [e, v], "uint8");
-        let mut sc = if scans.is_none() { None } else { Some(out_array!(scans, f32, PyArray3, "scans", [e, v, b], "float32")) };
+        let mut sc = if scans.is_none() {
+            None
+        } else {
+            Some(out_array!(
+                scans,
+                f32,
+                PyArray3,
+                "scans",
+                [e, v, b],
+                "float32"
+            ))
+        };
         let st = st.as_slice_mut().map_err(|e| invalid(e.to_string()))?;
         let ev = ev.as_slice_mut().map_err(|e| invalid(e.to_string()))?;
         let sc = match sc.as_mut() {
@@ -255,14 +341,28 @@ type TrackArrays<'py> = (Vec<Bound<'py, PyArray2<f64>>>, Bound<'py, PyArray2<f64
 /// straights of `straight` m, centreline radius `radius` m, corridor `width` m.
 #[pyfunction]
 #[pyo3(signature = (straight = 6.0, radius = 3.0, width = 2.0))]
-fn stadium_track<'py>(py: Python<'py>, straight: f64, radius: f64, width: f64) -> PyResult<TrackArrays<'py>> {
+fn stadium_track<'py>(
+    py: Python<'py>,
+    straight: f64,
+    radius: f64,
+    width: f64,
+) -> PyResult<TrackArrays<'py>> {
     let ok = |x: f64| x.is_finite() && x > 0.0;
-    if !(ok(radius) && ok(width) && straight.is_finite() && straight >= 0.0 && width < 2.0 * radius) {
-        return Err(invalid("stadium_track needs straight >= 0, radius > 0 and 0 < width < 2 radius"));
+    if !(ok(radius) && ok(width) && straight.is_finite() && straight >= 0.0 && width < 2.0 * radius)
+    {
+        return Err(invalid(
+            "stadium_track needs straight >= 0, radius > 0 and 0 < width < 2 radius",
+        ));
     }
     let (walls, centre) = arena_core::sim::shapes::stadium_track(straight, radius, width);
-    let arr = |pts: &[[f64; 2]]| PyArray2::from_vec2(py, &pts.iter().map(|p| p.to_vec()).collect::<Vec<_>>()).map_err(|e| invalid(e.to_string()));
-    Ok((walls.iter().map(|w| arr(w)).collect::<PyResult<_>>()?, arr(&centre)?))
+    let arr = |pts: &[[f64; 2]]| {
+        PyArray2::from_vec2(py, &pts.iter().map(|p| p.to_vec()).collect::<Vec<_>>())
+            .map_err(|e| invalid(e.to_string()))
+    };
+    Ok((
+        walls.iter().map(|w| arr(w)).collect::<PyResult<_>>()?,
+        arr(&centre)?,
+    ))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

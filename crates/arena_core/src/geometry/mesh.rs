@@ -12,7 +12,12 @@ impl TriMesh {
     pub fn append(&mut self, other: &TriMesh) {
         let base = self.vertices.len() as u32;
         self.vertices.extend_from_slice(&other.vertices);
-        self.triangles.extend(other.triangles.iter().map(|t| [t[0] + base, t[1] + base, t[2] + base]));
+        self.triangles.extend(
+            other
+                .triangles
+                .iter()
+                .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
+        );
     }
 }
 
@@ -30,7 +35,12 @@ pub fn extrude_walls(walls: &[Vec<[f64; 2]>], z0: f64, z1: f64) -> TriMesh {
         }
         for i in 0..n {
             let j = (i + 1) % n;
-            let (a0, a1, b0, b1) = (base + 2 * i, base + 2 * i + 1, base + 2 * j, base + 2 * j + 1);
+            let (a0, a1, b0, b1) = (
+                base + 2 * i,
+                base + 2 * i + 1,
+                base + 2 * j,
+                base + 2 * j + 1,
+            );
             mesh.triangles.push([a0, b0, b1]);
             mesh.triangles.push([a0, b1, a1]);
         }
@@ -48,7 +58,11 @@ mod tests {
         let m = extrude_walls(&sq, 0.0, 0.5);
         assert_eq!(m.vertices.len(), 8);
         assert_eq!(m.triangles.len(), 8);
-        assert!(m.triangles.iter().flatten().all(|&i| (i as usize) < m.vertices.len()));
+        assert!(m
+            .triangles
+            .iter()
+            .flatten()
+            .all(|&i| (i as usize) < m.vertices.len()));
         let mut both = m.clone();
         both.append(&m);
         assert_eq!(both.triangles[8], [8, 10, 11]);

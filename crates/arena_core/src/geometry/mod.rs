@@ -24,10 +24,12 @@ pub fn polyline_length(p: &[[f64; 2]], closed: bool) -> f64 {
 /// Signed area (m²) of a closed polyline: positive when counter-clockwise.
 pub fn signed_area(p: &[[f64; 2]]) -> f64 {
     let n = p.len();
-    0.5 * (0..n).map(|i| {
-        let (a, b) = (p[i], p[(i + 1) % n]);
-        a[0] * b[1] - b[0] * a[1]
-    }).sum::<f64>()
+    0.5 * (0..n)
+        .map(|i| {
+            let (a, b) = (p[i], p[(i + 1) % n]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum::<f64>()
 }
 
 #[inline]

@@ -13,7 +13,11 @@ fn neighbours(i: usize, w: usize, h: usize, conn: Connectivity, out: &mut [usize
     let mut n = 0;
     let four: [(isize, isize); 4] = [(1, 0), (-1, 0), (0, 1), (0, -1)];
     let diag: [(isize, isize); 4] = [(1, 1), (1, -1), (-1, 1), (-1, -1)];
-    let extra: &[(isize, isize)] = if conn == Connectivity::Eight { &diag } else { &[] };
+    let extra: &[(isize, isize)] = if conn == Connectivity::Eight {
+        &diag
+    } else {
+        &[]
+    };
     for &(dc, dr) in four.iter().chain(extra) {
         let (nc, nr) = (c + dc, r + dr);
         if nc >= 0 && nr >= 0 && (nc as usize) < w && (nr as usize) < h {
@@ -26,8 +30,18 @@ fn neighbours(i: usize, w: usize, h: usize, conn: Connectivity, out: &mut [usize
 
 /// Cells reachable from `seeds` through cells where `passable` is true. Seeds that are
 /// not passable are ignored.
-pub fn flood_fill(passable: &[bool], width: usize, height: usize, seeds: &[usize], conn: Connectivity) -> Vec<bool> {
-    assert_eq!(passable.len(), width * height, "mask size does not match width × height");
+pub fn flood_fill(
+    passable: &[bool],
+    width: usize,
+    height: usize,
+    seeds: &[usize],
+    conn: Connectivity,
+) -> Vec<bool> {
+    assert_eq!(
+        passable.len(),
+        width * height,
+        "mask size does not match width × height"
+    );
     let mut reached = vec![false; passable.len()];
     let mut stack: Vec<usize> = Vec::new();
     for &s in seeds {
@@ -64,8 +78,17 @@ pub fn border_cells(width: usize, height: usize) -> Vec<usize> {
 
 /// Labels of the connected components of `mask` (0 = not in mask, 1..=n components,
 /// numbered in raster order of their first cell) and the size of each component.
-pub fn label_components(mask: &[bool], width: usize, height: usize, conn: Connectivity) -> (Vec<u32>, Vec<usize>) {
-    assert_eq!(mask.len(), width * height, "mask size does not match width × height");
+pub fn label_components(
+    mask: &[bool],
+    width: usize,
+    height: usize,
+    conn: Connectivity,
+) -> (Vec<u32>, Vec<usize>) {
+    assert_eq!(
+        mask.len(),
+        width * height,
+        "mask size does not match width × height"
+    );
     let mut labels = vec![0u32; mask.len()];
     let mut sizes = Vec::new();
     let mut stack = Vec::new();

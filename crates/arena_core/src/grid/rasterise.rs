@@ -90,7 +90,7 @@ fn check_inputs(c: &[[f64; 2]], w: &[f64], res: f64, tw: f64, margin: f64) -> Re
     if !(res.is_finite() && res > 0.0) {
         return Err(ArenaError::invalid(format!("rasterise: resolution {res} must be > 0")));
     }
-    if !(tw.is_finite() && tw > 0.0) || !(margin.is_finite() && margin >= 0.0) {
+    if !(tw.is_finite() && tw > 0.0 && margin.is_finite() && margin >= 0.0) {
         return Err(ArenaError::invalid(format!("rasterise: wall thickness {tw} must be > 0 and margin {margin} ≥ 0")));
     }
     Ok(())

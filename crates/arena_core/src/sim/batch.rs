@@ -20,7 +20,10 @@ use super::world::{World, STATE_SIZE};
 use crate::error::{ArenaError, Result};
 
 /// One world with its slices of the state, events and (optional) scan buffers.
-type WorldOutputs<'a> = (((&'a mut World, &'a mut [f64]), &'a mut [u8]), Option<&'a mut [f32]>);
+type WorldOutputs<'a> = (
+    ((&'a mut World, &'a mut [f64]), &'a mut [u8]),
+    Option<&'a mut [f32]>,
+);
 
 pub struct Simulator {
     params: SimParams,
@@ -34,24 +37,51 @@ pub struct Simulator {
 impl Simulator {
     /// `num_envs` worlds of `vehicles_per_env` cars, all on track 0 until
     /// [`Simulator::set_tracks`].
-    pub fn new(tracks: Vec<Arc<Track>>, num_envs: usize, vehicles_per_env: usize, params: SimParams, seed: u64) -> Result<Self> {
+    pub fn new(
+        tracks: Vec<Arc<Track>>,
+        num_envs: usize,
+        vehicles_per_env: usize,
+        params: SimParams,
+        seed: u64,
+    ) -> Result<Self> {
         params.validate()?;
         if tracks.is_empty() {
             return Err(ArenaError::invalid("Simulator needs at least one track"));
         }
         if num_envs == 0 || vehicles_per_env == 0 {
-            return Err(ArenaError::invalid("num_envs and vehicles_per_env must be at least 1"));
+            return Err(ArenaError::invalid(
+                "num_envs and vehicles_per_env must be at least 1",
+            ));
         }
         if num_envs.saturating_mul(vehicles_per_env) > 1 << 20 {
-            return Err(ArenaError::invalid("num_envs * vehicles_per_env must be at most 2^20"));
+            return Err(ArenaError::invalid(
+                "num_envs * vehicles_per_env must be at most 2^20",
+            ));
         }
         let model = VehicleModel::new(&params.vehicle, &params.physics);
         let scanner = Scanner::new(&params.lidar);
         let worlds = (0..num_envs)
             .into_par_iter()
-            .map(|e| World::new(tracks[0].clone(), 0, vehicles_per_env, &model, &params.physics, seed, e))
+            .map(|e| {
+                World::new(
+                    tracks[0].clone(),
+                    0,
+                    vehicles_per_env,
+                    &model,
+                    &params.physics,
+                    seed,
+                    e,
+                )
+            })
             .collect();
-        Ok(Simulator { params, model, scanner, tracks, worlds, vehicles_per_env })
+        Ok(Simulator {
+            params,
+            model,
+            scanner,
+            tracks,
+            worlds,
+            vehicles_per_env,
+        })
     }
 
     pub fn num_envs(&self) -> usize {
@@ -82,7 +112,12 @@ impl Simulator {
     }
 
     pub fn track(&self, id: usize) -> Result<&Arc<Track>> {
-        self.tracks.get(id).ok_or_else(|| ArenaError::invalid(format!("track id {id} out of range (have {})", self.tracks.len())))
+        self.tracks.get(id).ok_or_else(|| {
+            ArenaError::invalid(format!(
+                "track id {id} out of range (have {})",
+                self.tracks.len()
+            ))
+        })
     }
 
     /// Choose the track of every environment (length num_envs). Reset afterwards.
@@ -90,7 +125,10 @@ impl Simulator {
         self.check_len("track_ids", ids.len(), self.num_envs())?;
         for &id in ids {
             if id < 0 || id as usize >= self.tracks.len() {
-                return Err(ArenaError::invalid(format!("track id {id} out of range (have {})", self.tracks.len())));
+                return Err(ArenaError::invalid(format!(
+                    "track id {id} out of range (have {})",
+                    self.tracks.len()
+                )));
             }
         }
         for (w, &id) in self.worlds.iter_mut().zip(ids) {
@@ -106,8 +144,13 @@ impl Simulator {
         self.check_len("env_mask", mask.len(), self.num_envs())?;
         self.check_len("poses", poses.len(), self.num_envs() * v * 3)?;
         for (e, &m) in mask.iter().enumerate() {
-            if m && poses[e * v * 3..(e + 1) * v * 3].iter().any(|x| !x.is_finite()) {
-                return Err(ArenaError::invalid(format!("reset pose of env {e} is not finite")));
+            if m && poses[e * v * 3..(e + 1) * v * 3]
+                .iter()
+                .any(|x| !x.is_finite())
+            {
+                return Err(ArenaError::invalid(format!(
+                    "reset pose of env {e} is not finite"
+                )));
             }
         }
         let model = &self.model;
@@ -119,9 +162,17 @@ impl Simulator {
             }
         };
         if self.worlds.len() == 1 {
-            self.worlds.iter_mut().zip(mask.iter()).zip(poses.chunks(v * 3)).for_each(run);
+            self.worlds
+                .iter_mut()
+                .zip(mask.iter())
+                .zip(poses.chunks(v * 3))
+                .for_each(run);
         } else {
-            self.worlds.par_iter_mut().zip(mask.par_iter()).zip(poses.par_chunks(v * 3)).for_each(run);
+            self.worlds
+                .par_iter_mut()
+                .zip(mask.par_iter())
+                .zip(poses.par_chunks(v * 3))
+                .for_each(run);
         }
         Ok(())
     }
@@ -129,29 +180,52 @@ impl Simulator {
     /// Step every env: `actions` (E × V × 2: steering, speed), `substeps` physics steps,
     /// then (if `scans` is given, E × V × B) one scan per vehicle; writes `state`
     /// (E × V × STATE_SIZE) and `events` (E × V).
-    pub fn step(&mut self, actions: &[f64], substeps: usize, scans: Option<&mut [f32]>, state: &mut [f64], events: &mut [u8]) -> Result<()> {
+    pub fn step(
+        &mut self,
+        actions: &[f64],
+        substeps: usize,
+        scans: Option<&mut [f32]>,
+        state: &mut [f64],
+        events: &mut [u8],
+    ) -> Result<()> {
         let v = self.vehicles_per_env;
         self.check_len("actions", actions.len(), self.num_envs() * v * 2)?;
         if substeps == 0 || substeps > 100_000 {
-            return Err(ArenaError::invalid(format!("substeps must be in 1..=100000, got {substeps}")));
+            return Err(ArenaError::invalid(format!(
+                "substeps must be in 1..=100000, got {substeps}"
+            )));
         }
         self.check_outputs(scans.as_deref().map(|s| s.len()), state.len(), events.len())?;
         let model = &self.model;
         let run = |(w, a): (&mut World, &[f64])| {
-            let cmds: Vec<(f64, f64)> = a.chunks_exact(2).map(|c| model.sanitise(c[0], c[1])).collect();
+            let cmds: Vec<(f64, f64)> = a
+                .chunks_exact(2)
+                .map(|c| model.sanitise(c[0], c[1]))
+                .collect();
             w.step(&cmds, substeps, model);
         };
         // One env: stay on the calling thread (a rayon hand-off costs microseconds).
         if self.worlds.len() == 1 {
-            self.worlds.iter_mut().zip(actions.chunks(v * 2)).for_each(run);
+            self.worlds
+                .iter_mut()
+                .zip(actions.chunks(v * 2))
+                .for_each(run);
         } else {
-            self.worlds.par_iter_mut().zip(actions.par_chunks(v * 2)).for_each(run);
+            self.worlds
+                .par_iter_mut()
+                .zip(actions.par_chunks(v * 2))
+                .for_each(run);
         }
         self.observe(scans, state, events)
     }
 
     /// Write the outputs without stepping.
-    pub fn observe(&mut self, scans: Option<&mut [f32]>, state: &mut [f64], events: &mut [u8]) -> Result<()> {
+    pub fn observe(
+        &mut self,
+        scans: Option<&mut [f32]>,
+        state: &mut [f64],
+        events: &mut [u8],
+    ) -> Result<()> {
         let v = self.vehicles_per_env;
         self.check_outputs(scans.as_deref().map(|s| s.len()), state.len(), events.len())?;
         let (model, scanner) = (&self.model, &self.scanner);
@@ -166,9 +240,15 @@ impl Simulator {
             one((((&mut self.worlds[0], state), events), scans));
             return Ok(());
         }
-        let worlds = self.worlds.par_iter_mut().zip(state.par_chunks_mut(v * STATE_SIZE)).zip(events.par_chunks_mut(v));
+        let worlds = self
+            .worlds
+            .par_iter_mut()
+            .zip(state.par_chunks_mut(v * STATE_SIZE))
+            .zip(events.par_chunks_mut(v));
         match scans {
-            Some(scans) => worlds.zip(scans.par_chunks_mut(v * b)).for_each(|(a, sc)| one((a, Some(sc)))),
+            Some(scans) => worlds
+                .zip(scans.par_chunks_mut(v * b))
+                .for_each(|(a, sc)| one((a, Some(sc)))),
             None => worlds.for_each(|a| one((a, None))),
         }
         Ok(())
@@ -178,7 +258,9 @@ impl Simulator {
         if got == want {
             Ok(())
         } else {
-            Err(ArenaError::invalid(format!("{name} has {got} elements, expected {want}")))
+            Err(ArenaError::invalid(format!(
+                "{name} has {got} elements, expected {want}"
+            )))
         }
     }
 

@@ -95,7 +95,19 @@ impl SegmentGrid {
             start.push(items.len() as u32);
         }
         let cell_segs = items.iter().map(|&k| segs[k as usize]).collect();
-        SegmentGrid { segs, verts, seg_verts, x0, y0, cell, nx, ny, start, items, cell_segs }
+        SegmentGrid {
+            segs,
+            verts,
+            seg_verts,
+            x0,
+            y0,
+            cell,
+            nx,
+            ny,
+            start,
+            items,
+            cell_segs,
+        }
     }
 
     pub fn num_segments(&self) -> usize {
@@ -130,7 +142,11 @@ impl SegmentGrid {
                     let s = &self.segs[k as usize];
                     let l2 = s[2] * s[2] + s[3] * s[3];
                     let (wx, wy) = (x - s[0], y - s[1]);
-                    let t = if l2 > 0.0 { ((wx * s[2] + wy * s[3]) / l2).clamp(0.0, 1.0) } else { 0.0 };
+                    let t = if l2 > 0.0 {
+                        ((wx * s[2] + wy * s[3]) / l2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
                     let (dx, dy) = (wx - t * s[2], wy - t * s[3]);
                     if dx * dx + dy * dy < r2 {
                         return false;
@@ -144,7 +160,10 @@ impl SegmentGrid {
     /// Distance along the unit direction `(dx, dy)` from `(ox, oy)` to the first wall,
     /// or `f64::INFINITY` if none within `max_t`.
     pub fn cast(&self, ox: f64, oy: f64, dx: f64, dy: f64, max_t: f64) -> f64 {
-        let (gx1, gy1) = (self.x0 + self.nx as f64 * self.cell, self.y0 + self.ny as f64 * self.cell);
+        let (gx1, gy1) = (
+            self.x0 + self.nx as f64 * self.cell,
+            self.y0 + self.ny as f64 * self.cell,
+        );
         // Clip the ray to the grid box (slab method).
         let (mut t0, mut t1) = (0.0f64, max_t);
         for (o, d, lo, hi) in [(ox, dx, self.x0, gx1), (oy, dy, self.y0, gy1)] {
@@ -168,8 +187,16 @@ impl SegmentGrid {
         let (sx, sy) = (if dx > 0.0 { 1 } else { -1 }, if dy > 0.0 { 1 } else { -1 });
         let next_x = |ix: isize| self.x0 + (ix + (sx > 0) as isize) as f64 * self.cell;
         let next_y = |iy: isize| self.y0 + (iy + (sy > 0) as isize) as f64 * self.cell;
-        let mut tmx = if dx != 0.0 { (next_x(ix) - ox) / dx } else { f64::INFINITY };
-        let mut tmy = if dy != 0.0 { (next_y(iy) - oy) / dy } else { f64::INFINITY };
+        let mut tmx = if dx != 0.0 {
+            (next_x(ix) - ox) / dx
+        } else {
+            f64::INFINITY
+        };
+        let mut tmy = if dy != 0.0 {
+            (next_y(iy) - oy) / dy
+        } else {
+            f64::INFINITY
+        };
         let (tdx, tdy) = (self.cell / dx.abs(), self.cell / dy.abs());
         let mut best = f64::INFINITY;
         loop {
@@ -195,7 +222,11 @@ impl SegmentGrid {
                 }
             }
         }
-        if best <= max_t { best } else { f64::INFINITY }
+        if best <= max_t {
+            best
+        } else {
+            f64::INFINITY
+        }
     }
 }
 
@@ -213,7 +244,11 @@ pub(crate) fn ray_segment(ox: f64, oy: f64, dx: f64, dy: f64, s: &[f64; 4]) -> f
     let un = (wx * dy - wy * dx) * sign; // u * |den|
     let t = tn / ad;
     let ok = (ad > 1e-14) & (tn >= 0.0) & (un >= 0.0) & (un <= ad);
-    if ok { t } else { f64::INFINITY }
+    if ok {
+        t
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// Conservative segment–box overlap (bounding boxes plus separating line of the segment).
@@ -242,8 +277,14 @@ impl Footprint {
     #[inline]
     pub fn cast(&self, ox: f64, oy: f64, dx: f64, dy: f64) -> f64 {
         let (rx, ry) = (ox - self.x, oy - self.y);
-        let (lx, ly) = (rx * self.cos + ry * self.sin, -rx * self.sin + ry * self.cos);
-        let (ldx, ldy) = (dx * self.cos + dy * self.sin, -dx * self.sin + dy * self.cos);
+        let (lx, ly) = (
+            rx * self.cos + ry * self.sin,
+            -rx * self.sin + ry * self.cos,
+        );
+        let (ldx, ldy) = (
+            dx * self.cos + dy * self.sin,
+            -dx * self.sin + dy * self.cos,
+        );
         let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
         for (o, d, h) in [(lx, ldx, self.half_length), (ly, ldy, self.half_width)] {
             if d.abs() < 1e-300 {
@@ -256,7 +297,11 @@ impl Footprint {
                 t1 = t1.min(a.max(b));
             }
         }
-        if t0 <= t1 { t0 } else { f64::INFINITY }
+        if t0 <= t1 {
+            t0
+        } else {
+            f64::INFINITY
+        }
     }
 }
 
@@ -278,7 +323,11 @@ const SWEEP_MAX_SEGMENTS_PER_BEAM: usize = 4;
 impl Scanner {
     pub fn new(params: &LidarParams) -> Self {
         let n = params.num_beams;
-        let inc = if n > 1 { params.fov / (n - 1) as f64 } else { 0.0 };
+        let inc = if n > 1 {
+            params.fov / (n - 1) as f64
+        } else {
+            0.0
+        };
         let start = if n > 1 { -0.5 * params.fov } else { 0.0 };
         let angles: Vec<f64> = (0..n).map(|k| start + k as f64 * inc).collect();
         Scanner {
@@ -296,16 +345,28 @@ impl Scanner {
 
     /// One scan from a vehicle at pose `(x, y, yaw)` (CoM); the sensor sits `mount_x`
     /// ahead of it. `others` are the other vehicles' footprints. Writes `out[num_beams]`.
-    pub fn scan(&self, pose: [f64; 3], grid: &SegmentGrid, others: &[Footprint], rng: &mut ChaCha8Rng, out: &mut [f32]) {
+    pub fn scan(
+        &self,
+        pose: [f64; 3],
+        grid: &SegmentGrid,
+        others: &[Footprint],
+        rng: &mut ChaCha8Rng,
+        out: &mut [f32],
+    ) {
         let (cy, sy) = (pose[2].cos(), pose[2].sin());
-        let (ox, oy) = (pose[0] + self.params.mount_x * cy, pose[1] + self.params.mount_x * sy);
+        let (ox, oy) = (
+            pose[0] + self.params.mount_x * cy,
+            pose[1] + self.params.mount_x * sy,
+        );
         let rmax = self.params.range_max;
         let n = self.cos.len();
         if grid.num_segments() <= SWEEP_MAX_SEGMENTS_PER_BEAM * n {
-            let dirs: Vec<[f64; 2]> = (0..n).map(|k| {
-                let (c, s) = (self.cos[k], self.sin[k]);
-                [c * cy - s * sy, c * sy + s * cy]
-            }).collect();
+            let dirs: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let (c, s) = (self.cos[k], self.sin[k]);
+                    [c * cy - s * sy, c * sy + s * cy]
+                })
+                .collect();
             let mut ranges = vec![f64::INFINITY; n];
             let theta0 = pose[2] + self.angle0;
             sweep(grid, ox, oy, theta0, self.inc, &dirs, rmax, &mut ranges);
@@ -368,8 +429,20 @@ mod tests {
     /// (px, py) has the exact range min over the walls of the slab distances.
     fn square_reference(h: f64, px: f64, py: f64, a: f64) -> f64 {
         let (dx, dy) = (a.cos(), a.sin());
-        let tx = if dx > 0.0 { (h - px) / dx } else if dx < 0.0 { (-h - px) / dx } else { f64::INFINITY };
-        let ty = if dy > 0.0 { (h - py) / dy } else if dy < 0.0 { (-h - py) / dy } else { f64::INFINITY };
+        let tx = if dx > 0.0 {
+            (h - px) / dx
+        } else if dx < 0.0 {
+            (-h - px) / dx
+        } else {
+            f64::INFINITY
+        };
+        let ty = if dy > 0.0 {
+            (h - py) / dy
+        } else if dy < 0.0 {
+            (-h - py) / dy
+        } else {
+            f64::INFINITY
+        };
         tx.min(ty)
     }
 
@@ -382,7 +455,10 @@ mod tests {
         let mut out = vec![0.0f32; sc.num_beams()];
         let pose = [0.7, -1.3, 0.4];
         sc.scan(pose, &grid, &[], &mut rng, &mut out);
-        let (ox, oy) = (pose[0] + params.mount_x * pose[2].cos(), pose[1] + params.mount_x * pose[2].sin());
+        let (ox, oy) = (
+            pose[0] + params.mount_x * pose[2].cos(),
+            pose[1] + params.mount_x * pose[2].sin(),
+        );
         let inc = params.fov / (params.num_beams - 1) as f64;
         for (k, &r) in out.iter().enumerate() {
             let a = pose[2] - 0.5 * params.fov + k as f64 * inc;
@@ -397,17 +473,30 @@ mod tests {
         // Walls: a 2000-gon of circumradius R; from the centre every range is between the
         // apothem R cos(pi/n) and R.
         let (r, n) = (4.0, 2000);
-        let poly: Vec<[f64; 2]> = (0..n).map(|i| {
-            let a = i as f64 / n as f64 * std::f64::consts::TAU;
-            [r * a.cos(), r * a.sin()]
-        }).collect();
+        let poly: Vec<[f64; 2]> = (0..n)
+            .map(|i| {
+                let a = i as f64 / n as f64 * std::f64::consts::TAU;
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
         let grid = SegmentGrid::new(&[poly]);
-        let p = LidarParams { mount_x: 0.0, ..Default::default() };
+        let p = LidarParams {
+            mount_x: 0.0,
+            ..Default::default()
+        };
         let sc = Scanner::new(&p);
         let mut out = vec![0.0f32; sc.num_beams()];
-        sc.scan([0.0, 0.0, 1.0], &grid, &[], &mut ChaCha8Rng::seed_from_u64(1), &mut out);
+        sc.scan(
+            [0.0, 0.0, 1.0],
+            &grid,
+            &[],
+            &mut ChaCha8Rng::seed_from_u64(1),
+            &mut out,
+        );
         let apothem = r * (std::f64::consts::PI / n as f64).cos();
-        assert!(out.iter().all(|&x| (x as f64) >= apothem - 1e-5 && (x as f64) <= r + 1e-5));
+        assert!(out
+            .iter()
+            .all(|&x| (x as f64) >= apothem - 1e-5 && (x as f64) <= r + 1e-5));
     }
 
     #[test]
@@ -419,7 +508,14 @@ mod tests {
         assert!(grid.clear_of(9.0, 0.0, 0.99) && !grid.clear_of(9.0, 0.0, 1.01));
         assert!(!grid.clear_of(10.5, 1.2, 0.55) && grid.clear_of(10.5, 1.2, 0.5));
         assert!(grid.clear_of(-100.0, 0.0, 5.0));
-        let car = Footprint { x: 3.0, y: 0.0, cos: 1.0, sin: 0.0, half_length: 0.25, half_width: 0.15 };
+        let car = Footprint {
+            x: 3.0,
+            y: 0.0,
+            cos: 1.0,
+            sin: 0.0,
+            half_length: 0.25,
+            half_width: 0.15,
+        };
         assert!((car.cast(0.0, 0.0, 1.0, 0.0) - 2.75).abs() < 1e-12);
         assert_eq!(car.cast(0.0, 0.0, 0.0, 1.0), f64::INFINITY);
     }
@@ -427,11 +523,26 @@ mod tests {
     #[test]
     fn noise_is_seeded_and_clamped() {
         let grid = SegmentGrid::new(&[square(2.0)]);
-        let p = LidarParams { noise_std: 0.05, ..Default::default() };
+        let p = LidarParams {
+            noise_std: 0.05,
+            ..Default::default()
+        };
         let sc = Scanner::new(&p);
         let (mut a, mut b) = (vec![0.0f32; sc.num_beams()], vec![0.0f32; sc.num_beams()]);
-        sc.scan([0.0, 0.0, 0.0], &grid, &[], &mut ChaCha8Rng::seed_from_u64(7), &mut a);
-        sc.scan([0.0, 0.0, 0.0], &grid, &[], &mut ChaCha8Rng::seed_from_u64(7), &mut b);
+        sc.scan(
+            [0.0, 0.0, 0.0],
+            &grid,
+            &[],
+            &mut ChaCha8Rng::seed_from_u64(7),
+            &mut a,
+        );
+        sc.scan(
+            [0.0, 0.0, 0.0],
+            &grid,
+            &[],
+            &mut ChaCha8Rng::seed_from_u64(7),
+            &mut b,
+        );
         assert_eq!(a, b);
         assert!(a.iter().all(|&x| (0.0..=30.0).contains(&x)));
     }

@@ -181,8 +181,14 @@ impl SimParams {
             ("vehicle.max_steer_rate", v.max_steer_rate),
             ("vehicle.max_speed", v.max_speed),
             ("vehicle.tyre_friction", v.tyre_friction),
-            ("vehicle.cornering_stiffness_front", v.cornering_stiffness_front),
-            ("vehicle.cornering_stiffness_rear", v.cornering_stiffness_rear),
+            (
+                "vehicle.cornering_stiffness_front",
+                v.cornering_stiffness_front,
+            ),
+            (
+                "vehicle.cornering_stiffness_rear",
+                v.cornering_stiffness_rear,
+            ),
             ("vehicle.chassis_length", v.chassis_length),
             ("vehicle.chassis_width", v.chassis_width),
             ("vehicle.chassis_height", v.chassis_height),
@@ -199,27 +205,63 @@ impl SimParams {
             ("physics.gravity", self.physics.gravity),
             ("physics.wall_height", self.physics.wall_height),
         ] {
-            check(pos(x), &format!("{name} must be a positive finite number, got {x}"))?;
+            check(
+                pos(x),
+                &format!("{name} must be a positive finite number, got {x}"),
+            )?;
         }
         check(v.max_steer < 1.5, "vehicle.max_steer must be below 1.5 rad")?;
         check(
             (v.com_to_front + v.com_to_rear - v.wheelbase).abs() <= 1e-3,
             "vehicle.com_to_front + vehicle.com_to_rear must equal vehicle.wheelbase",
         )?;
-        check(v.min_speed.is_finite() && v.min_speed <= 0.0, "vehicle.min_speed must be <= 0")?;
-        check(v.chassis_clearance.is_finite() && v.chassis_clearance >= 0.0, "vehicle.chassis_clearance must be >= 0")?;
-        check(v.suspension_damping.is_finite() && v.suspension_damping >= 0.0, "vehicle.suspension_damping must be >= 0")?;
+        check(
+            v.min_speed.is_finite() && v.min_speed <= 0.0,
+            "vehicle.min_speed must be <= 0",
+        )?;
+        check(
+            v.chassis_clearance.is_finite() && v.chassis_clearance >= 0.0,
+            "vehicle.chassis_clearance must be >= 0",
+        )?;
+        check(
+            v.suspension_damping.is_finite() && v.suspension_damping >= 0.0,
+            "vehicle.suspension_damping must be >= 0",
+        )?;
         let l = &self.lidar;
-        check(l.num_beams >= 1 && l.num_beams <= 100_000, "lidar.num_beams must be in 1..=100000")?;
-        check(l.fov <= 2.0 * std::f64::consts::PI + 1e-9, "lidar.fov must be at most 2 pi")?;
-        check(l.range_min.is_finite() && l.range_min >= 0.0 && l.range_min < l.range_max, "lidar.range_min must be in [0, range_max)")?;
-        check(l.noise_std.is_finite() && l.noise_std >= 0.0, "lidar.noise_std must be >= 0")?;
-        check(l.mount_x.is_finite() && l.mount_z.is_finite(), "lidar mount offsets must be finite")?;
+        check(
+            l.num_beams >= 1 && l.num_beams <= 100_000,
+            "lidar.num_beams must be in 1..=100000",
+        )?;
+        check(
+            l.fov <= 2.0 * std::f64::consts::PI + 1e-9,
+            "lidar.fov must be at most 2 pi",
+        )?;
+        check(
+            l.range_min.is_finite() && l.range_min >= 0.0 && l.range_min < l.range_max,
+            "lidar.range_min must be in [0, range_max)",
+        )?;
+        check(
+            l.noise_std.is_finite() && l.noise_std >= 0.0,
+            "lidar.noise_std must be >= 0",
+        )?;
+        check(
+            l.mount_x.is_finite() && l.mount_z.is_finite(),
+            "lidar mount offsets must be finite",
+        )?;
         let p = &self.physics;
         check(p.dt <= 0.02, "physics.dt must be at most 0.02 s")?;
-        check(p.solver_iterations >= 1 && p.solver_iterations <= 16, "physics.solver_iterations must be in 1..=16")?;
-        check(p.wall_friction.is_finite() && p.wall_friction >= 0.0, "physics.wall_friction must be >= 0")?;
-        check(p.ground_friction.is_finite() && p.ground_friction >= 0.0, "physics.ground_friction must be >= 0")?;
+        check(
+            p.solver_iterations >= 1 && p.solver_iterations <= 16,
+            "physics.solver_iterations must be in 1..=16",
+        )?;
+        check(
+            p.wall_friction.is_finite() && p.wall_friction >= 0.0,
+            "physics.wall_friction must be >= 0",
+        )?;
+        check(
+            p.ground_friction.is_finite() && p.ground_friction >= 0.0,
+            "physics.ground_friction must be >= 0",
+        )?;
         Ok(())
     }
 }

@@ -22,7 +22,11 @@ impl Progress {
     /// Start at position `xy` (global projection).
     pub fn reset(c: &Centreline, xy: [f64; 2]) -> Self {
         let (segment, s) = c.project_global(xy);
-        Progress { segment, s, ..Default::default() }
+        Progress {
+            segment,
+            s,
+            ..Default::default()
+        }
     }
 
     /// Update after the car moved to `xy` during `elapsed` seconds, having moved at most

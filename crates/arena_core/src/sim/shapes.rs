@@ -20,7 +20,10 @@ pub fn stadium(straight: f64, r: f64, n_arc: usize) -> Vec<[f64; 2]> {
 /// A stadium track: (walls [outer, inner], centreline) for a corridor of width `width`
 /// around a centreline stadium of straight `straight` and radius `r`.
 pub fn stadium_track(straight: f64, r: f64, width: f64) -> (Vec<Vec<[f64; 2]>>, Vec<[f64; 2]>) {
-    let walls = vec![stadium(straight, r + width / 2.0, 48), stadium(straight, r - width / 2.0, 48)];
+    let walls = vec![
+        stadium(straight, r + width / 2.0, 48),
+        stadium(straight, r - width / 2.0, 48),
+    ];
     (walls, stadium(straight, r, 96))
 }
 

@@ -23,20 +23,34 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
     }
     let a = mn / mx;
     let s = a * a;
-    let mut r = a * (0.999_866 + s * (-0.330_299_5 + s * (0.180_141 + s * (-0.085_133 + s * 0.020_835_1))));
+    let mut r =
+        a * (0.999_866 + s * (-0.330_299_5 + s * (0.180_141 + s * (-0.085_133 + s * 0.020_835_1))));
     if ay > ax {
         r = FRAC_PI_2 - r;
     }
     if x < 0.0 {
         r = PI - r;
     }
-    if y < 0.0 { -r } else { r }
+    if y < 0.0 {
+        -r
+    } else {
+        r
+    }
 }
 
 /// Lower `ranges[k]` to the nearest wall hit of beam k, for beams at world angles
 /// `theta0 + k inc` with unit directions `dirs[k]`, from `(ox, oy)`, within `rmax`.
 #[allow(clippy::too_many_arguments)]
-pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: &[[f64; 2]], rmax: f64, ranges: &mut [f64]) {
+pub fn sweep(
+    grid: &SegmentGrid,
+    ox: f64,
+    oy: f64,
+    theta0: f64,
+    inc: f64,
+    dirs: &[[f64; 2]],
+    rmax: f64,
+    ranges: &mut [f64],
+) {
     let n = dirs.len();
     if n == 0 {
         return;
@@ -52,14 +66,21 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
     // One arctangent per polyline vertex (shared by its two segments), as seen from the
     // sensor; only used for the conservative beam ranges.
     let (verts, seg_verts) = grid.vertices();
-    let angles: Vec<f64> = verts.iter().map(|v| fast_atan2(v[1] - oy, v[0] - ox)).collect();
+    let angles: Vec<f64> = verts
+        .iter()
+        .map(|v| fast_atan2(v[1] - oy, v[0] - ox))
+        .collect();
     let mut cands: Vec<Candidate> = Vec::with_capacity(segs.len());
     for (i, s) in segs.iter().enumerate() {
         let (ax, ay) = (s[0] - ox, s[1] - oy);
         let (bx, by) = (ax + s[2], ay + s[3]);
         // Skip segments entirely beyond range.
         let l2 = s[2] * s[2] + s[3] * s[3];
-        let t = if l2 > 0.0 { (-(ax * s[2] + ay * s[3]) / l2).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if l2 > 0.0 {
+            (-(ax * s[2] + ay * s[3]) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         let (cx, cy) = (ax + t * s[2], ay + t * s[3]);
         let d2 = cx * cx + cy * cy;
         if d2 > r2 {
@@ -68,15 +89,27 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
         // Angular interval swept counter-clockwise from p to q as seen from the origin.
         let [va, vb] = seg_verts[i];
         let (aa, ab) = (angles[va as usize], angles[vb as usize]);
-        let (ap, aq) = if ax * by - ay * bx >= 0.0 { (aa, ab) } else { (ab, aa) };
+        let (ap, aq) = if ax * by - ay * bx >= 0.0 {
+            (aa, ab)
+        } else {
+            (ab, aa)
+        };
         let start = wrap_tau(ap - theta0);
         let len = wrap_tau(aq - ap);
         let (lo, hi) = (start - margin, start + len + margin);
-        if [-TAU, 0.0, TAU].iter().all(|sh| hi + sh < 0.0 || lo + sh > span) {
+        if [-TAU, 0.0, TAU]
+            .iter()
+            .all(|sh| hi + sh < 0.0 || lo + sh > span)
+        {
             continue; // outside the field of view
         }
         // No hit on this segment is nearer than its closest point (slack for rounding).
-        cands.push(Candidate { dmin: d2.sqrt() * (1.0 - 1e-9), lo, hi, seg: i as u32 });
+        cands.push(Candidate {
+            dmin: d2.sqrt() * (1.0 - 1e-9),
+            lo,
+            hi,
+            seg: i as u32,
+        });
     }
     // Near segments first (counting sort on distance buckets), so that beams are covered
     // early and occluded (segment, beam) pairs fail the cheap `dmin >= range` test. The
@@ -108,8 +141,16 @@ pub fn sweep(grid: &SegmentGrid, ox: f64, oy: f64, theta0: f64, inc: f64, dirs: 
             }
             // (±1e-6 beams: span * inv may round just below n - 1.)
             // (Non-negative, so truncation is floor; no libm floor/ceil calls.)
-            let k0 = if inc > 0.0 { ceil_nonneg(l.max(0.0) * inv - 1e-6) } else { 0 };
-            let k1 = if inc > 0.0 { ((h.min(span) * inv + 1e-6) as usize).min(n - 1) } else { 0 };
+            let k0 = if inc > 0.0 {
+                ceil_nonneg(l.max(0.0) * inv - 1e-6)
+            } else {
+                0
+            };
+            let k1 = if inc > 0.0 {
+                ((h.min(span) * inv + 1e-6) as usize).min(n - 1)
+            } else {
+                0
+            };
             for k in k0..=k1 {
                 if c.dmin >= ranges[k] {
                     continue; // occluded: a nearer wall already covers this beam
@@ -138,7 +179,11 @@ fn wrap_tau(x: f64) -> f64 {
     let x = if x < 0.0 { x + TAU } else { x };
     let x = if x < 0.0 { x + TAU } else { x };
     let x = if x >= TAU { x - TAU } else { x };
-    if x >= TAU { x - TAU } else { x }
+    if x >= TAU {
+        x - TAU
+    } else {
+        x
+    }
 }
 
 /// Ceiling of a value >= -1 as usize (negative values give 0).
@@ -170,19 +215,33 @@ mod tests {
         let (mut walls, _) = stadium_track(18.0, 9.0, 2.0);
         walls.push(vec![[1.0, -9.5], [1.3, -9.2], [1.0, -8.9]]); // a small obstacle
         let grid = SegmentGrid::new(&walls);
-        for (ox, oy, yaw, fov, n) in [(0.0, -9.0, 0.3, 4.712389, 1081), (-12.0, 3.0, 2.0, TAU, 720), (5.0, 9.2, -1.0, 1.0, 3)] {
+        for (ox, oy, yaw, fov, n) in [
+            (0.0, -9.0, 0.3, 4.712389, 1081),
+            (-12.0, 3.0, 2.0, TAU, 720),
+            (5.0, 9.2, -1.0, 1.0, 3),
+        ] {
             let inc = fov / (n - 1) as f64;
             let theta0 = yaw - fov / 2.0;
-            let dirs: Vec<[f64; 2]> = (0..n).map(|k| {
-                let a = theta0 + k as f64 * inc;
-                [a.cos(), a.sin()]
-            }).collect();
+            let dirs: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let a = theta0 + k as f64 * inc;
+                    [a.cos(), a.sin()]
+                })
+                .collect();
             let mut ranges = vec![f64::INFINITY; n];
             sweep(&grid, ox, oy, theta0, inc, &dirs, 30.0, &mut ranges);
             for k in 0..n {
                 let walk = grid.cast(ox, oy, dirs[k][0], dirs[k][1], 30.0);
-                let swept = if ranges[k] <= 30.0 { ranges[k] } else { f64::INFINITY };
-                assert_eq!(walk.to_bits(), swept.to_bits(), "beam {k}: {walk} vs {swept}");
+                let swept = if ranges[k] <= 30.0 {
+                    ranges[k]
+                } else {
+                    f64::INFINITY
+                };
+                assert_eq!(
+                    walk.to_bits(),
+                    swept.to_bits(),
+                    "beam {k}: {walk} vs {swept}"
+                );
             }
         }
     }

@@ -21,7 +21,11 @@ struct Out {
 impl Out {
     fn new(sim: &Simulator) -> Self {
         let n = sim.num_envs() * sim.vehicles_per_env();
-        Out { state: vec![0.0; n * STATE_SIZE], events: vec![0; n], scans: vec![0.0; n * sim.num_beams()] }
+        Out {
+            state: vec![0.0; n * STATE_SIZE],
+            events: vec![0; n],
+            scans: vec![0.0; n * sim.num_beams()],
+        }
     }
     fn row(&self, i: usize) -> &[f64] {
         &self.state[i * STATE_SIZE..(i + 1) * STATE_SIZE]
@@ -50,11 +54,15 @@ fn car_at_rest_stays_at_rest() {
     sim.observe(None, &mut out.state, &mut out.events).unwrap();
     let start = out.row(0).to_vec();
     for _ in 0..40 {
-        sim.step(&[0.0, 0.0], 10, None, &mut out.state, &mut out.events).unwrap();
+        sim.step(&[0.0, 0.0], 10, None, &mut out.state, &mut out.events)
+            .unwrap();
     }
     let end = out.row(0);
     // 2 s at rest: the car settles on its springs and does not creep.
-    assert!((end[0] - start[0]).abs() < 1e-4 && (end[1] - start[1]).abs() < 1e-4, "{start:?} -> {end:?}");
+    assert!(
+        (end[0] - start[0]).abs() < 1e-4 && (end[1] - start[1]).abs() < 1e-4,
+        "{start:?} -> {end:?}"
+    );
     assert!((end[2] - start[2]).abs() < 1e-4);
     assert!(end[3].abs() < 1e-3 && end[4].abs() < 1e-3 && end[5].abs() < 1e-3);
     assert_eq!(out.events[0], 0);
@@ -74,10 +82,12 @@ fn wall_impact(dt: f64, max_speed: f64) {
     let mut sim = Simulator::new(vec![track], 1, 1, params.clone(), 0).unwrap();
     sim.reset(&[true], &[-9.0, 0.0, 0.0]).unwrap();
     let mut out = Out::new(&sim);
-    let front = params.vehicle.chassis_length / 2.0 + (params.vehicle.com_to_front - params.vehicle.com_to_rear) / 2.0;
+    let front = params.vehicle.chassis_length / 2.0
+        + (params.vehicle.com_to_front - params.vehicle.com_to_rear) / 2.0;
     let (mut top, mut hit, mut max_x) = (0.0f64, false, f64::NEG_INFINITY);
     for _ in 0..(6.0 / dt) as usize {
-        sim.step(&[0.0, 1e9], 1, None, &mut out.state, &mut out.events).unwrap();
+        sim.step(&[0.0, 1e9], 1, None, &mut out.state, &mut out.events)
+            .unwrap();
         let r = out.row(0);
         top = top.max(r[3]);
         hit |= out.events[0] & EVENT_WALL != 0;
@@ -86,9 +96,19 @@ fn wall_impact(dt: f64, max_speed: f64) {
     }
     eprintln!("wall impact dt={dt}: top speed {top:.3} m/s, front max x {max_x:.4} (wall at {h})");
     assert!(hit, "no wall contact reported");
-    assert!(top > 0.9 * max_speed, "top speed {top} never near {max_speed}");
-    assert!(max_x < h + 0.005, "chassis front reached x = {max_x} beyond the wall at {h}");
-    assert!(out.row(0)[0] + front > h - 0.1, "car stopped short of the wall: {:?}", out.row(0));
+    assert!(
+        top > 0.9 * max_speed,
+        "top speed {top} never near {max_speed}"
+    );
+    assert!(
+        max_x < h + 0.005,
+        "chassis front reached x = {max_x} beyond the wall at {h}"
+    );
+    assert!(
+        out.row(0)[0] + front > h - 0.1,
+        "car stopped short of the wall: {:?}",
+        out.row(0)
+    );
 }
 
 #[test]
@@ -103,7 +123,8 @@ fn car_accelerates_turns_and_counts_progress() {
     reset_on_centreline(&mut sim);
     let mut out = Out::new(&sim);
     for _ in 0..20 {
-        sim.step(&[0.0, 3.0], 10, None, &mut out.state, &mut out.events).unwrap();
+        sim.step(&[0.0, 3.0], 10, None, &mut out.state, &mut out.events)
+            .unwrap();
     }
     let r = out.row(0);
     assert!((r[3] - 3.0).abs() < 0.2, "speed {r:?}");
@@ -111,14 +132,28 @@ fn car_accelerates_turns_and_counts_progress() {
     // Full left lock at 2 m/s: steady circle with yaw rate close to v tan(delta) / L.
     let mut params = SimParams::default();
     params.physics.dt = 0.005;
-    let mut sim = Simulator::new(vec![Arc::new(Track::new(&[square_room(20.0)], &square_room(5.0), 0.5).unwrap())], 1, 1, params, 0).unwrap();
+    let mut sim = Simulator::new(
+        vec![Arc::new(
+            Track::new(&[square_room(20.0)], &square_room(5.0), 0.5).unwrap(),
+        )],
+        1,
+        1,
+        params,
+        0,
+    )
+    .unwrap();
     sim.reset(&[true], &[0.0, 0.0, 0.0]).unwrap();
     for _ in 0..60 {
-        sim.step(&[0.3, 2.0], 10, None, &mut out.state, &mut out.events).unwrap();
+        sim.step(&[0.3, 2.0], 10, None, &mut out.state, &mut out.events)
+            .unwrap();
     }
     let r = out.row(0);
     let kinematic = r[3] * 0.3f64.tan() / 0.3275;
-    assert!(r[5] > 0.7 * kinematic && r[5] < 1.1 * kinematic, "yaw rate {} vs kinematic {kinematic}", r[5]);
+    assert!(
+        r[5] > 0.7 * kinematic && r[5] < 1.1 * kinematic,
+        "yaw rate {} vs kinematic {kinematic}",
+        r[5]
+    );
 }
 
 #[test]
@@ -128,16 +163,29 @@ fn lidar_in_world_sees_walls_and_other_cars() {
     let track = Arc::new(Track::new(&[square_room(5.0)], &square_room(2.0), 0.5).unwrap());
     let mut sim = Simulator::new(vec![track], 1, 2, params, 0).unwrap();
     // Car 0 at the origin facing +x; car 1 three metres ahead, sideways.
-    sim.reset(&[true], &[0.0, 0.0, 0.0, 3.0, 0.0, std::f64::consts::FRAC_PI_2]).unwrap();
+    sim.reset(
+        &[true],
+        &[0.0, 0.0, 0.0, 3.0, 0.0, std::f64::consts::FRAC_PI_2],
+    )
+    .unwrap();
     let mut out = Out::new(&sim);
-    sim.observe(Some(&mut out.scans), &mut out.state, &mut out.events).unwrap();
+    sim.observe(Some(&mut out.scans), &mut out.state, &mut out.events)
+        .unwrap();
     let b = sim.num_beams();
     let mid = b / 2;
     // Straight ahead: the other car's side (its box is 0.29 wide; centre offset along its
     // own x, i.e. along world y) at 3 - 0.145 m.
-    assert!((out.scans[mid] as f64 - (3.0 - 0.145)).abs() < 1e-3, "{}", out.scans[mid]);
+    assert!(
+        (out.scans[mid] as f64 - (3.0 - 0.145)).abs() < 1e-3,
+        "{}",
+        out.scans[mid]
+    );
     // Straight left (beam at +90 deg = index mid + 360): wall at y = 5.
-    assert!((out.scans[mid + 360] as f64 - 5.0).abs() < 1e-3, "{}", out.scans[mid + 360]);
+    assert!(
+        (out.scans[mid + 360] as f64 - 5.0).abs() < 1e-3,
+        "{}",
+        out.scans[mid + 360]
+    );
     // Car 1 looking along +y sees the wall at 5 m (minus the mount offset 0).
     assert!((out.scans[b + mid] as f64 - 5.0).abs() < 1e-3);
 }
@@ -146,7 +194,10 @@ fn run_batch(envs: usize, threads: usize) -> (Vec<f64>, Vec<f32>) {
     let mut params = SimParams::default();
     params.lidar.noise_std = 0.02;
     params.lidar.num_beams = 181;
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
     pool.install(|| {
         let mut sim = stadium_sim(envs, 2, params, 42);
         reset_on_centreline(&mut sim);
@@ -155,10 +206,20 @@ fn run_batch(envs: usize, threads: usize) -> (Vec<f64>, Vec<f32>) {
             let actions: Vec<f64> = (0..envs * 2)
                 .flat_map(|i| {
                     let e = i / 2;
-                    [0.3 * ((t + e) as f64 * 0.3).sin(), 2.0 + (i % 2) as f64 + 0.1 * e as f64]
+                    [
+                        0.3 * ((t + e) as f64 * 0.3).sin(),
+                        2.0 + (i % 2) as f64 + 0.1 * e as f64,
+                    ]
                 })
                 .collect();
-            sim.step(&actions, 4, Some(&mut out.scans), &mut out.state, &mut out.events).unwrap();
+            sim.step(
+                &actions,
+                4,
+                Some(&mut out.scans),
+                &mut out.state,
+                &mut out.events,
+            )
+            .unwrap();
         }
         (out.state, out.scans)
     })
@@ -173,8 +234,14 @@ fn bit_identical_across_thread_counts_and_num_envs() {
     // Env 2 behaves identically whether the batch holds 3 or 5 envs.
     let (s5, l5) = run_batch(5, 2);
     let (rs, rl) = (2 * STATE_SIZE, 2 * 181);
-    assert!(s1[2 * rs..3 * rs].iter().zip(&s5[2 * rs..3 * rs]).all(|(a, b)| a.to_bits() == b.to_bits()));
-    assert!(l1[2 * rl..3 * rl].iter().zip(&l5[2 * rl..3 * rl]).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(s1[2 * rs..3 * rs]
+        .iter()
+        .zip(&s5[2 * rs..3 * rs])
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(l1[2 * rl..3 * rl]
+        .iter()
+        .zip(&l5[2 * rl..3 * rl])
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
     // Noise differs between vehicles (independent streams).
     assert_ne!(l1[..181], l1[181..362]);
 }
@@ -184,10 +251,26 @@ fn bad_actions_never_make_a_nan_state() {
     let mut sim = stadium_sim(2, 2, SimParams::default(), 0);
     reset_on_centreline(&mut sim);
     let mut out = Out::new(&sim);
-    let bad = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e300, -1e300, 0.0, f64::MIN_POSITIVE, 5.0];
+    let bad = [
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        1e300,
+        -1e300,
+        0.0,
+        f64::MIN_POSITIVE,
+        5.0,
+    ];
     for t in 0..40 {
         let actions: Vec<f64> = (0..8).map(|i| bad[(i * 3 + t) % bad.len()]).collect();
-        sim.step(&actions, 5, Some(&mut out.scans), &mut out.state, &mut out.events).unwrap();
+        sim.step(
+            &actions,
+            5,
+            Some(&mut out.scans),
+            &mut out.state,
+            &mut out.events,
+        )
+        .unwrap();
         assert!(out.state.iter().all(|x| x.is_finite()));
         assert!(out.scans.iter().all(|x| x.is_finite()));
         for v in 0..4 {
@@ -196,8 +279,12 @@ fn bad_actions_never_make_a_nan_state() {
     }
     assert!(out.events.iter().all(|e| e & EVENT_FAULT == 0));
     // Wrong lengths and ids are errors, not panics.
-    assert!(sim.step(&[0.0; 3], 1, None, &mut out.state, &mut out.events).is_err());
-    assert!(sim.step(&[0.0; 8], 0, None, &mut out.state, &mut out.events).is_err());
+    assert!(sim
+        .step(&[0.0; 3], 1, None, &mut out.state, &mut out.events)
+        .is_err());
+    assert!(sim
+        .step(&[0.0; 8], 0, None, &mut out.state, &mut out.events)
+        .is_err());
     assert!(sim.set_tracks(&[0, 1]).is_err());
     assert!(sim.reset(&[true, false], &[f64::NAN; 12]).is_err());
 }
@@ -215,7 +302,14 @@ fn free_step_shortcut_matches_the_full_pipeline() {
         let mut out = Out::new(&sim);
         for t in 0..40 {
             let steer = 0.3 * (t as f64 * 0.2).sin();
-            sim.step(&[steer, 3.0, -steer, 2.0], 20, None, &mut out.state, &mut out.events).unwrap();
+            sim.step(
+                &[steer, 3.0, -steer, 2.0],
+                20,
+                None,
+                &mut out.state,
+                &mut out.events,
+            )
+            .unwrap();
         }
         (out.state, sim.step_counts())
     };
@@ -223,17 +317,27 @@ fn free_step_shortcut_matches_the_full_pipeline() {
     assert_eq!(c_full, [800, 0]);
     // Most steps of free driving take the shortcut (not those where hard pitch or roll
     // brings a chassis corner within the contact margin of the ground).
-    assert!(c_fast[1] > 700 && c_fast[0] + c_fast[1] == 800, "{c_fast:?}");
+    assert!(
+        c_fast[1] > 700 && c_fast[0] + c_fast[1] == 800,
+        "{c_fast:?}"
+    );
     // It replays rapier's contact-free integration exactly: bit-identical states.
-    assert!(fast.iter().zip(&full).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(fast
+        .iter()
+        .zip(&full)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
     for v in 0..2 {
         let (a, b) = (&fast[v * STATE_SIZE..], &full[v * STATE_SIZE..]);
         let d = (a[0] - b[0]).hypot(a[1] - b[1]);
-        assert!(d < 0.02, "vehicle {v}: {:?} vs {:?} ({d} m apart)", &a[..6], &b[..6]);
+        assert!(
+            d < 0.02,
+            "vehicle {v}: {:?} vs {:?} ({d} m apart)",
+            &a[..6],
+            &b[..6]
+        );
         assert!((a[3] - b[3]).abs() < 0.02 && (a[2] - b[2]).abs() < 0.01);
     }
 }
-
 
 /// Two cars driven head-on into each other report a vehicle contact (not a wall one),
 /// stop instead of passing through each other, and never produce a fault.
@@ -241,16 +345,32 @@ fn free_step_shortcut_matches_the_full_pipeline() {
 fn head_on_cars_report_vehicle_contact() {
     let track = Arc::new(Track::new(&[square_room(20.0)], &square_room(5.0), 0.5).unwrap());
     let mut sim = Simulator::new(vec![track], 1, 2, SimParams::default(), 0).unwrap();
-    sim.reset(&[true], &[-3.0, 0.0, 0.0, 3.0, 0.0, std::f64::consts::PI]).unwrap();
+    sim.reset(&[true], &[-3.0, 0.0, 0.0, 3.0, 0.0, std::f64::consts::PI])
+        .unwrap();
     let mut out = Out::new(&sim);
     let mut seen = 0u8;
     for _ in 0..60 {
-        sim.step(&[0.0, 4.0, 0.0, 4.0], 10, None, &mut out.state, &mut out.events).unwrap();
+        sim.step(
+            &[0.0, 4.0, 0.0, 4.0],
+            10,
+            None,
+            &mut out.state,
+            &mut out.events,
+        )
+        .unwrap();
         seen |= out.events[0] | out.events[1];
         // Chassis boxes are 0.55 m long: centres never closer than that minus contact slack.
-        assert!(out.row(0)[0] < out.row(1)[0], "cars passed through each other");
+        assert!(
+            out.row(0)[0] < out.row(1)[0],
+            "cars passed through each other"
+        );
     }
     assert!(seen & EVENT_VEHICLE != 0, "no vehicle contact reported");
     assert_eq!(seen & (EVENT_WALL | EVENT_FAULT), 0);
-    assert!(out.row(1)[0] - out.row(0)[0] > 0.5, "{:?} {:?}", out.row(0), out.row(1));
+    assert!(
+        out.row(1)[0] - out.row(0)[0] > 0.5,
+        "{:?} {:?}",
+        out.row(0),
+        out.row(1)
+    );
 }

@@ -26,7 +26,9 @@ impl Centreline {
     pub fn new(points: &[[f64; 2]]) -> Result<Self> {
         let pts = dedupe_closed(points);
         if pts.len() < 3 {
-            return Err(ArenaError::invalid("centreline needs at least 3 distinct points"));
+            return Err(ArenaError::invalid(
+                "centreline needs at least 3 distinct points",
+            ));
         }
         if pts.iter().flatten().any(|v| !v.is_finite()) {
             return Err(ArenaError::invalid("centreline has non-finite coordinates"));
@@ -58,15 +60,27 @@ impl Centreline {
     /// Pose `(x, y, heading)` at arc length `s` (wrapped into `[0, length)`).
     pub fn pose_at(&self, s: f64) -> [f64; 3] {
         let len = self.length();
-        let s = if s.is_finite() { s.rem_euclid(len) } else { 0.0 };
+        let s = if s.is_finite() {
+            s.rem_euclid(len)
+        } else {
+            0.0
+        };
         let i = match self.cum.binary_search_by(|c| c.partial_cmp(&s).unwrap()) {
             Ok(i) => i.min(self.pts.len() - 1),
             Err(i) => i - 1,
         };
         let (a, b) = (self.pts[i], self.pts[(i + 1) % self.pts.len()]);
         let seg = self.cum[i + 1] - self.cum[i];
-        let t = if seg > 0.0 { (s - self.cum[i]) / seg } else { 0.0 };
-        [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), (b[1] - a[1]).atan2(b[0] - a[0])]
+        let t = if seg > 0.0 {
+            (s - self.cum[i]) / seg
+        } else {
+            0.0
+        };
+        [
+            a[0] + t * (b[0] - a[0]),
+            a[1] + t * (b[1] - a[1]),
+            (b[1] - a[1]).atan2(b[0] - a[0]),
+        ]
     }
 
     /// Project `p` on segment `i`: (squared distance, arc length).
@@ -75,9 +89,16 @@ impl Centreline {
         let (a, b) = (self.pts[i], self.pts[(i + 1) % self.pts.len()]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let l2 = dx * dx + dy * dy;
-        let t = if l2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if l2 > 0.0 {
+            (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         let (qx, qy) = (a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
-        (qx * qx + qy * qy, self.cum[i] + t * (self.cum[i + 1] - self.cum[i]))
+        (
+            qx * qx + qy * qy,
+            self.cum[i] + t * (self.cum[i + 1] - self.cum[i]),
+        )
     }
 
     /// Nearest point over all segments: (segment index, arc length).
@@ -125,7 +146,10 @@ impl Centreline {
 fn dedupe_closed(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
     let mut out: Vec<[f64; 2]> = Vec::with_capacity(points.len());
     for &p in points {
-        if out.last().is_none_or(|q| (q[0] - p[0]).hypot(q[1] - p[1]) > 1e-9) {
+        if out
+            .last()
+            .is_none_or(|q| (q[0] - p[0]).hypot(q[1] - p[1]) > 1e-9)
+        {
             out.push(p);
         }
     }
@@ -161,7 +185,10 @@ impl Track {
     /// The collision mesh as the physics engine holds it: (vertices, triangles).
     pub fn wall_mesh(&self) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
         match self.wall_shape.as_trimesh() {
-            Some(m) => (m.vertices().iter().map(|v| [v.x, v.y, v.z]).collect(), m.indices().to_vec()),
+            Some(m) => (
+                m.vertices().iter().map(|v| [v.x, v.y, v.z]).collect(),
+                m.indices().to_vec(),
+            ),
             None => (Vec::new(), Vec::new()),
         }
     }
@@ -169,20 +196,38 @@ impl Track {
     /// Build from closed wall polylines and a closed centreline; walls are extruded from
     /// z = 0 to `wall_height` for the collision mesh.
     pub fn new(walls: &[Vec<[f64; 2]>], centreline: &[[f64; 2]], wall_height: f64) -> Result<Self> {
-        let walls: Vec<Vec<[f64; 2]>> = walls.iter().map(|w| dedupe_closed(w)).filter(|w| w.len() >= 2).collect();
+        let walls: Vec<Vec<[f64; 2]>> = walls
+            .iter()
+            .map(|w| dedupe_closed(w))
+            .filter(|w| w.len() >= 2)
+            .collect();
         if walls.is_empty() {
-            return Err(ArenaError::invalid("track has no wall polyline with at least 2 distinct points"));
+            return Err(ArenaError::invalid(
+                "track has no wall polyline with at least 2 distinct points",
+            ));
         }
         if walls.iter().flatten().flatten().any(|v| !v.is_finite()) {
-            return Err(ArenaError::invalid("track walls have non-finite coordinates"));
+            return Err(ArenaError::invalid(
+                "track walls have non-finite coordinates",
+            ));
         }
         let centreline = Centreline::new(centreline)?;
         let mesh = extrude_walls(&walls, 0.0, wall_height);
-        let vertices = mesh.vertices.iter().map(|v| Vector::new(v[0], v[1], v[2])).collect();
-        let wall_shape = SharedShape::trimesh(vertices, mesh.triangles)
-            .map_err(|e| ArenaError::Simulation(format!("wall mesh rejected by the physics engine: {e}")))?;
+        let vertices = mesh
+            .vertices
+            .iter()
+            .map(|v| Vector::new(v[0], v[1], v[2]))
+            .collect();
+        let wall_shape = SharedShape::trimesh(vertices, mesh.triangles).map_err(|e| {
+            ArenaError::Simulation(format!("wall mesh rejected by the physics engine: {e}"))
+        })?;
         let grid = SegmentGrid::new(&walls);
-        Ok(Track { walls, wall_shape, grid, centreline })
+        Ok(Track {
+            walls,
+            wall_shape,
+            grid,
+            centreline,
+        })
     }
 }
 
@@ -191,10 +236,12 @@ mod tests {
     use super::*;
 
     fn circle(r: f64, n: usize) -> Vec<[f64; 2]> {
-        (0..n).map(|i| {
-            let a = i as f64 / n as f64 * std::f64::consts::TAU;
-            [r * a.cos(), r * a.sin()]
-        }).collect()
+        (0..n)
+            .map(|i| {
+                let a = i as f64 / n as f64 * std::f64::consts::TAU;
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect()
     }
 
     #[test]

@@ -43,20 +43,39 @@ pub struct Actuators {
 impl VehicleModel {
     pub fn new(p: &VehicleParams, physics: &PhysicsParams) -> Self {
         let g = physics.gravity;
-        let (lf, lr, l) = (p.com_to_front, p.com_to_rear, p.com_to_front + p.com_to_rear);
+        let (lf, lr, l) = (
+            p.com_to_front,
+            p.com_to_rear,
+            p.com_to_front + p.com_to_rear,
+        );
         // Static per-wheel loads (front axle carries lr / L of the weight) and the
         // hard-point heights that make the chassis level with its CoM at com_height.
         let nf = p.mass * g * lr / l / 2.0;
         let nr = p.mass * g * lf / l / 2.0;
-        let hz = |n: f64| p.wheel_radius + p.suspension_rest_length - n / p.suspension_stiffness - p.com_height;
+        let hz = |n: f64| {
+            p.wheel_radius + p.suspension_rest_length - n / p.suspension_stiffness - p.com_height
+        };
         let (hf, hr) = (hz(nf), hz(nr));
         let y = p.track_width / 2.0;
         VehicleModel {
             p: p.clone(),
             hardpoints: [[lf, y, hf], [lf, -y, hf], [-lr, y, hr], [-lr, -y, hr]],
-            stiffness: [p.cornering_stiffness_front, p.cornering_stiffness_front, p.cornering_stiffness_rear, p.cornering_stiffness_rear],
-            half_extents: [p.chassis_length / 2.0, p.chassis_width / 2.0, p.chassis_height / 2.0],
-            box_centre: [(lf - lr) / 2.0, 0.0, p.chassis_clearance + p.chassis_height / 2.0 - p.com_height],
+            stiffness: [
+                p.cornering_stiffness_front,
+                p.cornering_stiffness_front,
+                p.cornering_stiffness_rear,
+                p.cornering_stiffness_rear,
+            ],
+            half_extents: [
+                p.chassis_length / 2.0,
+                p.chassis_width / 2.0,
+                p.chassis_height / 2.0,
+            ],
+            box_centre: [
+                (lf - lr) / 2.0,
+                0.0,
+                p.chassis_clearance + p.chassis_height / 2.0 - p.com_height,
+            ],
             gravity: g,
         }
     }
@@ -70,7 +89,11 @@ impl VehicleModel {
         let k = p.yaw_inertia / box_yaw;
         let roll = k * p.mass / 12.0 * (b * b + c * c);
         let pitch = k * p.mass / 12.0 * (a * a + c * c);
-        MassProperties::new(Vector::ZERO, p.mass as f32, Vector::new(roll as f32, pitch as f32, p.yaw_inertia as f32))
+        MassProperties::new(
+            Vector::ZERO,
+            p.mass as f32,
+            Vector::new(roll as f32, pitch as f32, p.yaw_inertia as f32),
+        )
     }
 
     /// The chassis rigid body at rest at `(x, y, yaw)` (CoM at com_height, level).
@@ -107,8 +130,16 @@ impl VehicleModel {
     /// Clip a raw action to the documented domain: NaN or ±inf become 0 (straight /
     /// stop), finite values are clipped to ±max_steer and [min_speed, max_speed].
     pub fn sanitise(&self, steer: f64, speed: f64) -> (f64, f64) {
-        let s = if steer.is_finite() { steer.clamp(-self.p.max_steer, self.p.max_steer) } else { 0.0 };
-        let v = if speed.is_finite() { speed.clamp(self.p.min_speed, self.p.max_speed) } else { 0.0 };
+        let s = if steer.is_finite() {
+            steer.clamp(-self.p.max_steer, self.p.max_steer)
+        } else {
+            0.0
+        };
+        let v = if speed.is_finite() {
+            speed.clamp(self.p.min_speed, self.p.max_speed)
+        } else {
+            0.0
+        };
         (s, v)
     }
 
@@ -131,7 +162,11 @@ impl VehicleModel {
         // Speed controller: P on forward speed, drive/brake limits, and never more than
         // what reaches the target within this step.
         let err = cmd.1 - v_long;
-        let limit = if err * v_long >= 0.0 || v_long.abs() < 1e-3 { p.max_drive_force } else { p.max_brake_force };
+        let limit = if err * v_long >= 0.0 || v_long.abs() < 1e-3 {
+            p.max_drive_force
+        } else {
+            p.max_brake_force
+        };
         let f_total = (p.speed_kp * err).clamp(-limit, limit);
         let f_total = f_total.clamp(-p.mass * err.abs() / dt, p.mass * err.abs() / dt);
 
@@ -192,7 +227,11 @@ impl VehicleModel {
             let mut fy = -self.stiffness[k] * n * vt.atan2(vl.abs().max(V0));
             let cap = m_wheel * vt.abs() / dt;
             fy = fy.clamp(-cap, cap);
-            let mut fx = if n_sum > 0.0 { f_total * n / n_sum } else { 0.0 };
+            let mut fx = if n_sum > 0.0 {
+                f_total * n / n_sum
+            } else {
+                0.0
+            };
             let mu_n = p.tyre_friction * n;
             let mag = fx.hypot(fy);
             if mag > mu_n {
@@ -211,7 +250,9 @@ impl VehicleModel {
 
     /// Static load per wheel (N) at rest, for tests.
     pub fn static_load_front(&self) -> f64 {
-        self.p.mass * self.gravity * self.p.com_to_rear / (self.p.com_to_front + self.p.com_to_rear) / 2.0
+        self.p.mass * self.gravity * self.p.com_to_rear
+            / (self.p.com_to_front + self.p.com_to_rear)
+            / 2.0
     }
 }
 

@@ -15,7 +15,19 @@ use super::vehicle::{Actuators, VehicleModel};
 
 /// Columns of the state array, in order.
 pub const STATE_FIELDS: [&str; 13] = [
-    "x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed", "progress_s", "travel", "laps", "lap_time", "last_lap_time",
+    "x",
+    "y",
+    "yaw",
+    "vx",
+    "vy",
+    "yaw_rate",
+    "steer",
+    "speed",
+    "progress_s",
+    "travel",
+    "laps",
+    "lap_time",
+    "last_lap_time",
 ];
 pub const STATE_SIZE: usize = STATE_FIELDS.len();
 
@@ -72,7 +84,15 @@ pub struct World {
 impl World {
     /// A world on `track` with `vehicles` cars parked along the centreline (call
     /// [`World::reset_vehicle`] to place them).
-    pub fn new(track: Arc<Track>, track_id: usize, vehicles: usize, model: &VehicleModel, physics: &PhysicsParams, seed: u64, env: usize) -> Self {
+    pub fn new(
+        track: Arc<Track>,
+        track_id: usize,
+        vehicles: usize,
+        model: &VehicleModel,
+        physics: &PhysicsParams,
+        seed: u64,
+        env: usize,
+    ) -> Self {
         let mut pw = PhysicsWorld::new();
         pw.gravity = Vector::new(0.0, 0.0, -(physics.gravity as f32));
         pw.integration_parameters.dt = physics.dt as f32;
@@ -88,11 +108,16 @@ impl World {
             .friction(physics.ground_friction as f32)
             .build();
         pw.colliders.insert(ground);
-        let wall = pw.colliders.insert(ColliderBuilder::new(track.wall_shape.clone()).friction(physics.wall_friction as f32).build());
+        let wall = pw.colliders.insert(
+            ColliderBuilder::new(track.wall_shape.clone())
+                .friction(physics.wall_friction as f32)
+                .build(),
+        );
         let mut cars = Vec::with_capacity(vehicles);
         for v in 0..vehicles {
             let pose = track.centreline.pose_at(v as f64 * 1.0);
-            let (body, collider) = pw.insert(model.body(pose, physics.ccd, physics.dt), model.collider());
+            let (body, collider) =
+                pw.insert(model.body(pose, physics.ccd, physics.dt), model.collider());
             // Mass properties take effect at the first pipeline step unless computed now;
             // the wheel impulses of that first step need them.
             pw.bodies[body].recompute_mass_properties_from_colliders(&pw.colliders);
@@ -202,8 +227,11 @@ impl World {
         }
         let elapsed = substeps as f64 * self.dt;
         for car in &mut self.cars {
-            let Some(b) = self.pw.bodies.get_mut(car.body) else { continue };
-            let finite = b.position().is_finite() && b.linvel().is_finite() && b.angvel().is_finite();
+            let Some(b) = self.pw.bodies.get_mut(car.body) else {
+                continue;
+            };
+            let finite =
+                b.position().is_finite() && b.linvel().is_finite() && b.angvel().is_finite();
             if !finite {
                 b.set_position(car.last_good, true);
                 b.set_linvel(Vector::ZERO, true);
@@ -215,7 +243,12 @@ impl World {
             }
             let t = b.translation();
             let speed = b.linvel().length() as f64;
-            if car.progress.update(&self.track.centreline, [t.x as f64, t.y as f64], elapsed, speed * elapsed) {
+            if car.progress.update(
+                &self.track.centreline,
+                [t.x as f64, t.y as f64],
+                elapsed,
+                speed * elapsed,
+            ) {
                 car.events |= EVENT_LAP;
             }
         }
@@ -236,10 +269,21 @@ impl World {
             let p = b.position();
             let reach = 2.0 * b.linvel().length() as f64 * self.dt + margin;
             let c = p.transform_point(Vector::new(bx as f32, by as f32, bz as f32));
-            let (ax, ay, az) = (p.rotation * Vector::X, p.rotation * Vector::Y, p.rotation * Vector::Z);
-            let low = c.z as f64 - (ax.z.abs() as f64 * hx + ay.z.abs() as f64 * hy + az.z.abs() as f64 * hz);
-            let reach_z = 2.0 * b.linvel().z.abs() as f64 * self.dt + 1.5 * PREDICTION_DISTANCE as f64;
-            if low <= reach_z || !self.track.grid.clear_of(c.x as f64, c.y as f64, r_xy + reach) {
+            let (ax, ay, az) = (
+                p.rotation * Vector::X,
+                p.rotation * Vector::Y,
+                p.rotation * Vector::Z,
+            );
+            let low = c.z as f64
+                - (ax.z.abs() as f64 * hx + ay.z.abs() as f64 * hy + az.z.abs() as f64 * hz);
+            let reach_z =
+                2.0 * b.linvel().z.abs() as f64 * self.dt + 1.5 * PREDICTION_DISTANCE as f64;
+            if low <= reach_z
+                || !self
+                    .track
+                    .grid
+                    .clear_of(c.x as f64, c.y as f64, r_xy + reach)
+            {
                 return false;
             }
             self.scratch.push([c.x as f64, c.y as f64, reach]);
@@ -268,9 +312,14 @@ impl World {
             let (mut v, mut p) = (b.linvel(), *b.position());
             for _ in 0..n {
                 v += g;
-                let w = if b.gyroscopic_forces_enabled() { b.angvel_with_gyroscopic_forces(h) } else { b.angvel() };
+                let w = if b.gyroscopic_forces_enabled() {
+                    b.angvel_with_gyroscopic_forces(h)
+                } else {
+                    b.angvel()
+                };
                 let half = w * (0.5 * h);
-                p.rotation = (Rotation::from_xyzw(half.x, half.y, half.z, 1.0) * p.rotation).normalize();
+                p.rotation =
+                    (Rotation::from_xyzw(half.x, half.y, half.z, 1.0) * p.rotation).normalize();
                 p.translation += v * h;
                 b.set_angvel(w, false);
                 b.set_position(p, false);
@@ -286,10 +335,19 @@ impl World {
                 if !pair.has_any_active_contact() {
                     continue;
                 }
-                let other = if pair.collider1 == car.collider { pair.collider2 } else { pair.collider1 };
+                let other = if pair.collider1 == car.collider {
+                    pair.collider2
+                } else {
+                    pair.collider1
+                };
                 if other == self.wall {
                     car.events |= EVENT_WALL;
-                } else if self.pw.colliders.get(other).is_some_and(|c| c.parent().is_some()) {
+                } else if self
+                    .pw
+                    .colliders
+                    .get(other)
+                    .is_some_and(|c| c.parent().is_some())
+                {
                     car.events |= EVENT_VEHICLE;
                 }
             }
@@ -303,8 +361,14 @@ impl World {
         let yaw = (fwd.y as f64).atan2(fwd.x as f64);
         let (c, s) = (yaw.cos(), yaw.sin());
         let lv = b.linvel();
-        let (vx, vy) = (lv.x as f64 * c + lv.y as f64 * s, -(lv.x as f64) * s + lv.y as f64 * c);
-        ([p.translation.x as f64, p.translation.y as f64, yaw], [vx, vy, b.angvel().z as f64])
+        let (vx, vy) = (
+            lv.x as f64 * c + lv.y as f64 * s,
+            -(lv.x as f64) * s + lv.y as f64 * c,
+        );
+        (
+            [p.translation.x as f64, p.translation.y as f64, yaw],
+            [vx, vy, b.angvel().z as f64],
+        )
     }
 
     /// Write state rows (`STATE_SIZE` per vehicle) and event bytes.
@@ -314,8 +378,19 @@ impl World {
             let pr = &car.progress;
             let speed = vel[0].hypot(vel[1]).copysign(vel[0]);
             let row = [
-                pose[0], pose[1], pose[2], vel[0], vel[1], vel[2], car.act.steer, speed,
-                pr.s, pr.travel, pr.laps as f64, pr.lap_time, pr.last_lap_time,
+                pose[0],
+                pose[1],
+                pose[2],
+                vel[0],
+                vel[1],
+                vel[2],
+                car.act.steer,
+                speed,
+                pr.s,
+                pr.travel,
+                pr.laps as f64,
+                pr.lap_time,
+                pr.last_lap_time,
             ];
             state[v * STATE_SIZE..(v + 1) * STATE_SIZE].copy_from_slice(&row);
             events[v] = car.events;
@@ -329,15 +404,37 @@ impl World {
         let [hx, hy, _] = model.half_extents;
         let cx = model.box_centre[0];
         let poses: Vec<[f64; 3]> = (0..self.cars.len()).map(|v| self.planar(v).0).collect();
-        let prints: Vec<Footprint> = poses.iter().map(|p| {
-            let (c, s) = (p[2].cos(), p[2].sin());
-            Footprint { x: p[0] + cx * c, y: p[1] + cx * s, cos: c, sin: s, half_length: hx, half_width: hy }
-        }).collect();
+        let prints: Vec<Footprint> = poses
+            .iter()
+            .map(|p| {
+                let (c, s) = (p[2].cos(), p[2].sin());
+                Footprint {
+                    x: p[0] + cx * c,
+                    y: p[1] + cx * s,
+                    cos: c,
+                    sin: s,
+                    half_length: hx,
+                    half_width: hy,
+                }
+            })
+            .collect();
         let mut others = Vec::with_capacity(prints.len());
         for (v, car) in self.cars.iter_mut().enumerate() {
             others.clear();
-            others.extend(prints.iter().enumerate().filter(|(u, _)| *u != v).map(|(_, f)| *f));
-            scanner.scan(poses[v], &self.track.grid, &others, &mut car.rng, &mut scans[v * n..(v + 1) * n]);
+            others.extend(
+                prints
+                    .iter()
+                    .enumerate()
+                    .filter(|(u, _)| *u != v)
+                    .map(|(_, f)| *f),
+            );
+            scanner.scan(
+                poses[v],
+                &self.track.grid,
+                &others,
+                &mut car.rng,
+                &mut scans[v * n..(v + 1) * n],
+            );
         }
     }
 }
