@@ -7,7 +7,6 @@ use pyo3::prelude::*;
 use crate::errors::IntoPyResult;
 use arena_core::generate::construct::{self, Outcome};
 use arena_core::generate::spec::{ConstructorConfig, Spec};
-use arena_core::grid::OccupancyGrid;
 use arena_core::track::{features, validate};
 
 pub(crate) type MapTuple<'py> = (Bound<'py, PyArray2<u8>>, (f64, f64, f64));
@@ -182,14 +181,7 @@ fn validate_map<'py>(
     config_json: &str,
 ) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
     let (spec, cfg) = parse(spec_json, config_json)?;
-    let (h, w) = (data.shape()[0], data.shape()[1]);
-    let grid = OccupancyGrid {
-        width: w,
-        height: h,
-        resolution,
-        origin: [origin.0, origin.1, origin.2],
-        data: data.as_array().iter().copied().collect(),
-    };
+    let grid = crate::maps::grid_from_py(&data, resolution, origin);
     let report = py.detach(move || validate::validate_map(&grid, &spec, &cfg));
     Ok((to_json(&report), line_to_py(py, &report.centreline)))
 }

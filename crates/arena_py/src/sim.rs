@@ -50,6 +50,18 @@ fn check_shape(name: &str, got: &[usize], want: &[usize]) -> PyResult<()> {
     }
 }
 
+/// Copy a float64 array of exactly `shape` out of Python (any memory layout).
+fn read_f64_3d(obj: &Bound<'_, PyAny>, name: &str, shape: [usize; 3]) -> PyResult<Vec<f64>> {
+    let arr = obj.cast::<PyArray3<f64>>().map_err(|_| {
+        invalid(format!(
+            "{name} must be a numpy float64 array of shape {shape:?}"
+        ))
+    })?;
+    check_shape(name, arr.shape(), &shape)?;
+    let view = arr.try_readonly().map_err(|e| invalid(e.to_string()))?;
+    Ok(view.as_array().iter().copied().collect())
+}
+
 /// Borrow `obj` as a writable C-contiguous array of element type T and the given shape.
 macro_rules! out_array {
     ($obj:expr, $ty:ty, $arr:ident, $name:expr, $shape:expr, $dtype:expr) => {{
@@ -191,19 +203,7 @@ impl Simulator {
             .iter()
             .copied()
             .collect();
-        let poses = poses.cast::<PyArray3<f64>>().map_err(|_| {
-            invalid(format!(
-                "poses must be a numpy float64 array of shape ({e}, {v}, 3)"
-            ))
-        })?;
-        check_shape("poses", poses.shape(), &[e, v, 3])?;
-        let poses: Vec<f64> = poses
-            .try_readonly()
-            .map_err(|e| invalid(e.to_string()))?
-            .as_array()
-            .iter()
-            .copied()
-            .collect();
+        let poses = read_f64_3d(poses, "poses", [e, v, 3])?;
         let inner = &mut self.inner;
         py.detach(move || inner.reset(&mask, &poses)).py()
     }
@@ -219,19 +219,7 @@ impl Simulator {
         events: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
-        let a = actions.cast::<PyArray3<f64>>().map_err(|_| {
-            invalid(format!(
-                "actions must be a numpy float64 array of shape ({e}, {v}, 2)"
-            ))
-        })?;
-        check_shape("actions", a.shape(), &[e, v, 2])?;
-        let acts: Vec<f64> = a
-            .try_readonly()
-            .map_err(|e| invalid(e.to_string()))?
-            .as_array()
-            .iter()
-            .copied()
-            .collect();
+        let acts = read_f64_3d(actions, "actions", [e, v, 2])?;
         self.run(py, Some((acts, substeps)), scans, state, events)
     }
 

@@ -37,6 +37,17 @@ pub fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
+/// A regular `n`-gon of radius `r` about the origin, counter-clockwise (shared by tests).
+#[cfg(test)]
+pub(crate) fn test_circle(n: usize, r: f64) -> Vec<[f64; 2]> {
+    (0..n)
+        .map(|i| {
+            let a = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+            [r * a.cos(), r * a.sin()]
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -143,12 +143,7 @@ mod tests {
     use std::f64::consts::PI;
 
     fn circle(n: usize, r: f64) -> Vec<[f64; 2]> {
-        (0..n)
-            .map(|i| {
-                let a = 2.0 * PI * i as f64 / n as f64;
-                [r * a.cos(), r * a.sin()]
-            })
-            .collect()
+        crate::geometry::test_circle(n, r)
     }
 
     /// Signed volume of a closed mesh (positive when triangles face outward).
