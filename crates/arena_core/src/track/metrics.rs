@@ -7,8 +7,8 @@
 //! its centreline instead; the measurement contract is the same.)
 
 use crate::error::{ArenaError, Result};
-use crate::grid::edt::edt;
-use crate::grid::flood::{border_cells, label_components, Connectivity};
+use crate::grid::edt::{edt, edt_within};
+use crate::grid::regions::region_tree;
 use crate::grid::{OccupancyGrid, FREE};
 use crate::grid::bilinear;
 use crate::track::centreline::longest_zero_loop;
@@ -35,33 +35,48 @@ pub struct RasterTrack {
 }
 
 /// Measure a map. Fails with `ArenaError::Corridor` if no closed corridor exists.
+///
+/// Topology comes from the run-based region tree (`grid::regions`): the corridor is the
+/// largest free (4-connected) region; the other cells split into the part outside it and
+/// one enclosed component per region the corridor directly encloses (its children with
+/// their subtrees), the biggest of which is the infield. The distance fields are capped
+/// (`edt_within`); the cap is checked on the corridor, so every value the zero loop and
+/// the widths read is exact, and the full transform is the fallback when it is not.
 pub fn measure_raster(g: &OccupancyGrid) -> Result<RasterTrack> {
     let (w, h) = (g.width, g.height);
-    let free = g.mask_of(FREE);
-    let (labels, sizes) = label_components(&free, w, h, Connectivity::Four);
-    let largest = sizes.iter().copied().max().ok_or_else(|| ArenaError::Corridor("map has no free cells".into()))?;
-    let corridor_label = sizes.iter().position(|&s| s == largest).unwrap() as u32 + 1;
-    let corridor_components = sizes.iter().filter(|&&s| s * 200 >= largest).count();
-    let corridor: Vec<bool> = labels.iter().map(|&l| l == corridor_label).collect();
-
-    // Everything else splits into the region touching the border and enclosed regions.
-    let rest: Vec<bool> = corridor.iter().map(|&c| !c).collect();
-    let (rl, rs) = label_components(&rest, w, h, Connectivity::Eight);
-    let mut touches = vec![false; rs.len() + 1];
-    for i in border_cells(w, h) {
-        touches[rl[i] as usize] = true;
-    }
-    let enclosed: Vec<usize> = (1..=rs.len()).filter(|&l| !touches[l]).collect();
+    let tree = region_tree(&g.data, w, h, |v| v == FREE);
+    let free_regions = || (0..tree.len()).filter(|&r| tree.free[r]);
+    let largest = free_regions()
+        .map(|r| tree.size[r])
+        .max()
+        .ok_or_else(|| ArenaError::Corridor("map has no free cells".into()))?;
+    // Region ids follow the raster order of their first cell: ties go to the first.
+    let corridor = free_regions().find(|&r| tree.size[r] == largest).unwrap() as u32;
+    let corridor_components = free_regions().filter(|&r| tree.size[r] * 200 >= largest).count();
+    let mut enclosed = tree.children[corridor as usize].clone();
+    enclosed.sort_unstable();
     let infields = enclosed.len();
     if infields == 0 {
         return Err(ArenaError::Corridor("the largest free region encloses nothing: no closed loop".into()));
     }
-    // The biggest enclosed region is the infield the centreline goes around.
-    let infield_label = *enclosed.iter().max_by_key(|&&l| rs[l - 1]).unwrap() as u32;
-    let inner: Vec<bool> = rl.iter().map(|&l| l == infield_label).collect();
-    let outer: Vec<bool> = rl.iter().zip(&corridor).map(|(&l, &c)| !c && l != infield_label).collect();
-    let d_in = edt(&inner, w, h);
-    let d_out = edt(&outer, w, h);
+    // The biggest enclosed component is the infield the centreline goes around.
+    let infield = *enclosed.iter().max_by_key(|&&r| tree.subtree[r as usize]).unwrap();
+    let in_infield = tree.subtree_flags(infield);
+    let mut is_corridor = vec![false; w * h];
+    let mut inner = vec![false; w * h];
+    for (run, &reg) in tree.runs.iter().zip(&tree.run_region) {
+        let target = if reg == corridor {
+            &mut is_corridor
+        } else if in_infield[reg as usize] {
+            &mut inner
+        } else {
+            continue;
+        };
+        let base = run.row as usize * w;
+        target[base + run.start as usize..base + run.end as usize].fill(true);
+    }
+    let outer: Vec<bool> = is_corridor.iter().zip(&inner).map(|(&c, &i)| !c && !i).collect();
+    let (d_in, d_out) = corridor_distances(&inner, &outer, &is_corridor, w, h);
     let f: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a - b).collect();
 
     let loop_uv = longest_zero_loop(&f, w, h)
@@ -74,23 +89,47 @@ pub fn measure_raster(g: &OccupancyGrid) -> Result<RasterTrack> {
     }
     let width_field: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a + b - 1.0).collect();
     let widths = uv.iter().map(|&[u, v]| bilinear(&width_field, w, h, u, v) * g.resolution).collect();
-    let area = corridor.iter().filter(|&&c| c).count() as f64 * g.resolution * g.resolution;
+    let area = tree.size[corridor as usize] as f64 * g.resolution * g.resolution;
     let mean_width_m = area / crate::geometry::polyline_length(&centreline, true) + g.resolution / 2.0;
     Ok(RasterTrack { corridor_components, infields, centreline, widths, mean_width_m, extent_m: known_extent(g) })
+}
+
+/// Cap (cells) of the distance fields; corridors are far narrower at any sane resolution.
+const DISTANCE_CAP: f64 = 250.0;
+
+/// Distances (cells) to the inner and outer side, exact on the corridor and its 8-ring.
+/// Every other cell lies in one of the two sides, so one distance is 0 there and the
+/// other only needs the right sign, which the cap keeps. The marching squares and the
+/// width samples read exact values only from corridor cells and their neighbours (a
+/// square with a sign change holds a corridor cell: the two sides are not 8-adjacent).
+/// Neighbours differ by at most √2, hence the margin of 2 in the check.
+fn corridor_distances(inner: &[bool], outer: &[bool], corridor: &[bool], w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+    let d_in = edt_within(inner, w, h, DISTANCE_CAP);
+    let d_out = edt_within(outer, w, h, DISTANCE_CAP);
+    let limit = (DISTANCE_CAP - 2.0) as f32;
+    let ok = corridor
+        .iter()
+        .zip(d_in.iter().zip(&d_out))
+        .all(|(&c, (&a, &b))| !c || (a < limit && b < limit));
+    if ok {
+        (d_in, d_out)
+    } else {
+        (edt(inner, w, h), edt(outer, w, h))
+    }
 }
 
 /// Bounding-box size (m) of the cells that are not unknown, in the map's grid axes.
 pub fn known_extent(g: &OccupancyGrid) -> [f64; 2] {
     let (mut c0, mut c1, mut r0, mut r1) = (usize::MAX, 0, usize::MAX, 0);
-    for r in 0..g.height {
-        for c in 0..g.width {
-            if g.get(c, r) != crate::grid::UNKNOWN {
-                c0 = c0.min(c);
-                c1 = c1.max(c);
-                r0 = r0.min(r);
-                r1 = r1.max(r);
-            }
-        }
+    for (r, row) in g.data.chunks_exact(g.width.max(1)).enumerate() {
+        let Some(first) = row.iter().position(|&v| v != crate::grid::UNKNOWN) else {
+            continue;
+        };
+        let last = row.iter().rposition(|&v| v != crate::grid::UNKNOWN).unwrap();
+        c0 = c0.min(first);
+        c1 = c1.max(last);
+        r0 = r0.min(r);
+        r1 = r1.max(r);
     }
     if c0 == usize::MAX {
         return [0.0, 0.0];
