@@ -10,7 +10,7 @@ use crate::error::{ArenaError, Result};
 use crate::grid::edt::{edt, edt_within};
 use crate::grid::regions::region_tree;
 use crate::grid::{OccupancyGrid, FREE};
-use crate::grid::bilinear;
+use crate::grid::bilinear_with;
 use crate::track::centreline::longest_zero_loop;
 
 /// What the raster says about the track.
@@ -43,6 +43,10 @@ pub struct RasterTrack {
 /// (`edt_within`); the cap is checked on the corridor, so every value the zero loop and
 /// the widths read is exact, and the full transform is the fallback when it is not.
 pub fn measure_raster(g: &OccupancyGrid) -> Result<RasterTrack> {
+    measure_with_cap(g, DISTANCE_CAP)
+}
+
+fn measure_with_cap(g: &OccupancyGrid, cap: f64) -> Result<RasterTrack> {
     let (w, h) = (g.width, g.height);
     let tree = region_tree(&g.data, w, h, |v| v == FREE);
     let free_regions = || (0..tree.len()).filter(|&r| tree.free[r]);
@@ -62,21 +66,21 @@ pub fn measure_raster(g: &OccupancyGrid) -> Result<RasterTrack> {
     // The biggest enclosed component is the infield the centreline goes around.
     let infield = *enclosed.iter().max_by_key(|&&r| tree.subtree[r as usize]).unwrap();
     let in_infield = tree.subtree_flags(infield);
-    let mut is_corridor = vec![false; w * h];
+    // Corridor runs, and the two sides as EDT feature masks (outer = everything else).
+    let mut corridor_runs = Vec::new();
     let mut inner = vec![false; w * h];
+    let mut outer = vec![true; w * h];
     for (run, &reg) in tree.runs.iter().zip(&tree.run_region) {
-        let target = if reg == corridor {
-            &mut is_corridor
+        let cells = run.row as usize * w + run.start as usize..run.row as usize * w + run.end as usize;
+        if reg == corridor {
+            outer[cells.clone()].fill(false);
+            corridor_runs.push(cells);
         } else if in_infield[reg as usize] {
-            &mut inner
-        } else {
-            continue;
-        };
-        let base = run.row as usize * w;
-        target[base + run.start as usize..base + run.end as usize].fill(true);
+            outer[cells.clone()].fill(false);
+            inner[cells].fill(true);
+        }
     }
-    let outer: Vec<bool> = is_corridor.iter().zip(&inner).map(|(&c, &i)| !c && !i).collect();
-    let (d_in, d_out) = corridor_distances(&inner, &outer, &is_corridor, w, h);
+    let (d_in, d_out) = corridor_distances(&inner, &outer, &corridor_runs, w, h, cap);
     let f: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a - b).collect();
 
     let loop_uv = longest_zero_loop(&f, w, h)
@@ -87,8 +91,8 @@ pub fn measure_raster(g: &OccupancyGrid) -> Result<RasterTrack> {
         centreline.reverse();
         uv.reverse();
     }
-    let width_field: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a + b - 1.0).collect();
-    let widths = uv.iter().map(|&[u, v]| bilinear(&width_field, w, h, u, v) * g.resolution).collect();
+    let width_at = |i: usize| d_in[i] + d_out[i] - 1.0;
+    let widths = uv.iter().map(|&[u, v]| bilinear_with(w, h, u, v, width_at) * g.resolution).collect();
     let area = tree.size[corridor as usize] as f64 * g.resolution * g.resolution;
     let mean_width_m = area / crate::geometry::polyline_length(&centreline, true) + g.resolution / 2.0;
     Ok(RasterTrack { corridor_components, infields, centreline, widths, mean_width_m, extent_m: known_extent(g) })
@@ -103,14 +107,20 @@ const DISTANCE_CAP: f64 = 250.0;
 /// width samples read exact values only from corridor cells and their neighbours (a
 /// square with a sign change holds a corridor cell: the two sides are not 8-adjacent).
 /// Neighbours differ by at most √2, hence the margin of 2 in the check.
-fn corridor_distances(inner: &[bool], outer: &[bool], corridor: &[bool], w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
-    let d_in = edt_within(inner, w, h, DISTANCE_CAP);
-    let d_out = edt_within(outer, w, h, DISTANCE_CAP);
-    let limit = (DISTANCE_CAP - 2.0) as f32;
-    let ok = corridor
+fn corridor_distances(
+    inner: &[bool],
+    outer: &[bool],
+    corridor_runs: &[std::ops::Range<usize>],
+    w: usize,
+    h: usize,
+    cap: f64,
+) -> (Vec<f32>, Vec<f32>) {
+    let d_in = edt_within(inner, w, h, cap);
+    let d_out = edt_within(outer, w, h, cap);
+    let limit = (cap - 2.0) as f32;
+    let ok = corridor_runs
         .iter()
-        .zip(d_in.iter().zip(&d_out))
-        .all(|(&c, (&a, &b))| !c || (a < limit && b < limit));
+        .all(|cells| d_in[cells.clone()].iter().chain(&d_out[cells.clone()]).all(|&d| d < limit));
     if ok {
         (d_in, d_out)
     } else {
@@ -165,6 +175,53 @@ mod tests {
         assert!(local <= w + 0.01 && local >= w - 0.1, "local width {local}");
         let ext = 2.0 * (r + w / 2.0 + 0.15);
         assert!((t.extent_m[0] - ext).abs() < 0.11 && (t.extent_m[1] - ext).abs() < 0.11, "{:?}", t.extent_m);
+    }
+
+    fn ring(r: f64, w: f64) -> OccupancyGrid {
+        let c: Vec<[f64; 2]> = (0..3000).map(|i| {
+            let a = 2.0 * PI * i as f64 / 3000.0;
+            [r * a.cos(), r * a.sin()]
+        }).collect();
+        rasterise_constant(&c, w, 0.05, 0.15, 0.3).unwrap()
+    }
+
+    fn same(a: &RasterTrack, b: &RasterTrack) -> bool {
+        a.centreline == b.centreline && a.widths == b.widths && a.mean_width_m == b.mean_width_m
+            && (a.corridor_components, a.infields) == (b.corridor_components, b.infields)
+    }
+
+    #[test]
+    fn distance_cap_too_small_falls_back_to_the_exact_fields() {
+        // 1.5 m corridor = 30 cells: distances up to ~30 exceed a cap of 8.
+        let g = ring(3.0, 1.5);
+        let exact = measure_with_cap(&g, f64::INFINITY).unwrap();
+        assert!(same(&measure_with_cap(&g, 8.0).unwrap(), &exact));
+        assert!(same(&measure_raster(&g).unwrap(), &exact));
+    }
+
+    #[test]
+    fn topology_counts_islands_and_picks_the_biggest_infield() {
+        let mut g = ring(3.0, 1.0);
+        let (w, h) = (g.width, g.height);
+        let (cx, cy) = (w / 2, h / 2);
+        // A wall block in the corridor (second infield) and free cells in the infield
+        // (a small free component that belongs to the infield, not a corridor).
+        let rc = (3.0 / 0.05) as usize;
+        for r in cy - 3..cy + 3 {
+            for c in cx + rc - 3..cx + rc + 3 {
+                g.data[r * w + c] = crate::grid::OCCUPIED;
+            }
+        }
+        for r in cy - 2..cy + 2 {
+            for c in cx - 2..cx + 2 {
+                g.data[r * w + c] = FREE;
+            }
+        }
+        let t = measure_raster(&g).unwrap();
+        assert_eq!((t.corridor_components, t.infields), (1, 2));
+        // The centreline still goes around the big infield.
+        let len = crate::geometry::polyline_length(&t.centreline, true);
+        assert!((len - 2.0 * PI * 3.0).abs() < 0.5, "length {len}");
     }
 
     #[test]
