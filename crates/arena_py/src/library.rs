@@ -2,11 +2,10 @@
 //! trinary occupancy grid via `arena_core::track::metrics::measure_raster`. Thin wrapper,
 //! GIL released for the heavy work.
 
-use numpy::{PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 
 use crate::errors::IntoPyResult;
-use arena_core::grid::OccupancyGrid;
 use arena_core::track::metrics;
 
 /// Measure a trinary grid (254 free / 0 occupied / 205 unknown) as the validator does.
@@ -27,14 +26,7 @@ fn measure_map<'py>(
             "resolution must be > 0, got {resolution}"
         )));
     }
-    let (h, w) = (data.shape()[0], data.shape()[1]);
-    let grid = OccupancyGrid {
-        width: w,
-        height: h,
-        resolution,
-        origin: [origin.0, origin.1, origin.2],
-        data: data.as_array().iter().copied().collect(),
-    };
+    let grid = crate::maps::grid_from_py(&data, resolution, origin);
     let t = py.detach(move || metrics::measure_raster(&grid)).py()?;
     let length = arena_core::geometry::polyline_length(&t.centreline, true);
     let info = serde_json::json!({
