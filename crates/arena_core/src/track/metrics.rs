@@ -224,6 +224,70 @@ mod tests {
         assert!((len - 2.0 * PI * 3.0).abs() < 0.5, "length {len}");
     }
 
+    /// The previous implementation (per-cell component labelling, full EDTs): topology
+    /// and distance fields as a reference.
+    fn reference(g: &OccupancyGrid) -> Option<(usize, usize, Vec<[f64; 2]>, Vec<f64>)> {
+        use crate::grid::flood::{border_cells, label_components, Connectivity};
+        let (w, h) = (g.width, g.height);
+        let (labels, sizes) = label_components(&g.mask_of(FREE), w, h, Connectivity::Four);
+        let largest = *sizes.iter().max()?;
+        let cl = sizes.iter().position(|&s| s == largest).unwrap() as u32 + 1;
+        let corridor: Vec<bool> = labels.iter().map(|&l| l == cl).collect();
+        let rest: Vec<bool> = corridor.iter().map(|&c| !c).collect();
+        let (rl, rs) = label_components(&rest, w, h, Connectivity::Eight);
+        let mut touches = vec![false; rs.len() + 1];
+        for i in border_cells(w, h) {
+            touches[rl[i] as usize] = true;
+        }
+        let enclosed: Vec<usize> = (1..=rs.len()).filter(|&l| !touches[l]).collect();
+        let il = *enclosed.iter().max_by_key(|&&l| rs[l - 1])? as u32;
+        let inner: Vec<bool> = rl.iter().map(|&l| l == il).collect();
+        let outer: Vec<bool> = rl.iter().zip(&corridor).map(|(&l, &c)| !c && l != il).collect();
+        let (d_in, d_out) = (edt(&inner, w, h), edt(&outer, w, h));
+        let f: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a - b).collect();
+        let mut uv = longest_zero_loop(&f, w, h)?;
+        let mut line: Vec<[f64; 2]> = uv.iter().map(|&[u, v]| g.grid_to_world(u, v)).collect();
+        if crate::geometry::signed_area(&line) < 0.0 {
+            line.reverse();
+            uv.reverse();
+        }
+        let wf: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a + b - 1.0).collect();
+        let widths = uv.iter().map(|&[u, v]| crate::grid::bilinear(&wf, w, h, u, v) * g.resolution).collect();
+        let ncomp = sizes.iter().filter(|&&s| s * 200 >= largest).count();
+        Some((ncomp, enclosed.len(), line, widths))
+    }
+
+    #[test]
+    fn matches_the_labelling_reference_bit_for_bit() {
+        // A wobbly ring, a figure-of-eight-like pinch, and the ring with islands.
+        let wobbly: Vec<[f64; 2]> = (0..2000).map(|i| {
+            let a = 2.0 * PI * i as f64 / 2000.0;
+            let r = 3.0 + 0.6 * (3.0 * a).sin() + 0.3 * (7.0 * a).cos();
+            [r * a.cos(), 0.7 * r * a.sin()]
+        }).collect();
+        let widths: Vec<f64> = (0..2000).map(|i| 0.8 + 0.4 * (i as f64 / 300.0).sin().abs()).collect();
+        let mut grids = vec![crate::grid::rasterise::rasterise_centreline(&wobbly, &widths, 0.05, 0.15, 0.3).unwrap(), ring(2.0, 1.2)];
+        let mut g = ring(3.0, 1.0);
+        let (w, cx, cy) = (g.width, g.width / 2, g.height / 2);
+        for r in cy - 3..cy + 3 {
+            for c in cx + 57..cx + 63 {
+                g.data[r * w + c] = crate::grid::OCCUPIED;
+            }
+        }
+        for r in cy - 2..cy + 2 {
+            for c in cx - 2..cx + 2 {
+                g.data[r * w + c] = FREE;
+            }
+        }
+        grids.push(g);
+        for g in &grids {
+            let (n, inf, line, widths) = reference(g).unwrap();
+            let t = measure_raster(g).unwrap();
+            assert_eq!((t.corridor_components, t.infields), (n, inf));
+            assert!(t.centreline == line && t.widths == widths);
+        }
+    }
+
     #[test]
     fn open_map_is_a_corridor_error() {
         let g = OccupancyGrid::filled(20, 20, 0.1, [0.0; 3], FREE);
