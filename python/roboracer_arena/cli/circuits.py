@@ -22,7 +22,7 @@ def register(sub) -> None:
     p.add_argument("-o", "--out", type=Path, default=Path("tracks/circuits"), metavar="DIR",
                    help="output directory (default: tracks/circuits)")
     p.add_argument("--resolution", type=float, default=0.05, metavar="M", help="map resolution in m/cell (default 0.05)")
-    p.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
+    p.add_argument("--jobs", type=int, default=None, metavar="N", help="worker threads (default: all cores)")
     p.add_argument("--only", nargs="+", metavar="ID", help="build only these circuit ids")
     add_json_flag(p)
     p.set_defaults(func=run)
@@ -65,6 +65,6 @@ def run(args: argparse.Namespace) -> int:
     me, mx = s["mean_length_error"], s["max_length_error"]
     print(f"\n{s['built']}/{s['circuits']} built, {s['one_corridor']} with one closed corridor; "
           f"length error mean {100 * (me or 0):.3f} %, max {100 * (mx or 0):.3f} % (paper 0.253 %, 0.924 %); "
-          f"{s['seconds']:.2f} s with {s['jobs']} process(es) (paper 43.72 s for 44)")
+          f"{s['seconds']:.2f} s with {s['jobs']} thread(s) (paper 43.72 s for 44)")
     print(f"{len(s['skipped_as_covered'])} bacinger circuits skipped as covered by TUM; wrote {args.out}/index.json")
     return EXIT_OK if ok else EXIT_BAD_INPUT

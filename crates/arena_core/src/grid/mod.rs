@@ -98,12 +98,18 @@ impl OccupancyGrid {
 /// in cell units from the lower-left corner, bilinearly interpolated between cell
 /// centres and clamped at the border.
 pub fn bilinear(f: &[f32], w: usize, h: usize, u: f64, v: f64) -> f64 {
+    bilinear_with(w, h, u, v, |i| f[i])
+}
+
+/// [`bilinear`] of a field given by its value at each cell index (row-major, row 0 at
+/// the top), for fields cheaper to evaluate at four cells than to store whole.
+pub fn bilinear_with(w: usize, h: usize, u: f64, v: f64, f: impl Fn(usize) -> f32) -> f64 {
     let x = (u - 0.5).clamp(0.0, (w - 1) as f64);
     let y = (v - 0.5).clamp(0.0, (h - 1) as f64);
     let (c0, v0) = (x.floor() as usize, y.floor() as usize);
     let (c1, v1) = ((c0 + 1).min(w - 1), (v0 + 1).min(h - 1));
     let (tx, ty) = (x - c0 as f64, y - v0 as f64);
-    let at = |c: usize, vv: usize| f[(h - 1 - vv) * w + c] as f64;
+    let at = |c: usize, vv: usize| f((h - 1 - vv) * w + c) as f64;
     let a = at(c0, v0) * (1.0 - tx) + at(c1, v0) * tx;
     let b = at(c0, v1) * (1.0 - tx) + at(c1, v1) * tx;
     a * (1.0 - ty) + b * ty

@@ -126,10 +126,22 @@ fn stamp_segment(
     let v1 = (to_v(a[1].max(b[1]) + reach).max(0.0) as usize).min(height - 1);
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let len2 = dx * dx + dy * dy;
+    let (xlo, xhi) = (a[0].min(b[0]), a[0].max(b[0]));
+    let (ylo, yhi) = (a[1].min(b[1]), a[1].max(b[1]));
     for v in v0..=v1 {
         let y = origin[1] + (v as f64 + 0.5) * res;
         let row = height - 1 - v;
-        for c in c0..=c1 {
+        // Cells farther than `reach` from the segment (so from its bounding box) would
+        // get m > t_w + Δ, which classifies as UNKNOWN either way: skip them.
+        let gap = (ylo - y).max(y - yhi).max(0.0);
+        if gap > reach {
+            continue;
+        }
+        let half = (reach * reach - gap * gap).sqrt();
+        let lo = ((xlo - half - origin[0]) / res - 0.5).floor() - 1.0;
+        let hi = ((xhi + half - origin[0]) / res - 0.5).ceil() + 1.0;
+        let (cl, ch) = (c0.max(lo.max(0.0) as usize), c1.min(hi.max(0.0) as usize));
+        for c in cl..=ch {
             let x = origin[0] + (c as f64 + 0.5) * res;
             let t = if len2 > 0.0 { (((x - a[0]) * dx + (y - a[1]) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
             let (px, py) = (a[0] + t * dx - x, a[1] + t * dy - y);
