@@ -35,8 +35,20 @@ pub struct OccupancyGrid {
 
 impl OccupancyGrid {
     /// A grid filled with one value.
-    pub fn filled(width: usize, height: usize, resolution: f64, origin: [f64; 3], value: u8) -> Self {
-        OccupancyGrid { width, height, resolution, origin, data: vec![value; width * height] }
+    pub fn filled(
+        width: usize,
+        height: usize,
+        resolution: f64,
+        origin: [f64; 3],
+        value: u8,
+    ) -> Self {
+        OccupancyGrid {
+            width,
+            height,
+            resolution,
+            origin,
+            data: vec![value; width * height],
+        }
     }
 
     #[inline]
@@ -60,7 +72,10 @@ impl OccupancyGrid {
     pub fn grid_to_world(&self, u: f64, v: f64) -> [f64; 2] {
         let (s, c) = self.origin[2].sin_cos();
         let (x, y) = (u * self.resolution, v * self.resolution);
-        [self.origin[0] + c * x - s * y, self.origin[1] + s * x + c * y]
+        [
+            self.origin[0] + c * x - s * y,
+            self.origin[1] + s * x + c * y,
+        ]
     }
 
     /// Inverse of [`grid_to_world`](Self::grid_to_world): map-frame metres → (u, v) cell units.
@@ -68,7 +83,10 @@ impl OccupancyGrid {
     pub fn world_to_grid(&self, x: f64, y: f64) -> [f64; 2] {
         let (s, c) = self.origin[2].sin_cos();
         let (dx, dy) = (x - self.origin[0], y - self.origin[1]);
-        [(c * dx + s * dy) / self.resolution, (-s * dx + c * dy) / self.resolution]
+        [
+            (c * dx + s * dy) / self.resolution,
+            (-s * dx + c * dy) / self.resolution,
+        ]
     }
 
     /// Map-frame centre of cell (col, row), row 0 being the top image row.

@@ -48,15 +48,40 @@ pub fn rasterise_centreline(
     let mut m = vec![f32::INFINITY; width * height];
     for i in 0..n {
         let (a, b) = (pts[i], pts[(i + 1) % n]);
-        stamp_segment(&mut m, width, height, origin, resolution, a, b, ws[i], ws[(i + 1) % n], wall_thickness);
+        stamp_segment(
+            &mut m,
+            width,
+            height,
+            origin,
+            resolution,
+            a,
+            b,
+            ws[i],
+            ws[(i + 1) % n],
+            wall_thickness,
+        );
     }
     let free_bound = -(resolution / 2.0) as f32;
     let wall_bound = wall_thickness as f32;
     let data = m
         .iter()
-        .map(|&v| if v <= free_bound { FREE } else if v <= wall_bound { OCCUPIED } else { UNKNOWN })
+        .map(|&v| {
+            if v <= free_bound {
+                FREE
+            } else if v <= wall_bound {
+                OCCUPIED
+            } else {
+                UNKNOWN
+            }
+        })
         .collect();
-    Ok(OccupancyGrid { width, height, resolution, origin, data })
+    Ok(OccupancyGrid {
+        width,
+        height,
+        resolution,
+        origin,
+        data,
+    })
 }
 
 /// Constant-width convenience wrapper (the generated tracks).
@@ -67,12 +92,21 @@ pub fn rasterise_constant(
     wall_thickness: f64,
     margin: f64,
 ) -> Result<OccupancyGrid> {
-    rasterise_centreline(centreline, &vec![width_m; centreline.len()], resolution, wall_thickness, margin)
+    rasterise_centreline(
+        centreline,
+        &vec![width_m; centreline.len()],
+        resolution,
+        wall_thickness,
+        margin,
+    )
 }
 
 fn check_inputs(c: &[[f64; 2]], w: &[f64], res: f64, tw: f64, margin: f64) -> Result<()> {
     if c.len() < 3 {
-        return Err(ArenaError::invalid(format!("rasterise: a closed centreline needs ≥ 3 points, got {}", c.len())));
+        return Err(ArenaError::invalid(format!(
+            "rasterise: a closed centreline needs ≥ 3 points, got {}",
+            c.len()
+        )));
     }
     if w.len() != c.len() {
         return Err(ArenaError::invalid(format!(
@@ -81,17 +115,29 @@ fn check_inputs(c: &[[f64; 2]], w: &[f64], res: f64, tw: f64, margin: f64) -> Re
             c.len()
         )));
     }
-    if let Some(i) = c.iter().position(|p| !p[0].is_finite() || !p[1].is_finite()) {
-        return Err(ArenaError::invalid(format!("rasterise: centreline point {i} is not finite")));
+    if let Some(i) = c
+        .iter()
+        .position(|p| !p[0].is_finite() || !p[1].is_finite())
+    {
+        return Err(ArenaError::invalid(format!(
+            "rasterise: centreline point {i} is not finite"
+        )));
     }
     if let Some(i) = w.iter().position(|x| !x.is_finite() || *x <= 0.0) {
-        return Err(ArenaError::invalid(format!("rasterise: width {i} = {} must be a positive finite number", w[i])));
+        return Err(ArenaError::invalid(format!(
+            "rasterise: width {i} = {} must be a positive finite number",
+            w[i]
+        )));
     }
     if !(res.is_finite() && res > 0.0) {
-        return Err(ArenaError::invalid(format!("rasterise: resolution {res} must be > 0")));
+        return Err(ArenaError::invalid(format!(
+            "rasterise: resolution {res} must be > 0"
+        )));
     }
     if !(tw.is_finite() && tw > 0.0 && margin.is_finite() && margin >= 0.0) {
-        return Err(ArenaError::invalid(format!("rasterise: wall thickness {tw} must be > 0 and margin {margin} ≥ 0")));
+        return Err(ArenaError::invalid(format!(
+            "rasterise: wall thickness {tw} must be > 0 and margin {margin} ≥ 0"
+        )));
     }
     Ok(())
 }
@@ -143,7 +189,11 @@ fn stamp_segment(
         let (cl, ch) = (c0.max(lo.max(0.0) as usize), c1.min(hi.max(0.0) as usize));
         for c in cl..=ch {
             let x = origin[0] + (c as f64 + 0.5) * res;
-            let t = if len2 > 0.0 { (((x - a[0]) * dx + (y - a[1]) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+            let t = if len2 > 0.0 {
+                (((x - a[0]) * dx + (y - a[1]) * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             let (px, py) = (a[0] + t * dx - x, a[1] + t * dy - y);
             let d = (px * px + py * py).sqrt() - (wa + t * (wb - wa)) / 2.0;
             let cell = &mut m[row * width + c];
@@ -160,10 +210,12 @@ mod tests {
     use std::f64::consts::PI;
 
     fn circle(r: f64, n: usize) -> Vec<[f64; 2]> {
-        (0..n).map(|i| {
-            let a = 2.0 * PI * i as f64 / n as f64;
-            [r * a.cos(), r * a.sin()]
-        }).collect()
+        (0..n)
+            .map(|i| {
+                let a = 2.0 * PI * i as f64 / n as f64;
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect()
     }
 
     #[test]
@@ -175,18 +227,31 @@ mod tests {
             for col in 0..g.width {
                 let [x, y] = g.cell_center(col, row);
                 let d = ((x * x + y * y).sqrt() - r).abs();
-                let expect = if d <= w / 2.0 - res / 2.0 { FREE } else if d <= w / 2.0 + tw { OCCUPIED } else { UNKNOWN };
+                let expect = if d <= w / 2.0 - res / 2.0 {
+                    FREE
+                } else if d <= w / 2.0 + tw {
+                    OCCUPIED
+                } else {
+                    UNKNOWN
+                };
                 // The 2000-gon deviates from the circle by < 0.03 mm: only knife-edge cells may differ.
-                let near_edge = (d - (w / 2.0 - res / 2.0)).abs() < 1e-3 || (d - (w / 2.0 + tw)).abs() < 1e-3;
+                let near_edge =
+                    (d - (w / 2.0 - res / 2.0)).abs() < 1e-3 || (d - (w / 2.0 + tw)).abs() < 1e-3;
                 if !near_edge {
                     assert_eq!(g.get(col, row), expect, "cell ({col},{row}) at d = {d}");
                 }
-                counts[[FREE, OCCUPIED, UNKNOWN].iter().position(|&v| v == g.get(col, row)).unwrap()] += 1;
+                counts[[FREE, OCCUPIED, UNKNOWN]
+                    .iter()
+                    .position(|&v| v == g.get(col, row))
+                    .unwrap()] += 1;
             }
         }
         // Free area ≈ 2πr·(w − Δ) + one cell of half-cell rounding.
         let free_area = counts[0] as f64 * res * res;
-        assert!((free_area - 2.0 * PI * r * (w - res)).abs() / (2.0 * PI * r * w) < 0.01, "free area {free_area}");
+        assert!(
+            (free_area - 2.0 * PI * r * (w - res)).abs() / (2.0 * PI * r * w) < 0.01,
+            "free area {free_area}"
+        );
         // The map covers the corridor plus margin on every side.
         assert!(g.origin[0] <= -r - w / 2.0 - tw - 0.5 && g.origin[1] <= -r - w / 2.0 - tw - 0.5);
     }

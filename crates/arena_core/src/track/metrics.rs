@@ -7,10 +7,10 @@
 //! its centreline instead; the measurement contract is the same.)
 
 use crate::error::{ArenaError, Result};
+use crate::grid::bilinear_with;
 use crate::grid::edt::{edt, edt_within};
 use crate::grid::regions::region_tree;
 use crate::grid::{OccupancyGrid, FREE};
-use crate::grid::bilinear_with;
 use crate::track::centreline::longest_zero_loop;
 
 /// What the raster says about the track.
@@ -56,22 +56,30 @@ fn measure_with_cap(g: &OccupancyGrid, cap: f64) -> Result<RasterTrack> {
         .ok_or_else(|| ArenaError::Corridor("map has no free cells".into()))?;
     // Region ids follow the raster order of their first cell: ties go to the first.
     let corridor = free_regions().find(|&r| tree.size[r] == largest).unwrap() as u32;
-    let corridor_components = free_regions().filter(|&r| tree.size[r] * 200 >= largest).count();
+    let corridor_components = free_regions()
+        .filter(|&r| tree.size[r] * 200 >= largest)
+        .count();
     let mut enclosed = tree.children[corridor as usize].clone();
     enclosed.sort_unstable();
     let infields = enclosed.len();
     if infields == 0 {
-        return Err(ArenaError::Corridor("the largest free region encloses nothing: no closed loop".into()));
+        return Err(ArenaError::Corridor(
+            "the largest free region encloses nothing: no closed loop".into(),
+        ));
     }
     // The biggest enclosed component is the infield the centreline goes around.
-    let infield = *enclosed.iter().max_by_key(|&&r| tree.subtree[r as usize]).unwrap();
+    let infield = *enclosed
+        .iter()
+        .max_by_key(|&&r| tree.subtree[r as usize])
+        .unwrap();
     let in_infield = tree.subtree_flags(infield);
     // Corridor runs, and the two sides as EDT feature masks (outer = everything else).
     let mut corridor_runs = Vec::new();
     let mut inner = vec![false; w * h];
     let mut outer = vec![true; w * h];
     for (run, &reg) in tree.runs.iter().zip(&tree.run_region) {
-        let cells = run.row as usize * w + run.start as usize..run.row as usize * w + run.end as usize;
+        let cells =
+            run.row as usize * w + run.start as usize..run.row as usize * w + run.end as usize;
         if reg == corridor {
             outer[cells.clone()].fill(false);
             corridor_runs.push(cells);
@@ -83,19 +91,34 @@ fn measure_with_cap(g: &OccupancyGrid, cap: f64) -> Result<RasterTrack> {
     let (d_in, d_out) = corridor_distances(&inner, &outer, &corridor_runs, w, h, cap);
     let f: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a - b).collect();
 
-    let loop_uv = longest_zero_loop(&f, w, h)
-        .ok_or_else(|| ArenaError::Corridor("no closed centreline found between the inner and outer walls".into()))?;
-    let mut centreline: Vec<[f64; 2]> = loop_uv.iter().map(|&[u, v]| g.grid_to_world(u, v)).collect();
+    let loop_uv = longest_zero_loop(&f, w, h).ok_or_else(|| {
+        ArenaError::Corridor("no closed centreline found between the inner and outer walls".into())
+    })?;
+    let mut centreline: Vec<[f64; 2]> = loop_uv
+        .iter()
+        .map(|&[u, v]| g.grid_to_world(u, v))
+        .collect();
     let mut uv = loop_uv;
     if crate::geometry::signed_area(&centreline) < 0.0 {
         centreline.reverse();
         uv.reverse();
     }
     let width_at = |i: usize| d_in[i] + d_out[i] - 1.0;
-    let widths = uv.iter().map(|&[u, v]| bilinear_with(w, h, u, v, width_at) * g.resolution).collect();
+    let widths = uv
+        .iter()
+        .map(|&[u, v]| bilinear_with(w, h, u, v, width_at) * g.resolution)
+        .collect();
     let area = tree.size[corridor as usize] as f64 * g.resolution * g.resolution;
-    let mean_width_m = area / crate::geometry::polyline_length(&centreline, true) + g.resolution / 2.0;
-    Ok(RasterTrack { corridor_components, infields, centreline, widths, mean_width_m, extent_m: known_extent(g) })
+    let mean_width_m =
+        area / crate::geometry::polyline_length(&centreline, true) + g.resolution / 2.0;
+    Ok(RasterTrack {
+        corridor_components,
+        infields,
+        centreline,
+        widths,
+        mean_width_m,
+        extent_m: known_extent(g),
+    })
 }
 
 /// Cap (cells) of the distance fields; corridors are far narrower at any sane resolution.
@@ -118,9 +141,12 @@ fn corridor_distances(
     let d_in = edt_within(inner, w, h, cap);
     let d_out = edt_within(outer, w, h, cap);
     let limit = (cap - 2.0) as f32;
-    let ok = corridor_runs
-        .iter()
-        .all(|cells| d_in[cells.clone()].iter().chain(&d_out[cells.clone()]).all(|&d| d < limit));
+    let ok = corridor_runs.iter().all(|cells| {
+        d_in[cells.clone()]
+            .iter()
+            .chain(&d_out[cells.clone()])
+            .all(|&d| d < limit)
+    });
     if ok {
         (d_in, d_out)
     } else {
@@ -135,7 +161,10 @@ pub fn known_extent(g: &OccupancyGrid) -> [f64; 2] {
         let Some(first) = row.iter().position(|&v| v != crate::grid::UNKNOWN) else {
             continue;
         };
-        let last = row.iter().rposition(|&v| v != crate::grid::UNKNOWN).unwrap();
+        let last = row
+            .iter()
+            .rposition(|&v| v != crate::grid::UNKNOWN)
+            .unwrap();
         c0 = c0.min(first);
         c1 = c1.max(last);
         r0 = r0.min(r);
@@ -144,7 +173,10 @@ pub fn known_extent(g: &OccupancyGrid) -> [f64; 2] {
     if c0 == usize::MAX {
         return [0.0, 0.0];
     }
-    [(c1 - c0 + 1) as f64 * g.resolution, (r1 - r0 + 1) as f64 * g.resolution]
+    [
+        (c1 - c0 + 1) as f64 * g.resolution,
+        (r1 - r0 + 1) as f64 * g.resolution,
+    ]
 }
 
 #[cfg(test)]
@@ -156,37 +188,54 @@ mod tests {
     #[test]
     fn ring_centreline_and_width_are_recovered() {
         let (r, w) = (4.0, 1.5);
-        let c: Vec<[f64; 2]> = (0..3000).map(|i| {
-            let a = 2.0 * PI * i as f64 / 3000.0;
-            [r * a.cos() + 1.0, r * a.sin() - 2.0]
-        }).collect();
+        let c: Vec<[f64; 2]> = (0..3000)
+            .map(|i| {
+                let a = 2.0 * PI * i as f64 / 3000.0;
+                [r * a.cos() + 1.0, r * a.sin() - 2.0]
+            })
+            .collect();
         let g = rasterise_constant(&c, w, 0.05, 0.15, 0.3).unwrap();
         let t = measure_raster(&g).unwrap();
         assert_eq!((t.corridor_components, t.infields), (1, 1));
         let len = crate::geometry::polyline_length(&t.centreline, true);
-        assert!((len - 2.0 * PI * r).abs() / (2.0 * PI * r) < 0.01, "length {len}");
+        assert!(
+            (len - 2.0 * PI * r).abs() / (2.0 * PI * r) < 0.01,
+            "length {len}"
+        );
         assert!(crate::geometry::signed_area(&t.centreline) > 0.0);
         for p in &t.centreline {
             let rr = ((p[0] - 1.0).powi(2) + (p[1] + 2.0).powi(2)).sqrt();
             assert!((rr - r).abs() < 0.05, "centreline point off the ring: {rr}");
         }
-        assert!((t.mean_width_m - w).abs() <= 0.026, "width {}", t.mean_width_m);
+        assert!(
+            (t.mean_width_m - w).abs() <= 0.026,
+            "width {}",
+            t.mean_width_m
+        );
         let local = t.widths.iter().sum::<f64>() / t.widths.len() as f64;
         assert!(local <= w + 0.01 && local >= w - 0.1, "local width {local}");
         let ext = 2.0 * (r + w / 2.0 + 0.15);
-        assert!((t.extent_m[0] - ext).abs() < 0.11 && (t.extent_m[1] - ext).abs() < 0.11, "{:?}", t.extent_m);
+        assert!(
+            (t.extent_m[0] - ext).abs() < 0.11 && (t.extent_m[1] - ext).abs() < 0.11,
+            "{:?}",
+            t.extent_m
+        );
     }
 
     fn ring(r: f64, w: f64) -> OccupancyGrid {
-        let c: Vec<[f64; 2]> = (0..3000).map(|i| {
-            let a = 2.0 * PI * i as f64 / 3000.0;
-            [r * a.cos(), r * a.sin()]
-        }).collect();
+        let c: Vec<[f64; 2]> = (0..3000)
+            .map(|i| {
+                let a = 2.0 * PI * i as f64 / 3000.0;
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
         rasterise_constant(&c, w, 0.05, 0.15, 0.3).unwrap()
     }
 
     fn same(a: &RasterTrack, b: &RasterTrack) -> bool {
-        a.centreline == b.centreline && a.widths == b.widths && a.mean_width_m == b.mean_width_m
+        a.centreline == b.centreline
+            && a.widths == b.widths
+            && a.mean_width_m == b.mean_width_m
             && (a.corridor_components, a.infields) == (b.corridor_components, b.infields)
     }
 
@@ -242,7 +291,11 @@ mod tests {
         let enclosed: Vec<usize> = (1..=rs.len()).filter(|&l| !touches[l]).collect();
         let il = *enclosed.iter().max_by_key(|&&l| rs[l - 1])? as u32;
         let inner: Vec<bool> = rl.iter().map(|&l| l == il).collect();
-        let outer: Vec<bool> = rl.iter().zip(&corridor).map(|(&l, &c)| !c && l != il).collect();
+        let outer: Vec<bool> = rl
+            .iter()
+            .zip(&corridor)
+            .map(|(&l, &c)| !c && l != il)
+            .collect();
         let (d_in, d_out) = (edt(&inner, w, h), edt(&outer, w, h));
         let f: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a - b).collect();
         let mut uv = longest_zero_loop(&f, w, h)?;
@@ -252,7 +305,10 @@ mod tests {
             uv.reverse();
         }
         let wf: Vec<f32> = d_in.iter().zip(&d_out).map(|(a, b)| a + b - 1.0).collect();
-        let widths = uv.iter().map(|&[u, v]| crate::grid::bilinear(&wf, w, h, u, v) * g.resolution).collect();
+        let widths = uv
+            .iter()
+            .map(|&[u, v]| crate::grid::bilinear(&wf, w, h, u, v) * g.resolution)
+            .collect();
         let ncomp = sizes.iter().filter(|&&s| s * 200 >= largest).count();
         Some((ncomp, enclosed.len(), line, widths))
     }
@@ -260,13 +316,21 @@ mod tests {
     #[test]
     fn matches_the_labelling_reference_bit_for_bit() {
         // A wobbly ring, a figure-of-eight-like pinch, and the ring with islands.
-        let wobbly: Vec<[f64; 2]> = (0..2000).map(|i| {
-            let a = 2.0 * PI * i as f64 / 2000.0;
-            let r = 3.0 + 0.6 * (3.0 * a).sin() + 0.3 * (7.0 * a).cos();
-            [r * a.cos(), 0.7 * r * a.sin()]
-        }).collect();
-        let widths: Vec<f64> = (0..2000).map(|i| 0.8 + 0.4 * (i as f64 / 300.0).sin().abs()).collect();
-        let mut grids = vec![crate::grid::rasterise::rasterise_centreline(&wobbly, &widths, 0.05, 0.15, 0.3).unwrap(), ring(2.0, 1.2)];
+        let wobbly: Vec<[f64; 2]> = (0..2000)
+            .map(|i| {
+                let a = 2.0 * PI * i as f64 / 2000.0;
+                let r = 3.0 + 0.6 * (3.0 * a).sin() + 0.3 * (7.0 * a).cos();
+                [r * a.cos(), 0.7 * r * a.sin()]
+            })
+            .collect();
+        let widths: Vec<f64> = (0..2000)
+            .map(|i| 0.8 + 0.4 * (i as f64 / 300.0).sin().abs())
+            .collect();
+        let mut grids = vec![
+            crate::grid::rasterise::rasterise_centreline(&wobbly, &widths, 0.05, 0.15, 0.3)
+                .unwrap(),
+            ring(2.0, 1.2),
+        ];
         let mut g = ring(3.0, 1.0);
         let (w, cx, cy) = (g.width, g.width / 2, g.height / 2);
         for r in cy - 3..cy + 3 {
