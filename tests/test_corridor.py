@@ -50,9 +50,9 @@ def check_ring_geometry(geo) -> None:  # type: ignore[no-untyped-def]
 def test_filled_ring(tmp_path: Path) -> None:
     geo = extract_corridor(ring_map())
     check_ring_geometry(geo)
-    assert set(geo.meshes) == {"floor", "walls", "barriers"}
+    assert set(geo.meshes) == {"floor", "walls", "ducts", "rings"}
     for verts, tris in geo.meshes.values():
-        assert verts.dtype == np.float32 and verts.shape[1] == 3
+        assert len(tris) and verts.dtype == np.float32 and verts.shape[1] == 3
         assert tris.dtype == np.uint32 and tris.shape[1] == 3 and tris.max() < len(verts)
     wall_v = geo.meshes["walls"][0]
     assert set(np.unique(wall_v[:, 2])) == {0.0, 0.5}
@@ -83,7 +83,7 @@ def test_params_change_geometry_and_bad_params_are_refused() -> None:
     assert float(geo.meshes["walls"][0][:, 2].max()) == pytest.approx(1.0)
     plain = extract_corridor(m, {"tube_segments": 6, "ring_spacing_m": 0.0})
     tubes_only = sum(2 * 6 * len(d) for d in plain.ducts)
-    assert len(plain.meshes["barriers"][1]) == tubes_only
+    assert len(plain.meshes["ducts"][1]) == tubes_only and len(plain.meshes["rings"][1]) == 0
     moved = extract_corridor(m, {"wall_offset_m": 0.1})
     outer = max(float(np.hypot(w[:, 0], w[:, 1]).mean()) for w in moved.walls)
     assert outer == pytest.approx(R_MID + WIDTH / 2 + 0.1, abs=0.05)

@@ -176,14 +176,13 @@ def build_environment(
 
 
 def stage_meshes(geo: Any, cfg: BuildConfig) -> list:
-    """Turn the corridor meshes (``floor``, ``walls``, ``barriers``) into stage records
-    with their looks and physics roles; the barriers are split into textured ducts and
-    rings when their layout checks out (see :mod:`roboracer_arena.usd.barriers`)."""
+    """Turn the corridor meshes (``floor``, ``walls``, ``ducts``, ``rings``) into stage
+    records with their looks and physics roles; the ducts get texture coordinates
+    (see :mod:`roboracer_arena.usd.barriers`)."""
     from .usd import StageMesh
-    from .usd.barriers import split_barriers
+    from .usd.barriers import duct_st
 
     meshes = geo.meshes
-    g = cfg.geometry
     out = []
     if "floor" in meshes:
         v, t = meshes["floor"]
@@ -192,22 +191,11 @@ def stage_meshes(geo: Any, cfg: BuildConfig) -> list:
     if "walls" in meshes:
         v, t = meshes["walls"]
         out.append(StageMesh("/World/Track/Walls", v, t, "Wall", collider=True, guide=True))
-    if "barriers" in meshes:
-        v, t = meshes["barriers"]
-        parts = split_barriers(v, t, geo.ducts, g.tube_segments, g.ring_spacing_m, g.ring_width_m)
-        if parts is None:
-            out.append(StageMesh("/World/Track/Barriers", v, t, "Duct"))
-        else:
-            out.append(
-                StageMesh(
-                    "/World/Track/Barriers/Ducts",
-                    parts.duct_points,
-                    parts.duct_triangles,
-                    "Duct",
-                    st=parts.duct_st,
-                    st_indices=parts.duct_st_indices,
-                )
-            )
-            if len(parts.ring_triangles):
-                out.append(StageMesh("/World/Track/Barriers/Rings", parts.ring_points, parts.ring_triangles, "Ring"))
+    v, t = meshes["ducts"]
+    if len(t):
+        st, st_idx = duct_st(geo.ducts, cfg.geometry.tube_segments)
+        out.append(StageMesh("/World/Track/Barriers/Ducts", v, t, "Duct", st=st, st_indices=st_idx))
+    v, t = meshes["rings"]
+    if len(t):
+        out.append(StageMesh("/World/Track/Barriers/Rings", v, t, "Ring"))
     return out

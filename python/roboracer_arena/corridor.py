@@ -11,8 +11,9 @@ and thin-line maps alike), and derives from it, in the map frame (metres, Z up):
   borders offset outward by the tube radius;
 * ``centreline``: the medial line of the corridor, closed (no repeated end point),
   counter-clockwise, resampled every ``centreline_spacing_m``;
-* ``meshes``: ``floor``, ``walls`` (extruded to ``wall_height_m``) and ``barriers``
-  (tubes and rings) as ``(vertices (V, 3) float32, triangles (T, 3) uint32)``;
+* ``meshes``: ``floor``, ``walls`` (extruded to ``wall_height_m``), ``ducts`` (the visual
+  tubes) and ``rings`` (around the tubes) as ``(vertices (V, 3) float32, triangles (T, 3)
+  uint32)``;
 * the round-trip check: ``iou`` of the walls' re-rasterised drivable region with the
   corridor, and ``max_wall_deviation_cells``;
 * ``corridor_mask`` (H, W) bool, ``border_contact_cells`` (corridor cells on the map

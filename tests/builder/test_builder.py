@@ -36,7 +36,7 @@ def test_report(built, ring_yaml):
     assert report.timings_s["total"] == pytest.approx(
         sum(report.timings_s[k] for k in ("load", "geometry", "usd_author", "usd_write"))
     )
-    for name in ("floor", "walls", "barriers"):
+    for name in ("floor", "walls", "ducts", "rings"):
         assert report.meshes[name].vertices > 0 and report.meshes[name].triangles > 0
     assert report.walls == 2  # the outer and the inner wall of the ring
     assert report.iou >= 0.97
@@ -108,24 +108,25 @@ def test_bad_inputs_raise_typed_errors_and_write_nothing(tmp_path, ring_yaml):
     assert issubclass(CorridorError, ArenaError)
 
 
-def test_barriers_split_into_textured_ducts_and_rings(ring_yaml):
+def test_ducts_follow_the_tube_layout_and_get_texture_coordinates(ring_yaml):
     from roboracer_arena.corridor import extract_corridor
-    from roboracer_arena.usd.barriers import split_barriers
+    from roboracer_arena.usd.barriers import duct_st, tube_triangles
 
     geo = extract_corridor(ring_yaml)
-    v, t = geo.meshes["barriers"]
     g = BuildConfig().geometry
-    parts = split_barriers(v, t, geo.ducts, g.tube_segments, g.ring_spacing_m, g.ring_width_m)
-    assert parts is not None
-    assert len(parts.duct_points) + len(parts.ring_points) == len(v)
-    assert len(parts.duct_triangles) + len(parts.ring_triangles) == len(t)
-    assert len(parts.duct_st_indices) == 3 * len(parts.duct_triangles)
-    assert parts.duct_st_indices.max() < len(parts.duct_st)
+    s = g.tube_segments
+    v, t = geo.meshes["ducts"]
+    # the core's tube layout, which the texture coordinates assume
+    expect, base = [], 0
+    for d in geo.ducts:
+        expect.append(tube_triangles(len(d), s) + base)
+        base += len(d) * s
+    assert len(v) == base and np.array_equal(t, np.concatenate(expect))
+    st, st_idx = duct_st(geo.ducts, s)
+    assert len(st_idx) == 3 * len(t) and st_idx.max() < len(st)
     # rings: one every ring_spacing_m along each duct, 2 sections of tube_segments vertices
     lengths = [np.hypot(*(np.roll(d, -1, 0) - d).T).sum() for d in geo.ducts]
-    assert len(parts.ring_points) == sum(int(L // g.ring_spacing_m) for L in lengths) * 2 * g.tube_segments
-    # a layout that does not match (wrong segment count) is detected, not mis-split
-    assert split_barriers(v, t, geo.ducts, g.tube_segments + 1, g.ring_spacing_m, g.ring_width_m) is None
+    assert len(geo.meshes["rings"][0]) == sum(int(L // g.ring_spacing_m) for L in lengths) * 2 * s
 
 
 def test_stage_has_ducts_and_rings(built):

@@ -47,10 +47,12 @@ fn main() {
                             "iou {:.4} vertices {} triangles {}",
                             geo.iou,
                             geo.wall_mesh.vertices.len()
-                                + geo.barriers.vertices.len()
+                                + geo.duct_mesh.vertices.len()
+                                + geo.ring_mesh.vertices.len()
                                 + geo.floor.vertices.len(),
                             geo.wall_mesh.triangles.len()
-                                + geo.barriers.triangles.len()
+                                + geo.duct_mesh.triangles.len()
+                                + geo.ring_mesh.triangles.len()
                                 + geo.floor.triangles.len()
                         );
                         best = Some(geo.timings);

@@ -64,7 +64,8 @@ fn build_geometry<'py>(
     let meshes = PyDict::new(py);
     meshes.set_item("floor", mesh_to_py(py, geo.floor))?;
     meshes.set_item("walls", mesh_to_py(py, geo.wall_mesh))?;
-    meshes.set_item("barriers", mesh_to_py(py, geo.barriers))?;
+    meshes.set_item("ducts", mesh_to_py(py, geo.duct_mesh))?;
+    meshes.set_item("rings", mesh_to_py(py, geo.ring_mesh))?;
     d.set_item("meshes", meshes)?;
     d.set_item("iou", geo.iou)?;
     d.set_item("max_wall_deviation_cells", geo.max_wall_deviation_cells)?;

@@ -377,26 +377,18 @@ mod debug_tests {
                 let a = analyse_closed_curve(&c.centreline, d.corner_radius);
                 let rl = analyse_closed_curve(&r.centreline, d.corner_radius);
                 println!("k {k} pitch {:.3} failed {:?}", c.pitch_m, r.failed());
-                for t in &a.turns {
-                    print!(
-                        " [{:.1}° r{:.2} @{:.1}-{:.1}]",
-                        t.angle_rad.to_degrees(),
-                        t.peak_radius_m,
-                        t.start_m,
-                        t.end_m
-                    );
+                for turns in [&a.turns, &rl.turns] {
+                    for t in turns {
+                        print!(
+                            " [{:.1}° r{:.2} @{:.1}-{:.1}]",
+                            t.angle_rad.to_degrees(),
+                            t.peak_radius_m,
+                            t.start_m,
+                            t.end_m
+                        );
+                    }
+                    println!();
                 }
-                println!();
-                for t in &rl.turns {
-                    print!(
-                        " [{:.1}° r{:.2} @{:.1}-{:.1}]",
-                        t.angle_rad.to_degrees(),
-                        t.peak_radius_m,
-                        t.start_m,
-                        t.end_m
-                    );
-                }
-                println!();
                 shown += 1;
                 if shown > 4 {
                     break;

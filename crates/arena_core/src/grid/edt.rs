@@ -40,35 +40,27 @@ trait ColumnDist: Copy + Send + Sync {
     fn square(self) -> Option<f64>;
 }
 
-impl ColumnDist for u8 {
-    const FAR: u8 = u8::MAX;
-    fn zero() -> Self {
-        0
-    }
-    #[inline]
-    fn next(self) -> Self {
-        self.saturating_add(1)
-    }
-    #[inline]
-    fn square(self) -> Option<f64> {
-        (self != u8::MAX).then_some((self as f64) * (self as f64))
-    }
+/// Column distances as saturating unsigned integers (u8 for capped transforms).
+macro_rules! unsigned_column_dist {
+    ($t:ty) => {
+        impl ColumnDist for $t {
+            const FAR: $t = <$t>::MAX;
+            fn zero() -> Self {
+                0
+            }
+            #[inline]
+            fn next(self) -> Self {
+                self.saturating_add(1)
+            }
+            #[inline]
+            fn square(self) -> Option<f64> {
+                (self != <$t>::MAX).then_some((self as f64) * (self as f64))
+            }
+        }
+    };
 }
-
-impl ColumnDist for u32 {
-    const FAR: u32 = u32::MAX;
-    fn zero() -> Self {
-        0
-    }
-    #[inline]
-    fn next(self) -> Self {
-        self.saturating_add(1)
-    }
-    #[inline]
-    fn square(self) -> Option<f64> {
-        (self != u32::MAX).then_some((self as f64) * (self as f64))
-    }
-}
+unsigned_column_dist!(u8);
+unsigned_column_dist!(u32);
 
 /// What is stored for each squared distance.
 #[derive(Clone, Copy)]

@@ -43,8 +43,11 @@ pub struct Geometry {
     pub centreline: Polyline,
     pub floor: TriMesh,
     pub wall_mesh: TriMesh,
-    /// Ducts and rings (visual only).
-    pub barriers: TriMesh,
+    /// Visual duct tubes: per duct, `n` cross-sections of `tube_segments` vertices,
+    /// quads `[p, t, r], [p, q, t]` (see `geometry::tube`), ducts one after another.
+    pub duct_mesh: TriMesh,
+    /// Visual rings around the ducts, every `ring_spacing_m`.
+    pub ring_mesh: TriMesh,
     /// IoU of the re-rasterised walls' drivable region with the corridor.
     pub iou: f64,
     /// Worst distance (cells) of the simplified walls from the exact level set.
@@ -218,10 +221,10 @@ pub fn build_geometry(
     lap("centreline", &mut timings);
 
     let wall_mesh = extrude_walls(&walls, 0.0, p.wall_height_m);
-    let mut barriers = TriMesh::default();
+    let (mut duct_mesh, mut ring_mesh) = (TriMesh::default(), TriMesh::default());
     for d in &ducts {
-        barriers.append(&sweep_closed_tube(d, radius, radius, p.tube_segments));
-        barriers.append(&rings_along(
+        duct_mesh.append(&sweep_closed_tube(d, radius, radius, p.tube_segments));
+        ring_mesh.append(&rings_along(
             d,
             p.ring_spacing_m,
             p.ring_width_m,
@@ -251,7 +254,8 @@ pub fn build_geometry(
         centreline,
         floor,
         wall_mesh,
-        barriers,
+        duct_mesh,
+        ring_mesh,
         iou,
         max_wall_deviation_cells,
         corridor,

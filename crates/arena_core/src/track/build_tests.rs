@@ -71,7 +71,7 @@ fn filled_ring_builds_with_high_iou_and_correct_geometry() {
     assert!(cl.iter().all(|&p| (radius(p) - r).abs() < 0.05));
     assert!((len / cl.len() as f64 - 0.1).abs() < 0.002);
     assert_ne!(cl[0], cl[cl.len() - 1]);
-    for m in [&geo.floor, &geo.wall_mesh, &geo.barriers] {
+    for m in [&geo.floor, &geo.wall_mesh, &geo.duct_mesh, &geo.ring_mesh] {
         assert!(!m.triangles.is_empty());
         assert!(m
             .triangles
