@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import pytest
@@ -11,8 +10,11 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def sources_dir() -> Path:
-    """The public track data (../shared/track-sources by default)."""
-    return Path(os.environ.get("ROBORACER_ARENA_SOURCES", REPO.parent / "shared" / "track-sources"))
+    """The public track data: what the package resolves (``roboracer_arena.paths``), else
+    ../shared/track-sources beside this checkout (the tests may run against an installed wheel)."""
+    from roboracer_arena.paths import default_sources_dir
+
+    return default_sources_dir() or (REPO.parent / "shared" / "track-sources")
 
 
 @pytest.fixture(scope="session")

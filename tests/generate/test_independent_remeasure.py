@@ -12,9 +12,9 @@ from hypothesis import strategies as st
 from roboracer_arena import TrackSpec
 from roboracer_arena.constructor_config import ConstructorConfig
 from roboracer_arena.generate import Acceptance, GenerationFailure, generate_track, screen, write_outputs
+from roboracer_arena.paths import bench_data
 from independent_measure import measure
 
-REPO = Path(__file__).resolve().parents[2]
 
 
 def assert_independently_valid(acc: Acceptance, outdir: Path) -> None:
@@ -33,7 +33,7 @@ def assert_independently_valid(acc: Acceptance, outdir: Path) -> None:
 
 
 def _bench_specs() -> list[TrackSpec]:
-    lines = (REPO / "benches" / "specs.jsonl").read_text().splitlines()
+    lines = bench_data("specs.jsonl").read_text().splitlines()
     return [TrackSpec.from_dict(json.loads(s)) for s in lines if s.strip()]
 
 

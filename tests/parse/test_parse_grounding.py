@@ -10,10 +10,10 @@ import pytest
 from roboracer_arena.errors import GroundingError
 from roboracer_arena.parse import ground, parse_request
 from roboracer_arena.spec import TrackSpec
+from roboracer_arena.paths import bench_data
 
 PAPER = "a 38 m lap for a small 15 by 12 hall"
 PAPER_SPEC = dict(lap_length_m=38, hall_x_m=15, hall_y_m=12)
-REPO = Path(__file__).resolve().parents[2]
 
 
 def spec(**kw) -> TrackSpec:
@@ -103,7 +103,7 @@ def test_defaults_need_no_trace():
 
 @pytest.mark.parametrize("name", ["requests.jsonl", "requests_heldout.jsonl"])
 def test_rules_output_is_always_grounded(name):
-    for line in (REPO / "benches" / name).read_text().splitlines():
+    for line in bench_data(name).read_text().splitlines():
         text = json.loads(line)["text"]
         r = parse_request(text)
         assert ground(text, r.spec, rules_reading=False).invented == {}, text

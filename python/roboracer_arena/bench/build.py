@@ -62,10 +62,10 @@ QUICK = ["generated 3h1c", "columbia", "gbr"]
 
 
 def sources_dir() -> Path:
-    env = os.environ.get("ROBORACER_ARENA_SOURCES")
-    if env:
-        return Path(env)
-    return Path(__file__).resolve().parents[3].parent / "shared" / "track-sources"
+    """The track-sources folder (:func:`roboracer_arena.paths.sources_dir`)."""
+    from ..paths import sources_dir as resolve
+
+    return resolve(None, "bench build (it measures maps from the track sources)")
 
 
 def paper_at(mp: float) -> tuple[float, float]:

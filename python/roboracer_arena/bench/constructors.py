@@ -4,7 +4,7 @@ Every constructor gets the same specifications and seeds. How trials are counted
 
 * A spec the admissibility screen rejects (e.g. the 200 m lap in a 20 × 15 m hall) is a
   *correct rejection*, reported on its own line, and is **not a trial**: no constructor
-  runs on it. The paper's 30 trials are 10 admissible specs × 3 seeds; ``benches/specs.jsonl``
+  runs on it. The paper's 30 trials are 10 admissible specs × 3 seeds; ``bench/data/specs.jsonl``
   holds 11 specs of which one is screen-rejected, so it gives the same 30.
 * A trial is one (admissible spec, seed, constructor). *Built*: the constructor emitted a
   centreline, it was rasterised (Eq. 3) and the ROS map was written to disk. *Valid*: that
@@ -55,11 +55,10 @@ QUICK_SPECS = ("paper-teaser-3h1c-20x15", "paper-200m-in-20x15", "narrow-1.2m-sm
 
 
 def default_specs_path() -> Path:
-    """``benches/specs.jsonl`` in the current directory, else beside the source tree."""
-    here = Path("benches/specs.jsonl")
-    if here.is_file():
-        return here
-    return Path(__file__).resolve().parents[3] / "benches" / "specs.jsonl"
+    """The spec set shipped in the package (``roboracer_arena/bench/data/specs.jsonl``)."""
+    from ..paths import bench_data
+
+    return bench_data("specs.jsonl")
 
 
 def load_specs(path: str | Path) -> list[TrackSpec]:
@@ -191,7 +190,7 @@ def print_table(result: dict[str, Any]) -> None:
 
 def register(kinds) -> None:
     p = kinds.add_parser("constructors", help="lattice vs DE vs random sampling (the paper's Table 3)", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--specs", type=Path, default=None, metavar="FILE.jsonl", help="one TrackSpec JSON per line (default benches/specs.jsonl)")
+    p.add_argument("--specs", type=Path, default=None, metavar="FILE.jsonl", help="one TrackSpec JSON per line (default: the set shipped in the package)")
     p.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], metavar="S", help="seeds (default 0 1 2)")
     p.add_argument("--constructors", nargs="+", choices=CONSTRUCTOR_CHOICES, default=list(CONSTRUCTOR_CHOICES), metavar="C", help=f"subset of {', '.join(CONSTRUCTOR_CHOICES)} (default all)")
     p.add_argument("--json", type=Path, metavar="FILE", help="write the summary and every trial to FILE")

@@ -38,8 +38,9 @@ def register(kinds) -> None:
 
 
 def _default_map() -> Path:
-    base = Path(os.environ.get("ROBORACER_ARENA_SOURCES", Path.cwd().parent / "shared" / "track-sources"))
-    return base / DEFAULT_MAP
+    from ..paths import sources_dir
+
+    return sources_dir(None, "bench env (its default map is f1tenth-gym berlin; or pass --map)") / DEFAULT_MAP
 
 
 def _env_kwargs(beams: int) -> dict[str, Any]:

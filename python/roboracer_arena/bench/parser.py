@@ -22,8 +22,9 @@ from typing import Any, Callable
 from ..errors import ArenaError, InvalidArgumentError
 from ..fileio import atomic_write_text
 from ..parse.result import DEFAULTS
+from ..paths import bench_data
 
-REPO_REQUESTS = Path(__file__).resolve().parents[3] / "benches" / "requests.jsonl"
+REPO_REQUESTS = bench_data("requests.jsonl")  # shipped in the package (bench/data)
 
 # The paper's Table 2 (Gemma 4 31B etc. through Ollama on an RTX PRO 6000).
 PAPER_ROWS = [

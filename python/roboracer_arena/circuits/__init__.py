@@ -8,10 +8,10 @@ reduction where sections would merge, rasterisation and accuracy measurement.
 from .build import CircuitConfig, build_all, build_circuit
 from .geometry import reduce_widths, self_intersections, smooth_resample
 from .projection import geodesic_distance, geodesic_length, project_local
-from .sources import CircuitInput, circuit_inputs, default_sources_dir, read_geojson, read_tum_csv
+from .sources import CircuitInput, circuit_inputs, read_geojson, read_tum_csv
 
 __all__ = [
-    "CircuitConfig", "CircuitInput", "build_all", "build_circuit", "circuit_inputs", "default_sources_dir",
+    "CircuitConfig", "CircuitInput", "build_all", "build_circuit", "circuit_inputs",
     "geodesic_distance", "geodesic_length", "project_local", "read_geojson", "read_tum_csv", "reduce_widths",
     "self_intersections", "smooth_resample",
 ]

@@ -19,6 +19,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from .. import _core
+from ..direction import direction_of
 from ..errors import CorridorError
 from ..fileio import atomic_write_text
 from ..generate.mapfile import save_ros_map
@@ -49,14 +50,6 @@ def _csv(xy: np.ndarray, widths: np.ndarray) -> str:
     return buf.getvalue()
 
 
-def _orient_ccw(xy: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]:
-    x, y = xy[:, 0], xy[:, 1]
-    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-    if area < 0:
-        return (xy[::-1].copy(), *(a[::-1].copy() for a in arrays))
-    return (xy, *arrays)
-
-
 def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = CircuitConfig()) -> dict:
     """Build one circuit into ``outdir/<id>/`` and return its report (also written as
     ``circuit.json``). Raises :class:`CorridorError` if the raster has no closed corridor."""
@@ -64,7 +57,9 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
     raw = c.xy * cfg.scale
     tol = cfg.tolerance_tum if c.source == "tumftm" else cfg.tolerance_geojson
     xy, w_nom = smooth_resample(raw, c.widths * cfg.scale, cfg.spacing, tol)
-    xy, w_nom = _orient_ccw(xy - xy.mean(axis=0), w_nom)
+    # The source lists its points in the racing direction from the start line: keep that
+    # order (and the first point) all the way to centreline.csv, which the env drives.
+    xy = xy - xy.mean(axis=0)
     coarse_step = max(1, int(round(1.0 / cfg.spacing)))  # crossings on a 1 m loop
     crossings = self_intersections(xy, step=coarse_step)
     nar = reduce_widths(xy, w_nom, cfg.wall_thickness, cfg.spacing, crossings)
@@ -126,6 +121,8 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
         "narrowed_fraction": round(nar.narrowed_fraction, 4),
         "unresolved_fraction": round(nar.unresolved_fraction, 4),
         "min_separation_m": round(nar.min_separation_m, 3) if np.isfinite(nar.min_separation_m) else None,
+        "direction": direction_of(xy),
+        "direction_source": "point order of the source centreline",
         "grade_separated": grade_separated,
         "crossings": [[round(float(p[0]), 2), round(float(p[1]), 2)] for _, _, p in crossings],
         "raster": {"width_px": wpx, "height_px": h, "origin": [round(v, 4) for v in origin]},

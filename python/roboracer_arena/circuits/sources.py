@@ -10,7 +10,6 @@ venue TUM does not cover with the same layout (same venue and lap length within 
 from __future__ import annotations
 
 import json
-import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,9 +17,9 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import MapFormatError, MapIOError
+from ..paths import sources_dir
 from .projection import geodesic_length, project_local
 
-SOURCES_ENV = "ROBORACER_ARENA_SOURCES"
 TUM_DIR = "tumftm-racetrack-database"
 BACINGER_DIR = "bacinger-f1-circuits"
 
@@ -69,15 +68,6 @@ class CircuitInput:
     def length_m(self) -> float:
         d = np.diff(np.vstack([self.xy, self.xy[:1]]), axis=0)
         return float(np.hypot(d[:, 0], d[:, 1]).sum())
-
-
-def default_sources_dir() -> Path:
-    """``$ROBORACER_ARENA_SOURCES``, else ``../shared/track-sources`` beside the repository."""
-    env = os.environ.get(SOURCES_ENV)
-    if env:
-        return Path(env)
-    repo = Path(__file__).resolve().parents[3]
-    return (repo / ".." / "shared" / "track-sources").resolve()
 
 
 def slug(text: str) -> str:
@@ -178,7 +168,7 @@ def read_geojson(path: str | Path, width_m: float = BACINGER_WIDTH_M) -> Circuit
 
 def circuit_inputs(sources: str | Path | None = None) -> tuple[list[CircuitInput], list[dict]]:
     """Every circuit to build, and the bacinger circuits skipped as covered by TUM (with why)."""
-    root = Path(sources) if sources else default_sources_dir()
+    root = sources_dir(sources, "building the circuit library")
     tum_files = sorted((root / TUM_DIR / "tracks").glob("*.csv"))
     geo_files = sorted((root / BACINGER_DIR / "circuits").glob("*.geojson"))
     if not tum_files and not geo_files:

@@ -2,7 +2,9 @@
 exposes ``register(subparsers)`` which adds its parser and sets ``func``.
 
 Exit codes: 0 success, 2 bad input (any :class:`~roboracer_arena.errors.ArenaError`),
-3 request rejected by the screen, 4 generation failure, 1 unexpected internal error.
+3 request rejected by the screen, 4 generation failure, 5 the car did not finish
+(``drive``: a collision, or fewer laps than asked in the time allowed), 1 unexpected
+internal error.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ COMMANDS: list[str] = [
 ]
 
 EXIT_OK, EXIT_INTERNAL, EXIT_BAD_INPUT, EXIT_REJECTED, EXIT_GENERATION_FAILURE = 0, 1, 2, 3, 4
+EXIT_LAP_FAILED = 5
 
 
 def make_parser() -> argparse.ArgumentParser:

@@ -18,9 +18,11 @@ def register(sub) -> None:
     p = sub.add_parser("circuits", help="build the real circuits at 1:10 as ROS maps", description=__doc__,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--sources", type=Path, default=None, metavar="DIR",
-                   help="track-sources directory (default: $ROBORACER_ARENA_SOURCES or ../shared/track-sources)")
-    p.add_argument("-o", "--out", type=Path, default=Path("tracks/circuits"), metavar="DIR",
-                   help="output directory (default: tracks/circuits)")
+                   help="track-sources directory (default: $ROBORACER_ARENA_SOURCES, or ../shared/track-sources "
+                   "beside a source checkout)")
+    p.add_argument("-o", "--out", type=Path, default=None, metavar="DIR",
+                   help="output directory (default: the package's tracks/circuits in a source checkout; "
+                   "required for an installed package)")
     p.add_argument("--resolution", type=float, default=0.05, metavar="M", help="map resolution in m/cell (default 0.05)")
     p.add_argument("--jobs", type=int, default=None, metavar="N", help="worker threads (default: all cores)")
     p.add_argument("--only", nargs="+", metavar="ID", help="build only these circuit ids")
@@ -37,6 +39,10 @@ def run(args: argparse.Namespace) -> int:
     if not (args.resolution > 0):
         raise InvalidArgumentError(f"--resolution must be > 0, got {args.resolution}")
     cfg = CircuitConfig(resolution=args.resolution)
+    if args.out is None:
+        from ..paths import writable_tracks_dir
+
+        args.out = writable_tracks_dir(None, "-o/--out") / "circuits"
 
     def progress(it, total):
         return tqdm(it, total=total, desc="circuits", unit="circuit", disable=None)

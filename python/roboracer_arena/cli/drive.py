@@ -1,12 +1,16 @@
 """``roboracer-arena drive MAP``: drive the reference pure-pursuit car around any map
-(ROS map YAML, or a catalog id once the track library is installed) and report lap
-times and contacts; optionally write a GIF/MP4 of the drive."""
+(ROS map YAML, or a catalog id) in its racing direction (``--reverse``: the other way)
+and report lap times and contacts; optionally write a GIF/MP4 of the drive.
+
+Exit codes: 0 every lap completed, 5 the car crashed or did not finish the laps in the
+time allowed, 2 bad input."""
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
 
+from . import EXIT_LAP_FAILED, EXIT_OK
 from ._common import add_json_flag, print_json
 
 
@@ -19,6 +23,7 @@ def register(sub) -> None:
     p.add_argument("--fps", type=float, default=10.0, help="frames per second of the video (default 10)")
     p.add_argument("--max-speed", type=float, default=None, help="speed cap of the driver (m/s, default 5)")
     p.add_argument("--max-time", type=float, default=None, help="give up after this much simulated time (s)")
+    p.add_argument("--reverse", action="store_true", help="drive against the track's racing direction")
     add_json_flag(p)
     p.set_defaults(func=run)
 
@@ -35,10 +40,11 @@ def run(args: argparse.Namespace) -> int:
             raise InvalidArgumentError(f"--max-speed must be > 0, got {args.max_speed}")
         params = PurePursuitParams(max_speed=args.max_speed)
     res = drive_laps(args.map, args.laps, params=params, video=args.gif, video_fps=args.fps,
-                     max_time_s=args.max_time, progress=not args.json)
+                     max_time_s=args.max_time, progress=not args.json, reverse=args.reverse)
+    status = EXIT_OK if res.completed else EXIT_LAP_FAILED
     if args.json:
         print_json(res.to_dict())
-        return 0
+        return status
     verdict = "completed" if res.completed else ("COLLIDED" if res.collided else "did not finish")
     print(f"{res.track}: {verdict} {res.laps_completed}/{res.laps_requested} laps of {res.track_length:.1f} m "
           f"in {res.sim_time:.2f} s simulated ({res.wall_time:.2f} s wall), top speed {res.max_speed:.2f} m/s")
@@ -52,4 +58,4 @@ def run(args: argparse.Namespace) -> int:
                   "the map's drivable path is too narrow at that point")
     if res.video:
         print(f"  wrote {res.video}")
-    return 0
+    return status

@@ -21,7 +21,7 @@ from ._common import add_json_flag, print_json
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--catalog", type=Path, default=None, metavar="FILE", help="catalog JSON (default tracks/catalog.json)")
+    p.add_argument("--catalog", type=Path, default=None, metavar="FILE", help="catalog JSON (default: the one shipped in the package)")
     p.add_argument("--sources", type=Path, default=None, metavar="DIR", help="track-sources directory for recorded maps")
     add_json_flag(p)
 
@@ -55,6 +55,7 @@ def register(sub) -> None:
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
     a.add_argument("--no-usd", action="store_true", help="skip the USD build check")
     a.add_argument("--no-drive", action="store_true", help="skip the pure-pursuit lap")
+    a.add_argument("--reverse", action="store_true", help="drive each lap against the track's racing direction")
     a.add_argument("--update-catalog", action="store_true",
                    help="record the results in the catalog; recorded maps that fail move to left_out")
     a.set_defaults(func=run_verify)
@@ -66,7 +67,8 @@ def register(sub) -> None:
     a.set_defaults(func=run_sheet)
     a = t.add_parser("catalog", help="rebuild tracks/catalog.json from tracks/ and the sources")
     _common(a)
-    a.add_argument("--tracks", type=Path, default=None, metavar="DIR", help="tracks directory (default tracks/)")
+    a.add_argument("--tracks", type=Path, default=None, metavar="DIR", help="tracks directory read (circuits/, generated/) and written (catalog.json); "
+                   "default: the package's tracks/ in a source checkout, required for an installed package")
     a.add_argument("--generate", action="store_true", help="rerun the generated-track sweep first")
     a.add_argument("--count", type=int, default=60, help="generated tracks to keep (default 60)")
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
@@ -114,12 +116,14 @@ def run_list(args) -> int:
     cat = _load(args)
     entries = _select(cat, args)
     if args.json:
-        print_json([{k: e.get(k) for k in ("id", "name", "kind", "lap_length_m", "width_mean_m", "map")} for e in entries])
+        print_json([{k: e.get(k) for k in ("id", "name", "kind", "direction", "lap_length_m", "width_mean_m", "map")}
+                    for e in entries])
         return EXIT_OK
-    print(f"{'id':<42}{'kind':<10}{'lap m':>9}{'w mean':>8}{'w min':>7}{'r min':>7}{'raster':>11}  source")
+    print(f"{'id':<42}{'kind':<10}{'dir':<5}{'lap m':>9}{'w mean':>8}{'w min':>7}{'r min':>7}{'raster':>11}  source")
     for e in entries:
         r = e.get("raster") or {}
-        print(f"{e['id']:<42}{e['kind']:<10}{_fmt(e.get('lap_length_m'), '9.1f')}{_fmt(e.get('width_mean_m'), '8.2f')}"
+        d = {"clockwise": "cw", "counterclockwise": "ccw"}.get(e.get("direction", ""), "-")
+        print(f"{e['id']:<42}{e['kind']:<10}{d:<5}{_fmt(e.get('lap_length_m'), '9.1f')}{_fmt(e.get('width_mean_m'), '8.2f')}"
               f"{_fmt(e.get('width_min_m'), '7.2f')}{_fmt(e.get('min_radius_m'), '7.2f')}"
               f"{str(r.get('width_px', '')) + 'x' + str(r.get('height_px', '')):>11}  {e['source'].get('licence', '')[:24]}")
     counts = {k: sum(e["kind"] == k for e in entries) for k in ("circuit", "recorded", "generated")}
@@ -169,11 +173,15 @@ def run_verify(args) -> int:
 
     from ..library.verify import verify
 
+    from ..errors import InvalidArgumentError
+
+    if args.reverse and args.update_catalog:
+        raise InvalidArgumentError("--reverse and --update-catalog: the catalog records laps in the racing direction")
     cat = _load(args)
     entries = _select(cat, args)
     jobs = args.jobs or os.cpu_count() or 1
     s = verify(cat, entries, args.sources, jobs=jobs, usd=not args.no_usd, drive=not args.no_drive,
-               progress=_progress("verify"))
+               progress=_progress("verify"), reverse=args.reverse)
     if args.update_catalog:
         from ..fileio import atomic_write_text
         from ..library.verify import prune_catalog
@@ -221,13 +229,12 @@ def run_sheet(args) -> int:
 def run_catalog(args) -> int:
     import os
 
-    from ..circuits.sources import default_sources_dir
-    from ..library import default_tracks_dir
     from ..library.generated import build_generated
     from ..library.index import build_catalog
+    from ..paths import sources_dir, writable_tracks_dir
 
-    tracks = args.tracks or (args.catalog.parent if args.catalog else default_tracks_dir())
-    sources = args.sources or default_sources_dir()
+    tracks = writable_tracks_dir(args.tracks or (args.catalog.parent if args.catalog else None), "--tracks")
+    sources = sources_dir(args.sources, "tracks catalog (it assesses the recorded maps)")
     jobs = args.jobs or os.cpu_count() or 1
     if args.generate:
         g = build_generated(tracks / "generated", count=args.count, jobs=jobs, progress=_progress("generate"))

@@ -92,6 +92,11 @@ class EnvConfig(BaseModel):
     )
     grid_spacing: float = Field(1.0, gt=0, description="Longitudinal gap between grid slots (m).")
     grid_offset: float = Field(0.2, ge=0, description="Lateral offset of the staggered grid slots (m).")
+    reverse: bool = Field(
+        False,
+        description="Drive every track against its racing direction (the centreline reversed; "
+        "see roboracer_arena.direction). The grid starts at the same start line, facing the other way.",
+    )
     vehicles_per_env: int = Field(1, ge=1, le=64, description="Vehicles sharing one track (one world) per env.")
     sim: SimConfig = Field(default_factory=SimConfig)
 

@@ -45,7 +45,7 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']}, got {render_mode!r}")
         self.config = EnvConfig.build(config, **overrides)
-        self.tracks = resolve_tracks(track, corridor_params)
+        self.tracks = resolve_tracks(track, corridor_params, reverse=self.config.reverse)
         self._batch = SimBatch(self.tracks, 1, self.config, seed=0)
         self.observation_space, self.action_space = self._batch.single_spaces()
         self.render_mode = render_mode

@@ -9,6 +9,11 @@
 * a :class:`Track` (e.g. :meth:`Track.from_polylines` for synthetic tracks);
 * a catalog id or selection (a string that is not an existing file), resolved by the
   track library (``roboracer_arena.library``) through :func:`resolve_catalog`.
+
+Every track is driven in its racing direction (see :mod:`roboracer_arena.direction`): a
+map path takes it from the centreline file beside the map, a catalog id from the catalog,
+an object from its ``direction`` attribute (a string) when it has one; otherwise the
+documented default (counter-clockwise). ``reverse=True`` drives every track the other way.
 """
 
 from __future__ import annotations
@@ -21,6 +26,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from ..direction import DEFAULT_DIRECTION, TrackDirection, check_direction, direction_for_map, direction_of, orient_to
+from ..direction import reverse as reverse_line
 from ..errors import ConfigError
 
 MAP_SUFFIXES = (".yaml", ".yml")
@@ -28,10 +35,11 @@ MAP_SUFFIXES = (".yaml", ".yml")
 
 @dataclass(frozen=True, eq=False)
 class Track:
-    """A drivable closed track: collision walls and a closed, CCW centreline (map frame, m).
+    """A drivable closed track: collision walls and a closed centreline (map frame, m).
 
-    ``centreline`` is kept exactly as the corridor extraction returned it (it is what the
-    simulator receives); :attr:`loop` is the same ring without a repeated closing vertex.
+    ``centreline`` is what the simulator receives: its vertex order is the direction of
+    travel and its first vertex the start of the grid (:attr:`direction`,
+    :meth:`reversed`); :attr:`loop` is the same ring without a repeated closing vertex.
     """
 
     name: str
@@ -52,6 +60,19 @@ class Track:
         if not ws:
             raise ConfigError(f"track {name!r}: no walls")
         return cls(name=name, walls=ws, centreline=c)
+
+    @property
+    def direction(self) -> str:
+        """``"clockwise"`` or ``"counterclockwise"``: the way the centreline runs."""
+        return direction_of(self.loop)
+
+    def reversed(self) -> Track:
+        """The same track driven the other way (same start vertex)."""
+        return Track(name=self.name, walls=self.walls, centreline=reverse_line(self.centreline), source=self.source)
+
+    def oriented(self, how: TrackDirection) -> Track:
+        """The same track in ``how.direction``, starting at ``how.start`` when that lies on it."""
+        return Track(name=self.name, walls=self.walls, centreline=orient_to(self.centreline, how), source=self.source)
 
     @cached_property
     def loop(self) -> np.ndarray:
@@ -108,8 +129,9 @@ class Track:
         return list(self.walls), self.centreline
 
 
-def resolve_tracks(track: Any, corridor_params: Any = None) -> list[Track]:
-    """Resolve ``track=`` (one item or a list/tuple of items) to a non-empty list of tracks."""
+def resolve_tracks(track: Any, corridor_params: Any = None, reverse: bool = False) -> list[Track]:
+    """Resolve ``track=`` (one item or a list/tuple of items) to a non-empty list of tracks,
+    each in its racing direction, or the other way round with ``reverse=True``."""
     if track is None:
         raise ConfigError("track= is required: a map YAML path, an OccupancyMap, a CorridorGeometry or a catalog id")
     items = list(track) if isinstance(track, (list, tuple)) else [track]
@@ -118,7 +140,7 @@ def resolve_tracks(track: Any, corridor_params: Any = None) -> list[Track]:
     out: list[Track] = []
     for item in items:
         out.extend(_resolve_one(item, corridor_params))
-    return out
+    return [t.reversed() for t in out] if reverse else out
 
 
 def _resolve_one(item: Any, corridor_params: Any) -> list[Track]:
@@ -130,19 +152,36 @@ def _resolve_one(item: Any, corridor_params: Any) -> list[Track]:
             return [track_from_map_path(path, corridor_params)]
         return [t for src in resolve_catalog(str(item)) for t in _resolve_one(src, corridor_params)]
     if hasattr(item, "walls") and hasattr(item, "centreline"):
-        return [_from_corridor(item, getattr(item, "name", None) or "corridor")]
+        return [_with_own_direction(_from_corridor(item, getattr(item, "name", None) or "corridor"), item)]
     if all(hasattr(item, a) for a in ("data", "resolution", "origin")):
         from ..corridor import extract_corridor
 
-        return [_from_corridor(extract_corridor(item, corridor_params), getattr(item, "name", None) or "map")]
+        t = _from_corridor(extract_corridor(item, corridor_params), getattr(item, "name", None) or "map")
+        return [_with_own_direction(t, item)]
     raise ConfigError(
         f"cannot use {type(item).__name__} as a track: expected a map YAML path, an OccupancyMap, "
         "a CorridorGeometry, a Track or a catalog id"
     )
 
 
-def track_from_map_path(path: str | os.PathLike[str], corridor_params: Any = None) -> Track:
-    """Extract (once per file version and parameters) the corridor of a ROS map YAML."""
+def _with_own_direction(t: Track, item: Any) -> Track:
+    """``t`` in the direction ``item`` declares (a ``direction`` string attribute; an
+    optional ``start`` (x, y)), else in that of the map file it was loaded from (its
+    ``path``, or its ``map``'s), else in the default direction."""
+    declared = getattr(item, "direction", None)
+    if declared is None:
+        path = getattr(item, "path", None) or getattr(getattr(item, "map", None), "path", None)
+        return t.oriented(direction_for_map(path) if path else TrackDirection(DEFAULT_DIRECTION))
+    start = getattr(item, "start", None)
+    return t.oriented(TrackDirection(check_direction(declared, f"{type(item).__name__}.direction"),
+                                     None if start is None else (float(start[0]), float(start[1])), "object"))
+
+
+def track_from_map_path(path: str | os.PathLike[str], corridor_params: Any = None,
+                        direction: TrackDirection | None = None) -> Track:
+    """The track of a ROS map YAML in its racing direction: ``direction`` if given, else
+    the one :func:`~roboracer_arena.direction.direction_for_map` finds beside the map.
+    The corridor is extracted once per file version and parameters."""
     p = Path(path).expanduser().resolve()
     try:
         st = p.stat()
@@ -159,7 +198,7 @@ def track_from_map_path(path: str | os.PathLike[str], corridor_params: Any = Non
         if len(_TRACK_CACHE) >= _CACHE_SIZE:
             _TRACK_CACHE.pop(next(iter(_TRACK_CACHE)))
         _TRACK_CACHE[key] = cached
-    return cached
+    return cached.oriented(direction if direction is not None else direction_for_map(p))
 
 
 _CACHE_SIZE = 64

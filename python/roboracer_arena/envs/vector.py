@@ -61,7 +61,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self.config = EnvConfig.build(config, **overrides)
         if max_episode_steps is not None:  # gymnasium.make_vec passes the spec's limit
             self.config = EnvConfig.build(self.config, time_limit_s=max_episode_steps * self.config.control_dt)
-        self.tracks = resolve_tracks(track, corridor_params)
+        self.tracks = resolve_tracks(track, corridor_params, reverse=self.config.reverse)
         self.num_envs = int(num_envs)
         self._batch = SimBatch(self.tracks, self.num_envs, self.config, seed=0)
         self.single_observation_space, self.single_action_space = self._batch.single_spaces()

@@ -11,15 +11,14 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from ..errors import InvalidArgumentError, MapIOError
+from ..paths import sources_dir, tracks_dir
 
-TRACKS_ENV = "ROBORACER_ARENA_TRACKS"
 KINDS = ("recorded", "circuit", "generated")
 #: Selections accepted by :func:`resolve` besides single ids.
 SELECTIONS = {"all": KINDS, "recorded": ("recorded",), "circuits": ("circuit",), "circuit": ("circuit",),
@@ -39,9 +38,8 @@ LICENCES = {
 
 
 def default_tracks_dir() -> Path:
-    """``$ROBORACER_ARENA_TRACKS``, else ``tracks/`` in the repository checkout."""
-    env = os.environ.get(TRACKS_ENV)
-    return Path(env) if env else Path(__file__).resolve().parents[3] / "tracks"
+    """``$ROBORACER_ARENA_TRACKS``, else the catalog shipped in the package."""
+    return tracks_dir()
 
 
 def provenance(sources: Path, folder: str) -> dict[str, str]:
@@ -88,9 +86,7 @@ class Catalog:
     def map_path(self, entry: dict[str, Any], sources: Path | None = None, tracks: Path | None = None) -> Path:
         """Absolute path of an entry's map YAML."""
         if entry["kind"] == "recorded":
-            from ..circuits.sources import default_sources_dir
-
-            return (Path(sources) if sources else default_sources_dir()) / entry["map"]
+            return sources_dir(sources, f"recorded map {entry['id']!r}") / entry["map"]
         base = Path(tracks) if tracks else (self.path.parent if self.path else default_tracks_dir())
         return base / entry["map"]
 

@@ -13,6 +13,7 @@ from typing import Any
 from .. import __version__
 from ..fileio import atomic_write_text
 from .catalog import Catalog, provenance, sha256_file
+from .directions import annotate_directions
 from .recorded import assess_all
 
 PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
@@ -129,5 +130,6 @@ def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress=None) -> 
         "seconds": round(time.perf_counter() - t0, 2),
     }
     cat = Catalog(entries=entries, left_out=left_out, meta=meta, path=tracks / "catalog.json")
+    annotate_directions(cat, sources)
     atomic_write_text(tracks / "catalog.json", cat.to_json())
     return cat

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from .catalog import Catalog, load_catalog
+from .directions import entry_direction
 
 
 def centreline_path(cat: Catalog, entry: dict[str, Any], sources: Path | None = None) -> Path | None:
@@ -28,18 +29,19 @@ def entry_track(cat: Catalog, entry: dict[str, Any], sources: Path | None = None
 
     yaml_path = cat.map_path(entry, sources)
     line_csv = centreline_path(cat, entry, sources)
+    how = entry_direction(cat, entry, sources)
     if entry.get("grade_separated") and line_csv is not None and line_csv.is_file():
         line = np.loadtxt(line_csv, delimiter=",", comments="#", ndmin=2)[:, :2]
         walls = track_from_map_path(yaml_path).walls
-        return Track.from_polylines(walls, line, name=entry["id"]), "circuit centreline"
-    t = track_from_map_path(yaml_path)
+        return Track.from_polylines(walls, line, name=entry["id"]).oriented(how), "circuit centreline"
+    t = track_from_map_path(yaml_path, direction=how)
     return dataclasses.replace(t, name=entry["id"]), "corridor centreline"
 
 
 def resolve_tracks(selection: str | list[str], catalog: str | Path | Catalog | None = None,
                    sources: str | Path | None = None) -> list[Any]:
-    """Tracks (named by catalog id) for an id, a list of ids, or a selection
-    (``"circuits"``, ``"recorded"``, ``"generated"``, ``"all"``)."""
+    """Tracks (named by catalog id, each in the direction the catalog records) for an id,
+    a list of ids, or a selection (``"circuits"``, ``"recorded"``, ``"generated"``, ``"all"``)."""
     cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)
     items = [selection] if isinstance(selection, str) else list(selection)
     src = Path(sources) if sources else None

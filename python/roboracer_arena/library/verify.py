@@ -118,10 +118,11 @@ def check_usd(entry: dict, yaml_path: Path) -> Check:
 CAUTIOUS = {"max_speed": 2.5, "lateral_accel": 2.5, "lookahead_min": 0.5}
 
 
-def check_drive(cat: Catalog, entry: dict, sources: Path | None = None) -> Check:
+def check_drive(cat: Catalog, entry: dict, sources: Path | None = None, reverse: bool = False) -> Check:
     """Hook onto the simulator: the reference pure-pursuit driver completes one lap without
-    a contact (default env: full vehicle model, 1081-beam lidar). After a collision it
-    tries once more at cautious settings (:data:`CAUTIOUS`); a pass then says so."""
+    a contact (default env: full vehicle model, 1081-beam lidar), in the racing direction
+    the catalog records (against it with ``reverse``). After a collision it tries once
+    more at cautious settings (:data:`CAUTIOUS`); a pass then says so."""
     try:
         from ..drivers import PurePursuitParams, drive_laps
         from .._core import Simulator  # noqa: F401  (the native simulator must be built in)
@@ -129,6 +130,12 @@ def check_drive(cat: Catalog, entry: dict, sources: Path | None = None) -> Check
         return Check(NOT_RUN, "not run: simulator not available (roboracer_arena.drivers / _core.Simulator)")
     try:
         target, follows = entry_track(cat, entry, sources)
+        if reverse:
+            target = target.reversed()
+        want = entry.get("direction")
+        if want and not reverse and target.direction != want:
+            return Check(FAIL, f"the simulator's track runs {target.direction}, the catalog says {want}")
+        follows = f"{target.direction}, {follows}"
         r = drive_laps(target, laps=1)
         how = "reference settings"
         if not r.completed:
@@ -145,7 +152,8 @@ def check_drive(cat: Catalog, entry: dict, sources: Path | None = None) -> Check
                        f"also at {CAUTIOUS['max_speed']:g} m/s)")
 
 
-def verify_entry(cat: Catalog, entry: dict, sources: Path | None = None, usd: bool = True, drive: bool = True) -> TrackResult:
+def verify_entry(cat: Catalog, entry: dict, sources: Path | None = None, usd: bool = True, drive: bool = True,
+                 reverse: bool = False) -> TrackResult:
     t0 = time.perf_counter()
     res = TrackResult(entry["id"], entry["kind"])
     yaml_path = cat.map_path(entry, sources)
@@ -155,28 +163,29 @@ def verify_entry(cat: Catalog, entry: dict, sources: Path | None = None, usd: bo
     else:
         res.checks["ring"] = Check(NOT_RUN, "not run: map did not load")
     res.checks["usd"] = check_usd(entry, yaml_path) if usd else Check(NOT_RUN, "not run: --no-usd")
-    res.checks["drive"] = check_drive(cat, entry, sources) if drive else Check(NOT_RUN, "not run: --no-drive")
+    res.checks["drive"] = check_drive(cat, entry, sources, reverse) if drive else Check(NOT_RUN, "not run: --no-drive")
     res.seconds = time.perf_counter() - t0
     return res
 
 
 def _work(args) -> dict:
-    cat, entry, sources, usd, drive = args
+    cat, entry, sources, usd, drive, reverse = args
     try:
-        return verify_entry(cat, entry, sources, usd, drive).to_dict()
+        return verify_entry(cat, entry, sources, usd, drive, reverse).to_dict()
     except Exception as e:  # one broken track never stops the run
         return {"id": entry["id"], "kind": entry["kind"], "passed": False, "seconds": 0.0,
                 "checks": {"internal": {"status": FAIL, "detail": f"{type(e).__name__}: {e}"}}}
 
 
 def verify(cat: Catalog, entries: list[dict], sources: Path | None = None, jobs: int = 1, usd: bool = True,
-           drive: bool = True, progress=None) -> dict[str, Any]:
-    """Verify ``entries``; returns per-track results and a summary."""
+           drive: bool = True, progress=None, reverse: bool = False) -> dict[str, Any]:
+    """Verify ``entries`` (laps against the racing direction with ``reverse``); returns
+    per-track results and a summary."""
     import os
     from multiprocessing import get_context
 
     t0 = time.perf_counter()
-    tasks = [(cat, e, sources, usd, drive) for e in entries]
+    tasks = [(cat, e, sources, usd, drive, reverse) for e in entries]
     if jobs > 1 and len(tasks) > 1:
         with get_context("spawn").Pool(jobs) as pool:
             it = pool.imap(_work, tasks)
