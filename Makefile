@@ -8,7 +8,7 @@ export PATH := $(abspath $(BIN)):$(PATH)
 # Where the public track data lives (see ../shared/track-sources/SOURCES.md).
 export ROBORACER_ARENA_SOURCES ?= $(abspath ../shared/track-sources)
 
-.PHONY: demo test test-rust test-python bench lint develop release clean
+.PHONY: demo test test-rust test-python test-dev wheel bench lint develop release clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -30,8 +30,19 @@ test: test-rust test-python
 test-rust:
 	cargo test -p arena_core --quiet
 
-test-python: develop
+# The release wheel users install, built once (dist/), installed into a fresh venv in a
+# temporary directory outside the checkout, smoke-tested there (CLI, gym.make, generate,
+# build, demo, bench parser), then the Python suite runs against it: tests test what
+# users get, and CI compiles the extension once.
+test-python: $(BIN)/python
+	MATURIN=$(abspath $(BIN))/maturin scripts/wheel_smoke.sh --pytest -- -q
+
+# Dev loop: the suite against the editable dev build in .venv.
+test-dev: develop
 	$(BIN)/python -m pytest -q
+
+wheel: $(BIN)/python
+	rm -rf dist && $(BIN)/maturin build --release --quiet --out dist
 
 bench: release
 	cargo bench -p arena_core --quiet -- --quick
@@ -42,4 +53,4 @@ lint: develop
 	cargo fmt --all -- --check
 
 clean:
-	rm -rf $(VENV) target out
+	rm -rf $(VENV) target out dist

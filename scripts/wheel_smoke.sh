@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Build the release wheel, install it into a fresh venv in a temporary directory outside the
+# checkout, and use it there as a user would: `tracks list`, a catalog track in gym.make,
+# `generate`, `build`, the demo, `bench parser`. With --pytest, then run the Python test
+# suite against that installed wheel (so the tests test what users get, with one compile).
+#
+# Usage: scripts/wheel_smoke.sh [--pytest] [--wheel FILE.whl] [-- PYTEST ARGS...]
+# Env:   PYTHON (default python3), MATURIN (default: .venv/bin/maturin, else maturin on PATH),
+#        ROBORACER_ARENA_SOURCES (default ../shared/track-sources beside the checkout),
+#        KEEP_WHEEL_ENV=1 keeps the temporary directory.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+PYTHON="${PYTHON:-python3}"
+RUN_PYTEST=0
+WHEEL=""
+PYTEST_ARGS=()
+while [[ $# -gt 0 ]]; do
+    case "$1" in
+        --pytest) RUN_PYTEST=1 ;;
+        --wheel) WHEEL="$2"; shift ;;
+        --) shift; PYTEST_ARGS=("$@"); break ;;
+        *) echo "wheel_smoke.sh: unknown argument $1" >&2; exit 2 ;;
+    esac
+    shift
+done
+export ROBORACER_ARENA_SOURCES="${ROBORACER_ARENA_SOURCES:-$(cd "$ROOT/.." && pwd)/shared/track-sources}"
+unset ROBORACER_ARENA_TRACKS
+
+step() { echo "== wheel smoke: $* ($(date -u +%H:%M:%S))"; }
+
+if [[ -z "$WHEEL" ]]; then
+    MATURIN="${MATURIN:-$ROOT/.venv/bin/maturin}"
+    [[ -x "$MATURIN" ]] || MATURIN="$(command -v maturin)"
+    rm -rf "$ROOT/dist"
+    step "maturin build --release"
+    start=$(date +%s)
+    (cd "$ROOT" && "$MATURIN" build --release --quiet --out dist)
+    echo "   built in $(( $(date +%s) - start )) s"
+    WHEEL="$(ls "$ROOT"/dist/roboracer_arena-*.whl | head -n 1)"
+fi
+WHEEL="$(cd "$(dirname "$WHEEL")" && pwd)/$(basename "$WHEEL")"
+
+WORK="$(mktemp -d "${TMPDIR:-/tmp}/rra-wheel-XXXXXX")"
+if [[ "${KEEP_WHEEL_ENV:-0}" != 1 ]]; then trap 'rm -rf "$WORK"' EXIT; fi
+case "$WORK/" in "$ROOT"/*) echo "wheel_smoke.sh: $WORK is inside the checkout" >&2; exit 1 ;; esac
+step "fresh venv in $WORK, pip install $(basename "$WHEEL")[test,video]"
+"$PYTHON" -m venv "$WORK/venv"
+"$WORK/venv/bin/pip" install --quiet --upgrade pip
+"$WORK/venv/bin/pip" install --quiet "$WHEEL[test,video]"
+BIN="$WORK/venv/bin"
+cd "$WORK"
+
+step "the package is the installed one, with its data"
+"$BIN/python" - <<'EOF'
+import roboracer_arena, roboracer_arena.paths as p
+assert "site-packages" in roboracer_arena.__file__, roboracer_arena.__file__
+assert p.checkout_dir() is None, p.checkout_dir()
+assert (p.tracks_dir() / "catalog.json").is_file()
+print("  ", roboracer_arena.__file__)
+EOF
+ls "$BIN"/../lib/python*/site-packages/roboracer_arena-*.dist-info/licenses/ | sed 's/^/   licence file: /'
+
+step "tracks list"
+"$BIN/roboracer-arena" tracks list --kind circuit | tail -n 3
+step "a catalog track in gym.make (clockwise monza, and reversed)"
+"$BIN/python" - <<'EOF'
+import gymnasium as gym
+import roboracer_arena  # noqa: F401  registers the env
+env = gym.make("RoboRacerArena-v0", track="monza")
+obs, info = env.reset(seed=0)
+t = env.unwrapped.tracks[0]
+assert t.direction == "clockwise", t.direction
+env.step(env.action_space.sample())
+rev = gym.make("RoboRacerArena-v0", track="monza", reverse=True).unwrapped.tracks[0]
+assert rev.direction == "counterclockwise", rev.direction
+print(f"   monza: {t.length:.1f} m, {t.direction}; reversed {rev.direction}; scan {obs['scan'].shape}")
+EOF
+step "generate"
+"$BIN/roboracer-arena" generate "a 40 m lap with one hairpin in a 20 by 15 m hall, clockwise" -o gen --seed 0
+step "build"
+"$BIN/roboracer-arena" build gen/map.yaml -o gen/track.usdc
+step "drive (the generated track, clockwise)"
+"$BIN/roboracer-arena" drive gen/map.yaml
+step "demo"
+"$BIN/python" -m roboracer_arena.demo --out demo
+ls demo
+step "bench parser"
+"$BIN/roboracer-arena" bench parser --backend rules --repeats 1 | tail -n 6
+step "bench constructors (the shipped spec set, lattice, seed 0)"
+"$BIN/roboracer-arena" bench constructors --seeds 0 --constructors lattice --json constructors.json | tail -n 4
+step "recorded maps need the sources: the message names the setting"
+if ROBORACER_ARENA_SOURCES= "$BIN/roboracer-arena" drive racetracks-spa 2> err.txt; then
+    echo "drive of a recorded map without the sources should fail" >&2; exit 1
+fi
+grep -q ROBORACER_ARENA_SOURCES err.txt && sed 's/^/   /' err.txt
+
+if [[ "$RUN_PYTEST" == 1 ]]; then
+    step "pytest against the installed wheel"
+    ROBORACER_ARENA_EXPECT_INSTALLED=1 "$BIN/python" -m pytest "$ROOT/tests" --rootdir "$ROOT" -c "$ROOT/pyproject.toml" \
+        -p no:cacheprovider "${PYTEST_ARGS[@]}"
+fi
+step "passed"

@@ -1,0 +1,91 @@
+"""The package carries what the catalog needs; recorded maps come from the sources folder,
+which one function resolves; licences and notices name what ships."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import sys
+from pathlib import Path
+
+import pytest
+
+import roboracer_arena
+from roboracer_arena import paths
+from roboracer_arena.cli import EXIT_BAD_INPUT, main
+from roboracer_arena.errors import MapIOError
+from roboracer_arena.library import load_catalog
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def test_catalog_maps_of_circuits_and_generated_tracks_ship_in_the_package():
+    cat = load_catalog()
+    assert cat.path == paths.tracks_dir() / "catalog.json"
+    assert paths.tracks_dir().is_relative_to(paths.PACKAGE_DIR)
+    shipped = [e for e in cat.entries if e["kind"] in ("circuit", "generated")]
+    assert len(shipped) >= 100
+    for e in shipped:
+        for key in ("map", "centreline"):
+            f = cat.map_path({**e, "map": e[key]})
+            assert f.is_file() and f.is_relative_to(paths.PACKAGE_DIR), f
+    assert paths.bench_data("requests.jsonl").is_file() and paths.bench_data("specs.jsonl").is_file()
+
+
+def test_recorded_maps_need_the_sources_setting(monkeypatch):
+    rec = next(e for e in load_catalog().entries if e["kind"] == "recorded")
+    monkeypatch.delenv(paths.SOURCES_ENV, raising=False)
+    monkeypatch.setattr(paths, "checkout_dir", lambda: None)  # as an installed wheel
+    assert paths.default_sources_dir() is None
+    with pytest.raises(MapIOError, match=f"recorded map '{rec['id']}'.*set ROBORACER_ARENA_SOURCES"):
+        load_catalog().map_path(rec)
+    monkeypatch.setenv(paths.SOURCES_ENV, "/nonexistent/track-sources")
+    with pytest.raises(MapIOError, match="/nonexistent/track-sources: track-sources folder not found.*ROBORACER_ARENA_SOURCES"):
+        load_catalog().map_path(rec)
+
+
+def test_sources_flag_beats_the_setting(tmp_path, monkeypatch, sources):
+    monkeypatch.setenv(paths.SOURCES_ENV, str(tmp_path / "nope"))
+    assert paths.sources_dir(sources) == sources
+
+
+def test_installed_package_is_never_written_into(monkeypatch, capsys, tmp_path):
+    monkeypatch.delenv(paths.TRACKS_ENV, raising=False)
+    monkeypatch.setattr(paths, "checkout_dir", lambda: None)
+    assert main(["tracks", "catalog"]) == EXIT_BAD_INPUT
+    assert "--tracks DIR is required" in capsys.readouterr().err
+    assert main(["circuits", "--only", "monaco"]) == EXIT_BAD_INPUT
+    assert "-o/--out DIR is required" in capsys.readouterr().err
+    assert paths.writable_tracks_dir(tmp_path, "--tracks") == tmp_path
+
+
+@pytest.mark.slow
+def test_tracks_catalog_writes_where_the_user_says(tmp_path, sources, capsys):
+    """An empty tracks folder gets a catalog of the recorded maps only, written there."""
+    out = tmp_path / "mytracks"
+    out.mkdir()
+    assert main(["tracks", "catalog", "--tracks", str(out), "--sources", str(sources), "--jobs", "1", "--json"]) == 0
+    doc = json.loads((out / "catalog.json").read_text())
+    assert doc["counts"]["circuit"] == 0 and doc["counts"]["recorded"] > 0
+    assert all(e.get("direction") in ("clockwise", "counterclockwise") for e in doc["tracks"])
+
+
+def test_third_party_notice_names_every_packaged_circuit_and_its_source():
+    notice = (REPO / "THIRD_PARTY_NOTICES.md").read_text(encoding="utf-8")
+    assert "LGPL-3.0" in notice and "MIT" in notice
+    for f in sorted((paths.tracks_dir() / "circuits").glob("*/circuit.json")):
+        r = json.loads(f.read_text())
+        assert re.search(rf"^\| `{re.escape(r['id'])}` \| `{re.escape(r['source_file'])}` \|$", notice, re.M), r["id"]
+    for lic in ("LGPL-3.0.txt", "GPL-3.0.txt", "MIT-bacinger-f1-circuits.txt"):
+        assert (REPO / "LICENSES" / lic).is_file()
+    assert "MIT License" in (REPO / "LICENSE").read_text()
+
+
+@pytest.mark.skipif(not os.environ.get("ROBORACER_ARENA_EXPECT_INSTALLED"), reason="runs against the installed wheel only")
+def test_running_against_the_installed_wheel():
+    """`make test` runs this suite against the wheel installed outside the checkout."""
+    assert "site-packages" in roboracer_arena.__file__ and paths.checkout_dir() is None
+    dist = next(Path(sys.prefix).glob("lib/python*/site-packages/roboracer_arena-*.dist-info"))
+    licences = {p.name for p in (dist / "licenses").rglob("*") if p.is_file()}
+    assert {"LICENSE", "THIRD_PARTY_NOTICES.md", "LGPL-3.0.txt", "MIT-bacinger-f1-circuits.txt"} <= licences, licences
