@@ -60,15 +60,23 @@ def test_installed_package_is_never_written_into(monkeypatch, capsys, tmp_path):
     assert paths.writable_tracks_dir(tmp_path, "--tracks") == tmp_path
 
 
-@pytest.mark.slow
 def test_tracks_catalog_writes_where_the_user_says(tmp_path, sources, capsys):
-    """An empty tracks folder gets a catalog of the recorded maps only, written there."""
+    """An empty tracks folder and a sources folder with two recorded maps (one with a
+    source centreline beside it) give a catalog of those two, written there."""
+    src = tmp_path / "sources"
+    for rel in ("f1tenth-gym/maps/berlin.yaml", "f1tenth-gym/maps/berlin.png", "bdevan5-f1tenth-benchmarks/maps/aut.yaml",
+                "bdevan5-f1tenth-benchmarks/maps/aut.png", "bdevan5-f1tenth-benchmarks/maps/aut_centerline.csv"):
+        (src / rel).parent.mkdir(parents=True, exist_ok=True)
+        (src / rel).symlink_to(sources / rel)
     out = tmp_path / "mytracks"
     out.mkdir()
-    assert main(["tracks", "catalog", "--tracks", str(out), "--sources", str(sources), "--jobs", "1", "--json"]) == 0
+    assert main(["tracks", "catalog", "--tracks", str(out), "--sources", str(src), "--jobs", "1", "--json"]) == 0
     doc = json.loads((out / "catalog.json").read_text())
-    assert doc["counts"]["circuit"] == 0 and doc["counts"]["recorded"] > 0
-    assert all(e.get("direction") in ("clockwise", "counterclockwise") for e in doc["tracks"])
+    assert doc["counts"] == {"circuit": 0, "recorded": 2, "generated": 0}
+    by_id = {e["id"]: e for e in doc["tracks"]}
+    assert by_id["gym-berlin"]["direction"] == "counterclockwise" and by_id["gym-berlin"]["direction_source"].startswith("default")
+    assert by_id["bdevan5-aut"]["direction"] == "clockwise"
+    assert by_id["bdevan5-aut"]["direction_source"] == "point order of the source file bdevan5-f1tenth-benchmarks/maps/aut_centerline.csv"
 
 
 def test_third_party_notice_names_every_packaged_circuit_and_its_source():
