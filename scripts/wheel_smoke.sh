@@ -80,8 +80,13 @@ step "generate"
 "$BIN/roboracer-arena" generate "a 40 m lap with one hairpin in a 20 by 15 m hall, clockwise" -o gen --seed 0
 step "build"
 "$BIN/roboracer-arena" build gen/map.yaml -o gen/track.usdc
-step "drive (the generated track, clockwise)"
+step "drive (the generated track runs clockwise, as requested)"
 "$BIN/roboracer-arena" drive gen/map.yaml
+"$BIN/python" -c "
+from roboracer_arena.envs.tracks import track_from_map_path
+d = track_from_map_path('gen/map.yaml').direction
+assert d == 'clockwise', d
+print('   gen/map.yaml runs', d)"
 step "demo"
 "$BIN/python" -m roboracer_arena.demo --out demo
 ls demo
