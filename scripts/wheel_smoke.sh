@@ -100,9 +100,10 @@ if ROBORACER_ARENA_SOURCES= "$BIN/roboracer-arena" drive racetracks-spa 2> err.t
 fi
 grep -q ROBORACER_ARENA_SOURCES err.txt && sed 's/^/   /' err.txt
 
+step "smoke test passed"
 if [[ "$RUN_PYTEST" == 1 ]]; then
+    # Last, so pytest's summary line closes the output.
     step "pytest against the installed wheel"
     ROBORACER_ARENA_EXPECT_INSTALLED=1 "$BIN/python" -m pytest "$ROOT/tests" --rootdir "$ROOT" -c "$ROOT/pyproject.toml" \
         -p no:cacheprovider "${PYTEST_ARGS[@]}"
 fi
-step "passed"
