@@ -239,6 +239,20 @@ class Bridge:
                         self._recorder.write(INITIALPOSE, TYPE_OF[INITIALPOSE], s, self.sim_time)
         del now_ns
 
+    def drive(self, car: int, steer: float, speed: float) -> None:
+        """Command car ``car`` from Python, as a ``/drive`` message would (recorded too; in
+        lockstep mode an ego command is queued and advances one control period)."""
+        if not 0 <= car < self.src.vehicles:
+            raise IndexError(f"car {car} out of range (0..{self.src.vehicles - 1})")
+        if self._recorder is not None:
+            n = self.names[car]
+            self._recorder.write(n.drive, TYPE_OF["drive"], sm.drive_command(self.sim_time, n.base_link, steer, speed),
+                                 self.sim_time)
+        if self.lockstep and car == 0:
+            self._pending_lockstep.append(((float(steer), float(speed)), time.time_ns()))
+        else:
+            self.actions[:, car] = (steer, speed)
+
     def reset_ego(self, x: float, y: float, yaw: float) -> None:
         """Put the ego at rest at (x, y, yaw) at the next step (what ``/initialpose`` does)."""
         self._reset_pose = (x, y, yaw)
