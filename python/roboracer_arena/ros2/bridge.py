@@ -84,7 +84,7 @@ class Bridge:
         self.published: collections.Counter = collections.Counter()
         self.drive_latency_s: collections.deque = collections.deque(maxlen=10_000)
         self.error: BaseException | None = None
-        self._wall0 = 0.0
+        self._wall0 = self._cpu0 = 0.0
         self._periods_done = 0
 
     # ------------------------------------------------------------------ lifecycle
@@ -106,7 +106,7 @@ class Bridge:
         self.src.sim.observe(self.scans, self.state, self.events)
         self._publish_latched()
         self._publish_due(self.schedule.due(0))
-        self._wall0 = time.perf_counter()
+        self._wall0, self._cpu0 = time.perf_counter(), time.process_time()
         self.pacer.reanchor(0.0)
         self._thread = threading.Thread(target=self._run, name="ros2-bridge", daemon=True)
         self._thread.start()
@@ -143,6 +143,7 @@ class Bridge:
         lat = np.asarray(self.drive_latency_s, dtype=float)
         return {
             "sim_time_s": round(self.sim_time, 6), "wall_time_s": round(wall, 6),
+            "cpu_time_s": round(time.process_time() - self._cpu0, 3) if self._wall0 else 0.0,
             "real_time_factor": round(self.sim_time / wall, 3) if wall > 0 else None,
             "published": dict(self.published), "messages": int(sum(self.published.values())),
             "drive_commands": int(len(lat)),
