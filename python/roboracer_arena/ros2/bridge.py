@@ -25,8 +25,9 @@ from typing import Any
 import numpy as np
 
 from . import state_msgs as sm
+from .cdr import LaserScanPacker, OdometryPacker, TfPacker, pack_clock
 from .clock import BridgeConfig, Pacer, Schedule
-from .dds import participant
+from .dds import participant, raw_writer
 from .qos import qos_for
 from .source import SimSource, sim_source
 from .topics import CENTRELINE, CLOCK, INITIALPOSE, MAP, TF, TF_STATIC, TYPE_OF, car_names, dds_topic
@@ -71,7 +72,12 @@ class Bridge:
         self.state = np.zeros((E, V, len(self.src.fields)))
         self.events = np.zeros((E, V), np.uint8)
         self.step = 0
-        self._lock = threading.Lock()
+        lid = self.src.config.lidar
+        self._odom_packers = [OdometryPacker(n) for n in self.names]
+        self._scan_packers = [LaserScanPacker(n, lid.fov, lid.range_min, lid.range_max, 1.0 / r.scan_hz)
+                              for n in self.names]
+        self._tf_packer = TfPacker([n.base_link for n in self.names])
+        self._raw: dict[str, Any] = {}
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self._dp: Any = None
@@ -120,6 +126,7 @@ class Bridge:
         if self._recorder is not None:
             self._recorder.close() if self.error is None else self._recorder.abort()
         self._writers.clear()
+        self._raw.clear()
         self._readers.clear()
         self._dp = None  # cyclonedds deletes the entities with the last reference
         return self.stats()
@@ -175,7 +182,8 @@ class Bridge:
         outs = [(TF, TF), (TF_STATIC, TF_STATIC), (CLOCK, CLOCK), (MAP, MAP), (CENTRELINE, CENTRELINE)]
         outs += [(n.scan, "scan") for n in self.names] + [(n.odom, "odom") for n in self.names]
         for name, role in outs:
-            self._writers[name] = DataWriter(dp, topic(name, TYPE_OF[role]), qos=qos_for(name))
+            self._writers[name] = w = DataWriter(dp, topic(name, TYPE_OF[role]), qos=qos_for(name))
+            self._raw[name] = raw_writer(w, msg_class(TYPE_OF[role]))
 
     def _emit(self, topic: str, msg: Any, typename: str) -> None:
         w = self._writers.get(topic)
@@ -183,6 +191,15 @@ class Bridge:
             w.write(msg)
         if self._recorder is not None:
             self._recorder.write(topic, typename, msg, self.sim_time)
+        self.published[topic] += 1
+
+    def _emit_cdr(self, topic: str, data: bytes, typename: str) -> None:
+        """Publish serialised ``data`` (the bytes go to DDS and the recording unchanged)."""
+        w = self._raw.get(topic)
+        if w is not None:
+            w(data)
+        if self._recorder is not None:
+            self._recorder.write_cdr(topic, typename, data, self.sim_time)
         self.published[topic] += 1
 
     # ------------------------------------------------------------------ publishing
@@ -197,20 +214,16 @@ class Bridge:
     def _publish_due(self, due: list[str]) -> None:
         t, f, st = self.sim_time, self.src.fields, self.state[0]
         if "clock" in due:
-            self._emit(CLOCK, sm.clock(t), TYPE_OF[CLOCK])
+            self._emit_cdr(CLOCK, pack_clock(t), TYPE_OF[CLOCK])
         if "odom" in due:
-            tfs = []
-            for i, n in enumerate(self.names):
-                x, y, yaw = st[i, f["x"]], st[i, f["y"]], st[i, f["yaw"]]
-                self._emit(n.odom, sm.odometry(n, t, x, y, yaw, st[i, f["vx"]], st[i, f["vy"]], st[i, f["yaw_rate"]]),
-                           TYPE_OF["odom"])
-                tfs.append(sm.transform(t, "map", n.base_link, x, y, 0.0, yaw))
-            self._emit(TF, sm.tf_message(tfs), TYPE_OF[TF])
+            cols = [f[k] for k in ("x", "y", "yaw", "vx", "vy", "yaw_rate")]
+            rows = st[:, cols].tolist()
+            for packer, n, (x, y, yaw, vx, vy, wz) in zip(self._odom_packers, self.names, rows):
+                self._emit_cdr(n.odom, packer.pack(t, x, y, yaw, vx, vy, wz), TYPE_OF["odom"])
+            self._emit_cdr(TF, self._tf_packer.pack(t, [row[:3] for row in rows]), TYPE_OF[TF])
         if "scan" in due:
-            lid, scan_time = self.src.config.lidar, 1.0 / self.config.rates.scan_hz
-            for i, n in enumerate(self.names):
-                self._emit(n.scan, sm.laser_scan(n, t, self.scans[0, i], lid.fov, lid.range_min, lid.range_max,
-                                                 scan_time), TYPE_OF["scan"])
+            for i, (packer, n) in enumerate(zip(self._scan_packers, self.names)):
+                self._emit_cdr(n.scan, packer.pack(t, self.scans[0, i]), TYPE_OF["scan"])
 
     # ------------------------------------------------------------------ commands
     def _poll(self) -> None:
