@@ -3,6 +3,7 @@ participant in the test acting as a ROS 2 node (real RTPS over the loopback inte
 
 from __future__ import annotations
 
+import json
 import math
 import time
 
@@ -129,9 +130,11 @@ def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, 
     assert code == 0, err
 
 
-def test_two_cars_use_the_opponent_topics(ellipse_map, domain_id, ros_node, bridge_process):
+def test_two_cars_use_the_opponent_topics(ellipse_map, domain_id, ros_node, bridge_process, tmp_path):
     _subscribe_all(ros_node, cars=2)
-    proc = bridge_process([str(ellipse_map), "--domain-id", str(domain_id), "--cars", "2", "--rate", "max"])
+    rec = tmp_path / "two.mcap"
+    proc = bridge_process([str(ellipse_map), "--domain-id", str(domain_id), "--cars", "2", "--rate", "max",
+                           "--record", str(rec)])
     opp = ros_node.wait_for("/opp_racecar/odom", 3)[-1]
     assert opp.child_frame_id == "opp_racecar/base_link"
     assert len(ros_node.wait_for("/opp_scan")[-1].ranges) == 1081
@@ -139,8 +142,15 @@ def test_two_cars_use_the_opponent_topics(ellipse_map, domain_id, ros_node, brid
     assert math.hypot(opp.pose.pose.position.x - ego.x, opp.pose.pose.position.y - ego.y) > 0.5
     tf = ros_node.wait_for("/tf")[-1]
     assert [t.child_frame_id for t in tf.transforms] == ["ego_racecar/base_link", "opp_racecar/base_link"]
-    code, _, err = proc.stop()
+    _drive(ros_node, 1.0, topic="/opp_drive")
+    ros_node.wait_for("/opp_racecar/odom", pred=lambda m: m.twist.twist.linear.x > 0.5)
+    code, out, err = proc.stop()
     assert code == 0, err
+    from test_mcap import read_mcap
+
+    stats, (recorded, _) = json.loads(out), read_mcap(rec)
+    assert stats["record"] == str(rec) and len(recorded["/opp_drive"]) == 1
+    assert {t: len(v) for t, v in recorded.items() if t != "/opp_drive"} == stats["published"]
 
 
 def _lockstep_run(ellipse_map, domain_id, node, bridge_process, commands) -> list[tuple]:
