@@ -59,7 +59,7 @@ def random_msg(typename: str, rng: random.Random):
     cls = msgs.msg_class(typename)
     kwargs = {}
     for f in msgs.parse_fields(typename):
-        def one():
+        def one(f=f):
             return random_msg(f.type, rng) if f.type in msgs.DEFINITIONS else _random_value(f.type, rng)
         if f.array is None:
             kwargs[f.name] = one()

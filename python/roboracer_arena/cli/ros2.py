@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import signal
 import sys
 import time
@@ -26,7 +27,7 @@ def _rate(value: str) -> float | None:
         r = float(value)
     except ValueError:
         raise argparse.ArgumentTypeError(f"--rate must be a positive number or 'max', got {value!r}") from None
-    if not r > 0 or r != r or r == float("inf"):
+    if not (math.isfinite(r) and r > 0):
         raise argparse.ArgumentTypeError(f"--rate must be a positive number or 'max', got {value!r}")
     return r
 

@@ -29,4 +29,4 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-__all__ = sorted(_LAZY)
+__all__ = ["Bridge", "BridgeConfig", "McapEpisodeRecorder", "McapRecorder", "RatesConfig"]

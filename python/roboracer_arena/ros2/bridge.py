@@ -227,7 +227,6 @@ class Bridge:
 
     # ------------------------------------------------------------------ commands
     def _poll(self) -> None:
-        now_ns = time.time_ns()
         for i, n in enumerate(self.names):
             r = self._readers.get(n.drive)
             if r is None:
@@ -251,7 +250,6 @@ class Bridge:
                     self._reset_pose = (p.position.x, p.position.y, sm.quaternion_yaw(p.orientation))
                     if self._recorder is not None:
                         self._recorder.write(INITIALPOSE, TYPE_OF[INITIALPOSE], s, self.sim_time)
-        del now_ns
 
     def drive(self, car: int, steer: float, speed: float) -> None:
         """Command car ``car`` from Python, as a ``/drive`` message would (recorded too; in
