@@ -126,8 +126,15 @@ def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, 
     clocks = [sm.stamp_seconds(c.clock) for c in ros_node.get("/clock")]
     assert all(b > a for a, b in zip(clocks, clocks[1:]))
 
+    for _ in range(10):  # steady state (the first command may wait for the end of discovery)
+        _drive(ros_node, 0.0)
+        time.sleep(0.03)
+    time.sleep(0.2)
     code, out, err = proc.stop()
     assert code == 0, err
+    stats = json.loads(out)  # real time: a /drive takes effect within one control period (50 ms)
+    assert stats["drive_commands"] == 12 and stats["drive_latency_ms"]["median"] < 50.0, stats
+    assert 0.8 < stats["real_time_factor"] < 1.2
 
 
 def test_two_cars_use_the_opponent_topics(ellipse_map, domain_id, ros_node, bridge_process, tmp_path):
