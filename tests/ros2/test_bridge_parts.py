@@ -134,3 +134,21 @@ def test_library_bridge_on_an_env_and_on_a_simulator(ellipse_map, domain_id):
     st = b.stop()
     assert st["published"]["/opp_racecar/odom"] >= 10 and "/map" not in st["published"]
     assert np.isfinite(b.state).all()
+
+
+def test_missing_extra_names_the_package():
+    from roboracer_arena.ros2._deps import require
+
+    with pytest.raises(ConfigError, match=r"roboracer-arena\[ros2\]"):
+        require("mcap_ros2_no_such_module")
+
+
+def test_cli_runs_for_a_simulated_duration(ellipse_map, domain_id, tmp_path, capsys):
+    from roboracer_arena.cli import main
+
+    rec = tmp_path / "r.mcap"
+    assert main(["ros2", str(ellipse_map), "--rate", "max", "--sim-time", "1", "--loopback", "--domain-id",
+                 str(domain_id), "--record", str(rec), "--json"]) == 0
+    stats = json.loads(capsys.readouterr().out)
+    assert stats["sim_time_s"] >= 1.0 and stats["published"]["/scan"] >= 40 and rec.stat().st_size > 10_000
+    assert not list(tmp_path.glob(".r.*"))  # no temporary file left behind
