@@ -16,11 +16,11 @@ $(BIN)/python:
 
 # Dev-profile build (dependencies at opt-level 3) plus runtime and test dependencies.
 develop: $(BIN)/python
-	$(BIN)/maturin develop -q --extras test,video
+	$(BIN)/maturin develop -q --extras test,video,ros2,ros2-test
 
 # Optimised build for benchmarks.
 release: $(BIN)/python
-	$(BIN)/maturin develop -q --release --extras test,video
+	$(BIN)/maturin develop -q --release --extras test,video,ros2,ros2-test
 
 demo: develop
 	$(BIN)/python -m roboracer_arena.demo --out out/demo

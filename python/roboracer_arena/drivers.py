@@ -223,10 +223,11 @@ class DriveResult:
 
 def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = None, video: Any = None,
                video_fps: float = 10.0, render_size: int = 500, max_time_s: float | None = None,
-               progress: bool = False, **env_kwargs: Any) -> DriveResult:
+               progress: bool = False, env_wrapper: Any = None, **env_kwargs: Any) -> DriveResult:
     """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
     list) with :class:`PurePursuitDriver` from the centreline start, stopping at the first
-    contact. Optionally writes a GIF/MP4 of the drive. ``env_kwargs`` go to the env."""
+    contact. Optionally writes a GIF/MP4 of the drive. ``env_kwargs`` go to the env;
+    ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it before driving."""
     import time
 
     from .envs.single import RoboRacerEnv
@@ -237,6 +238,8 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
         raise InvalidArgumentError(f"laps must be >= 1, got {laps}")
     env = RoboRacerEnv(track=track, render_mode="rgb_array" if video else None, render_size=render_size,
                        **{"reset_poses": "grid", "collision_ends_episode": True, "time_limit_s": None, **env_kwargs})
+    if env_wrapper is not None:
+        env = env_wrapper(env)
     length = env.tracks[0].length
     limit = max_time_s if max_time_s is not None else laps * (length / 0.5 + 30.0)  # >= 0.5 m/s average
     dt = env.config.control_dt

@@ -19,7 +19,7 @@ from ..errors import ArenaError
 
 # Subcommand modules, in the order `--help` lists them.
 COMMANDS: list[str] = [
-    "bench", "build", "circuits", "drive", "generate", "parse", "preview", "tracks", "validate",
+    "bench", "build", "circuits", "drive", "generate", "parse", "preview", "ros2", "tracks", "validate",
 ]
 
 EXIT_OK, EXIT_INTERNAL, EXIT_BAD_INPUT, EXIT_REJECTED, EXIT_GENERATION_FAILURE = 0, 1, 2, 3, 4

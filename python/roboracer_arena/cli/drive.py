@@ -24,6 +24,8 @@ def register(sub) -> None:
     p.add_argument("--max-speed", type=float, default=None, help="speed cap of the driver (m/s, default 5)")
     p.add_argument("--max-time", type=float, default=None, help="give up after this much simulated time (s)")
     p.add_argument("--reverse", action="store_true", help="drive against the track's racing direction")
+    p.add_argument("--mcap", type=Path, metavar="RUN.mcap",
+                   help="record the drive as ROS 2 messages to an MCAP file (needs the [ros2] extra)")
     add_json_flag(p)
     p.set_defaults(func=run)
 
@@ -39,8 +41,15 @@ def run(args: argparse.Namespace) -> int:
         if not args.max_speed > 0:
             raise InvalidArgumentError(f"--max-speed must be > 0, got {args.max_speed}")
         params = PurePursuitParams(max_speed=args.max_speed)
+    wrapper = None
+    if getattr(args, "mcap", None) is not None:
+        from ..ros2.episode_recorder import McapEpisodeRecorder
+
+        def wrapper(env):
+            return McapEpisodeRecorder(env, args.mcap)
     res = drive_laps(args.map, args.laps, params=params, video=args.gif, video_fps=args.fps,
-                     max_time_s=args.max_time, progress=not args.json, reverse=args.reverse)
+                     max_time_s=args.max_time, progress=not args.json, reverse=args.reverse,
+                     env_wrapper=wrapper)
     status = EXIT_OK if res.completed else EXIT_LAP_FAILED
     if args.json:
         print_json(res.to_dict())
@@ -58,4 +67,6 @@ def run(args: argparse.Namespace) -> int:
                   "the map's drivable path is too narrow at that point")
     if res.video:
         print(f"  wrote {res.video}")
+    if getattr(args, "mcap", None) is not None:
+        print(f"  wrote {args.mcap}")
     return status

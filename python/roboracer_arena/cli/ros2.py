@@ -1,0 +1,110 @@
+"""``roboracer-arena ros2 TRACK``: run the simulator behind a ROS 2 interface over DDS
+(no ROS install needed). A ROS 2 node on the same ROS_DOMAIN_ID sees the
+f1tenth_gym_ros topics (/scan, /ego_racecar/odom, /tf, /tf_static, /clock, /map) and
+drives the car with /drive (ackermann_msgs/AckermannDriveStamped); /initialpose resets
+it. --cars 2 adds /opp_scan, /opp_racecar/odom, /opp_drive; more cars /car<i>/....
+
+Needs the optional extra: pip install 'roboracer-arena[ros2]'. On a machine whose only
+interface is loopback, pass --loopback (or set CYCLONEDDS_URI) on both sides."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import signal
+import sys
+import time
+from pathlib import Path
+
+from ._common import add_json_flag, print_json
+
+
+def _rate(value: str) -> float | None:
+    if value == "max":
+        return None
+    try:
+        r = float(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--rate must be a positive number or 'max', got {value!r}") from None
+    if not (math.isfinite(r) and r > 0):
+        raise argparse.ArgumentTypeError(f"--rate must be a positive number or 'max', got {value!r}")
+    return r
+
+
+def register(sub) -> None:
+    p = sub.add_parser("ros2", help="run the simulator behind a ROS 2 (DDS) interface, optionally recording MCAP",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("track", metavar="TRACK", help="ROS map YAML (or a catalog id)")
+    p.add_argument("--cars", type=int, default=1, help="number of cars (default 1; 2 = ego + opponent)")
+    p.add_argument("--domain-id", type=int, default=None,
+                   help="ROS 2 domain id 0..232 (default: $ROS_DOMAIN_ID or 0)")
+    p.add_argument("--rate", type=_rate, default=1.0, metavar="R|max",
+                   help="simulated seconds per wall second (default 1 = real time; 'max' = as fast as possible)")
+    p.add_argument("--lockstep", action="store_true",
+                   help="advance one control period (1/drive_hz) per /drive message received (deterministic)")
+    p.add_argument("--config", type=Path, metavar="F", help="JSON bridge config: {'rates': {...}, 'sim': {...}}")
+    p.add_argument("--record", type=Path, metavar="RUN.mcap", help="record every message to an MCAP file")
+    p.add_argument("--loopback", action="store_true",
+                   help="configure DDS for the loopback interface only (no multicast; unicast discovery on 127.0.0.1)")
+    p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S wall seconds")
+    p.add_argument("--sim-time", type=float, default=None, metavar="S", help="stop after S simulated seconds")
+    add_json_flag(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    import os
+
+    from ..errors import InvalidArgumentError
+    from ..ros2.bridge import Bridge
+    from ..ros2.clock import BridgeConfig
+    from ..ros2.dds import check_domain_id
+
+    if args.cars < 1 or args.cars > 64:
+        raise InvalidArgumentError(f"--cars must be in 1..64, got {args.cars}")
+    for flag in ("duration", "sim_time"):
+        v = getattr(args, flag)
+        if v is not None and not v > 0:
+            raise InvalidArgumentError(f"--{flag.replace('_', '-')} must be > 0, got {v}")
+    domain = args.domain_id
+    if domain is None:
+        env = os.environ.get("ROS_DOMAIN_ID", "0") or "0"
+        if not env.isdigit():
+            raise InvalidArgumentError(f"ROS_DOMAIN_ID must be an integer, got {env!r}")
+        domain = int(env)
+    check_domain_id(domain)
+    config = BridgeConfig.load(args.config) if args.config else BridgeConfig()
+    bridge = Bridge(args.track, cars=args.cars, domain_id=domain, rate=args.rate, lockstep=args.lockstep,
+                    config=config, record=args.record, loopback=args.loopback)
+    stop = {"flag": False}
+
+    def on_signal(*_):
+        stop["flag"] = True
+
+    signal.signal(signal.SIGTERM, on_signal)
+    bridge.start()
+    if not args.json:
+        mode = "lockstep" if args.lockstep else ("max rate" if args.rate is None else f"{args.rate:g}x real time")
+        print(f"ros2 bridge on domain {domain}: {bridge.src.name}, {args.cars} car(s), {mode}; Ctrl-C stops",
+              flush=True)
+    t0 = time.monotonic()
+    try:
+        while not stop["flag"] and not bridge.wait(0.05):
+            if args.duration is not None and time.monotonic() - t0 >= args.duration:
+                break
+            if args.sim_time is not None and bridge.sim_time >= args.sim_time:
+                break
+    except KeyboardInterrupt:
+        pass
+    stats = bridge.stop()
+    if args.record:
+        stats["record"] = str(args.record)
+    if args.json:
+        print_json(stats)
+    else:
+        print(json.dumps({k: stats[k] for k in ("sim_time_s", "wall_time_s", "real_time_factor", "messages")}))
+    if stats["error"]:
+        print(f"roboracer-arena ros2: error: {stats['error']}", file=sys.stderr)
+        return 1
+    return 0

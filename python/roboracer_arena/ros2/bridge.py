@@ -1,0 +1,326 @@
+"""The ROS 2 bridge: runs the simulator and speaks ROS 2 on the wire through DDS.
+
+A ROS 2 node on the same domain id sees the topics of :mod:`.topics` with ROS 2 type
+names and QoS (:mod:`.msgs`, :mod:`.qos`): scans, odometry, ``/tf``, ``/tf_static``,
+``/clock``, ``/map`` and ``/centreline``; it drives the cars with ``/drive`` (and
+``/opp_drive``, ``/car<i>/drive``) and resets the ego with ``/initialpose``.
+
+Time is simulated (:mod:`.clock`): ``rate=1.0`` (default) holds it to real time,
+``rate=None`` runs as fast as possible; ``lockstep=True`` advances exactly one control
+period (``1/drive_hz``) per ``/drive`` message the ego receives, with that message's
+command, so a run is a deterministic function of the commands sent (the other cars
+keep their latest command). ``/initialpose`` puts the ego at rest at the given pose and
+the other cars at rest where they are; simulated time keeps running (``/clock`` stays
+monotonic).
+"""
+
+from __future__ import annotations
+
+import collections
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from . import state_msgs as sm
+from .cdr import LaserScanPacker, OdometryPacker, TfPacker, pack_clock
+from .clock import BridgeConfig, Pacer, Schedule
+from .dds import participant, raw_writer
+from .qos import qos_for
+from .source import SimSource, sim_source
+from .topics import CENTRELINE, CLOCK, INITIALPOSE, MAP, TF, TF_STATIC, TYPE_OF, car_names, dds_topic
+
+_POLL_S = 0.002  # longest sleep between checks for commands while pacing
+
+
+class Bridge:
+    """Simulator ↔ ROS 2 over DDS. ``start()`` runs it in a background thread, ``stop()``
+    ends it (also a context manager). ``stats()`` reports what it did.
+
+    Args:
+        env_or_sim: a track, a ``RoboRacerArena-v0`` env or a ``_core.Simulator`` (see
+            :func:`~roboracer_arena.ros2.source.sim_source`).
+        cars: vehicles when the bridge builds the simulator from a track (default 1).
+        domain_id: ROS 2 domain id (``ROS_DOMAIN_ID``), 0..232.
+        rate: simulated seconds per wall second; None = as fast as possible.
+        lockstep: one control period per ego ``/drive`` message (deterministic).
+        config: rates and simulator configuration (:class:`~.clock.BridgeConfig`).
+        record: optional MCAP path; everything published and every command received.
+        loopback: configure DDS for the loopback interface (see :mod:`.dds`).
+        dds: False runs the simulation and the recording without any DDS entity.
+    """
+
+    def __init__(self, env_or_sim: Any, *, cars: int | None = None, domain_id: int = 0, rate: float | None = 1.0,
+                 lockstep: bool = False, config: BridgeConfig | None = None, record: str | Path | None = None,
+                 loopback: bool = False, dds: bool = True, seed: int = 0) -> None:
+        self.config = config or BridgeConfig()
+        self.src: SimSource = sim_source(env_or_sim, cars=cars, config=self.config.sim, seed=seed)
+        self.domain_id, self.loopback, self.use_dds = domain_id, loopback, dds
+        self.lockstep = lockstep
+        self.pacer = Pacer(None if lockstep else rate)
+        self.record_path = None if record is None else Path(record)
+        self.names = [car_names(i) for i in range(self.src.vehicles)]
+        r = self.config.rates
+        self.dt = float(self.src.sim.dt)
+        self.control_steps = max(1, round(1.0 / (r.drive_hz * self.dt)))
+        self.schedule = Schedule(self.dt, {"clock": 1 / r.clock_hz, "odom": 1 / r.odom_hz, "scan": 1 / r.scan_hz})
+        E, V = self.src.num_envs, self.src.vehicles
+        self.actions = np.zeros((E, V, 2))
+        self.scans = np.zeros((E, V, int(self.src.sim.num_beams)), np.float32)
+        self.state = np.zeros((E, V, len(self.src.fields)))
+        self.events = np.zeros((E, V), np.uint8)
+        self.step = 0
+        lid = self.src.config.lidar
+        self._odom_packers = [OdometryPacker(n) for n in self.names]
+        self._scan_packers = [LaserScanPacker(n, lid.fov, lid.range_min, lid.range_max, 1.0 / r.scan_hz)
+                              for n in self.names]
+        self._tf_packer = TfPacker([n.base_link for n in self.names])
+        self._raw: dict[str, Any] = {}
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._dp: Any = None
+        self._writers: dict[str, Any] = {}
+        self._readers: dict[str, Any] = {}
+        self._recorder: Any = None
+        self._pending_lockstep: collections.deque = collections.deque()
+        self._pending_latency: list[int] = []
+        self._reset_pose: tuple[float, float, float] | None = None
+        self.published: collections.Counter = collections.Counter()
+        self.drive_latency_s: collections.deque = collections.deque(maxlen=10_000)
+        self.error: BaseException | None = None
+        self._wall0 = self._cpu0 = 0.0
+        self._periods_done = 0
+
+    # ------------------------------------------------------------------ lifecycle
+    @property
+    def sim_time(self) -> float:
+        return self.step * self.dt
+
+    def start(self) -> Bridge:
+        """Create the DDS entities, publish the latched topics and start simulating."""
+        if self._thread is not None:
+            raise RuntimeError("bridge already started")
+        if self.record_path is not None:
+            from .recorder import McapRecorder
+
+            self._recorder = McapRecorder(self.record_path)
+        if self.use_dds:
+            self._open_dds()
+        self.src.sim.reset(np.ones(self.src.num_envs, bool), self.src.grid_poses())
+        self.src.sim.observe(self.scans, self.state, self.events)
+        self._publish_latched()
+        self._publish_due(self.schedule.due(0))
+        self._wall0, self._cpu0 = time.perf_counter(), time.process_time()
+        self.pacer.reanchor(0.0)
+        self._thread = threading.Thread(target=self._run, name="ros2-bridge", daemon=True)
+        self._thread.start()
+        return self
+
+    def stop(self, timeout: float = 10.0) -> dict[str, Any]:
+        """Stop simulating, close the recording and the DDS entities; returns :meth:`stats`."""
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout)
+        if self._recorder is not None:
+            self._recorder.close() if self.error is None else self._recorder.abort()
+        self._writers.clear()
+        self._raw.clear()
+        self._readers.clear()
+        self._dp = None  # cyclonedds deletes the entities with the last reference
+        return self.stats()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        """Block until the bridge stops (or ``timeout``); True if it has stopped."""
+        if self._thread is None:
+            return True
+        self._thread.join(timeout)
+        return not self._thread.is_alive()
+
+    def __enter__(self) -> Bridge:
+        return self.start()
+
+    def __exit__(self, *_: Any) -> None:
+        self.stop()
+
+    def stats(self) -> dict[str, Any]:
+        """Simulated and wall time, messages published per topic, ``/drive`` latencies."""
+        wall = time.perf_counter() - self._wall0 if self._wall0 else 0.0
+        lat = np.asarray(self.drive_latency_s, dtype=float)
+        return {
+            "sim_time_s": round(self.sim_time, 6), "wall_time_s": round(wall, 6),
+            "cpu_time_s": round(time.process_time() - self._cpu0, 3) if self._wall0 else 0.0,
+            "real_time_factor": round(self.sim_time / wall, 3) if wall > 0 else None,
+            "published": dict(self.published), "messages": int(sum(self.published.values())),
+            "drive_commands": int(len(lat)),
+            "drive_latency_ms": None if not len(lat) else {
+                "median": round(float(np.median(lat)) * 1e3, 3), "p99": round(float(np.quantile(lat, 0.99)) * 1e3, 3),
+                "max": round(float(lat.max()) * 1e3, 3)},
+            "error": None if self.error is None else repr(self.error),
+        }
+
+    # ------------------------------------------------------------------ DDS
+    def _open_dds(self) -> None:
+        from cyclonedds.pub import DataWriter
+        from cyclonedds.sub import DataReader
+        from cyclonedds.topic import Topic
+
+        from .msgs import msg_class
+
+        self._dp = dp = participant(self.domain_id, loopback=self.loopback)
+        topics: dict[str, Any] = {}
+
+        def topic(name: str, typename: str) -> Any:
+            if name not in topics:
+                topics[name] = Topic(dp, dds_topic(name), msg_class(typename), qos=qos_for(name))
+            return topics[name]
+
+        for name in (INITIALPOSE, *(n.drive for n in self.names)):  # readers first: commands are not lost
+            typename = TYPE_OF[INITIALPOSE] if name == INITIALPOSE else TYPE_OF["drive"]
+            self._readers[name] = DataReader(dp, topic(name, typename), qos=qos_for(name))
+        outs = [(TF, TF), (TF_STATIC, TF_STATIC), (CLOCK, CLOCK), (MAP, MAP), (CENTRELINE, CENTRELINE)]
+        outs += [(n.scan, "scan") for n in self.names] + [(n.odom, "odom") for n in self.names]
+        for name, role in outs:
+            self._writers[name] = w = DataWriter(dp, topic(name, TYPE_OF[role]), qos=qos_for(name))
+            self._raw[name] = raw_writer(w, msg_class(TYPE_OF[role]))
+
+    def _emit(self, topic: str, msg: Any, typename: str) -> None:
+        w = self._writers.get(topic)
+        if w is not None:
+            w.write(msg)
+        if self._recorder is not None:
+            self._recorder.write(topic, typename, msg, self.sim_time)
+        self.published[topic] += 1
+
+    def _emit_cdr(self, topic: str, data: bytes, typename: str) -> None:
+        """Publish serialised ``data`` (the bytes go to DDS and the recording unchanged)."""
+        w = self._raw.get(topic)
+        if w is not None:
+            w(data)
+        if self._recorder is not None:
+            self._recorder.write_cdr(topic, typename, data, self.sim_time)
+        self.published[topic] += 1
+
+    # ------------------------------------------------------------------ publishing
+    def _publish_latched(self) -> None:
+        lid = self.src.config.lidar
+        statics = [sm.transform(0.0, n.base_link, n.laser, lid.mount_x, 0.0, lid.mount_z, 0.0) for n in self.names]
+        self._emit(TF_STATIC, sm.tf_message(statics), TYPE_OF[TF_STATIC])
+        if self.src.occupancy_map is not None:
+            self._emit(MAP, sm.occupancy_grid(self.src.occupancy_map), TYPE_OF[MAP])
+        self._emit(CENTRELINE, sm.centreline_marker(self.src.centreline), TYPE_OF[CENTRELINE])
+
+    def _publish_due(self, due: list[str]) -> None:
+        t, f, st = self.sim_time, self.src.fields, self.state[0]
+        if "clock" in due:
+            self._emit_cdr(CLOCK, pack_clock(t), TYPE_OF[CLOCK])
+        if "odom" in due:
+            cols = [f[k] for k in ("x", "y", "yaw", "vx", "vy", "yaw_rate")]
+            rows = st[:, cols].tolist()
+            for packer, n, (x, y, yaw, vx, vy, wz) in zip(self._odom_packers, self.names, rows):
+                self._emit_cdr(n.odom, packer.pack(t, x, y, yaw, vx, vy, wz), TYPE_OF["odom"])
+            self._emit_cdr(TF, self._tf_packer.pack(t, [row[:3] for row in rows]), TYPE_OF[TF])
+        if "scan" in due:
+            for i, (packer, n) in enumerate(zip(self._scan_packers, self.names)):
+                self._emit_cdr(n.scan, packer.pack(t, self.scans[0, i]), TYPE_OF["scan"])
+
+    # ------------------------------------------------------------------ commands
+    def _poll(self) -> None:
+        for i, n in enumerate(self.names):
+            r = self._readers.get(n.drive)
+            if r is None:
+                continue
+            for s in r.take(N=256):
+                if not s.sample_info.valid_data:
+                    continue
+                cmd = (float(s.drive.steering_angle), float(s.drive.speed))
+                if self._recorder is not None:
+                    self._recorder.write(n.drive, TYPE_OF["drive"], s, self.sim_time)
+                if self.lockstep and i == 0:
+                    self._pending_lockstep.append((cmd, s.sample_info.source_timestamp))
+                else:
+                    self.actions[:, i] = cmd
+                    self._pending_latency.append(s.sample_info.source_timestamp)
+        r = self._readers.get(INITIALPOSE)
+        if r is not None:
+            for s in r.take(N=16):
+                if s.sample_info.valid_data:
+                    p = s.pose.pose
+                    self._reset_pose = (p.position.x, p.position.y, sm.quaternion_yaw(p.orientation))
+                    if self._recorder is not None:
+                        self._recorder.write(INITIALPOSE, TYPE_OF[INITIALPOSE], s, self.sim_time)
+
+    def drive(self, car: int, steer: float, speed: float) -> None:
+        """Command car ``car`` from Python, as a ``/drive`` message would (recorded too; in
+        lockstep mode an ego command is queued and advances one control period)."""
+        if not 0 <= car < self.src.vehicles:
+            raise IndexError(f"car {car} out of range (0..{self.src.vehicles - 1})")
+        if self._recorder is not None:
+            n = self.names[car]
+            self._recorder.write(n.drive, TYPE_OF["drive"], sm.drive_command(self.sim_time, n.base_link, steer, speed),
+                                 self.sim_time)
+        if self.lockstep and car == 0:
+            self._pending_lockstep.append(((float(steer), float(speed)), time.time_ns()))
+        else:
+            self.actions[:, car] = (steer, speed)
+
+    def reset_ego(self, x: float, y: float, yaw: float) -> None:
+        """Put the ego at rest at (x, y, yaw) at the next step (what ``/initialpose`` does)."""
+        self._reset_pose = (x, y, yaw)
+
+    def _apply_reset(self) -> None:
+        x, y, yaw = self._reset_pose  # type: ignore[misc]
+        self._reset_pose = None
+        f = self.src.fields
+        poses = np.stack([self.state[..., f["x"]], self.state[..., f["y"]], self.state[..., f["yaw"]]], axis=-1)
+        poses[:, 0] = (x, y, yaw)
+        self.actions[:, 0] = 0.0
+        self.src.sim.reset(np.ones(self.src.num_envs, bool), poses)
+        # No extra publication now: the next scheduled ones show the new pose, so every
+        # stream keeps strictly increasing stamps (tf2 rejects repeated stamps).
+        self.src.sim.observe(self.scans, self.state, self.events)
+
+    # ------------------------------------------------------------------ loop
+    def _run(self) -> None:
+        try:
+            period_end = None
+            while not self._stop.is_set():
+                self._poll()
+                if self._reset_pose is not None:
+                    self._apply_reset()
+                if self.lockstep and period_end is None:
+                    if not self._pending_lockstep:
+                        time.sleep(0.0005)
+                        continue
+                    cmd, ts = self._pending_lockstep.popleft()
+                    self.actions[:, 0] = cmd
+                    self._pending_latency.append(ts)
+                    period_end = self.step + self.control_steps
+                end = self.schedule.next_step()
+                if period_end is not None:
+                    end = min(end, period_end)
+                self._advance(end - self.step, scan=self.schedule._next["scan"] == end)
+                if period_end is not None and self.step >= period_end:
+                    period_end = None
+                    self._periods_done += 1
+                self._pace()
+        except BaseException as e:  # noqa: BLE001 - reported by stats() and the CLI
+            self.error = e
+
+    def _advance(self, n: int, scan: bool) -> None:
+        if self._pending_latency:
+            now = time.time_ns()
+            self.drive_latency_s.extend((now - ts) * 1e-9 for ts in self._pending_latency)
+            self._pending_latency.clear()
+        self.src.sim.step(self.actions, n, self.scans if scan else None, self.state, self.events)
+        self.step += n
+        self._publish_due(self.schedule.due(self.step))
+
+    def _pace(self) -> None:
+        while not self._stop.is_set():
+            wait = self.pacer.wait_time(self.sim_time)
+            if wait <= 0:
+                return
+            time.sleep(min(wait, _POLL_S))
+            self._poll()
