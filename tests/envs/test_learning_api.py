@@ -37,7 +37,7 @@ def test_single_env_reset_to_given_pose_and_track(oval):
     assert state[0, f["yaw"]] == pytest.approx(0.1, abs=1e-3)
     with pytest.raises(ConfigError, match="poses"):
         env.reset(options={"poses": [[1.0, 2.0]]})
-    with pytest.raises(ConfigError, match="unknown"):
+    with pytest.warns(UserWarning, match="pose"):
         env.reset(options={"pose": pose})
 
 
@@ -249,3 +249,11 @@ def test_make_with_no_arguments_uses_the_small_default_track():
     env = gym.make("RoboRacerArena-v0")
     obs, info = env.reset(seed=0)
     assert info["track"].startswith("gen-l040") and obs["scan"].shape == (1081,)
+
+
+def test_human_render_mode_goes_through_gymnasiums_human_rendering(oval):
+    from gymnasium.wrappers import HumanRendering
+
+    with pytest.warns(UserWarning, match="HumanRendering"):
+        env = gym.make("RoboRacerArena-v0", track=oval, render_mode="human", **SMALL)
+    assert isinstance(env, HumanRendering) and env.unwrapped.render_mode == "rgb_array"

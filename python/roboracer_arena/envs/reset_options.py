@@ -8,10 +8,13 @@ Keys (all optional):
   with one vehicle; vector env (E, V, 3), or (E, 3) with one vehicle per env. Rows of envs
   that are not reset are ignored. The poses are used as given (no start noise).
 * ``"reset_mask"`` (vector env only, handled there): which envs to reset.
+
+Other keys are ignored with a warning (wrappers may pass their own options through).
 """
 
 from __future__ import annotations
 
+import warnings
 from typing import Any, Mapping
 
 import numpy as np
@@ -27,8 +30,9 @@ def reset_options(options: Mapping[str, Any] | None, num_envs: int, vehicles: in
     if not options:
         return None, None
     unknown = [k for k in options if k not in KNOWN]
-    if unknown:
-        raise ConfigError(f"reset options {unknown} are unknown; use {list(KNOWN)}")
+    if unknown:  # other keys may be meant for wrappers (gymnasium passes options through): warn only
+        warnings.warn(f"reset options {unknown} are not used by RoboRacerArena (it reads {list(KNOWN)})",
+                      stacklevel=3)
     if "track_id" in options and "track_ids" in options:
         raise ConfigError("reset options: give track_id or track_ids, not both")
     ids = None

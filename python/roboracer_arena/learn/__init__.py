@@ -2,6 +2,6 @@
 a lidar policy (:mod:`.es`), used by ``examples/train_es.py`` and
 ``roboracer-arena bench generalisation``."""
 
-from .es import ESConfig, MLPPolicy, TrainResult, evaluate_laps, train
+from .es import ESConfig, MLPPolicy, TrainResult, evaluate_laps, make_training_env, train
 
-__all__ = ["ESConfig", "MLPPolicy", "TrainResult", "evaluate_laps", "train"]
+__all__ = ["ESConfig", "MLPPolicy", "TrainResult", "evaluate_laps", "make_training_env", "train"]

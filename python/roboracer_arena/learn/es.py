@@ -137,10 +137,21 @@ class TrainResult:
                 "seconds": round(self.seconds, 2), "curve": self.curve}
 
 
-def train(track: Any, cfg: ESConfig = ESConfig(),
-          progress: Callable[[dict[str, float]], None] | None = None) -> TrainResult:
-    """Train the policy with ES on ``track`` (anything ``track=`` accepts, pools included)."""
-    env = _make_env(track, 2 * cfg.pairs, cfg)
+def make_training_env(track: Any, cfg: ESConfig) -> Any:
+    """The vector env :func:`train` uses (build it once to train several seeds on a big pool)."""
+    return _make_env(track, 2 * cfg.pairs, cfg)
+
+
+def train(track: Any, cfg: ESConfig = ESConfig(), progress: Callable[[dict[str, float]], None] | None = None,
+          env: Any = None) -> TrainResult:
+    """Train the policy with ES on ``track`` (anything ``track=`` accepts, pools included),
+    or on ``env`` from :func:`make_training_env` (then ``track`` is ignored)."""
+    if env is None:
+        env = make_training_env(track, cfg)
+    elif env.num_envs != 2 * cfg.pairs:
+        from ..errors import ConfigError
+
+        raise ConfigError(f"train: env has {env.num_envs} envs, the config needs 2 * pairs = {2 * cfg.pairs}")
     rng = np.random.default_rng(cfg.seed)
     obs_dim = cfg.num_beams + 2
     policy = MLPPolicy(obs_dim, cfg.hidden, cfg)
@@ -175,16 +186,17 @@ def train(track: Any, cfg: ESConfig = ESConfig(),
 
 def evaluate_laps(theta: np.ndarray, track: Any, cfg: ESConfig, max_time_s: float | None = None) -> list[dict[str, Any]]:
     """Drive the policy from the grid start of every track of ``track`` (one env each) until
-    it completes a lap, touches anything or runs out of time (default: lap length at
-    0.5 m/s). Returns per track: name, clean_lap, lap_time (s or None), progress (m)."""
+    it completes a lap, touches anything, drives the wrong way or runs out of time
+    (default: the lap at 0.8 m/s, below the policy's slowest speed). Returns per track:
+    name, clean_lap, lap_time (s or None), progress (m)."""
     from ..envs.track_pool import resolve_track_pool
 
     tracks, _ = resolve_track_pool(track)
-    env = _make_env(tracks, len(tracks), cfg, reset_poses="grid")
+    env = _make_env(tracks, len(tracks), cfg, reset_poses="grid", wrong_way_ends_episode=True)
     policy = MLPPolicy(cfg.num_beams + 2, cfg.hidden, cfg)
     obs, info = env.reset(seed=0, options={"track_ids": np.arange(len(tracks))})
     dt = env.config.control_dt
-    limit = max_time_s if max_time_s is not None else max(t.length for t in tracks) / 0.5
+    limit = max_time_s if max_time_s is not None else max(t.length for t in tracks) / 0.8
     n = len(tracks)
     done, clean, lap_time, progress = np.zeros(n, bool), np.zeros(n, bool), [None] * n, np.zeros(n)
     for _ in range(int(limit / dt)):
