@@ -257,3 +257,22 @@ def test_human_render_mode_goes_through_gymnasiums_human_rendering(oval):
     with pytest.warns(UserWarning, match="HumanRendering"):
         env = gym.make("RoboRacerArena-v0", track=oval, render_mode="human", **SMALL)
     assert isinstance(env, HumanRendering) and env.unwrapped.render_mode == "rgb_array"
+
+
+def test_rolling_start_speed_noise_and_speeds_option(oval):
+    env = RoboRacerEnv(track=oval, reset_poses="grid", start_speed_noise=3.0, **SMALL)
+    speeds = []
+    for seed in range(4):
+        _, info = env.reset(seed=seed)
+        st, f = env.simulator_state
+        speeds.append(st[0, f["vx"]])
+    assert 0.0 <= min(speeds) and max(speeds) <= 3.0 + 1e-3 and np.ptp(speeds) > 0.1
+    env.reset(seed=0, options={"poses": [0.0, -3.4, 0.0], "speeds": 2.5})
+    st, f = env.simulator_state
+    assert st[0, f["vx"]] == pytest.approx(2.5, abs=1e-3)
+    _, _, _, _, info = env.step(np.array([0.0, 2.5], np.float32))
+    assert info["progress"] == pytest.approx(2.5 * env.config.control_dt, rel=0.05)  # rolled on at speed
+    with pytest.raises(roboracer_arena.errors.InvalidArgumentError, match="speed"):
+        env.reset(options={"speeds": 99.0})
+    with pytest.raises(ConfigError, match="start_speed_noise"):
+        RoboRacerEnv(track=oval, start_speed_noise=50.0, **SMALL)

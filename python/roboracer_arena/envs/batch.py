@@ -62,6 +62,7 @@ class SimBatch:
         self.wrong_way = np.zeros((E, V), np.int8)  # 0, +1 nose first, -1 reversing (see info)
         self.vehicle_terminated = np.zeros((E, V), bool)
         self.start_pose = np.zeros((E, V, 3), np.float64)
+        self.start_speed = np.zeros((E, V), np.float64)
         self._len = np.ones((E, 1), np.float64)  # lap length of each env's track
         self._half_len = np.full((E, 1), 0.5)
         self._no_contact = np.zeros((E, V), bool)
@@ -137,13 +138,14 @@ class SimBatch:
 
     # ------------------------------------------------------------------ reset
     def reset(self, mask: np.ndarray, rngs: list[np.random.Generator], track_ids: np.ndarray | None = None,
-              poses: np.ndarray | None = None) -> None:
+              poses: np.ndarray | None = None, speeds: np.ndarray | None = None) -> None:
         """Reset the environments where ``mask`` is True, then observe every environment.
 
         ``track_ids`` ((E,) ints, or None): the track of each reset env, else drawn from
         its RNG (with the pool's weights). ``poses`` ((E, V, 3) x, y, yaw, or None): the
         start poses of each reset env, else the configured start (``reset_poses`` plus
-        start noise) drawn from its RNG."""
+        start noise) drawn from its RNG. ``speeds`` ((E, V) m/s, or None): rolling-start
+        forward speeds, else drawn from [0, start_speed_noise] (at rest when 0)."""
         cfg, V = self.config, self.vehicles
         all_poses = np.zeros((self.num_envs, V, 3), np.float64)
         idx = np.flatnonzero(mask)
@@ -154,10 +156,19 @@ class SimBatch:
             length = self.lengths[tid]
             self._len[e], self._half_len[e] = length, length / 2
             all_poses[e] = poses[e] if poses is not None else self._start_poses(tid, rng)
+            if speeds is not None:
+                self.start_speed[e] = speeds[e]
+            elif cfg.start_speed_noise > 0:
+                self.start_speed[e] = rng.uniform(0.0, cfg.start_speed_noise, V)
+            else:
+                self.start_speed[e] = 0.0
             self.obs.new_episode(e, rng)
         self.start_pose[idx] = all_poses[idx]
         self.sim.set_tracks(self.track_ids)
-        self.sim.reset(np.asarray(mask, dtype=bool), all_poses)
+        mask = np.asarray(mask, dtype=bool)
+        self.sim.reset(mask, all_poses)
+        if self.start_speed[idx].any():
+            self.sim.set_speeds(mask, self.start_speed)
         self.observe()
         self.prev_s[idx] = self.state[idx, :, self._s_col]
         self.progress[idx] = 0.0

@@ -149,6 +149,8 @@ class EnvConfig(BaseModel):
     start_lateral_noise: float = Field(
         0.0, ge=0, description="Start pose: uniform lateral offset in +-this (m), capped to keep the car off the walls.")
     start_heading_noise: float = Field(0.0, ge=0, le=3.2, description="Start pose: uniform heading offset in +-this (rad).")
+    start_speed_noise: float = Field(
+        0.0, ge=0, description="Rolling start: forward speed drawn uniformly from [0, this] m/s (<= max_speed).")
     wrong_way_distance: float = Field(
         2.0, gt=0, description="A vehicle drives the wrong way when it moves backwards along the centreline more "
         "than this (m) behind the furthest point it reached since reset.")
@@ -168,6 +170,12 @@ class EnvConfig(BaseModel):
                 raise ValueError(f"observation preset {name!r} is unknown; choose from {sorted(OBSERVATION_PRESETS)}")
             data = {**data, "observation": dict(OBSERVATION_PRESETS[name])}
         return data
+
+    @model_validator(mode="after")
+    def _start_speed(self) -> EnvConfig:
+        if self.start_speed_noise > self.sim.vehicle.max_speed:
+            raise ValueError(f"start_speed_noise {self.start_speed_noise} exceeds max_speed {self.sim.vehicle.max_speed}")
+        return self
 
     @property
     def control_dt(self) -> float:

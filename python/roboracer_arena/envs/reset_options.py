@@ -7,6 +7,8 @@ Keys (all optional):
 * ``"poses"``: start poses x, y, yaw (map frame, m and rad) -- single env (V, 3), or (3,)
   with one vehicle; vector env (E, V, 3), or (E, 3) with one vehicle per env. Rows of envs
   that are not reset are ignored. The poses are used as given (no start noise).
+* ``"speeds"``: forward start speeds (m/s) -- single env (V,) or a number; vector env
+  (E, V) or (E,): a rolling start (default: ``start_speed_noise`` draws, else at rest).
 * ``"reset_mask"`` (vector env only, handled there): which envs to reset.
 
 Other keys are ignored with a warning (wrappers may pass their own options through).
@@ -21,14 +23,14 @@ import numpy as np
 
 from ..errors import ConfigError
 
-KNOWN = ("track_id", "track_ids", "poses", "reset_mask")
+KNOWN = ("track_id", "track_ids", "poses", "speeds", "reset_mask")
 
 
 def reset_options(options: Mapping[str, Any] | None, num_envs: int, vehicles: int, num_tracks: int,
-                  single: bool) -> tuple[np.ndarray | None, np.ndarray | None]:
-    """(track_ids (E,) or None, poses (E, V, 3) or None) from ``options``."""
+                  single: bool) -> tuple[np.ndarray | None, np.ndarray | None, np.ndarray | None]:
+    """(track_ids (E,), poses (E, V, 3), speeds (E, V)), each None when not given."""
     if not options:
-        return None, None
+        return None, None, None
     unknown = [k for k in options if k not in KNOWN]
     if unknown:  # other keys may be meant for wrappers (gymnasium passes options through): warn only
         warnings.warn(f"reset options {unknown} are not used by RoboRacerArena (it reads {list(KNOWN)})",
@@ -58,4 +60,15 @@ def reset_options(options: Mapping[str, Any] | None, num_envs: int, vehicles: in
             shape = ((vehicles, 3) if vehicles > 1 else "(3,)") if single else want
             raise ConfigError(f"reset option poses must have shape {shape}, got {np.shape(options['poses'])}")
         poses = p
-    return ids, poses
+    speeds = None
+    if options.get("speeds") is not None:
+        sp = np.asarray(options["speeds"], dtype=np.float64)
+        if single and sp.ndim <= 1 and sp.size in (1, vehicles):
+            sp = np.broadcast_to(sp, (vehicles,))[None]
+        elif vehicles == 1 and sp.shape == (num_envs,):
+            sp = sp[:, None]
+        if sp.shape != (num_envs, vehicles):
+            raise ConfigError(f"reset option speeds must have shape {(vehicles,) if single else (num_envs, vehicles)}, "
+                              f"got {np.shape(options['speeds'])}")
+        speeds = sp
+    return ids, poses, speeds

@@ -92,8 +92,8 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         super().reset(seed=seed)
         if seed is not None:
             self._batch.rebuild(seed)
-        track_ids, poses = reset_options(options, 1, self.vehicles_per_env, len(self.tracks), single=True)
-        self._batch.reset(np.ones(1, bool), [self.np_random], track_ids, poses)
+        track_ids, poses, speeds = reset_options(options, 1, self.vehicles_per_env, len(self.tracks), single=True)
+        self._batch.reset(np.ones(1, bool), [self.np_random], track_ids, poses, speeds)
         return self._obs(), self._info()
 
     def step(self, action: Any):

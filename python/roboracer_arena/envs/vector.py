@@ -117,8 +117,8 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         mask = self._all
         if options and options.get("reset_mask") is not None:
             mask = np.asarray(options["reset_mask"], dtype=bool).reshape(self.num_envs)
-        track_ids, poses = reset_options(options, self.num_envs, self.vehicles_per_env, len(self.tracks), single=False)
-        self._batch.reset(mask, self._rngs, track_ids, poses)
+        track_ids, poses, speeds = reset_options(options, self.num_envs, self.vehicles_per_env, len(self.tracks), single=False)
+        self._batch.reset(mask, self._rngs, track_ids, poses, speeds)
         self._autoreset &= ~mask
         return self._obs(), self._info()
 

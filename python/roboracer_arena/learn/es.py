@@ -169,7 +169,8 @@ def train(track: Any, cfg: ESConfig = ESConfig(), progress: Callable[[dict[str, 
         env.reset(seed=cfg.seed * 100_003 + gen)
         ids = env.current_track_ids[0::2].repeat(2)
         poses = env._batch.start_pose[0::2].repeat(2, axis=0)
-        ret, n = rollout(env, policy, thetas, cfg.episode_steps, {"track_ids": ids, "poses": poses})
+        speeds = env._batch.start_speed[0::2].repeat(2, axis=0)
+        ret, n = rollout(env, policy, thetas, cfg.episode_steps, {"track_ids": ids, "poses": poses, "speeds": speeds})
         steps_total += n
         shaped = _centred_ranks(ret)
         grad = -(shaped[0::2] - shaped[1::2]) @ eps / (2 * cfg.pairs * cfg.sigma) + cfg.weight_decay * theta
