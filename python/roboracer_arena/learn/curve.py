@@ -43,7 +43,7 @@ def plot_curve(curve: Sequence[dict[str, float]], path: str | Path, title: str, 
     for name, colour in (("best", (150, 150, 150)), ("mean", (31, 94, 200))):
         d.line([px(x, y) for x, y in zip(xs, series[name])], fill=colour, width=2)
     d.text((left, 10), title, fill="black", font=font)
-    d.text((5, top - 16), "return", fill="black", font=font)
+    d.text((5, 10), "return", fill="black", font=font)
     d.text((w - right - 250, 10), "mean (blue) / best (grey) return", fill="black", font=font)
     d.text((w // 2 - 40, h - 22), "env-steps", fill="black", font=font)
     buf = io.BytesIO()
