@@ -158,6 +158,8 @@ class Simulator:
         """Track of each env, shape (num_envs,); reset the env afterwards."""
     def reset(self, env_mask: npt.NDArray[np.bool_], poses: npt.NDArray[np.float64]) -> None:
         """Put the vehicles of envs where ``env_mask`` is True at rest at ``poses`` (E, V, 3)."""
+    def set_speeds(self, env_mask: npt.NDArray[np.bool_], speeds: npt.NDArray[np.float64]) -> None:
+        """Rolling start: forward speeds (E, V) in m/s for envs where ``env_mask`` is True, after ``reset``."""
     def step(
         self,
         actions: npt.NDArray[np.float64],

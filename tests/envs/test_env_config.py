@@ -9,7 +9,7 @@ def test_defaults_are_20hz_with_substeps_from_dt():
     assert c.control_rate_hz == 20.0
     assert c.substeps == round(1 / (20.0 * c.sim.physics.dt))
     assert c.control_dt == pytest.approx(0.05)
-    assert c.max_episode_steps == round(60.0 / 0.05)
+    assert c.max_episode_steps == round(120.0 / 0.05)
 
 
 def test_substeps_follow_rate_and_dt():

@@ -8,6 +8,7 @@ from gymnasium.utils.env_checker import check_env
 
 import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
 from roboracer_arena.envs.single import RoboRacerEnv
+from roboracer_arena.errors import ConfigError
 
 SMALL = {"sim": {"lidar": {"num_beams": 109}}}
 
@@ -123,7 +124,7 @@ def test_contact_does_not_end_the_episode_when_configured(oval):
 def test_observation_options(oval):
     env = make(oval, observation={"scan": False, "odometry": ["speed", "yaw"], "normalise": True}, vehicles_per_env=2)
     obs, _ = env.reset(seed=1)
-    assert set(obs) == {"odometry"} and obs["odometry"].shape == (2, 2)
+    assert set(obs) == {"odometry"} and obs["odometry"].shape == (2, 3)  # speed, sin yaw, cos yaw
     assert env.observation_space.contains(obs)
     obs, *_ = env.step(np.zeros((2, 2), np.float32))
     assert np.abs(obs["odometry"]).max() <= 1.0
@@ -145,7 +146,7 @@ def test_grid_start_and_track_choice(oval):
     xy = state[:, [f["x"], f["y"]]]
     gaps = np.linalg.norm(np.diff(xy, axis=0), axis=1)
     assert (gaps > 0.9).all()  # grid slots 1 m apart along the line, staggered
-    with pytest.raises(ValueError):
+    with pytest.raises(ConfigError):
         env.reset(options={"track_id": 5})
 
 

@@ -125,7 +125,7 @@ def test_bad_num_envs_and_modes(oval):
     with pytest.raises(ValueError):
         RoboRacerVectorEnv(num_envs=0, track=oval, **SMALL)
     with pytest.raises(ValueError, match="autoreset_mode"):
-        RoboRacerVectorEnv(num_envs=1, track=oval, autoreset_mode="disabled", **SMALL)
+        RoboRacerVectorEnv(num_envs=1, track=oval, autoreset_mode="sometimes", **SMALL)
     env = RoboRacerVectorEnv(num_envs=1, track=oval, autoreset_mode="same_step", **SMALL)
     assert env.metadata["autoreset_mode"] == AutoresetMode.SAME_STEP
 

@@ -62,6 +62,23 @@ fn read_f64_3d(obj: &Bound<'_, PyAny>, name: &str, shape: [usize; 3]) -> PyResul
     Ok(view.as_array().iter().copied().collect())
 }
 
+/// A numpy bool array of shape (num_envs,) as a Vec.
+fn read_mask(obj: &Bound<'_, PyAny>, num_envs: usize) -> PyResult<Vec<bool>> {
+    let mask = obj.cast::<PyArray1<bool>>().map_err(|_| {
+        invalid(format!(
+            "env_mask must be a numpy bool array of shape ({num_envs},)"
+        ))
+    })?;
+    check_shape("env_mask", mask.shape(), &[num_envs])?;
+    Ok(mask
+        .try_readonly()
+        .map_err(|e| invalid(e.to_string()))?
+        .as_array()
+        .iter()
+        .copied()
+        .collect())
+}
+
 /// Borrow `obj` as a writable C-contiguous array of element type T and the given shape.
 macro_rules! out_array {
     ($obj:expr, $ty:ty, $arr:ident, $name:expr, $shape:expr, $dtype:expr) => {{
@@ -190,22 +207,35 @@ impl Simulator {
         poses: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
-        let mask = env_mask.cast::<PyArray1<bool>>().map_err(|_| {
+        let mask = read_mask(env_mask, e)?;
+        let poses = read_f64_3d(poses, "poses", [e, v, 3])?;
+        let inner = &mut self.inner;
+        py.detach(move || inner.reset(&mask, &poses)).py()
+    }
+
+    /// Rolling start: forward speeds (E, V) m/s for the envs where `env_mask` is True,
+    /// right after `reset`.
+    fn set_speeds(
+        &mut self,
+        env_mask: &Bound<'_, PyAny>,
+        speeds: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
+        let mask = read_mask(env_mask, e)?;
+        let arr = speeds.cast::<PyArray2<f64>>().map_err(|_| {
             invalid(format!(
-                "env_mask must be a numpy bool array of shape ({e},)"
+                "speeds must be a numpy float64 array of shape [{e}, {v}]"
             ))
         })?;
-        check_shape("env_mask", mask.shape(), &[e])?;
-        let mask: Vec<bool> = mask
+        check_shape("speeds", arr.shape(), &[e, v])?;
+        let speeds: Vec<f64> = arr
             .try_readonly()
             .map_err(|e| invalid(e.to_string()))?
             .as_array()
             .iter()
             .copied()
             .collect();
-        let poses = read_f64_3d(poses, "poses", [e, v, 3])?;
-        let inner = &mut self.inner;
-        py.detach(move || inner.reset(&mask, &poses)).py()
+        self.inner.set_speeds(&mask, &speeds).py()
     }
 
     #[pyo3(signature = (actions, substeps, scans, state, events))]

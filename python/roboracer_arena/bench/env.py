@@ -73,7 +73,9 @@ def record_lap(track: Any, beams: int, max_steps: int = 20_000) -> np.ndarray:
 def _time_single(track: Any, beams: int, actions: np.ndarray, seconds: float) -> dict[str, Any]:
     import gymnasium as gym
 
-    env = gym.make("RoboRacerArena-v0", track=track, **_env_kwargs(beams))
+    kwargs = _env_kwargs(beams)
+    kwargs.pop("time_limit_s")  # under gymnasium.make the limit is max_episode_steps (-1: none)
+    env = gym.make("RoboRacerArena-v0", track=track, max_episode_steps=-1, **kwargs)
     env.reset(seed=0)
     steps, resets, t0, c0 = 0, 0, time.perf_counter(), time.process_time()
     while True:

@@ -17,11 +17,14 @@ def register_envs() -> None:
     """Register ``RoboRacerArena-v0`` (single and vector entry points) with gymnasium; idempotent."""
     from gymnasium.envs.registration import register, registry
 
+    from .episode_limit import REGISTERED_MAX_EPISODE_STEPS
+
     if ENV_ID not in registry:
         register(
             id=ENV_ID,
             entry_point="roboracer_arena.envs.single:RoboRacerEnv",
             vector_entry_point="roboracer_arena.envs.vector:RoboRacerVectorEnv",
+            max_episode_steps=REGISTERED_MAX_EPISODE_STEPS,
             disable_env_checker=False,
         )
 

@@ -13,21 +13,27 @@ import numpy as np
 from gymnasium import spaces
 
 from .env_config import EnvConfig
+from .observation import ObservationAssembler
+from .start import centreline_pose, grid_start_s, perturb_pose
 from .tracks import Track
 
 CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
 #: Simulator state columns copied into ``info`` when present.
 STATE_INFO = ("laps", "lap_time", "last_lap_time", "progress_s")
+#: A step that loses more than this (m) of centreline progress counts as moving backwards.
+BACKWARDS_EPS = 1e-3
 
 
 class SimBatch:
     """``E`` environments × ``V`` vehicles on one native simulator (see module docstring)."""
 
-    def __init__(self, tracks: list[Track], num_envs: int, config: EnvConfig, seed: int) -> None:
+    def __init__(self, tracks: list[Track], num_envs: int, config: EnvConfig, seed: int,
+                 track_probs: np.ndarray | None = None) -> None:
         from .._core import Simulator
 
         self._Simulator = Simulator
         self.tracks = tracks
+        self.track_probs = track_probs
         self.config = config
         self.num_envs = E = int(num_envs)
         self.vehicles = V = config.vehicles_per_env
@@ -52,6 +58,11 @@ class SimBatch:
         self.progress = np.zeros((E, V), np.float64)  # metres since reset
         self.elapsed = np.zeros(E, np.int64)
         self.vehicle_rewards = np.zeros((E, V), np.float64)
+        self.best_progress = np.zeros((E, V), np.float64)
+        self.wrong_way = np.zeros((E, V), np.int8)  # 0, +1 nose first, -1 reversing (see info)
+        self.vehicle_terminated = np.zeros((E, V), bool)
+        self.start_pose = np.zeros((E, V, 3), np.float64)
+        self.start_speed = np.zeros((E, V), np.float64)
         self._len = np.ones((E, 1), np.float64)  # lap length of each env's track
         self._half_len = np.full((E, 1), 0.5)
         self._no_contact = np.zeros((E, V), bool)
@@ -68,11 +79,8 @@ class SimBatch:
         self._s_col = self.field_index["progress_s" if self._wrap else "travel"]
         self._info_names = [f for f in STATE_INFO if f in self.field_index]
         self._info_cols = np.array([self.field_index[f] for f in self._info_names], dtype=np.intp)
-        self._odo_cols = np.array([self.field_index[f] for f in config.observation.odometry], dtype=np.intp)
-        self._odo_offset = np.zeros((E, 1, len(self._odo_cols)), np.float64)
-        self._odo_scale = np.ones((E, 1, len(self._odo_cols)), np.float64)
         self._range_max = float(lid.range_max)
-        self._clip_scan = lid.noise_std > 0
+        self.obs = ObservationAssembler(config, self.field_index, E, V, B)
         # The scanner runs at its own rate: under a faster control loop the observation
         # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control
         # scans on 2 of every 5 steps). Scan ticks count on one clock for the whole batch.
@@ -91,13 +99,7 @@ class SimBatch:
             act = spaces.Box(lo.astype(np.float32), hi.astype(np.float32), dtype=np.float32)
         else:
             act = spaces.Box(-1.0, 1.0, shape=(*lead, 2), dtype=np.float32)
-        obs: dict[str, spaces.Space] = {}
-        if cfg.observation.scan:
-            high = 1.0 if cfg.observation.normalise else self._range_max
-            obs["scan"] = spaces.Box(0.0, high, shape=(*lead, self.num_beams), dtype=np.float32)
-        if cfg.observation.odometry:
-            obs["odometry"] = spaces.Box(-np.inf, np.inf, shape=(*lead, len(self._odo_cols)), dtype=np.float32)
-        return spaces.Dict(obs), act
+        return self.obs.space(lead, act), act
 
     # ------------------------------------------------------------------ actions
     def set_actions(self, actions: Any) -> None:
@@ -135,31 +137,75 @@ class SimBatch:
         return c.astype(np.float32)
 
     # ------------------------------------------------------------------ reset
-    def reset(self, mask: np.ndarray, rngs: list[np.random.Generator], fixed_track: int | None = None) -> None:
-        """Reset the environments where ``mask`` is True (new track and start poses drawn
-        from each env's own RNG), then observe every environment into the buffers."""
+    def reset(self, mask: np.ndarray, rngs: list[np.random.Generator], track_ids: np.ndarray | None = None,
+              poses: np.ndarray | None = None, speeds: np.ndarray | None = None) -> None:
+        """Reset the environments where ``mask`` is True, then observe every environment.
+
+        ``track_ids`` ((E,) ints, or None): the track of each reset env, else drawn from
+        its RNG (with the pool's weights). ``poses`` ((E, V, 3) x, y, yaw, or None): the
+        start poses of each reset env, else the configured start (``reset_poses`` plus
+        start noise) drawn from its RNG. ``speeds`` ((E, V) m/s, or None): rolling-start
+        forward speeds, else drawn from [0, start_speed_noise] (at rest when 0)."""
         cfg, V = self.config, self.vehicles
-        poses = np.zeros((self.num_envs, V, 3), np.float64)
+        all_poses = np.zeros((self.num_envs, V, 3), np.float64)
         idx = np.flatnonzero(mask)
         for e in idx:
             rng = rngs[e]
-            tid = fixed_track if fixed_track is not None else (int(rng.integers(len(self.tracks))) if len(self.tracks) > 1 else 0)
+            tid = int(track_ids[e]) if track_ids is not None else self._draw_track(rng)
             self.track_ids[e] = tid
             length = self.lengths[tid]
             self._len[e], self._half_len[e] = length, length / 2
-            s0 = float(rng.uniform(0.0, length)) if cfg.reset_poses == "random" else 0.0
-            for k in range(V):
-                s = (s0 - k * cfg.grid_spacing) % length
-                x, y, yaw = self.sim.centreline_pose(tid, s)
-                lat = 0.0 if V == 1 else (cfg.grid_offset if k % 2 == 0 else -cfg.grid_offset)
-                poses[e, k] = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
-            self._set_odometry_norm(e, tid)
+            all_poses[e] = poses[e] if poses is not None else self._start_poses(tid, rng)
+            if speeds is not None:
+                self.start_speed[e] = speeds[e]
+            elif cfg.start_speed_noise > 0:
+                self.start_speed[e] = rng.uniform(0.0, cfg.start_speed_noise, V)
+            else:
+                self.start_speed[e] = 0.0
+            self.obs.new_episode(e, rng)
+        self.start_pose[idx] = all_poses[idx]
         self.sim.set_tracks(self.track_ids)
-        self.sim.reset(np.asarray(mask, dtype=bool), poses)
+        mask = np.asarray(mask, dtype=bool)
+        self.sim.reset(mask, all_poses)
+        if self.start_speed[idx].any():
+            self.sim.set_speeds(mask, self.start_speed)
         self.observe()
         self.prev_s[idx] = self.state[idx, :, self._s_col]
         self.progress[idx] = 0.0
+        self.best_progress[idx] = 0.0
+        self.wrong_way[idx] = 0
+        self.vehicle_terminated[idx] = False
         self.elapsed[idx] = 0
+        self.obs.refresh(self, idx, fill=True)
+
+    def _draw_track(self, rng: np.random.Generator) -> int:
+        n = len(self.tracks)
+        if n == 1:
+            return 0
+        if self.track_probs is None:
+            return int(rng.integers(n))
+        return int(rng.choice(n, p=self.track_probs))
+
+    def _start_poses(self, tid: int, rng: np.random.Generator) -> np.ndarray:
+        """Start poses (V, 3) of one env on track ``tid``: the first slot at a random point
+        of the centreline, the grid start or s = 0, further vehicles in a staggered grid
+        behind it; then lateral and heading noise."""
+        cfg, V = self.config, self.vehicles
+        track, length = self.tracks[tid], self.lengths[tid]
+        if cfg.reset_poses == "random":
+            s0 = float(rng.uniform(0.0, length))
+        elif cfg.reset_poses == "grid":
+            s0 = grid_start_s(track, V, cfg.grid_spacing)
+        else:
+            s0 = 0.0
+        half_width = cfg.sim.vehicle.chassis_width / 2
+        out = np.zeros((V, 3))
+        for k in range(V):
+            x, y, yaw = centreline_pose(track, (s0 - k * cfg.grid_spacing) % length)
+            lat = 0.0 if V == 1 else (cfg.grid_offset if k % 2 == 0 else -cfg.grid_offset)
+            pose = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
+            out[k] = perturb_pose(track, pose, rng, cfg.start_lateral_noise, cfg.start_heading_noise, half_width)
+        return out
 
     def _scan_due(self) -> bool:
         """Whether the scanner produces a new scan at the end of this step."""
@@ -173,19 +219,6 @@ class SimBatch:
 
     def observe(self) -> None:
         self.sim.observe(self.scans if self.config.observation.scan else None, self.state, self.events)
-
-    def _set_odometry_norm(self, e: int, tid: int) -> None:
-        if not self.config.observation.normalise:
-            return
-        veh = self.config.sim.vehicle
-        xmin, ymin, xmax, ymax = self.tracks[tid].bounds
-        half = max(xmax - xmin, ymax - ymin) / 2 or 1.0
-        centre = {"x": (xmin + xmax) / 2, "y": (ymin + ymax) / 2}
-        scale = {"x": half, "y": half, "yaw": math.pi, "vx": veh.max_speed, "vy": veh.max_speed,
-                 "speed": veh.max_speed, "yaw_rate": 2 * math.pi, "steer": veh.max_steer}
-        for j, f in enumerate(self.config.observation.odometry):
-            self._odo_offset[e, 0, j] = centre.get(f, 0.0)
-            self._odo_scale[e, 0, j] = scale[f]
 
     # ------------------------------------------------------------------ step
     def step(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -206,46 +239,57 @@ class SimBatch:
         np.multiply(ds, r.progress, out=vr)
         if r.time_penalty:
             vr -= r.time_penalty * self.config.control_dt
+        ends = self.vehicle_terminated
         if self.events.any():
             contact = (self.events & (CONTACT_WALL | CONTACT_VEHICLE)) != 0
             vr -= r.collision_penalty * contact
-            terminated = contact.any(axis=1) & self.config.collision_ends_episode
+            np.logical_and(contact, self.config.collision_ends_episode, out=ends)
         else:
-            contact, terminated = self._no_contact, self._no_env
+            contact = self._no_contact
+            ends[:] = False
+        wrong = self._update_wrong_way(ds)
+        if wrong is not None:
+            if r.wrong_way_penalty:
+                vr -= r.wrong_way_penalty * wrong
+            if self.config.wrong_way_ends_episode:
+                ends |= wrong
+        terminated = ends.any(axis=1)
+        self.obs.refresh(self, slice(None))
         reward = vr[:, 0].copy() if self.vehicles == 1 else vr.sum(axis=1)
         if self.max_steps is None:
             return reward, terminated, self._no_env, contact
         truncated = self.elapsed >= self.max_steps
         return reward, terminated, truncated & ~terminated, contact
 
+    def _update_wrong_way(self, ds: np.ndarray) -> np.ndarray | None:
+        """Update ``wrong_way`` (E, V): nonzero while a vehicle moves backwards along the
+        centreline more than ``wrong_way_distance`` behind its furthest progress; +1 when it
+        drives nose first (a U-turn), -1 when it reverses. Returns the bool mask, or None
+        when no vehicle is wrong-way (the common case, no allocation)."""
+        np.maximum(self.best_progress, self.progress, out=self.best_progress)
+        wrong = (ds < -BACKWARDS_EPS) & (self.best_progress - self.progress > self.config.wrong_way_distance)
+        if not wrong.any():
+            self.wrong_way[:] = 0
+            return None
+        forward = self.state[:, :, self.field_index["vx"]] >= 0.0
+        self.wrong_way[:] = np.where(wrong, np.where(forward, 1, -1), 0)
+        return wrong
+
     # ------------------------------------------------------------------ observation
     def observation(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:
         """Observation dict for ``envs`` (a slice or index array), shapes (e, V, ·) — fresh arrays."""
-        cfg = self.config.observation
-        out: dict[str, np.ndarray] = {}
-        if cfg.scan:
-            scan = self.scans[envs]
-            if self._clip_scan:
-                scan = np.clip(scan, 0.0, self._range_max)
-            out["scan"] = scan * np.float32(1.0 / self._range_max) if cfg.normalise else scan.copy()
-        if cfg.odometry:
-            odo = self.state[envs][..., self._odo_cols]
-            if cfg.normalise:
-                odo = (odo - self._odo_offset[envs]) / self._odo_scale[envs]
-            out["odometry"] = odo.astype(np.float32)
-        return out
+        return self.obs.observation(envs)
 
-    def odometry_raw(self, odo: np.ndarray, env: int) -> np.ndarray:
-        """Undo the observation normalisation of env ``env``'s odometry rows."""
-        if not self.config.observation.normalise:
-            return np.asarray(odo, dtype=np.float64)
-        return np.asarray(odo, dtype=np.float64) * self._odo_scale[env] + self._odo_offset[env]
+    def odometry_raw(self, odo: np.ndarray, env: Any) -> np.ndarray:
+        """The newest frame of ``obs["odometry"]`` rows of env(s) ``env`` in SI units (map
+        frame, one column per configured field), whatever the normalisation."""
+        return self.obs.odometry_raw(np.asarray(odo, dtype=np.float64), self.start_pose[env])
 
     def info(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:
         """Per-env diagnostics, fresh arrays with leading env axis (then vehicle axis):
         track_id, progress (m since reset), contact_wall / contact_vehicle / lap_completed
-        (this step), the simulator's laps / lap_time / last_lap_time / progress_s and, with
-        several vehicles, vehicle_rewards."""
+        (this step), wrong_way (0, +1 nose first, -1 reversing), the simulator's laps /
+        lap_time / last_lap_time / progress_s and, with several vehicles, vehicle_rewards and vehicle_terminated."""
         ev = self.events[envs]
         info = {
             "track_id": self.track_ids[envs].copy(),
@@ -253,9 +297,11 @@ class SimBatch:
             "contact_wall": (ev & CONTACT_WALL) != 0,
             "contact_vehicle": (ev & CONTACT_VEHICLE) != 0,
             "lap_completed": (ev & LAP_COMPLETED) != 0,
+            "wrong_way": self.wrong_way[envs].copy(),
         }
         if self.vehicles > 1:
             info["vehicle_rewards"] = self.vehicle_rewards[envs].copy()
+            info["vehicle_terminated"] = self.vehicle_terminated[envs].copy()
         cols = self.state[envs][..., self._info_cols]  # one gather; the columns are views of it
         for j, name in enumerate(self._info_names):
             info[name] = cols[..., j]

@@ -25,10 +25,22 @@ ODOMETRY_FIELDS = ("x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed")
 class ObservationConfig(BaseModel):
     """What the agent sees: the lidar scan and/or odometry columns, raw or normalised.
 
-    Raw: ranges in metres, odometry in SI units (map frame pose, body-frame velocities).
-    Normalised: ranges / ``range_max`` in [0, 1]; x, y relative to the track's bounding-box
-    centre divided by its half-extent; yaw / pi; speeds / ``max_speed``; yaw rate / 2 pi;
-    steer / ``max_steer``.
+    Raw (``normalise=False``, for control people): ranges in metres, odometry in SI units
+    (map-frame pose, body-frame velocities), one column per field.
+
+    Normalised (``normalise=True``, for RL libraries; every value in [-1, 1] or [0, 1]):
+
+    * scan: ranges clipped to ``horizon`` metres, then divided by it, in [0, 1];
+    * x, y: position in the frame of the episode's start pose (x forward, y left), divided
+      by ``position_scale`` (not clipped: the only unbounded columns) -- the same on every map;
+    * yaw: TWO columns, sin and cos of the heading relative to the start heading (no wrap);
+    * vx, vy, speed / ``max_speed``; yaw_rate / 2 pi; steer / ``max_steer``.
+
+    ``EnvConfig(observation="normalise")`` is the preset for learning: normalised scan and
+    ``vx, vy, yaw_rate, steer`` (the pose is left out: it means nothing across tracks).
+    ``frame_stack = k > 1`` stacks the last k frames on a new axis before the last one
+    (scan (k, B), odometry (k, K)); ``previous_action`` adds the last action the env
+    applied (in the env's action mode) as ``obs["previous_action"]``.
     """
 
     model_config = _FROZEN
@@ -42,7 +54,12 @@ class ObservationConfig(BaseModel):
         ("x", "y", "yaw", "vx", "vy", "yaw_rate", "steer"),
         description=f"Odometry columns ('odometry' key) in this order; any of {ODOMETRY_FIELDS}.",
     )
-    normalise: bool = Field(False, description="Scale scan and odometry to about [-1, 1] (see class docstring).")
+    normalise: bool = Field(False, description="Scale scan and odometry for learning (see class docstring).")
+    horizon: float = Field(10.0, gt=0, description="Normalised scan: ranges are clipped to this (m), then scaled to [0, 1].")
+    position_scale: float = Field(
+        20.0, gt=0, description="Normalised x, y: metres from the start pose that map to +-1.")
+    frame_stack: int = Field(1, ge=1, le=64, description="Number of most recent frames stacked in each key.")
+    previous_action: bool = Field(False, description="Add the previous action as obs['previous_action'].")
 
     @model_validator(mode="after")
     def _check(self) -> ObservationConfig:
@@ -68,6 +85,42 @@ class RewardConfig(BaseModel):
     progress: float = Field(1.0, description="Weight of centreline progress (per metre).")
     collision_penalty: float = Field(10.0, ge=0, description="Subtracted on a step with a wall or vehicle contact.")
     time_penalty: float = Field(0.0, ge=0, description="Subtracted per second of simulated time.")
+    wrong_way_penalty: float = Field(0.0, ge=0, description="Subtracted on each step the vehicle drives the wrong way.")
+
+
+class RandomisationConfig(BaseModel):
+    """Per-episode domain randomisation of the observation, drawn from each env's own RNG.
+
+    The simulator's scan is exact; each episode draws a range-noise std uniformly from
+    ``lidar_noise_std`` (added to every beam, every step) and each beam of each step reads
+    ``range_max`` (a lost return) with probability ``lidar_dropout``. Vehicle parameters
+    (tyre friction, mass) are not randomised per episode: the native simulator holds one
+    vehicle model for all its worlds (set them for the whole env with ``sim={"vehicle": ...}``).
+    """
+
+    model_config = _FROZEN
+
+    lidar_noise_std: tuple[float, float] = Field((0.0, 0.0), description="(low, high) range-noise std (m).")
+    lidar_dropout: float = Field(0.0, ge=0, lt=1, description="Probability a beam reads range_max, per step.")
+
+    @model_validator(mode="after")
+    def _ranges(self) -> RandomisationConfig:
+        lo, hi = self.lidar_noise_std
+        if not 0 <= lo <= hi:
+            raise ValueError(f"randomisation.lidar_noise_std must be (low, high) with 0 <= low <= high, got {(lo, hi)}")
+        return self
+
+    @property
+    def active(self) -> bool:
+        """Whether any observation randomisation is on."""
+        return self.lidar_noise_std[1] > 0 or self.lidar_dropout > 0
+
+
+#: Named observation presets (``EnvConfig(observation="normalise")``).
+OBSERVATION_PRESETS = {
+    "raw": {},
+    "normalise": {"normalise": True, "odometry": ("vx", "vy", "yaw_rate", "steer")},
+}
 
 
 class EnvConfig(BaseModel):
@@ -84,12 +137,25 @@ class EnvConfig(BaseModel):
     observation: ObservationConfig = Field(default_factory=ObservationConfig)
     reward: RewardConfig = Field(default_factory=RewardConfig)
     collision_ends_episode: bool = Field(True, description="A wall or vehicle contact terminates the episode.")
-    time_limit_s: float | None = Field(60.0, gt=0, description="Truncate after this much simulated time (None: never).")
-    reset_poses: Literal["random", "grid"] = Field(
+    time_limit_s: float | None = Field(
+        120.0, gt=0, description="Truncate after this much simulated time (None: never); see envs/episode_limit.py "
+        "for how it agrees with gymnasium's max_episode_steps.")
+    reset_poses: Literal["random", "grid", "centreline_start"] = Field(
         "random",
-        description="'random': a uniformly random point of the centreline; 'grid': the centreline start (s = 0). "
-        "Further vehicles line up behind the first in a staggered two-wide grid.",
+        description="'random': a uniformly random point of the centreline; 'grid': the grid start "
+        "(envs/start.py: on the line, clear of walls, facing the longest free run ahead); 'centreline_start': "
+        "s = 0 of the centreline as extracted. Further vehicles line up behind the first in a staggered grid.",
     )
+    start_lateral_noise: float = Field(
+        0.0, ge=0, description="Start pose: uniform lateral offset in +-this (m), capped to keep the car off the walls.")
+    start_heading_noise: float = Field(0.0, ge=0, le=3.2, description="Start pose: uniform heading offset in +-this (rad).")
+    start_speed_noise: float = Field(
+        0.0, ge=0, description="Rolling start: forward speed drawn uniformly from [0, this] m/s (<= max_speed).")
+    wrong_way_distance: float = Field(
+        2.0, gt=0, description="A vehicle drives the wrong way when it moves backwards along the centreline more "
+        "than this (m) behind the furthest point it reached since reset.")
+    wrong_way_ends_episode: bool = Field(False, description="Driving the wrong way terminates the episode.")
+    randomisation: RandomisationConfig = Field(default_factory=lambda: RandomisationConfig())
     grid_spacing: float = Field(1.0, gt=0, description="Longitudinal gap between grid slots (m).")
     grid_offset: float = Field(0.2, ge=0, description="Lateral offset of the staggered grid slots (m).")
     reverse: bool = Field(
@@ -99,6 +165,22 @@ class EnvConfig(BaseModel):
     )
     vehicles_per_env: int = Field(1, ge=1, le=64, description="Vehicles sharing one track (one world) per env.")
     sim: SimConfig = Field(default_factory=SimConfig)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _observation_preset(cls, data: object) -> object:
+        if isinstance(data, dict) and isinstance(data.get("observation"), str):
+            name = data["observation"]
+            if name not in OBSERVATION_PRESETS:
+                raise ValueError(f"observation preset {name!r} is unknown; choose from {sorted(OBSERVATION_PRESETS)}")
+            data = {**data, "observation": dict(OBSERVATION_PRESETS[name])}
+        return data
+
+    @model_validator(mode="after")
+    def _start_speed(self) -> EnvConfig:
+        if self.start_speed_noise > self.sim.vehicle.max_speed:
+            raise ValueError(f"start_speed_noise {self.start_speed_noise} exceeds max_speed {self.sim.vehicle.max_speed}")
+        return self
 
     @property
     def control_dt(self) -> float:

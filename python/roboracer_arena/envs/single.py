@@ -8,12 +8,23 @@ Spaces (``V`` = vehicles per env; the vehicle axis is dropped when ``V == 1``):
   out-of-range values are clipped to the bounds. The observation never holds NaN.
 * observation: ``Dict(scan=(V, B) ranges, odometry=(V, K))`` as configured in
   :class:`~roboracer_arena.envs.env_config.ObservationConfig`.
-* reward: progress along the centreline (m) minus a collision penalty, summed over the
-  env's vehicles; ``terminated`` on a contact (if ``collision_ends_episode``), ``truncated``
-  at ``time_limit_s``.
+* reward: progress along the centreline (m) minus a collision penalty (and a wrong-way
+  penalty if set), summed over the env's vehicles; ``terminated`` on a contact (if
+  ``collision_ends_episode``) or wrong-way driving (if ``wrong_way_ends_episode``),
+  ``truncated`` at the episode limit (see :mod:`.episode_limit`).
 
-``reset(options={"track_id": k})`` picks a track of the list; otherwise each reset draws
-one with the env's RNG. ``reset(seed=s)`` also reseeds the simulator (lidar noise).
+``reset(options=...)``: ``"track_id"`` (or ``"track_ids"``) picks a track of the list,
+otherwise each reset draws one with the env's RNG (weighted for a track pool);
+``"poses"`` ((V, 3) or (3,) x, y, yaw in the map frame) sets the start poses instead of
+the configured start. ``reset(seed=s)`` also reseeds the simulator (lidar noise).
+
+Several vehicles (``vehicles_per_env = V > 1``): the reward is the sum over vehicles and
+``terminated`` says any vehicle ended; per-vehicle rewards are ``info["vehicle_rewards"]``
+(V,) and per-vehicle ends ``info["vehicle_terminated"]`` (V,). :mod:`.multi_agent` wraps
+this as a PettingZoo-style ParallelEnv.
+
+Render modes: ``rgb_array``; ``gymnasium.make(..., render_mode="human")`` wraps it in
+gymnasium's ``HumanRendering`` (needs pygame and a display).
 """
 
 from __future__ import annotations
@@ -25,7 +36,9 @@ import numpy as np
 
 from .batch import CONTACT_VEHICLE, CONTACT_WALL, LAP_COMPLETED, STATE_INFO, EnvHelpers, SimBatch
 from .env_config import EnvConfig
-from .tracks import resolve_tracks
+from .episode_limit import check_make_kwargs
+from .reset_options import reset_options
+from .track_pool import resolve_track_pool
 
 
 class RoboRacerEnv(EnvHelpers, gym.Env):
@@ -45,8 +58,8 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']}, got {render_mode!r}")
         self.config = EnvConfig.build(config, **overrides)
-        self.tracks = resolve_tracks(track, corridor_params, reverse=self.config.reverse)
-        self._batch = SimBatch(self.tracks, 1, self.config, seed=0)
+        self.tracks, probs = resolve_track_pool(track, corridor_params, reverse=self.config.reverse)
+        self._batch = SimBatch(self.tracks, 1, self.config, seed=0, track_probs=probs)
         self.observation_space, self.action_space = self._batch.single_spaces()
         self.render_mode = render_mode
         self.metadata = {**self.metadata, "render_fps": self.config.control_rate_hz}
@@ -54,16 +67,33 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         self._view: Any = None
         self._squeeze = self.config.vehicles_per_env == 1
         self._state_info = [f for f in STATE_INFO if f in self._batch.field_index]
+        self._spec: Any = None
+
+    @property  # type: ignore[override]
+    def spec(self) -> Any:
+        """The EnvSpec; ``max_episode_steps`` is the limit the env applies (see :mod:`.episode_limit`)."""
+        if self._spec is None or self._batch.max_steps is None:
+            return self._spec
+        from dataclasses import replace
+
+        return replace(self._spec, max_episode_steps=self._batch.max_steps)
+
+    @spec.setter
+    def spec(self, value: Any) -> None:
+        # gymnasium.make attaches the spec and wraps a TimeLimit (its registered or given
+        # max_episode_steps): that is then the one limit, so the env stops truncating itself.
+        if value is not None and getattr(value, "id", None) and self._spec is None:
+            check_make_kwargs(value.kwargs or {})
+            self._batch.max_steps = None
+        self._spec = value
 
     # ------------------------------------------------------------ gymnasium API
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
         if seed is not None:
             self._batch.rebuild(seed)
-        track_id = (options or {}).get("track_id")
-        if track_id is not None and not 0 <= int(track_id) < len(self.tracks):
-            raise ValueError(f"track_id {track_id} out of range (0..{len(self.tracks) - 1})")
-        self._batch.reset(np.ones(1, bool), [self.np_random], None if track_id is None else int(track_id))
+        track_ids, poses, speeds = reset_options(options, 1, self.vehicles_per_env, len(self.tracks), single=True)
+        self._batch.reset(np.ones(1, bool), [self.np_random], track_ids, poses, speeds)
         return self._obs(), self._info()
 
     def step(self, action: Any):
@@ -102,6 +132,7 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
             "contact_wall": bool(ev & CONTACT_WALL),
             "contact_vehicle": bool(ev & CONTACT_VEHICLE),
             "lap_completed": bool(ev & LAP_COMPLETED),
+            "wrong_way": int(b.wrong_way[0, 0]),
         }
         for name in self._state_info:
             info[name] = float(st[f[name]])
@@ -116,7 +147,8 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         """``obs["odometry"]`` in SI units, shape (V, K), whatever the normalisation."""
         if "odometry" not in obs:
             raise ValueError("the observation has no odometry (ObservationConfig.odometry is empty)")
-        return self._batch.odometry_raw(np.reshape(obs["odometry"], (self.vehicles_per_env, -1)), 0)
+        odo = np.asarray(obs["odometry"])
+        return self._batch.odometry_raw(odo[None] if self._squeeze else odo, 0)
 
     def from_ackermann(self, cmds: Any) -> np.ndarray:
         """``[steer rad, speed m/s]`` commands ((V, 2) or (2,)) as an action of this env."""

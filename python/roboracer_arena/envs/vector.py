@@ -12,6 +12,15 @@ Autoreset mode (``metadata["autoreset_mode"]``), chosen with ``autoreset_mode=``
   the returned observation is the new episode's first, ``infos["final_obs"]`` (object
   array, ``None`` elsewhere) and ``infos["final_info"]`` hold the last ones, with
   ``_final_obs`` / ``_final_info`` masks.
+* **DISABLED**: nothing resets by itself. An environment whose episode ended keeps being
+  stepped by the batched simulator (its results are meaningless) until the caller resets
+  it with ``reset(options={"reset_mask": mask})``; use this for episodic evaluation and
+  ignore finished environments. (The native batch has no masked step: the finished
+  environments still cost simulation time.)
+
+``reset(options=...)`` also takes ``"track_ids"`` ((E,) ints) or ``"track_id"`` (one int)
+and ``"poses"`` ((E, V, 3) or (E, 3)); see :mod:`.reset_options`. The episode limit is the
+one of :mod:`.episode_limit`; ``spec.max_episode_steps`` reports it.
 
 A reset environment is re-observed with the others (one extra scan pass on steps that
 contain a reset; the simulator has no masked observe). With lidar noise (``noise_std >
@@ -33,7 +42,9 @@ from gymnasium.vector.utils import batch_space
 
 from .batch import EnvHelpers, SimBatch
 from .env_config import EnvConfig
-from .tracks import resolve_tracks
+from .episode_limit import time_limit_given, vector_config
+from .reset_options import reset_options
+from .track_pool import resolve_track_pool
 
 
 class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
@@ -58,19 +69,18 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
             raise ValueError(f"num_envs must be >= 1, got {num_envs}")
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']}, got {render_mode!r}")
-        self.config = EnvConfig.build(config, **overrides)
-        if max_episode_steps is not None:  # gymnasium.make_vec passes the spec's limit
-            self.config = EnvConfig.build(self.config, time_limit_s=max_episode_steps * self.config.control_dt)
-        self.tracks = resolve_tracks(track, corridor_params, reverse=self.config.reverse)
+        explicit = time_limit_given({**overrides, "config": config})
+        self.config = vector_config(EnvConfig.build(config, **overrides), max_episode_steps, explicit)
+        self.tracks, probs = resolve_track_pool(track, corridor_params, reverse=self.config.reverse)
         self.num_envs = int(num_envs)
-        self._batch = SimBatch(self.tracks, self.num_envs, self.config, seed=0)
+        self._batch = SimBatch(self.tracks, self.num_envs, self.config, seed=0, track_probs=probs)
         self.single_observation_space, self.single_action_space = self._batch.single_spaces()
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self.render_mode = render_mode
         mode = _autoreset_mode(autoreset_mode)
-        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP):
-            raise ValueError(f"autoreset_mode must be NEXT_STEP or SAME_STEP, got {autoreset_mode!r}")
+        if mode is None:
+            raise ValueError(f"autoreset_mode must be NEXT_STEP, SAME_STEP or DISABLED, got {autoreset_mode!r}")
         self.autoreset_mode = mode
         self._autoreset = np.zeros(self.num_envs, bool)
         self.metadata = {**self.metadata, "render_fps": self.config.control_rate_hz, "autoreset_mode": mode}
@@ -79,6 +89,20 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self._squeeze = self.config.vehicles_per_env == 1
         self._rngs: list[np.random.Generator] = []
         self._all = np.ones(self.num_envs, bool)
+        self._spec: Any = None
+
+    @property  # type: ignore[override]
+    def spec(self) -> Any:
+        """The EnvSpec, its ``max_episode_steps`` the limit this env applies."""
+        return self._spec
+
+    @spec.setter
+    def spec(self, value: Any) -> None:
+        if value is not None:
+            from dataclasses import replace
+
+            value = replace(value, max_episode_steps=self.config.max_episode_steps)
+        self._spec = value
 
     def reset(self, *, seed: int | list[int] | None = None, options: dict[str, Any] | None = None):
         if isinstance(seed, (list, tuple)):
@@ -91,10 +115,10 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
             self._rngs = [np.random.default_rng([int(seed), i]) for i in range(self.num_envs)]
             self._batch.rebuild(int(seed))
         mask = self._all
-        if options and "reset_mask" in options:
+        if options and options.get("reset_mask") is not None:
             mask = np.asarray(options["reset_mask"], dtype=bool).reshape(self.num_envs)
-        track_id = (options or {}).get("track_id")
-        self._batch.reset(mask, self._rngs, None if track_id is None else int(track_id))
+        track_ids, poses, speeds = reset_options(options, self.num_envs, self.vehicles_per_env, len(self.tracks), single=False)
+        self._batch.reset(mask, self._rngs, track_ids, poses, speeds)
         self._autoreset &= ~mask
         return self._obs(), self._info()
 
@@ -111,7 +135,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
                 terminated[pending] = False
                 truncated[pending] = False
             self._autoreset = terminated | truncated
-        else:
+        elif self.autoreset_mode == AutoresetMode.SAME_STEP:
             done = terminated | truncated
             if done.any():
                 idx = np.flatnonzero(done)
@@ -168,8 +192,8 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         """``obs["odometry"]`` in SI units, shape (E, V, K), whatever the normalisation."""
         if "odometry" not in obs:
             raise ValueError("the observation has no odometry (ObservationConfig.odometry is empty)")
-        odo = np.reshape(obs["odometry"], (self.num_envs, self.vehicles_per_env, -1))
-        return self._batch.odometry_raw(odo, slice(None))
+        odo = np.asarray(obs["odometry"])
+        return self._batch.odometry_raw(odo[:, None] if self._squeeze else odo, slice(None))
 
     def from_ackermann(self, cmds: Any) -> np.ndarray:
         """``[steer rad, speed m/s]`` commands ((E, V, 2)) as an action of this vector env."""

@@ -177,6 +177,34 @@ impl Simulator {
         Ok(())
     }
 
+    /// Give every vehicle of each env whose mask is true a forward speed (`speeds`:
+    /// num_envs × vehicles, m/s) after [`Simulator::reset`]: a rolling start. Speeds must
+    /// be finite and within the vehicle's [min_speed, max_speed].
+    pub fn set_speeds(&mut self, mask: &[bool], speeds: &[f64]) -> Result<()> {
+        let v = self.vehicles_per_env;
+        self.check_len("env_mask", mask.len(), self.num_envs())?;
+        self.check_len("speeds", speeds.len(), self.num_envs() * v)?;
+        let (lo, hi) = (self.params.vehicle.min_speed, self.params.vehicle.max_speed);
+        for (e, &m) in mask.iter().enumerate() {
+            if let Some(&s) = speeds[e * v..(e + 1) * v]
+                .iter()
+                .find(|s| m && !(s.is_finite() && (lo..=hi).contains(*s)))
+            {
+                return Err(ArenaError::invalid(format!(
+                    "start speed {s} of env {e} is not finite or outside [{lo}, {hi}] m/s"
+                )));
+            }
+        }
+        for ((w, &m), s) in self.worlds.iter_mut().zip(mask).zip(speeds.chunks(v)) {
+            if m {
+                for (k, &speed) in s.iter().enumerate() {
+                    w.set_forward_speed(k, speed);
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Step every env: `actions` (E × V × 2: steering, speed), `substeps` physics steps,
     /// then (if `scans` is given, E × V × B) one scan per vehicle; writes `state`
     /// (E × V × STATE_SIZE) and `events` (E × V).

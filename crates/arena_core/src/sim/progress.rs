@@ -3,8 +3,12 @@
 //! `s` is the arc length of the car's projection on the centreline, found by a local
 //! search around the previous projection (so a car never jumps to a neighbouring pass
 //! of the track). `travel` accumulates the wrapped change of `s` since reset (negative
-//! when driving backwards). A lap is completed each time `travel` passes another full
-//! centreline length: the start/finish line is the reset pose.
+//! when driving backwards). The start/finish line is the reset pose: `laps` is the number
+//! of times the line was crossed forwards minus the times it was crossed backwards
+//! (`floor(travel / length)`), so it counts down, below zero too, when the car drives
+//! backwards through the line. A lap is *completed* (the event, and `last_lap_time`)
+//! only when `laps` exceeds its highest value so far: backing over the line and driving
+//! over it again does not complete a lap twice.
 
 use super::track::Centreline;
 
@@ -13,7 +17,9 @@ pub struct Progress {
     pub segment: usize,
     pub s: f64,
     pub travel: f64,
-    pub laps: u32,
+    pub laps: i32,
+    /// Highest `laps` reached since reset.
+    pub best_laps: i32,
     pub lap_time: f64,
     pub last_lap_time: f64,
 }
@@ -45,13 +51,22 @@ impl Progress {
         self.s = s;
         self.travel += ds;
         self.lap_time += elapsed;
-        if self.travel >= (self.laps as f64 + 1.0) * len {
-            self.laps += 1;
-            self.last_lap_time = self.lap_time;
-            self.lap_time = 0.0;
-            return true;
+        // One crossing per update at most in practice (max_move << len); loops keep the
+        // count exact whatever the step.
+        while self.travel < self.laps as f64 * len {
+            self.laps -= 1;
         }
-        false
+        let mut completed = false;
+        while self.travel >= (self.laps as f64 + 1.0) * len {
+            self.laps += 1;
+            if self.laps > self.best_laps {
+                self.best_laps = self.laps;
+                self.last_lap_time = self.lap_time;
+                self.lap_time = 0.0;
+                completed = true;
+            }
+        }
+        completed
     }
 }
 
@@ -80,5 +95,43 @@ mod tests {
             assert!(!p.update(&c, [pose[0], pose[1]], 0.1, 0.5));
         }
         assert!((p.travel - 50.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn laps_count_down_backwards_through_the_line() {
+        let c = Centreline::new(&[[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]).unwrap();
+        let mut p = Progress::reset(&c, [5.0, 0.0]);
+        // Backwards from the start crosses the line at once: laps = -1, no lap event.
+        for k in 1..=10 {
+            let pose = c.pose_at(5.0 - 0.5 * k as f64 + 40.0);
+            assert!(!p.update(&c, [pose[0], pose[1]], 0.1, 0.5));
+        }
+        assert_eq!(p.laps, -1);
+        assert!((p.travel + 5.0).abs() < 1e-9);
+        // Forwards again: back over the line restores 0 but completes nothing.
+        for k in 1..=20 {
+            let pose = c.pose_at(0.5 * k as f64);
+            assert!(!p.update(&c, [pose[0], pose[1]], 0.1, 0.5));
+        }
+        assert_eq!(p.laps, 0);
+        assert_eq!(p.last_lap_time, 0.0);
+        // One full lap forwards (from s = 10) completes lap 1 exactly once.
+        let mut events = 0;
+        for k in 1..=80 {
+            let pose = c.pose_at(10.0 + 0.5 * k as f64);
+            events += p.update(&c, [pose[0], pose[1]], 0.1, 0.5) as u32;
+        }
+        assert_eq!((events, p.laps), (1, 1));
+        // Back over the line (laps 0) and forwards over it again: still one completed lap.
+        for k in 1..=12 {
+            let pose = c.pose_at(50.0 - 0.5 * k as f64);
+            assert!(!p.update(&c, [pose[0], pose[1]], 0.1, 0.5));
+        }
+        assert_eq!(p.laps, 0);
+        for k in 1..=4 {
+            let pose = c.pose_at(44.0 + 0.5 * k as f64);
+            assert!(!p.update(&c, [pose[0], pose[1]], 0.1, 0.5));
+        }
+        assert_eq!(p.laps, 1);
     }
 }

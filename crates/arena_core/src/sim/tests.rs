@@ -374,3 +374,30 @@ fn head_on_cars_report_vehicle_contact() {
         out.row(1)
     );
 }
+
+#[test]
+fn rolling_start_keeps_its_speed_and_bad_speeds_are_refused() {
+    let mut sim = stadium_sim(2, 1, SimParams::default(), 0);
+    reset_on_centreline(&mut sim);
+    sim.set_speeds(&[true, false], &[3.0, 3.0]).unwrap();
+    let mut out = Out::new(&sim);
+    sim.observe(None, &mut out.state, &mut out.events).unwrap();
+    assert!((out.row(0)[3] - 3.0).abs() < 1e-3, "vx {}", out.row(0)[3]);
+    assert!(out.row(1)[3].abs() < 1e-6); // masked out: still at rest
+    for _ in 0..4 {
+        sim.step(
+            &[0.0, 3.0, 0.0, 0.0],
+            10,
+            None,
+            &mut out.state,
+            &mut out.events,
+        )
+        .unwrap();
+    }
+    assert!((out.row(0)[3] - 3.0).abs() < 0.1, "vx {}", out.row(0)[3]);
+    assert!(out.row(0)[9] > 0.5); // travelled about 0.6 m in 0.2 s
+    for bad in [f64::NAN, 1e3, -1e3] {
+        assert!(sim.set_speeds(&[true, true], &[bad, 0.0]).is_err());
+    }
+    assert!(sim.set_speeds(&[true], &[1.0]).is_err());
+}

@@ -203,6 +203,16 @@ impl World {
         car.last_good = spawn;
     }
 
+    /// Give vehicle `v` a forward speed (m/s) along its heading: a rolling start right
+    /// after [`World::reset_vehicle`]. The speed controller takes over at the next step.
+    pub fn set_forward_speed(&mut self, v: usize, speed: f64) {
+        if let Some(b) = self.pw.bodies.get_mut(self.cars[v].body) {
+            let mut fwd = b.position().rotation * Vector::X;
+            fwd.z = 0.0;
+            b.set_linvel(fwd.normalize_or_zero() * speed as f32, true);
+        }
+    }
+
     /// Run `substeps` physics steps with the given (already sanitised) commands, then
     /// update progress and events.
     pub fn step(&mut self, cmds: &[(f64, f64)], substeps: usize, model: &VehicleModel) {

@@ -1,0 +1,131 @@
+"""``roboracer-arena bench generalisation``: does training on many tracks transfer to
+tracks never seen? The same ES policy (:mod:`roboracer_arena.learn.es`) and the same
+budget of env-steps are spent
+
+* on ONE track (``--single``, default the recorded f1tenth-gym Berlin map), and
+* on a POOL of generated tracks plus the 1:10 F1 circuits (drawn per episode, equal
+  weight to each group),
+
+then each trained policy drives one lap from the grid start of every held-out recorded
+map (``--held-out``): recorded maps from ../shared/track-sources, none of them in the
+pool and none the single training track. Reported per condition over ``--seeds`` seeds:
+clean-lap rate (lap completed without touching a wall) and mean lap time of the clean
+laps, plus the per-track result.
+
+CPU note: the defaults are deliberately small (the project's machine has 2 cores shared
+with other work); raise ``--generations`` / ``--pairs`` for stronger policies.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+from ..fileio import atomic_write_text
+
+SINGLE = "gym-berlin"
+POOL = {"generated": 1.0, "circuits": 1.0}
+#: Recorded maps whose layouts are neither in the pool (no F1 circuit layouts) nor Berlin.
+HELD_OUT = ("gym-skirk", "gym-vegas", "gym-example", "cps-torino-redraw", "cps-columbia-small")
+
+
+def register(kinds) -> None:
+    p = kinds.add_parser("generalisation", help="ES on one track vs on a track pool, laps on held-out maps",
+                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--seeds", type=int, default=3, help="training seeds per condition (default 3)")
+    p.add_argument("--generations", type=int, default=40, help="ES generations per run (default 40)")
+    p.add_argument("--pairs", type=int, default=16, help="antithetic pairs per generation (default 16)")
+    p.add_argument("--episode-steps", type=int, default=200, help="steps per training episode (default 200)")
+    p.add_argument("--single", default=SINGLE, help=f"the one training track (default {SINGLE})")
+    p.add_argument("--held-out", nargs="+", default=list(HELD_OUT), help="evaluation tracks (catalog ids)")
+    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
+    p.set_defaults(func=_run_cli)
+
+
+def run(seeds: int = 3, generations: int = 40, pairs: int = 16, episode_steps: int = 200, single: str = SINGLE,
+        held_out: tuple[str, ...] | list[str] = HELD_OUT, verbose: bool = True,
+        pool: dict[str, float] | None = None) -> dict[str, Any]:
+    """Train both conditions for every seed and evaluate on ``held_out``; see module docstring."""
+    from ..errors import ConfigError
+    from ..learn.es import ESConfig, evaluate_laps, make_training_env, train
+
+    if seeds < 1 or generations < 1 or pairs < 1:
+        raise ConfigError("bench generalisation: --seeds, --generations and --pairs must be >= 1")
+    if single in held_out:
+        raise ConfigError(f"bench generalisation: the training track {single!r} is in --held-out")
+    pool = dict(POOL if pool is None else pool)
+    conditions: dict[str, Any] = {"single": single, "pool": pool}
+    runs: list[dict[str, Any]] = []
+    base = replace(ESConfig(), generations=generations, pairs=pairs, episode_steps=episode_steps)
+    for name, track in conditions.items():
+        env = make_training_env(track, base)  # once per condition: the pool has ~100 tracks to load
+        for seed in range(seeds):
+            cfg = replace(base, seed=seed)
+            t0, c0 = time.perf_counter(), time.process_time()
+            result = train(track, cfg, env=env)
+            laps = evaluate_laps(result.theta, list(held_out), cfg)
+            run = {"condition": name, "seed": seed, "env_steps": result.env_steps,
+                   "train_seconds": round(result.seconds, 1), "cpu_seconds": round(time.process_time() - c0, 1),
+                   "wall_seconds": round(time.perf_counter() - t0, 1), "final_mean_return": result.curve[-1]["mean_return"],
+                   "laps": laps}
+            runs.append(run)
+            if verbose:
+                clean = sum(lap["clean_lap"] for lap in laps)
+                print(f"  {name:6s} seed {seed}: {clean}/{len(laps)} clean laps on held-out maps "
+                      f"({run['env_steps']} env-steps, {run['wall_seconds']} s)", flush=True)
+    return {"budget": {"generations": generations, "pairs": pairs, "episode_steps": episode_steps},
+            "single": single, "pool": pool, "held_out": list(held_out), "seeds": seeds,
+            "summary": summarise(runs), "runs": runs}
+
+
+def summarise(runs: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
+    """Per condition: clean-lap rate over all (seed, track) laps, mean clean lap time,
+    and per held-out track the clean laps out of the seeds."""
+    out: dict[str, dict[str, Any]] = {}
+    for name in dict.fromkeys(r["condition"] for r in runs):
+        laps = [lap for r in runs if r["condition"] == name for lap in r["laps"]]
+        times = [lap["lap_time"] for lap in laps if lap["clean_lap"]]
+        per_track: dict[str, int] = {}
+        for lap in laps:
+            per_track[lap["track"]] = per_track.get(lap["track"], 0) + int(lap["clean_lap"])
+        steps = [r["env_steps"] for r in runs if r["condition"] == name]
+        out[name] = {"clean_lap_rate": round(len(times) / len(laps), 3),
+                     "mean_env_steps": round(sum(steps) / len(steps)),
+                     "mean_lap_time_s": round(sum(times) / len(times), 2) if times else None,
+                     "clean_laps_per_track": per_track}
+    return out
+
+
+def print_table(res: dict[str, Any]) -> None:
+    b = res["budget"]
+    print(f"ES budget per run: {b['generations']} generations x {2 * b['pairs']} envs x <= {b['episode_steps']} steps "
+          f"(episodes end at a contact); {res['seeds']} seeds per condition")
+    print(f"held-out recorded maps: {', '.join(res['held_out'])}")
+    print(f"{'condition':<34}{'env-steps/run':>14}{'clean-lap rate':>16}{'mean lap time (s)':>20}")
+    names = {"single": f"one track ({res['single']})", "pool": "pool (" + " + ".join(res["pool"]) + ")"}
+    for name, s in res["summary"].items():
+        t = "-" if s["mean_lap_time_s"] is None else f"{s['mean_lap_time_s']:.2f}"
+        print(f"{names[name]:<34}{s['mean_env_steps']:>14}{s['clean_lap_rate']:>16.2f}{t:>20}")
+    for name, s in res["summary"].items():
+        per = ", ".join(f"{k} {v}/{res['seeds']}" for k, v in s["clean_laps_per_track"].items())
+        print(f"  {name}: {per}")
+
+
+def _run_cli(args: argparse.Namespace) -> int:
+    res = run(args.seeds, args.generations, args.pairs, args.episode_steps, args.single, args.held_out)
+    print_table(res)
+    if args.json:
+        atomic_write_text(args.json, json.dumps(res, indent=2) + "\n")
+        print(f"wrote {args.json}")
+    return 0
+
+
+def run_quick() -> dict[str, Any]:
+    """``bench all``: one seed, a small budget, three held-out maps."""
+    res = run(seeds=1, generations=10, pairs=8, episode_steps=150, held_out=HELD_OUT[:3])
+    print_table(res)
+    return res

@@ -1,0 +1,182 @@
+"""Observation assembly for the batch engine: raw or normalised frames (see
+:class:`~roboracer_arena.envs.env_config.ObservationConfig`), observation randomisation
+(lidar noise and dropout), frame stacking and the previous action.
+
+A *frame* is computed once per env step (and at reset), so repeated reads of the same
+step's observation (``obs`` and ``final_obs``) agree, noise included.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+
+from .env_config import EnvConfig
+
+
+class ObservationAssembler:
+    """Frames of ``E`` envs x ``V`` vehicles, with history when ``frame_stack > 1``."""
+
+    def __init__(self, config: EnvConfig, field_index: dict[str, int], num_envs: int, vehicles: int,
+                 num_beams: int) -> None:
+        cfg = self.cfg = config.observation
+        self.config = config
+        E, V, B = num_envs, vehicles, num_beams
+        self.k = cfg.frame_stack
+        self.fields = tuple(cfg.odometry)
+        self.cols = np.array([field_index[f] for f in self.fields], dtype=np.intp)
+        self._xy = (field_index["x"], field_index["y"], field_index["yaw"])
+        #: Names of the columns of obs["odometry"] (yaw becomes yaw_sin, yaw_cos when normalised).
+        self.columns: tuple[str, ...] = tuple(
+            c for f in self.fields for c in ((f"{f}_sin", f"{f}_cos") if cfg.normalise and f == "yaw" else (f,)))
+        veh, lid = config.sim.vehicle, config.sim.lidar
+        self.range_max = float(lid.range_max)
+        self.scan_high = 1.0 if cfg.normalise else self.range_max
+        self._scan_scale = np.float32(1.0 / min(cfg.horizon, self.range_max))
+        self._scale = {"vx": veh.max_speed, "vy": veh.max_speed, "speed": veh.max_speed,
+                       "yaw_rate": 2 * math.pi, "steer": veh.max_steer}
+        self._max_steer, self._lo_speed, self._hi_speed = veh.max_steer, veh.min_speed, veh.max_speed
+        rnd = config.randomisation
+        self._randomise = rnd.active
+        self._dropout = rnd.lidar_dropout
+        self._noise_range = rnd.lidar_noise_std
+        self.noise_std = np.zeros(E, np.float64)
+        self.rngs: list[np.random.Generator | None] = [None] * E
+        K = len(self.columns)
+        stack = (self.k,) if self.k > 1 else ()
+        self.buf: dict[str, np.ndarray] = {}
+        if cfg.scan:
+            self.buf["scan"] = np.zeros((E, V, *stack, B), np.float32)
+        if self.fields:
+            self.buf["odometry"] = np.zeros((E, V, *stack, K), np.float32)
+        if cfg.previous_action:
+            self.buf["previous_action"] = np.zeros((E, V, *stack, 2), np.float32)
+
+    # ------------------------------------------------------------------ spaces
+    def space(self, lead: tuple[int, ...], action_space: spaces.Box) -> spaces.Dict:
+        """Observation space of one env (``lead`` = () or (V,))."""
+        stack = (self.k,) if self.k > 1 else ()
+        out: dict[str, spaces.Space] = {}
+        if "scan" in self.buf:
+            out["scan"] = spaces.Box(0.0, self.scan_high, shape=(*lead, *stack, self.buf["scan"].shape[-1]),
+                                     dtype=np.float32)
+        if "odometry" in self.buf:
+            shape = (*lead, *stack, len(self.columns))
+            hi = np.broadcast_to(self._odometry_high(), shape).astype(np.float32)
+            out["odometry"] = spaces.Box(-hi, hi, dtype=np.float32)
+        if "previous_action" in self.buf:
+            lo = np.broadcast_to(action_space.low.reshape(*lead, 2)[..., None, :] if stack else
+                                 action_space.low.reshape(*lead, 2), (*lead, *stack, 2))
+            hi2 = np.broadcast_to(action_space.high.reshape(*lead, 2)[..., None, :] if stack else
+                                  action_space.high.reshape(*lead, 2), (*lead, *stack, 2))
+            out["previous_action"] = spaces.Box(lo.astype(np.float32), hi2.astype(np.float32), dtype=np.float32)
+        return spaces.Dict(out)
+
+    def _odometry_high(self) -> np.ndarray:
+        """Per-column bound: 1 for normalised columns except the (unbounded) position."""
+        if not self.cfg.normalise:
+            return np.full(len(self.columns), np.inf)
+        return np.array([np.inf if c in ("x", "y") else 1.0 for c in self.columns])
+
+    # ------------------------------------------------------------------ per episode / per step
+    def new_episode(self, env: int, rng: np.random.Generator) -> None:
+        """Draw this episode's randomisation for env ``env`` from its RNG."""
+        self.rngs[env] = rng
+        if self._randomise:
+            lo, hi = self._noise_range
+            self.noise_std[env] = float(rng.uniform(lo, hi)) if hi > lo else lo
+
+    def refresh(self, batch: Any, envs: Any, fill: bool = False) -> None:
+        """Compute the current frame of ``envs`` from the batch buffers; push it into the
+        history (``fill``: the whole history, as at reset)."""
+        frame = self._frame(batch, envs, reset=fill)
+        for key, value in frame.items():
+            buf = self.buf[key]
+            if self.k == 1:
+                buf[envs] = value
+            elif fill:
+                buf[envs] = value[:, :, None]
+            else:
+                buf[envs, :, :-1] = buf[envs, :, 1:]
+                buf[envs, :, -1] = value
+
+    def observation(self, envs: Any) -> dict[str, np.ndarray]:
+        """Fresh copies of the observation of ``envs``, shapes (e, V, ...)."""
+        return {k: v[envs].copy() for k, v in self.buf.items()}
+
+    def _frame(self, batch: Any, envs: Any, reset: bool) -> dict[str, np.ndarray]:
+        cfg = self.cfg
+        out: dict[str, np.ndarray] = {}
+        if cfg.scan:
+            scan = np.array(batch.scans[envs], dtype=np.float32)
+            if self._randomise:
+                self._randomise_scan(scan, envs)
+            np.clip(scan, 0.0, self.range_max, out=scan)
+            if cfg.normalise:
+                np.minimum(scan * self._scan_scale, 1.0, out=scan)
+            out["scan"] = scan
+        if self.fields:
+            out["odometry"] = self._odometry(batch.state[envs], batch.start_pose[envs])
+        if cfg.previous_action:
+            act = batch.from_ackermann(batch.actions[envs])
+            out["previous_action"] = np.zeros_like(act) if reset else act
+        return out
+
+    def _randomise_scan(self, scan: np.ndarray, envs: Any) -> None:
+        ids = np.arange(len(self.rngs))[envs]
+        for j, e in enumerate(np.atleast_1d(ids)):
+            rng = self.rngs[e]
+            if rng is None:
+                continue
+            if self.noise_std[e] > 0:
+                scan[j] += rng.normal(0.0, self.noise_std[e], scan[j].shape).astype(np.float32)
+            if self._dropout > 0:
+                scan[j][rng.random(scan[j].shape) < self._dropout] = self.range_max
+
+    def _odometry(self, state: np.ndarray, start: np.ndarray) -> np.ndarray:
+        """(e, V, K) odometry columns from state (e, V, S) and start poses (e, V, 3)."""
+        raw = state[..., self.cols]
+        if not self.cfg.normalise:
+            return raw.astype(np.float32)
+        ix, iy, iyaw = self._xy
+        dx, dy = state[..., ix] - start[..., 0], state[..., iy] - start[..., 1]
+        c0, s0 = np.cos(start[..., 2]), np.sin(start[..., 2])
+        rel_yaw = state[..., iyaw] - start[..., 2]
+        parts = []
+        for j, f in enumerate(self.fields):
+            if f == "x":
+                parts.append((dx * c0 + dy * s0) / self.cfg.position_scale)
+            elif f == "y":
+                parts.append((-dx * s0 + dy * c0) / self.cfg.position_scale)
+            elif f == "yaw":
+                parts += [np.sin(rel_yaw), np.cos(rel_yaw)]
+            else:
+                parts.append(raw[..., j] / self._scale[f])
+        high = self._odometry_high()
+        return np.clip(np.stack(parts, axis=-1), -high, high).astype(np.float32)
+
+    def odometry_raw(self, odo: np.ndarray, start: np.ndarray) -> np.ndarray:
+        """Invert :meth:`_odometry` for the newest frame: (..., V, K) SI columns, map frame.
+        ``odo`` is (V, [k,] K') or (E, V, [k,] K'); ``start`` the matching start poses."""
+        if self.k > 1:
+            odo = odo[..., -1, :]
+        if not self.cfg.normalise:
+            return odo
+        start = np.broadcast_to(start, (*odo.shape[:-1], 3))
+        c0, s0 = np.cos(start[..., 2]), np.sin(start[..., 2])
+        col = {name: odo[..., i] for i, name in enumerate(self.columns)}
+        out = []
+        for f in self.fields:
+            if f in ("x", "y"):
+                fx = col.get("x", np.zeros_like(c0)) * self.cfg.position_scale
+                fy = col.get("y", np.zeros_like(c0)) * self.cfg.position_scale
+                out.append(start[..., 0] + fx * c0 - fy * s0 if f == "x" else start[..., 1] + fx * s0 + fy * c0)
+            elif f == "yaw":
+                yaw = np.arctan2(col["yaw_sin"], col["yaw_cos"]) + start[..., 2]
+                out.append(np.arctan2(np.sin(yaw), np.cos(yaw)))
+            else:
+                out.append(col[f] * self._scale[f])
+        return np.stack(out, axis=-1)

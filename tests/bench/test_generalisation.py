@@ -1,0 +1,36 @@
+"""bench generalisation end to end on a tiny budget (the real run is in BENCHMARKS.md)."""
+
+import json
+
+import pytest
+
+from roboracer_arena.bench.generalisation import run, summarise
+from roboracer_arena.cli import main
+from roboracer_arena.errors import ConfigError
+
+
+@pytest.mark.slow
+def test_tiny_generalisation_run_reports_both_conditions(sources, capsys):
+    res = run(seeds=1, generations=2, pairs=2, episode_steps=20, single="gen-l070-w20-h0c0s0-ccw-s0",
+              held_out=["gym-skirk"], pool={"generated:gen-l040-*": 1.0}, verbose=False)
+    assert set(res["summary"]) == {"single", "pool"}
+    for s in res["summary"].values():
+        assert 0.0 <= s["clean_lap_rate"] <= 1.0 and set(s["clean_laps_per_track"]) == {"gym-skirk"}
+    assert [r["condition"] for r in res["runs"]] == ["single", "pool"]
+    json.dumps(res)  # serialisable as written by --json
+
+
+def test_summary_counts_clean_laps_and_times():
+    runs = [{"condition": "single", "env_steps": 10, "laps": [
+        {"track": "a", "clean_lap": True, "lap_time": 10.0}, {"track": "b", "clean_lap": False, "lap_time": None}]},
+        {"condition": "single", "env_steps": 20, "laps": [
+            {"track": "a", "clean_lap": True, "lap_time": 12.0}, {"track": "b", "clean_lap": True, "lap_time": 20.0}]}]
+    s = summarise(runs)["single"]
+    assert s["clean_lap_rate"] == 0.75 and s["mean_lap_time_s"] == 14.0
+    assert s["clean_laps_per_track"] == {"a": 2, "b": 1} and s["mean_env_steps"] == 15
+
+
+def test_training_track_in_held_out_is_refused():
+    with pytest.raises(ConfigError, match="held-out"):
+        run(seeds=1, generations=1, pairs=1, single="gym-skirk", held_out=["gym-skirk"], verbose=False)
+    assert main(["bench", "generalisation", "--seeds", "0"]) == 2
