@@ -4,8 +4,10 @@ The grid start is chosen from the track's geometry, not from wherever the extrac
 centreline happens to begin: the first grid slot sits on the centreline where every slot
 of the grid keeps a safe distance from the walls and the free run straight ahead (to the
 first wall along the start heading) is longest, i.e. at the start of the longest straight.
-Whatever the direction the centreline runs (see ``Track``), the grid faces along it, so
-this composes with a reversed track.
+Where the track's source defines its start line (``Track.source_start``: circuits and
+recorded maps with a centreline file), the grid stays on that line as long as every slot
+is clear. Whatever the direction the centreline runs (see ``Track``), the grid faces
+along it, so this composes with a reversed track.
 """
 
 from __future__ import annotations
@@ -70,7 +72,9 @@ def grid_start_s(track: Any, slots: int = 1, spacing: float = 1.0) -> float:
     behind = [np.round(((cand - k * spacing) % length) / step).astype(int) % len(cand) for k in range(int(slots))]
     slot_clear = np.min([clear[b] for b in behind], axis=0)
     ok = slot_clear >= need
-    if ok.any():
+    if getattr(track, "source_start", False) and ok[0]:
+        best = 0  # the source's own start line, when every grid slot behind it is clear
+    elif ok.any():
         runs = np.array([free_run_ahead(track, *poses[i]) if ok[i] else -1.0 for i in range(len(cand))])
         runs = np.minimum(runs, 1e6)
         best = int(np.lexsort((slot_clear, runs))[-1])

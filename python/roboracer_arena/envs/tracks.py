@@ -46,6 +46,9 @@ class Track:
     walls: tuple[np.ndarray, ...]
     centreline: np.ndarray
     source: Any = field(default=None, repr=False)
+    #: True when the first centreline vertex is the source's own start line (a circuit's
+    #: or recorded map's centreline file), not wherever an extracted centreline begins.
+    source_start: bool = field(default=False, repr=False)
 
     @classmethod
     def from_polylines(cls, walls: Sequence[Any], centreline: Any, name: str = "track") -> Track:
@@ -68,11 +71,13 @@ class Track:
 
     def reversed(self) -> Track:
         """The same track driven the other way (same start vertex)."""
-        return Track(name=self.name, walls=self.walls, centreline=reverse_line(self.centreline), source=self.source)
+        return Track(name=self.name, walls=self.walls, centreline=reverse_line(self.centreline), source=self.source,
+                     source_start=self.source_start)
 
     def oriented(self, how: TrackDirection) -> Track:
         """The same track in ``how.direction``, starting at ``how.start`` when that lies on it."""
-        return Track(name=self.name, walls=self.walls, centreline=orient_to(self.centreline, how), source=self.source)
+        return Track(name=self.name, walls=self.walls, centreline=orient_to(self.centreline, how), source=self.source,
+                     source_start=self.source_start or how.start is not None)
 
     @cached_property
     def loop(self) -> np.ndarray:
