@@ -11,7 +11,7 @@ from PIL import Image
 
 from roboracer_arena import load_map
 from roboracer_arena.errors import InvalidArgumentError, MapFormatError, MapIOError
-from roboracer_arena.generate.mapfile import load_ros_map
+from roboracer_arena.maps import load_map
 from roboracer_arena.maps import FREE, OCCUPIED, UNKNOWN, OccupancyMap, save_map
 
 # white, black, mid-grey 205, dark grey 60 in a 2 x 2 image
@@ -120,7 +120,7 @@ def test_shared_maps_load(sources: Path) -> None:
     assert corner.meta["mode"] == "trinary" and corner.meta["image_channels"] == 4
     spa = load_map(sources / "f1tenth-racetracks/Spa/Spa_map.yaml")
     assert spa.shape == (2000, 2000) and (spa.data == FREE).mean() > 0.9  # thin-line map
-    assert load_ros_map(sources / "f1tenth-gym/maps/berlin.yaml").data.shape == (600, 600)
+    assert load_map(sources / "f1tenth-gym/maps/berlin.yaml").data.shape == (600, 600)
 
 
 def test_porto_yaml_names_a_missing_image_and_the_error_suggests_the_right_one(sources: Path) -> None:

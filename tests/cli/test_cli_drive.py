@@ -8,8 +8,7 @@ from PIL import Image
 
 from roboracer_arena import _core
 from roboracer_arena.cli import main
-from roboracer_arena.generate.mapfile import save_ros_map
-from roboracer_arena.generate.outcomes import GeneratedMap
+from roboracer_arena.maps import OccupancyMap
 
 
 @pytest.fixture(scope="module")
@@ -18,7 +17,7 @@ def stadium_map(tmp_path_factory):
     xy = np.column_stack([6.0 * np.cos(t), 3.5 * np.sin(t)])  # an ellipse, CCW
     data, origin = _core.rasterise_centreline(xy, np.full(len(xy), 1.8), resolution=0.05)
     path = tmp_path_factory.mktemp("map") / "ellipse.yaml"
-    return save_ros_map(GeneratedMap(data, 0.05, origin), path)
+    return OccupancyMap(data, 0.05, origin).save(path)
 
 
 def test_drive_reports_a_clean_lap_and_writes_a_gif(stadium_map, tmp_path, capsys):

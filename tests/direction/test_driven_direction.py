@@ -84,3 +84,23 @@ def test_catalog_records_every_circuit_in_its_source_direction(sources):
     for e in cat.select("generated"):
         spec = json.loads((tracks_dir() / e["spec"]).read_text())
         assert e["direction"] == spec["direction"], e["id"]
+
+
+def test_generated_outcome_and_its_map_plug_in_everywhere(tmp_path):
+    """One map type: ``generate_track(...).map`` is an ``OccupancyMap`` that the env, the
+    builder and the corridor take as they take ``load_map``'s; the Acceptance itself drives
+    in the requested direction."""
+    import gymnasium as gym
+
+    from roboracer_arena import TrackSpec, build_environment, extract_corridor, load_map
+    from roboracer_arena.generate import generate_track
+
+    spec = TrackSpec(name="cw", lap_length_m=40.0, corridor_width_m=1.2, hall_x_m=20.0, hall_y_m=15.0,
+                     direction="clockwise", hairpins=1, chicanes=0, sweepers=0)
+    out = generate_track(spec, seed=0)
+    m = out.map
+    assert type(m) is type(load_map(m.save(tmp_path / "cw.yaml")))
+    assert extract_corridor(m).walls
+    assert build_environment(m, tmp_path / "cw.usda").iou > 0.99
+    assert gym.make("RoboRacerArena-v0", track=m).unwrapped.tracks[0].name == "map"
+    assert _sign(driven_lap(out)) == -1  # the Acceptance keeps the requested clockwise sense

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from roboracer_arena import TrackSpec
-from roboracer_arena.generate import Acceptance, generate_track, load_ros_map, validate_map, write_outputs
+from roboracer_arena.generate import Acceptance, generate_track, validate_map, write_outputs
+from roboracer_arena.maps import load_map
 
 SMALL = TrackSpec(name="small", lap_length_m=40, hall_x_m=15, hall_y_m=12, hairpins=1, chicanes=1)
 
@@ -65,7 +66,7 @@ def test_every_check_reports_measured_bound_and_verdict(tmp_path):
         assert c["measured"] and c["bound"] and c["passed"] is True
     assert json.loads(paths["spec_json"].read_text()) == SMALL.model_dump()
     # The written map loads back and re-validates to the same verdict.
-    again, _ = validate_map(load_ros_map(paths["map_yaml"]), SMALL)
+    again, _ = validate_map(load_map(paths["map_yaml"]), SMALL)
     assert again["valid"] and [c["measured"] for c in again["checks"]] == [c["measured"] for c in report["checks"]]
 
 

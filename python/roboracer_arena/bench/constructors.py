@@ -44,8 +44,9 @@ from .. import _core
 from ..constructor_config import ConstructorConfig
 from ..errors import SpecError
 from ..fileio import atomic_write_text
-from ..generate import Acceptance, generate_track, load_ros_map, rasterise, save_ros_map, screen, validate_map
+from ..generate import Acceptance, generate_track, rasterise, screen, validate_map
 from ..generate.baselines import construct_baseline
+from ..maps import load_map
 from ..spec import TrackSpec
 
 CONSTRUCTOR_CHOICES = ("lattice", "lattice-raw", "de", "random")
@@ -83,7 +84,7 @@ def load_specs(path: str | Path) -> list[TrackSpec]:
 
 
 def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConfig) -> tuple[Any, str, int]:
-    """(GeneratedMap or None, why not built, lattice candidates tried)."""
+    """(OccupancyMap or None, why not built, lattice candidates tried)."""
     if constructor == "lattice":
         out = generate_track(spec, seed=seed, config=config)
         if isinstance(out, Acceptance):
@@ -111,8 +112,8 @@ def run_trial(spec: TrackSpec, seed: int, constructor: str, config: ConstructorC
     if m is None:
         row.update(valid=False, failed_checks=[], not_built_reason=why)
     else:
-        yaml_path = save_ros_map(m, workdir / f"{constructor}-{spec.name}-{seed}.yaml")
-        report, _ = validate_map(load_ros_map(yaml_path), spec, config)
+        yaml_path = m.save(workdir / f"{constructor}-{spec.name}-{seed}.yaml")
+        report, _ = validate_map(load_map(yaml_path), spec, config)
         row.update(valid=bool(report["valid"]), failed_checks=[c["name"] for c in report["checks"] if not c["passed"]])
     row["seconds"] = time.perf_counter() - t0
     return row

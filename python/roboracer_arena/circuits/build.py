@@ -22,8 +22,7 @@ from .. import _core
 from ..direction import direction_of
 from ..errors import CorridorError
 from ..fileio import atomic_write_text
-from ..generate.mapfile import save_ros_map
-from ..generate.outcomes import GeneratedMap
+from ..maps import OccupancyMap
 from .geometry import loop_length, reduce_widths, self_intersections, smooth_resample
 from .sources import CircuitInput, circuit_inputs
 
@@ -97,7 +96,7 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
 
     out = Path(outdir) / c.id
     out.mkdir(parents=True, exist_ok=True)
-    yaml_path = save_ros_map(GeneratedMap(data, cfg.resolution, tuple(origin)), out / "map.yaml")
+    yaml_path = OccupancyMap(data, cfg.resolution, tuple(origin)).save(out / "map.yaml")
     png = (out / "map.png").read_bytes()
     every = max(1, int(round(cfg.csv_spacing / cfg.spacing)))
     atomic_write_text(out / "centreline.csv", _csv(xy[::every], nar.widths[::every]))

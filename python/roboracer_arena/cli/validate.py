@@ -20,10 +20,11 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..generate import load_ros_map, validate_map
+    from ..generate import validate_map
+    from ..maps import load_map
 
     spec = TrackSpec.from_file(args.spec)
-    m = load_ros_map(args.map)
+    m = load_map(args.map)
     report, _ = validate_map(m, spec)
     if args.json:
         print_json({"map": str(args.map), **report})

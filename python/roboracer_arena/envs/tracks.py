@@ -29,6 +29,7 @@ import numpy as np
 from ..direction import DEFAULT_DIRECTION, TrackDirection, check_direction, direction_for_map, direction_of, orient_to
 from ..direction import reverse as reverse_line
 from ..errors import ConfigError
+from ..maps import OccupancyMap
 
 MAP_SUFFIXES = (".yaml", ".yml")
 
@@ -158,15 +159,22 @@ def _resolve_one(item: Any, corridor_params: Any) -> list[Track]:
         return [t for src in resolve_catalog(str(item)) for t in _resolve_one(src, corridor_params)]
     if hasattr(item, "walls") and hasattr(item, "centreline"):
         return [_with_own_direction(_from_corridor(item, getattr(item, "name", None) or "corridor"), item)]
+    if isinstance(getattr(item, "map", None), OccupancyMap) and hasattr(item, "direction"):  # an Acceptance
+        t = _from_corridor(_extract(item.map, corridor_params), item.spec.name)
+        return [_with_own_direction(t, item)]
     if all(hasattr(item, a) for a in ("data", "resolution", "origin")):
-        from ..corridor import extract_corridor
-
-        t = _from_corridor(extract_corridor(item, corridor_params), getattr(item, "name", None) or "map")
+        t = _from_corridor(_extract(item, corridor_params), getattr(item, "name", None) or "map")
         return [_with_own_direction(t, item)]
     raise ConfigError(
         f"cannot use {type(item).__name__} as a track: expected a map YAML path, an OccupancyMap, "
-        "a CorridorGeometry, a Track or a catalog id"
+        "a generate_track Acceptance, a CorridorGeometry, a Track or a catalog id"
     )
+
+
+def _extract(m: Any, corridor_params: Any) -> Any:
+    from ..corridor import extract_corridor
+
+    return extract_corridor(m, corridor_params)
 
 
 def _with_own_direction(t: Track, item: Any) -> Track:

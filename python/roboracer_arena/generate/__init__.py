@@ -2,23 +2,19 @@
 validator; Algorithm 1), the three typed outcomes, output writing, and the DE / random
 baselines used by ``roboracer-arena bench constructors``."""
 
-from .mapfile import load_ros_map, save_ros_map
-from .outcomes import Acceptance, GeneratedMap, GenerationFailure, Outcome, Rejection
+from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
 from .outputs import write_outputs
 from .pipeline import CONSTRUCTORS, derived_geometry, generate_track, rasterise, screen, validate_map
 
 __all__ = [
     "Acceptance",
     "CONSTRUCTORS",
-    "GeneratedMap",
     "GenerationFailure",
     "Outcome",
     "Rejection",
     "derived_geometry",
     "generate_track",
-    "load_ros_map",
     "rasterise",
-    "save_ros_map",
     "screen",
     "validate_map",
     "write_outputs",

@@ -9,20 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from ..maps import OccupancyMap
 from ..spec import TrackSpec
-
-
-@dataclass(frozen=True)
-class GeneratedMap:
-    """An occupancy grid in ROS conventions (row 0 = top image row; 254/0/205)."""
-
-    data: np.ndarray
-    resolution: float
-    origin: tuple[float, float, float]
-
-    @property
-    def shape(self) -> tuple[int, int]:
-        return self.data.shape  # type: ignore[return-value]
 
 
 @dataclass(frozen=True)
@@ -30,7 +18,7 @@ class Acceptance:
     """A validated map: every check in ``report['checks']`` passed."""
 
     spec: TrackSpec
-    map: GeneratedMap
+    map: OccupancyMap
     centreline: np.ndarray  # (N, 2) metres, driving direction, constructor's curve
     report: dict[str, Any]
     constructor: str
@@ -38,6 +26,16 @@ class Acceptance:
     candidates_tried: int
     seconds: float
     kind: str = "accepted"
+
+    @property
+    def direction(self) -> str:
+        """The requested racing direction (the env drives an Acceptance this way)."""
+        return self.spec.direction
+
+    @property
+    def start(self) -> tuple[float, float]:
+        """Where the constructor's centreline, and so the grid, starts."""
+        return float(self.centreline[0, 0]), float(self.centreline[0, 1])
 
     def summary(self) -> str:
         h, w = self.map.shape

@@ -10,7 +10,6 @@ from pathlib import Path
 import numpy as np
 
 from ..fileio import atomic_write_text
-from .mapfile import save_ros_map
 from .outcomes import Acceptance
 
 
@@ -35,7 +34,7 @@ def write_outputs(acc: Acceptance, outdir: str | Path, stem: str = "map") -> dic
         "spec_json": out / "spec.json",
         "report_json": out / "report.json",
     }
-    save_ros_map(acc.map, paths["map_yaml"])
+    acc.map.save(paths["map_yaml"])
     atomic_write_text(paths["centreline_csv"], centreline_csv(acc.centreline, acc.spec.corridor_width_m))
     atomic_write_text(paths["spec_json"], acc.spec.model_dump_json(indent=2) + "\n")
     report = {

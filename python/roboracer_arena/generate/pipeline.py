@@ -13,8 +13,9 @@ import numpy as np
 from .. import _core
 from ..constructor_config import ConstructorConfig
 from ..errors import InvalidArgumentError
+from ..maps import OccupancyMap
 from ..spec import TrackSpec
-from .outcomes import Acceptance, GeneratedMap, GenerationFailure, Outcome, Rejection
+from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
 
 Constructor = Literal["lattice", "de", "random"]
 CONSTRUCTORS: tuple[str, ...] = ("lattice", "de", "random")
@@ -34,17 +35,17 @@ def derived_geometry(spec: TrackSpec, config: ConstructorConfig | None = None) -
     return json.loads(_core.derived_geometry(*_jsons(spec, config or ConstructorConfig())))
 
 
-def validate_map(m: GeneratedMap, spec: TrackSpec, config: ConstructorConfig | None = None) -> tuple[dict[str, Any], np.ndarray]:
+def validate_map(m: OccupancyMap, spec: TrackSpec, config: ConstructorConfig | None = None) -> tuple[dict[str, Any], np.ndarray]:
     """Measure the raster against the spec; returns (report, measured centreline (N, 2))."""
     report, line = _core.validate_map(np.ascontiguousarray(m.data, np.uint8), m.resolution, tuple(m.origin), *_jsons(spec, config or ConstructorConfig()))
     return json.loads(report), line
 
 
-def rasterise(centreline: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> GeneratedMap:
+def rasterise(centreline: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> OccupancyMap:
     """Eq. 3 at the configured resolution and wall thickness, constant corridor width."""
     xy = np.ascontiguousarray(centreline, np.float64)
     data, origin = _core.rasterise_centreline(xy, np.full(len(xy), spec.corridor_width_m), config.resolution_m, config.wall_thickness_m, config.map_margin_m)
-    return GeneratedMap(data, config.resolution_m, origin)
+    return OccupancyMap(data, config.resolution_m, origin)
 
 
 def generate_track(
@@ -73,7 +74,7 @@ def generate_track(
         info = json.loads(info)
         if kind == "accepted":
             data, origin = grid
-            return Acceptance(spec, GeneratedMap(data, config.resolution_m, origin), line, info["report"], constructor, seed, info["tried"], time.perf_counter() - t0)
+            return Acceptance(spec, OccupancyMap(data, config.resolution_m, origin), line, info["report"], constructor, seed, info["tried"], time.perf_counter() - t0)
         return GenerationFailure(spec, constructor, seed, info["tried"], dict(info["reasons"]), time.perf_counter() - t0)
     from .baselines import construct_baseline
 

@@ -20,7 +20,7 @@ from scipy import ndimage
 
 from .. import _core
 from ..errors import ArenaError
-from ..generate.mapfile import load_ros_map
+from ..maps import load_map
 
 #: Source folders in order of preference (an identical map later on is a duplicate).
 SOURCE_DIRS = {
@@ -123,7 +123,7 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
     rec: dict = {"id": record_id(sources, yaml_path), "name": name, "source_path": rel,
                  "source_dir": rel.split("/")[0]}
     try:
-        m = load_ros_map(yaml_path)
+        m = load_map(yaml_path)
     except (ArenaError, OSError, ValueError) as e:
         rec.update(usable=False, reason=f"broken YAML or image: {e}".replace(str(sources) + "/", ""))
         return rec

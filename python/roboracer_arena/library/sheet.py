@@ -17,10 +17,10 @@ KIND_COLOUR = {"circuit": (200, 40, 40), "recorded": (40, 90, 200), "generated":
 def thumbnail(yaml_path: Path, size: tuple[int, int]) -> Image.Image:
     """The map's corridor (free space elsewhere blanked), cropped to its known cells, as a
     greyscale thumbnail."""
-    from ..generate.mapfile import load_ros_map
+    from ..maps import load_map
     from .recorded import corridor_grid
 
-    m = load_ros_map(yaml_path)
+    m = load_map(yaml_path)
     data = np.asarray(m.data, np.uint8)
     iso, _, _ = corridor_grid(yaml_path, data, float(m.resolution))
     if iso is not None:

@@ -59,10 +59,10 @@ def _image_path(yaml_path: Path) -> Path:
 
 
 def check_load(entry: dict, yaml_path: Path):
-    from ..generate.mapfile import load_ros_map
+    from ..maps import load_map
 
     try:
-        m = load_ros_map(yaml_path)
+        m = load_map(yaml_path)
     except (ArenaError, OSError) as e:
         return Check(FAIL, f"does not load: {e}"), None
     digest = sha256_file(_image_path(yaml_path))
