@@ -51,7 +51,7 @@ def test_clockwise_generated_track_is_driven_clockwise():
 def test_generated_map_path_outside_the_catalog_keeps_the_requested_direction(tmp_path):
     """A freshly generated clockwise track, driven from its folder (not the catalog)."""
     from roboracer_arena import TrackSpec
-    from roboracer_arena.envs.tracks import track_from_map_path
+    from roboracer_arena.track import track_from_map_path
     from roboracer_arena.generate import Acceptance, generate_track, write_outputs
 
     spec = TrackSpec(name="cw", lap_length_m=40.0, corridor_width_m=1.2, hall_x_m=20.0, hall_y_m=15.0,

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from roboracer_arena.envs.tracks import Track
+from roboracer_arena.track import Track
 from synthetic_tracks import stadium
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from roboracer_arena.envs.tracks import Track
+from roboracer_arena.track import Track
 
 
 def stadium(straight: float = 6.0, radius: float = 3.0, half_width: float = 0.8, spacing: float = 0.05,

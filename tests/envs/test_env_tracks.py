@@ -1,7 +1,8 @@
 import numpy as np
 import pytest
 
-from roboracer_arena.envs.tracks import Track, resolve_tracks
+from roboracer_arena.envs.tracks import resolve_tracks
+from roboracer_arena.track import Track
 from roboracer_arena.errors import ConfigError
 
 from synthetic_tracks import stadium

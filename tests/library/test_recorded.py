@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from PIL import Image
 
-from roboracer_arena.library.recorded import assess_map, isolate_corridor
+from roboracer_arena.library.recorded import assess_map
 
 
 def _ring(n: int = 120, thin_line: bool = False) -> np.ndarray:
@@ -44,12 +44,3 @@ def test_open_and_broken_maps_are_left_out_with_a_reason(tmp_path):
     assert not r["usable"] and r["reason"]
     r = assess_map(tmp_path, _write(tmp_path, "broken", _ring(), image_name="missing.pgm"))
     assert not r["usable"] and "broken YAML or image" in r["reason"] and str(tmp_path) not in r["reason"]
-
-
-def test_isolate_drops_the_border_region_and_the_infield():
-    img = _ring(thin_line=True)
-    data = np.where(img == 255, 254, 0).astype(np.uint8)
-    iso, why = isolate_corridor(data, 0.05)
-    assert iso is not None and why == ""
-    assert iso[0, 0] == 205 and iso[60, 60] == 205  # outside and infield no longer free
-    assert (iso == 254).sum() > 0

@@ -173,7 +173,7 @@ def test_every_byte_the_bridge_sends_is_rosbags_serialisation(tmp_path, typestor
     from mcap.reader import make_reader
 
     from roboracer_arena import _core
-    from roboracer_arena.envs.tracks import Track
+    from roboracer_arena.track import Track
     from roboracer_arena.ros2 import Bridge
 
     walls, centre = _core.stadium_track()

@@ -152,14 +152,10 @@ def run_show(args) -> int:
 
 
 def run_build(args) -> int:
-    from ..errors import ArenaError
+    from ..builder import build_environment
 
     cat = _load(args)
     e = cat.get(args.id)
-    try:
-        from ..builder import build_environment  # type: ignore[attr-defined]
-    except ImportError:
-        raise ArenaError("the USD builder (roboracer_arena.builder) is not installed in this build") from None
     report = build_environment(cat.map_path(e, args.sources), args.out)
     if args.json:
         print_json({"id": e["id"], "out": str(args.out), "report": getattr(report, "__dict__", str(report))})

@@ -32,8 +32,12 @@ def register_envs() -> None:
 def __getattr__(name: str):
     lazy = {
         "EnvConfig": "env_config", "ObservationConfig": "env_config", "RewardConfig": "env_config",
-        "RoboRacerEnv": "single", "RoboRacerVectorEnv": "vector", "Track": "tracks", "resolve_tracks": "tracks",
+        "RoboRacerEnv": "single", "RoboRacerVectorEnv": "vector", "resolve_tracks": "tracks",
     }
+    if name == "Track":  # defined in the neutral roboracer_arena.track
+        from ..track import Track
+
+        return Track
     if name in lazy:
         from importlib import import_module
 

@@ -15,7 +15,7 @@ from gymnasium import spaces
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
 from .start import centreline_pose, grid_start_s, perturb_pose
-from .tracks import Track
+from ..track import Track
 
 CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
 #: Simulator state columns copied into ``info`` when present.

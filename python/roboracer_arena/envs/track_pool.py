@@ -22,7 +22,9 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..errors import ConfigError
-from .tracks import Track, resolve_tracks
+from ..library.catalog import load_catalog
+from ..track import Track
+from .tracks import resolve_tracks
 
 #: Track used when ``track=`` is not given: a 40 m generated catalog track (1.2 m wide).
 DEFAULT_TRACK = "gen-l040-w12-h2c1s1-clo-s0"
@@ -65,8 +67,6 @@ def _expand(item: Any) -> Any:
     """Catalog ids for a pattern string; anything else unchanged."""
     if not isinstance(item, str) or not any(c in item for c in "*?["):
         return item
-    from ..library.catalog import load_catalog
-
     kind, _, pattern = item.rpartition(":") if ":" in item else ("all", "", item)
     if kind not in _KINDS:
         raise ConfigError(f"track pattern {item!r}: unknown kind {kind!r}; use one of {sorted(_KINDS)}")

@@ -2,11 +2,9 @@
 load it, decide whether it holds one closed racing corridor, and measure it. The maps
 are referenced by their path relative to the sources directory and never copied.
 
-A map is *usable* when its free space holds a ring-shaped corridor: the builder's
-``roboracer_arena.corridor.extract_corridor`` decides when it is installed; otherwise
-:func:`isolate_corridor` does (free regions touching the map border are outside; the
-corridor is the largest remaining free region with a hole). Either way the statistics
-come from the raster measurement shared with the circuits (``_core.measure_map``).
+A map is *usable* when its free space holds a ring-shaped corridor, as the builder's
+corridor rule (``roboracer_arena.corridor.extract_corridor``, the one rule) decides. The
+statistics come from the raster measurement shared with the circuits (``_core.measure_map``).
 """
 
 from __future__ import annotations
@@ -16,9 +14,9 @@ import json
 from pathlib import Path
 
 import numpy as np
-from scipy import ndimage
 
 from .. import _core
+from ..corridor import extract_corridor
 from ..errors import ArenaError
 from ..maps import load_map
 
@@ -32,9 +30,7 @@ SOURCE_DIRS = {
     "bdevan5-f1tenth-benchmarks": "bdevan5",
 }
 FREE, UNKNOWN = 254, 205
-#: A corridor's hole (infield) must be at least this large (m²) to count as a ring.
-MIN_INFIELD_M2 = 1.0
-#: ... and the corridor at least this long (m) and wide on average (m) for a 1:10 car.
+#: A corridor must be at least this long (m) and wide on average (m) for a 1:10 car.
 MIN_LAP_M = 8.0
 MIN_MEAN_WIDTH_M = 0.5
 #: Wider than this on average is an open area (a lobby), not a racing corridor.
@@ -63,47 +59,10 @@ def record_id(sources: Path, yaml_path: Path) -> str:
     return f"{SOURCE_DIRS[rel.parts[0]]}-{slug(stem.replace('_', '-'))}"
 
 
-def isolate_corridor(data: np.ndarray, resolution: float) -> tuple[np.ndarray | None, str]:
-    """Keep only the ring-shaped corridor free; other free cells become unknown.
-    Returns ``(grid or None, reason)``."""
-    free = data == FREE
-    lab, n = ndimage.label(free)
-    if n == 0:
-        return None, "no free cells"
-    border = np.unique(np.concatenate([lab[0], lab[-1], lab[:, 0], lab[:, -1]]))
-    sizes = np.bincount(lab.ravel(), minlength=n + 1)
-    sizes[0] = 0
-    sizes[border] = 0
-    min_hole = MIN_INFIELD_M2 / resolution**2
-    best, best_size = 0, 0
-    for k in np.argsort(sizes)[::-1]:
-        if sizes[k] == 0 or sizes[k] < best_size:
-            break
-        sl = ndimage.find_objects((lab == k).astype(np.int8))[0]
-        comp = lab[sl] == k
-        holes = ndimage.binary_fill_holes(comp) & ~comp
-        if holes.sum() >= min_hole:
-            best, best_size = k, sizes[k]
-            break
-    if best == 0:
-        if sizes.max() == 0:
-            return None, "all free space touches the map border (no enclosed corridor)"
-        return None, "no free region encloses an infield (no closed corridor)"
-    out = data.copy()
-    out[free & (lab != best)] = UNKNOWN
-    return out, ""
-
-
-def corridor_grid(yaml_path: Path, data: np.ndarray, resolution: float) -> tuple[np.ndarray | None, str, str]:
+def corridor_grid(yaml_path: Path, data: np.ndarray) -> tuple[np.ndarray | None, str, str]:
     """The map with only its corridor free: ``(grid or None, reason, which check decided)``.
 
-    Uses the builder's ``extract_corridor`` (its ``corridor_mask``) when installed, else
-    :func:`isolate_corridor`."""
-    try:
-        from ..corridor import extract_corridor
-    except ImportError:
-        iso, why = isolate_corridor(data, resolution)
-        return iso, why, "library.recorded.isolate_corridor"
+    The builder's corridor rule decides (``extract_corridor``'s ``corridor_mask``)."""
     check = "corridor.extract_corridor"
     try:
         geo = extract_corridor(yaml_path)
@@ -132,7 +91,7 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
     img_bytes = data.tobytes()
     rec.update(resolution_m=float(m.resolution), raster={"width_px": w, "height_px": h},
                grid_sha256=hashlib.sha256(img_bytes + repr(float(m.resolution)).encode()).hexdigest())
-    iso, why, check = corridor_grid(yaml_path, data, float(m.resolution))
+    iso, why, check = corridor_grid(yaml_path, data)
     rec["corridor_check"] = check
     if iso is None:
         rec.update(usable=False, reason=why)

@@ -22,7 +22,7 @@ def thumbnail(yaml_path: Path, size: tuple[int, int]) -> Image.Image:
 
     m = load_map(yaml_path)
     data = np.asarray(m.data, np.uint8)
-    iso, _, _ = corridor_grid(yaml_path, data, float(m.resolution))
+    iso, _, _ = corridor_grid(yaml_path, data)
     if iso is not None:
         data = iso
         # Walls not bordering the corridor (thin-line maps' far side, clutter) are blanked too.

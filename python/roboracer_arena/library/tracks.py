@@ -25,7 +25,7 @@ def centreline_path(cat: Catalog, entry: dict[str, Any], sources: Path | None = 
 
 def entry_track(cat: Catalog, entry: dict[str, Any], sources: Path | None = None) -> tuple[Any, str]:
     """``(Track, what its centreline is)`` for one catalog entry."""
-    from ..envs.tracks import Track, track_from_map_path
+    from ..track import Track, track_from_map_path
 
     yaml_path = cat.map_path(entry, sources)
     line_csv = centreline_path(cat, entry, sources)

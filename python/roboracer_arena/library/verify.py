@@ -76,7 +76,7 @@ def check_ring(entry: dict, m, yaml_path: Path) -> Check:
     from .recorded import corridor_grid
 
     data = np.asarray(m.data, np.uint8)
-    iso, why, _ = corridor_grid(yaml_path, data, float(m.resolution))
+    iso, why, _ = corridor_grid(yaml_path, data)
     if iso is None:
         return Check(FAIL, why)
     try:
@@ -97,11 +97,9 @@ def check_ring(entry: dict, m, yaml_path: Path) -> Check:
 
 def check_usd(entry: dict, yaml_path: Path) -> Check:
     """Hook onto the builder: build the USD stage and run every usd-core validator on it."""
-    try:
-        from ..builder import build_environment
-        from ..usd.validate import validation_errors
-    except ImportError:
-        return Check(NOT_RUN, "not run: builder (roboracer_arena.builder.build_environment) not available")
+    from ..builder import build_environment
+    from ..usd.validate import validation_errors
+
     with tempfile.TemporaryDirectory(prefix="rra-verify-") as tmp:
         out = Path(tmp) / "stage.usdc"
         try:
@@ -123,11 +121,8 @@ def check_drive(cat: Catalog, entry: dict, sources: Path | None = None, reverse:
     a contact (default env: full vehicle model, 1081-beam lidar), in the racing direction
     the catalog records (against it with ``reverse``). After a collision it tries once
     more at cautious settings (:data:`CAUTIOUS`); a pass then says so."""
-    try:
-        from ..drivers import PurePursuitParams, drive_laps
-        from .._core import Simulator  # noqa: F401  (the native simulator must be built in)
-    except ImportError:
-        return Check(NOT_RUN, "not run: simulator not available (roboracer_arena.drivers / _core.Simulator)")
+    from ..drivers import PurePursuitParams, drive_laps
+
     try:
         target, follows = entry_track(cat, entry, sources)
         if reverse:
