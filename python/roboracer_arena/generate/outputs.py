@@ -44,6 +44,7 @@ def write_outputs(acc: Acceptance, outdir: str | Path, stem: str = "map") -> dic
         "candidates_tried": acc.candidates_tried,
         "seconds": round(acc.seconds, 4),
         "checks": acc.report["checks"],
+        "measurements": acc.report["measurements"],
         "features": acc.report["features"],
     }
     atomic_write_text(paths["report_json"], json.dumps(report, indent=2) + "\n")

@@ -5,13 +5,13 @@ sources directory."""
 from __future__ import annotations
 
 import json
-import re
 import time
 from pathlib import Path
 from typing import Any
 
 from .. import __version__
 from ..fileio import atomic_write_text
+from ..maps import load_map
 from .catalog import Catalog, provenance, sha256_file
 from .directions import annotate_directions
 from .recorded import assess_all
@@ -49,34 +49,25 @@ def _circuit_entries(tracks: Path, sources: Path) -> list[dict[str, Any]]:
     return out
 
 
-def _num(text: str) -> float | None:
-    m = re.search(r"[-+]?\d+(?:\.\d+)?", text or "")
-    return float(m.group()) if m else None
-
-
 def _generated_entries(tracks: Path) -> list[dict[str, Any]]:
     out = []
     for spec_f in sorted((tracks / "generated").glob("*/spec.json")):
         d = spec_f.parent
         spec = json.loads(spec_f.read_text(encoding="utf-8"))
         rep = json.loads((d / "report.json").read_text(encoding="utf-8"))
-        checks = {c["name"]: c["measured"] for c in rep["checks"]}
-        wm = re.findall(r"[-+]?\d+(?:\.\d+)?", checks.get("width", ""))
-        yaml = (d / "map.yaml").read_text(encoding="utf-8")
-        res = _num(re.search(r"resolution:\s*(\S+)", yaml).group(1))  # type: ignore[union-attr]
-        from PIL import Image
-
-        with Image.open(d / "map.png") as im:
-            w, h = im.size
+        meas = rep["measurements"]  # the validator's numbers (its checks' text is for people)
+        m = load_map(d / "map.yaml")
+        h, w = m.shape
         feats = f"{spec['hairpins']} hairpin(s), {spec['chicanes']} chicane(s), {spec['sweepers']} sweeper(s)"
         out.append({
             "id": d.name, "name": spec["name"], "kind": "generated",
             "source": {**PROJECT, "path": f"generated/{d.name}/spec.json",
                        "derived": f"generate_track(spec, seed={rep['seed']}) with the {rep['constructor']} constructor"},
-            "scale": 1.0, "resolution_m": res, "lap_length_m": _num(checks.get("lap_length", "")),
-            "width_mean_m": float(wm[0]) if wm else None, "width_min_m": float(wm[1]) if len(wm) > 1 else None,
-            "min_radius_m": _num(checks.get("min_radius", "")),
-            "raster": {"width_px": w, "height_px": h}, "sha256": sha256_file(d / "map.png"),
+            # Rounded as the validator reports them (cm for lengths, mm for widths).
+            "scale": 1.0, "resolution_m": m.resolution, "lap_length_m": round(meas["lap_length_m"], 2),
+            "width_mean_m": round(meas["width_mean_m"], 3), "width_min_m": round(meas["width_min_m"], 3),
+            "min_radius_m": round(meas["min_radius_m"], 2),
+            "raster": {"width_px": w, "height_px": h}, "sha256": sha256_file(Path(m.meta["image_path"])),
             "map": f"generated/{d.name}/map.yaml", "centreline": f"generated/{d.name}/centreline.csv",
             "spec": f"generated/{d.name}/spec.json", "seed": rep["seed"],
             "notes": [f"{spec['lap_length_m']:g} m lap, {spec['corridor_width_m']:g} m wide, {spec['direction']}, {feats}, "
@@ -93,8 +84,7 @@ def _recorded_entries(sources: Path, jobs: int, progress) -> tuple[list[dict[str
             left_out.append({"id": r["id"], "source_path": r["source_path"], "reason": r["reason"]})
             continue
         yaml_path = sources / r["source_path"]
-        img = re.search(r"^\s*image:\s*['\"]?([^'\"\n]+?)['\"]?\s*$", yaml_path.read_text(encoding="utf-8"), re.M)
-        img_path = yaml_path.parent / img.group(1).strip()  # type: ignore[union-attr]
+        img_path = Path(load_map(yaml_path).meta["image_path"])
         notes = [f"corridor checked with {r['corridor_check']}"]
         if r.get("infields", 1) > 1:
             notes.append(f"{r['infields']} enclosed regions (obstacles or islands in the corridor)")

@@ -11,7 +11,6 @@ packages are not installed they report ``not run`` with the reason, never a pass
 from __future__ import annotations
 
 import json
-import re
 import tempfile
 import time
 from dataclasses import dataclass, field
@@ -52,12 +51,6 @@ class TrackResult:
                 "checks": {k: {"status": c.status, "detail": c.detail} for k, c in self.checks.items()}}
 
 
-def _image_path(yaml_path: Path) -> Path:
-    text = yaml_path.read_text(encoding="utf-8")
-    m = re.search(r"^\s*image:\s*['\"]?([^'\"\n]+?)['\"]?\s*$", text, re.M)
-    return yaml_path.parent / (m.group(1).strip() if m else "")
-
-
 def check_load(entry: dict, yaml_path: Path):
     from ..maps import load_map
 
@@ -65,7 +58,7 @@ def check_load(entry: dict, yaml_path: Path):
         m = load_map(yaml_path)
     except (ArenaError, OSError) as e:
         return Check(FAIL, f"does not load: {e}"), None
-    digest = sha256_file(_image_path(yaml_path))
+    digest = sha256_file(Path(m.meta["image_path"]))
     if entry.get("sha256") and digest != entry["sha256"]:
         return Check(FAIL, f"image checksum {digest[:12]} != catalog {entry['sha256'][:12]}"), m
     h, w = np.asarray(m.data).shape

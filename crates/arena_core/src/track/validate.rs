@@ -31,11 +31,32 @@ pub struct FeatureAt {
     pub y: f64,
 }
 
+/// What the validator measured, as numbers (the checks' `measured` strings are for
+/// people; code reads these). SI units; `self_clearance_m` is `None` when the lap has no
+/// non-local passes.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Measurements {
+    pub corridor_components: usize,
+    pub infields: usize,
+    pub lap_length_m: f64,
+    pub width_mean_m: f64,
+    pub width_min_m: f64,
+    pub min_radius_m: f64,
+    pub hairpins: usize,
+    pub chicanes: usize,
+    pub sweepers: usize,
+    pub longest_straight_m: f64,
+    pub self_clearance_m: Option<f64>,
+    pub extent_m: [f64; 2],
+}
+
 /// The validator's verdict on one map.
 #[derive(Debug, Clone, Serialize)]
 pub struct ValidationReport {
     pub valid: bool,
     pub checks: Vec<Check>,
+    /// `None` when the map has no measurable corridor (the `corridor` check says why).
+    pub measurements: Option<Measurements>,
     pub features: Vec<FeatureAt>,
     /// Measured centreline in the driving direction (map metres).
     #[serde(skip)]
@@ -75,6 +96,7 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
             return ValidationReport {
                 valid: false,
                 checks,
+                measurements: None,
                 features: vec![],
                 centreline: vec![],
             };
@@ -189,6 +211,20 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
         fits,
     ));
     let valid = checks.iter().all(|c| c.passed);
+    let measurements = Measurements {
+        corridor_components: t.corridor_components,
+        infields: t.infields,
+        lap_length_m: a.length_m,
+        width_mean_m: t.mean_width_m,
+        width_min_m: min_local,
+        min_radius_m: a.min_radius_m,
+        hairpins: a.count(FeatureKind::Hairpin),
+        chicanes: a.count(FeatureKind::Chicane),
+        sweepers: a.count(FeatureKind::Sweeper),
+        longest_straight_m: a.longest_straight_m,
+        self_clearance_m: clearance.is_finite().then_some(clearance),
+        extent_m: t.extent_m,
+    };
     let features = a
         .features
         .iter()
@@ -202,7 +238,63 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
     ValidationReport {
         valid,
         checks,
+        measurements: Some(measurements),
         features,
         centreline: line,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::construct::{generate, Outcome};
+
+    fn spec() -> Spec {
+        Spec {
+            name: "m".into(),
+            lap_length_m: 40.0,
+            corridor_width_m: 1.2,
+            hall_x_m: 20.0,
+            hall_y_m: 15.0,
+            direction: "clockwise".into(),
+            hairpins: 1,
+            chicanes: 0,
+            sweepers: 0,
+            feature_order: vec![],
+            min_radius_m: 0.0,
+            longest_straight_m: 0.0,
+        }
+    }
+
+    #[test]
+    fn measurements_are_the_numbers_the_checks_judge() {
+        let (s, cfg) = (spec(), ConstructorConfig::default());
+        let Outcome::Accepted { report, .. } = generate(&s, &cfg, 0) else {
+            panic!("the 40 m spec should be accepted");
+        };
+        let m = report.measurements.expect("a valid map is measured");
+        assert_eq!((m.corridor_components, m.infields), (1, 1));
+        assert!((m.lap_length_m - 40.0).abs() <= LAP_TOLERANCE * 40.0);
+        assert!((m.width_mean_m - 1.2).abs() <= WIDTH_TOLERANCE * 1.2);
+        assert!(m.width_min_m <= m.width_mean_m && m.width_min_m > 0.0);
+        assert_eq!((m.hairpins, m.chicanes, m.sweepers), (1, 0, 0));
+        let shown = |name: &str| {
+            report
+                .checks
+                .iter()
+                .find(|c| c.name == name)
+                .unwrap()
+                .measured
+                .clone()
+        };
+        assert_eq!(shown("lap_length"), format!("{:.2} m", m.lap_length_m));
+        assert_eq!(shown("min_radius"), format!("{:.2} m", m.min_radius_m));
+    }
+
+    #[test]
+    fn an_empty_map_has_no_measurements() {
+        let g = OccupancyGrid::filled(10, 10, 0.05, [0.0; 3], 205);
+        let r = validate_map(&g, &spec(), &ConstructorConfig::default());
+        assert!(!r.valid && r.measurements.is_none());
     }
 }
