@@ -48,9 +48,16 @@ bench: release
 	cargo bench -p arena_core --quiet -- --quick
 	$(BIN)/roboracer-arena bench all --json out/bench.json
 
+# Every gate: clippy and rustfmt on the crates; ruff (lint and format), mypy (pydantic
+# plugin) on the package; stubtest checks _core.pyi against the built extension.
 lint: develop
+	$(BIN)/pip install -q "ruff>=0.8" "mypy>=1.13"
 	cargo clippy -p arena_core -p arena_py --quiet -- -D warnings
 	cargo fmt --all -- --check
+	$(BIN)/ruff check python tests examples
+	$(BIN)/ruff format --check python tests examples
+	$(BIN)/mypy
+	$(BIN)/python -m mypy.stubtest roboracer_arena._core
 
 clean:
 	rm -rf $(VENV) target out dist

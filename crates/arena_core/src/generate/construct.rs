@@ -35,7 +35,7 @@ pub enum Outcome {
     Accepted {
         grid: OccupancyGrid,
         candidate: Candidate,
-        report: ValidationReport,
+        report: Box<ValidationReport>,
         candidate_index: u32,
         tried: u32,
     },
@@ -244,7 +244,7 @@ pub fn generate(spec: &Spec, cfg: &ConstructorConfig, seed: u64) -> Outcome {
             return Outcome::Accepted {
                 grid,
                 candidate: c,
-                report,
+                report: Box::new(report),
                 candidate_index: k,
                 tried: k + 1,
             };
