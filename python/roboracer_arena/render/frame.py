@@ -81,7 +81,7 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
         legend_right = max(legend_right, x)
     legend_box = (PAD, fy + PAD, legend_right, fy + PAD + len(rows) * row_h)
 
-    scale_m, scale_px = _scale_length(canvas.px_per_m(), 170)
+    scale_m, scale_px = scale_length(canvas.px_per_m(), 170)
     sx, sy = width - tools_w + PAD, fy + PAD + 24
     _scale_bar(d, sx, sy, scale_px, scale_m, text_font)
     scale_box = (sx, fy + PAD, sx + 175, sy + 30)
@@ -157,7 +157,7 @@ def direction_chevron(d: ImageDraw.ImageDraw, tip: tuple[float, float], heading:
     d.polygon(pts, fill=colour, outline=(255, 255, 255))
 
 
-def _scale_length(px_per_m: float, max_px: int) -> tuple[float, float]:
+def scale_length(px_per_m: float, max_px: int) -> tuple[float, float]:
     """The longest 1-2-5 length (m) whose bar fits in ``max_px`` pixels, and its pixels."""
     best = 0.01
     for exp in range(-2, 6):
