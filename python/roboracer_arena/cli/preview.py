@@ -1,7 +1,7 @@
 """``roboracer-arena preview MAP.yaml|STAGE.usdc -o OUT.png``: a picture of a track.
 
 Top-down (the default), framed with a title, legend, scale bar and the map-frame axes.
-From a map: the raster, the extracted corridor (tinted), the ducts (the visible barriers),
+From a map: the raster, the extracted corridor (tinted), the ducts (visible),
 the collision walls (invisible in the simulator), the racing direction as arrows along the
 centreline, and the start line with the car where the env's grid start puts it. From a
 built stage: its meshes read back, over the source map when it is still there. A

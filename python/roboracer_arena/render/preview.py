@@ -77,7 +77,7 @@ def preview_map(map_path: str | Path, out_png: str | Path, config: Any = None, s
     for wall in geo.walls:
         canvas.polyline(wall, WALL, closed=True, min_px=2)
     drawn += ["ducts", "walls"]
-    legend += [LegendEntry("ducts (visible barriers)", DUCT[:3]), LegendEntry("collision walls (invisible)", WALL, "line")]
+    legend += [LegendEntry("ducts (visible)", DUCT[:3]), LegendEntry("collision walls (invisible)", WALL, "line")]
     features = _generated_overlay(canvas, map_path, drawn, legend)
     name = track_name(map_path)
     race: dict[str, Any] = {}
@@ -132,7 +132,7 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, v
         canvas.triangles(m.points[m.triangles][:, :, :2], DUCT)
     if ducts:
         drawn.append("ducts")
-        legend.append(LegendEntry("ducts (visible barriers)", DUCT[:3]))
+        legend.append(LegendEntry("ducts (visible)", DUCT[:3]))
     walls = meshes.get("/World/Track/Walls")
     if walls is not None and len(walls.triangles):
         tri = walls.points[walls.triangles][:, :, :2]
