@@ -54,7 +54,7 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
     title_lines = [(title, title_font), *([(subtitle, text_font)] if subtitle else [])]
     title_lines = [(t, f) for line, f in title_lines for t in _wrap(probe, line, f, width - 2 * PAD)]
     title_h = PAD + sum(_text_h(probe, t, f) + 4 for t, f in title_lines) + PAD // 2
-    tools_w = 250  # scale bar and axes, right of the legend
+    tools_w = 300  # scale bar and axes, right of the legend
     rows = _legend_rows(probe, legend, text_font, width - tools_w - 3 * PAD)
     row_h = TEXT_PX + 10
     footer_h = max(len(rows) * row_h + 2 * PAD, 112)
