@@ -54,7 +54,7 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
     title_lines = [(title, title_font), *([(subtitle, text_font)] if subtitle else [])]
     title_lines = [(t, f) for line, f in title_lines for t in _wrap(probe, line, f, width - 2 * PAD)]
     title_h = PAD + sum(_text_h(probe, t, f) + 4 for t, f in title_lines) + PAD // 2
-    tools_w = 300  # scale bar and axes, right of the legend
+    tools_w = 330  # scale bar and axes, right of the legend
     rows = _legend_rows(probe, legend, text_font, width - tools_w - 3 * PAD)
     row_h = TEXT_PX + 10
     footer_h = max(len(rows) * row_h + 2 * PAD, 112)
@@ -81,10 +81,10 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
         legend_right = max(legend_right, x)
     legend_box = (PAD, fy + PAD, legend_right, fy + PAD + len(rows) * row_h)
 
-    scale_m, scale_px = scale_length(canvas.px_per_m(), 170)
+    scale_m, scale_px = scale_length(canvas.px_per_m(), 200)
     sx, sy = width - tools_w + PAD, fy + PAD + 24
     _scale_bar(d, sx, sy, scale_px, scale_m, text_font)
-    scale_box = (sx, fy + PAD, sx + 175, sy + 30)
+    scale_box = (sx, fy + PAD, sx + 205, sy + 30)
     ax, ay = width - 52, fy + 56
     _axes(d, canvas, ax, ay, text_font)
     axes_box = (ax - 50, ay - 50, ax + 50, ay + 50)

@@ -36,11 +36,11 @@ def draw_race_marks(canvas: TopDown, track: Any, vehicles: int = 1) -> tuple[lis
     x, y, yaw = poses[0]
     # across the corridor, and at least 36 px long so it shows on a big circuit
     half = max(float(track.clearance([[x, y]])[0]), 18.0 / canvas.px_per_m())
-    _start_line(canvas, (x, y), yaw, half)
+    canvas.reserve(_start_line(canvas, (x, y), yaw, half))
     veh = cfg.sim.vehicle
     scale = max(1.0, MIN_CAR_PX / (veh.chassis_length * canvas.px_per_m()))
     for p in poses:
-        _car(canvas, p, veh.chassis_length * scale, veh.chassis_width * scale)
+        canvas.reserve(_car(canvas, p, veh.chassis_length * scale, veh.chassis_width * scale))
     canvas.label((x, y), "start", (0, 0, 0), marker=False, size_px=16)
     grid = "the car" if vehicles == 1 else f"{vehicles} cars"
     legend = [LegendEntry(f"racing direction ({track.direction})", ARROW, "arrow"),
@@ -71,8 +71,8 @@ def _direction_arrows(canvas: TopDown, track: Any) -> None:
                           size=15)
 
 
-def _start_line(canvas: TopDown, xy: tuple[float, float], yaw: float, half_width: float) -> None:
-    """A chequered line across the corridor at ``xy``, ``half_width`` to each side."""
+def _start_line(canvas: TopDown, xy: tuple[float, float], yaw: float, half_width: float) -> np.ndarray:
+    """A chequered line across the corridor at ``xy``, ``half_width`` to each side; returns its ends."""
     nx, ny = -math.sin(yaw), math.cos(yaw)
     a = np.array([xy[0] - half_width * nx, xy[1] - half_width * ny])
     b = np.array([xy[0] + half_width * nx, xy[1] + half_width * ny])
@@ -83,10 +83,11 @@ def _start_line(canvas: TopDown, xy: tuple[float, float], yaw: float, half_width
         if k % 2 == 0:
             p, q = a + (b - a) * k / cells, a + (b - a) * (k + 1) / cells
             canvas.polyline(np.array([p, q]), (255, 255, 255), min_px=width)
+    return np.array([a, b])
 
 
-def _car(canvas: TopDown, pose: Any, length: float, width: float) -> None:
-    """The car as an oriented rectangle with a white line from its centre to its nose."""
+def _car(canvas: TopDown, pose: Any, length: float, width: float) -> np.ndarray:
+    """The car as an oriented rectangle with a white line from its centre to its nose; returns its corners."""
     x, y, yaw = (float(v) for v in pose)
     c, s = math.cos(yaw), math.sin(yaw)
     hl, hw = length / 2, width / 2
@@ -94,3 +95,4 @@ def _car(canvas: TopDown, pose: Any, length: float, width: float) -> None:
     corners = np.c_[x + body[:, 0] * c - body[:, 1] * s, y + body[:, 0] * s + body[:, 1] * c]
     canvas.polygon(corners, CAR, outline=(0, 0, 0))
     canvas.polyline(np.array([[x, y], [x + hl * c, y + hl * s]]), (255, 255, 255), min_px=2)
+    return corners

@@ -194,7 +194,7 @@ def _camera(ren: Any, lo: np.ndarray, hi: np.ndarray, size: tuple[int, int]) -> 
     cam.SetViewUp(0.0, 0.0, 1.0)
     cam.SetViewAngle(30.0)
     ren.ResetCamera()
-    cam.Zoom(1.45)
+    cam.Zoom(1.25)
     ren.ResetCameraClippingRange()
 
 

@@ -53,6 +53,8 @@ class TopDown:
         self.label_boxes: list[tuple[str, Box]] = []
         #: Labels left out for want of a free spot.
         self.dropped_labels: list[str] = []
+        #: Pixel boxes labels keep clear of (see :meth:`reserve`).
+        self.reserved: list[Box] = []
 
     # --- construction ----------------------------------------------------------------
 
@@ -144,6 +146,15 @@ class TopDown:
         """A filled polygon with corners ``xy`` (N, 2) in world metres."""
         self.draw.polygon([tuple(p) for p in self.to_px(xy)], fill=fill, outline=outline)
 
+    def reserve(self, xy: np.ndarray, pad_px: int = 3) -> Box:
+        """Keep labels clear of the pixel box around the world points ``xy`` (N, 2), e.g. a
+        marking a label would hide; returns the box."""
+        p = self.to_px(xy)
+        lo, hi = np.floor(p.min(axis=0)) - pad_px, np.ceil(p.max(axis=0)) + pad_px
+        box = (int(lo[0]), int(lo[1]), int(hi[0]), int(hi[1]))
+        self.reserved.append(box)
+        return box
+
     def label(self, xy: Sequence[float], text: str, colour: RGB = (0, 0, 0), marker: bool = True,
               size_px: int = 14) -> Box | None:
         """Text near a world point, with a small marker and a white halo for legibility.
@@ -172,14 +183,15 @@ class TopDown:
 
     def _free_spot(self, x: float, y: float, w: int, h: int, pad: int = 2) -> Box | None:
         """Top-left-anchored box (w × h plus ``pad``) near (x, y), inside the image and clear
-        of :attr:`label_boxes`: tried right, above, left, below and the diagonals, nearest first."""
+        of :attr:`label_boxes` and :attr:`reserved`: tried right, above, left, below and the diagonals, nearest first."""
         W, H = self.image.size
         for d in (6, 14, 28, 48, 80, 130, 200):
             for px, py in ((x + d, y - h / 2), (x + d, y - d - h), (x - d - w, y - d - h), (x - w / 2, y - d - h),
                            (x - d - w, y - h / 2), (x + d, y + d), (x - d - w, y + d), (x - w / 2, y + d)):
                 box = (math.floor(px) - pad, math.floor(py) - pad, math.ceil(px + w) + pad, math.ceil(py + h) + pad)
                 if box[0] >= 0 and box[1] >= 0 and box[2] <= W and box[3] <= H and \
-                        not any(boxes_overlap(box, b) for _, b in self.label_boxes):
+                        not any(boxes_overlap(box, b) for _, b in self.label_boxes) and \
+                        not any(boxes_overlap(box, b) for b in self.reserved):
                     return box
         return None
 
