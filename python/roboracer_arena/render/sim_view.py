@@ -88,7 +88,8 @@ class SimView:
             nose = np.array([[x, y], [x + hl * c, y + hl * s]])
             d.line(_px(nose, tf), fill=(255, 255, 255), width=max(1, round(tf[2] * 0.04)))
         if hud:
-            _draw_hud(img, hud, max(12, self.size // 36), bg)
+            cars = [p for x, y, yaw in poses if math.isfinite(x + y + yaw) for p in _px(np.array([[x, y]]), tf)]
+            _draw_hud(img, hud, max(12, self.size // 36), bg, cars, hl * tf[2])
         return np.asarray(img, dtype=np.uint8)
 
 
@@ -107,9 +108,10 @@ def hud_lines(batch: Any, env: int = 0) -> list[str]:
     return lines
 
 
-def _draw_hud(img: Image.Image, lines: Sequence[str], size_px: int, background: Image.Image) -> None:
-    """``lines`` on a white panel in the corner of the picture where the track (the
-    drawn ``background``) has the fewest pixels."""
+def _draw_hud(img: Image.Image, lines: Sequence[str], size_px: int, background: Image.Image,
+              cars: Sequence[tuple[float, float]], car_px: float) -> None:
+    """``lines`` on a white panel in the corner of the picture that covers no car (centres
+    ``cars`` in pixels, ``car_px`` half-length) and the fewest track pixels (the drawn ``background``)."""
     from .topdown import font
 
     face = font(size_px)
@@ -119,7 +121,12 @@ def _draw_hud(img: Image.Image, lines: Sequence[str], size_px: int, background: 
     W, H = img.size
     ink = np.any(np.asarray(background) != BACKGROUND, axis=2)
     corners = [(4, 4), (W - w - 4, 4), (4, H - h - 4), (W - w - 4, H - h - 4)]
-    x, y = min(corners, key=lambda c: int(ink[max(c[1], 0):c[1] + h, max(c[0], 0):c[0] + w].sum()))
+    def cost(c: tuple[int, int]) -> int:
+        hidden = sum(c[0] - car_px <= cx <= c[0] + w + car_px and c[1] - car_px <= cy <= c[1] + h + car_px
+                     for cx, cy in cars)
+        return hidden * W * H + int(ink[max(c[1], 0):c[1] + h, max(c[0], 0):c[0] + w].sum())
+
+    x, y = min(corners, key=cost)
     d.rectangle([x, y, x + w, y + h], fill=(255, 255, 255, 215), outline=(0, 0, 0))
     for i, line in enumerate(lines):
         d.text((x + 5, y + 3 + i * step), line, fill=(0, 0, 0), font=face)
