@@ -200,8 +200,8 @@ class SimBatch:
             s0 = 0.0
         half_width = cfg.sim.vehicle.chassis_width / 2
         grid = grid_poses(track, V, cfg.grid_spacing, cfg.grid_offset, s0)
-        return np.array([perturb_pose(track, tuple(p), rng, cfg.start_lateral_noise, cfg.start_heading_noise, half_width)
-                         for p in grid])
+        noise = (cfg.start_lateral_noise, cfg.start_heading_noise, half_width)
+        return np.array([perturb_pose(track, tuple(p), rng, *noise) for p in grid])
 
     def _scan_due(self) -> bool:
         """Whether the scanner produces a new scan at the end of this step."""

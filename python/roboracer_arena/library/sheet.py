@@ -75,7 +75,8 @@ def contact_sheet(cat: Catalog, entries: list[dict], out: Path, sources: Path | 
         draw.rectangle([x0 + 1, y0 + 1, x0 + cell[0] - 2, y0 + cell[1] + label_h - 2], outline=colour)
         lap = e.get("lap_length_m")
         draw.text((x0 + 4, y0 + cell[1]), e["id"][:28], fill=(0, 0, 0), font=font)
-        draw.text((x0 + 4, y0 + cell[1] + 13), f"{e['kind']}, lap {lap:.1f} m" if lap else e["kind"], fill=colour, font=font)
+        kind = f"{e['kind']}, lap {lap:.1f} m" if lap else e["kind"]
+        draw.text((x0 + 4, y0 + cell[1] + 13), kind, fill=colour, font=font)
         if extent is not None:
             draw.text((x0 + 4, y0 + cell[1] + 26), f"extent {extent[0]:.0f} x {extent[1]:.0f} m", fill=(60, 60, 60),
                       font=font)

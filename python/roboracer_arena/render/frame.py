@@ -113,7 +113,8 @@ def _wrap(d: ImageDraw.ImageDraw, text: str, f, width: int) -> list[str]:
     return [*lines, cur]
 
 
-def _legend_rows(d: ImageDraw.ImageDraw, legend: Sequence[LegendEntry], f, width: int) -> list[list[tuple[LegendEntry, int]]]:
+def _legend_rows(d: ImageDraw.ImageDraw, legend: Sequence[LegendEntry], f,
+                 width: int) -> list[list[tuple[LegendEntry, int]]]:
     """Legend entries flowed into rows no wider than ``width`` px: [(entry, its width)]."""
     rows: list[list[tuple[LegendEntry, int]]] = [[]]
     used = 0

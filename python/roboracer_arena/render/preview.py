@@ -166,7 +166,8 @@ def _subtitle(race: dict[str, Any], vehicles: int) -> str:
         return ""
     x, y, yaw = race["grid"][0]
     return (f"Arrows: the way the env drives it. Start: the env's grid start (reset_poses='grid', "
-            f"{vehicles} car{'s' if vehicles > 1 else ''}) at x {x:.2f} m, y {y:.2f} m, heading {np.degrees(yaw):.0f}°.")
+            f"{vehicles} car{'s' if vehicles > 1 else ''}) at x {x:.2f} m, y {y:.2f} m, "
+            f"heading {np.degrees(yaw):.0f}°.")
 
 
 def _write(canvas: TopDown, title: str, subtitle: str, legend: list[LegendEntry], out: str | Path, source: Path,
@@ -176,7 +177,8 @@ def _write(canvas: TopDown, title: str, subtitle: str, legend: list[LegendEntry]
     return PreviewSummary(str(out), str(source), img.size, drawn, features, race, asdict(layout))
 
 
-def _generated_overlay(canvas: TopDown, map_yaml: Path, drawn: list[str], legend: list[LegendEntry]) -> list[dict[str, Any]]:
+def _generated_overlay(canvas: TopDown, map_yaml: Path, drawn: list[str],
+                       legend: list[LegendEntry]) -> list[dict[str, Any]]:
     """If ``map_yaml`` is a generated track (``centreline.csv`` and ``report.json`` beside it,
     as :mod:`roboracer_arena.generate.outputs` writes them), draw its centreline and label
     each detected feature; returns the features drawn."""

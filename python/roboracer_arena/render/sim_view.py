@@ -102,7 +102,10 @@ def hud_lines(batch: Any, env: int = 0) -> list[str]:
     rows = np.asarray(batch.state[env])
     for k, row in enumerate(rows[:4]):
         speed = float(row[f["speed"]]) if "speed" in f else float(np.hypot(row[f["vx"]], row[f["vy"]]))
-        lap = int(row[f["laps"]]) + 1 if "laps" in f else int(batch.progress[env, k] // batch.lengths[batch.track_ids[env]]) + 1
+        if "laps" in f:
+            lap = int(row[f["laps"]]) + 1
+        else:
+            lap = int(batch.progress[env, k] // batch.lengths[batch.track_ids[env]]) + 1
         who = f"car {k + 1}: " if len(rows) > 1 else "speed "
         lines.append(f"{who}{speed:.2f} m/s, lap {lap}")
     return lines

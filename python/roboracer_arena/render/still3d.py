@@ -82,7 +82,8 @@ def render_still(usd_path: str | Path, out: str | Path, size: tuple[int, int] = 
     kit.AddLightsToRenderer(ren)
     rgb, renderer = _render(vtk, ren, size)
     img = Image.fromarray(rgb)
-    _caption(img, f"{Path(usd_path).name}: {', '.join(drawn)} (collision walls translucent; invisible in the simulator)")
+    _caption(img, f"{Path(usd_path).name}: {', '.join(drawn)} "
+                  "(collision walls translucent; invisible in the simulator)")
     save_image(img, out)
     return StillSummary(str(out), str(usd_path), img.size, drawn, None if car is None else [round(v, 3) for v in car],
                         renderer)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import io
 import math
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Sequence
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
@@ -183,7 +183,8 @@ class TopDown:
 
     def _free_spot(self, x: float, y: float, w: int, h: int, pad: int = 2) -> Box | None:
         """Top-left-anchored box (w × h plus ``pad``) near (x, y), inside the image and clear
-        of :attr:`label_boxes` and :attr:`reserved`: tried right, above, left, below and the diagonals, nearest first."""
+        of :attr:`label_boxes` and :attr:`reserved`: tried right, above, left, below and the
+        diagonals, nearest first."""
         W, H = self.image.size
         for d in (6, 14, 28, 48, 80, 130, 200):
             for px, py in ((x + d, y - h / 2), (x + d, y - d - h), (x - d - w, y - d - h), (x - w / 2, y - d - h),
