@@ -45,7 +45,7 @@ class BuildReport(BaseModel):
     timings_s: dict[str, float] = Field(description="Seconds per stage; 'total' is load + geometry + usd.")
     meshes: dict[str, MeshCount]
     walls: int = Field(description="Number of closed collision-wall polylines.")
-    ducts: int = Field(description="Number of duct polylines (visual barriers).")
+    ducts: int = Field(description="Number of duct polylines (the visible ducts).")
     centreline_length_m: float
     iou: float = Field(description="IoU of the drivable region re-rasterised from the collision walls with the source corridor.")
     max_wall_deviation_cells: float = Field(description="Worst distance (cells) from a wall vertex to the corridor border.")

@@ -49,7 +49,7 @@ class GeometryConfig(BaseModel):
         0.33,
         gt=0,
         le=2,
-        description="Diameter of the visual air-duct tubes (m): the 33 cm ducts used as RoboRacer barriers (the paper's default).",
+        description="Diameter of the visual air-duct tubes (m): the 33 cm air ducts that bound RoboRacer tracks (the paper's default).",
     )
     tube_segments: int = Field(
         12,
@@ -92,7 +92,7 @@ class GeometryConfig(BaseModel):
     floor_margin_m: float = Field(
         0.5,
         ge=0,
-        description="Margin of the floor quad around the barriers (m); 0.5 m keeps the ducts' footprint (0.33 m) on the floor.",
+        description="Margin of the floor quad around the ducts (m); 0.5 m keeps the ducts' footprint (0.33 m) on the floor.",
     )
 
 

@@ -236,6 +236,10 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
         from .errors import InvalidArgumentError
 
         raise InvalidArgumentError(f"laps must be >= 1, got {laps}")
+    if video:
+        from .render.formats import video_format
+
+        video_format(video)  # a bad extension fails before the lap is driven
     env = RoboRacerEnv(track=track, render_mode="rgb_array" if video else None, render_size=render_size,
                        **{"reset_poses": "grid", "collision_ends_episode": True, "time_limit_s": None, **env_kwargs})
     if env_wrapper is not None:

@@ -26,8 +26,9 @@ def test_build_and_preview(tmp_path, capsys):
     assert main(["preview", str(yaml), "-o", str(png), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert {"map", "corridor", "walls", "ducts"} <= set(summary["drawn"])
-    w, h = Image.open(png).size
-    assert w == h and 800 <= w <= 1024  # a small map is enlarged (at most 4x) for legible labels
+    x0, y0, x1, y1 = summary["layout"]["map_box"]
+    assert x1 - x0 == y1 - y0 and 800 <= x1 - x0 <= 1024  # a small map is enlarged (at most 4x) for legible labels
+    assert Image.open(png).size == tuple(summary["size_px"])
 
     png2 = tmp_path / "usd.png"
     assert main(["preview", str(out), "-o", str(png2)]) == 0
@@ -87,7 +88,7 @@ def test_preview_of_a_stage_whose_map_is_gone(tmp_path, capsys):
     capsys.readouterr()
     assert main(["preview", str(out), "-o", str(tmp_path / "p.png"), "--json"]) == 0
     drawn = json.loads(capsys.readouterr().out)["drawn"]
-    assert "map" not in drawn and {"walls", "barriers", "floor outline"} <= set(drawn)
+    assert "map" not in drawn and {"walls", "ducts", "floor outline"} <= set(drawn)
 
 
 def test_preview_of_a_non_stage_is_bad_input(tmp_path, capsys):

@@ -1,6 +1,6 @@
 """``roboracer-arena build MAP.yaml -o OUT.usdc``: any ROS occupancy map → a physics-ready
-USD stage (floor, invisible collision walls, visual air-duct barriers, materials, physics
-scene). Prints the build report (per-stage times, mesh sizes, USD size, round-trip IoU)."""
+USD stage (floor, invisible collision walls, the visible ducts: air-duct tubes with rings,
+materials, physics scene). Prints the build report (per-stage times, mesh sizes, USD size, round-trip IoU)."""
 
 from __future__ import annotations
 

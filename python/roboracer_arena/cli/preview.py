@@ -1,8 +1,18 @@
-"""``roboracer-arena preview MAP.yaml|OUT.usdc -o OUT.png``: a top-down picture. From a map:
-the raster, the extracted corridor (tinted), collision walls, ducts and centreline. From a
-built stage: its meshes read back, over the source map when it is still there. A generated
-track (``centreline.csv`` and ``report.json`` beside its map) also gets its centreline and
-detected features labelled."""
+"""``roboracer-arena preview MAP.yaml|STAGE.usdc -o OUT.png``: a picture of a track.
+
+Top-down (the default), framed with a title, legend, scale bar and the map-frame axes.
+From a map: the raster, the extracted corridor (tinted), the ducts (visible),
+the collision walls (invisible in the simulator), the racing direction as arrows along the
+centreline, and the start line with the car where the env's grid start puts it. From a
+built stage: its meshes read back, over the source map when it is still there. A
+generated track (``centreline.csv`` and ``report.json`` beside its map) also gets its
+design centreline and detected features labelled.
+
+``--3d STAGE.usdc``: a lit 3D still of the built stage (floor, ducts with rings, collision
+walls as the physics sees them, the car at the start), rendered offscreen with VTK (the
+``render3d`` extra); no display or GPU needed.
+
+The picture format comes from the extension of ``-o``: .png, .jpg or .jpeg."""
 
 from __future__ import annotations
 
@@ -16,26 +26,46 @@ USD_SUFFIXES = {".usd", ".usda", ".usdc"}
 
 
 def register(sub) -> None:
-    p = sub.add_parser("preview", help="top-down PNG of a map or a built stage", description=__doc__)
-    p.add_argument("source", type=Path, metavar="MAP.yaml|OUT.usdc", help="a ROS map YAML or a built USD stage")
-    p.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.png", help="picture to write (PNG)")
+    p = sub.add_parser("preview", help="picture of a map or a built stage (top-down, or --3d)", description=__doc__,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("source", type=Path, metavar="MAP.yaml|STAGE.usdc", help="a ROS map YAML or a built USD stage")
+    p.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.png",
+                   help="picture to write (.png, .jpg or .jpeg)")
+    p.add_argument("--3d", dest="three_d", action="store_true",
+                   help="lit 3D still of a built stage (needs the render3d extra)")
     p.add_argument("--config", type=Path, metavar="F", help="BuildConfig file for a map (.toml or .json)")
     p.add_argument("--start", metavar="x,y[,yaw]", help="seed the corridor from this pose (maps only; --start=-1.5,2 when x is negative)")
-    p.add_argument("--max-px", type=int, default=2048, help="longest side of the picture in pixels (default 2048)")
+    p.add_argument("--cars", type=int, default=1, metavar="N", help="cars on the grid drawn at the start (default 1)")
+    p.add_argument("--max-px", type=int, default=2048, help="longest side of the top-down map in pixels (default 2048)")
     add_json_flag(p)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import InvalidArgumentError
-    from ..render.preview import preview_map, preview_usd
+    from ..render.formats import image_format
 
+    image_format(args.out)  # before any work: a wrong extension is bad input
     if args.max_px < 16:
         raise InvalidArgumentError(f"--max-px must be at least 16, got {args.max_px}")
-    if args.source.suffix.lower() in USD_SUFFIXES:
-        summary = preview_usd(args.source, args.out, max_px=args.max_px)
+    if not 1 <= args.cars <= 64:
+        raise InvalidArgumentError(f"--cars must be between 1 and 64, got {args.cars}")
+    is_stage = args.source.suffix.lower() in USD_SUFFIXES
+    if args.three_d:
+        if not is_stage:
+            raise InvalidArgumentError(f"--3d renders a built stage (.usd, .usda, .usdc), got {args.source}")
+        from ..render.still3d import render_still
+
+        summary = render_still(args.source, args.out)
+    elif is_stage:
+        from ..render.preview import preview_usd
+
+        summary = preview_usd(args.source, args.out, max_px=args.max_px, vehicles=args.cars)
     else:
-        summary = preview_map(args.source, args.out, config=args.config, start=args.start, max_px=args.max_px)
+        from ..render.preview import preview_map
+
+        summary = preview_map(args.source, args.out, config=args.config, start=args.start, max_px=args.max_px,
+                              vehicles=args.cars)
     if args.json:
         print_json(asdict(summary))
     else:

@@ -4,7 +4,7 @@
   show ID                   one catalog entry in full
   build ID -o OUT.usdc      build a track's USD environment with the builder
   verify                    load, corridor ring, USD build and pure-pursuit lap per track
-  sheet -o sheet.png        contact sheet of every track with name and lap length
+  sheet -o sheet.png        contact sheet: every track with name, lap length, extent and scale bar
   catalog                   rebuild tracks/catalog.json (--generate reruns the generated sweep)
 
 A track id or a selection (circuits, recorded, generated, all) is what the gymnasium env
@@ -60,7 +60,7 @@ def register(sub) -> None:
                    help="record the results in the catalog; recorded maps that fail move to left_out")
     a.set_defaults(func=run_verify)
     a = t.add_parser("sheet", help="contact sheet of every track")
-    a.add_argument("-o", "--out", type=Path, required=True, metavar="sheet.png", help="output PNG")
+    a.add_argument("-o", "--out", type=Path, required=True, metavar="sheet.png", help="picture to write (.png, .jpg or .jpeg)")
     a.add_argument("--columns", type=int, default=12, help="thumbnails per row (default 12)")
     _common(a)
     _subset(a)

@@ -14,8 +14,8 @@ from gymnasium import spaces
 
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
-from .start import centreline_pose, grid_start_s, perturb_pose
 from ..track import Track
+from .start import grid_poses, grid_start_s, perturb_pose
 
 CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
 #: Simulator state columns copied into ``info`` when present.
@@ -199,13 +199,9 @@ class SimBatch:
         else:
             s0 = 0.0
         half_width = cfg.sim.vehicle.chassis_width / 2
-        out = np.zeros((V, 3))
-        for k in range(V):
-            x, y, yaw = centreline_pose(track, (s0 - k * cfg.grid_spacing) % length)
-            lat = 0.0 if V == 1 else (cfg.grid_offset if k % 2 == 0 else -cfg.grid_offset)
-            pose = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
-            out[k] = perturb_pose(track, pose, rng, cfg.start_lateral_noise, cfg.start_heading_noise, half_width)
-        return out
+        grid = grid_poses(track, V, cfg.grid_spacing, cfg.grid_offset, s0)
+        noise = (cfg.start_lateral_noise, cfg.start_heading_noise, half_width)
+        return np.array([perturb_pose(track, tuple(p), rng, *noise) for p in grid])
 
     def _scan_due(self) -> bool:
         """Whether the scanner produces a new scan at the end of this step."""

@@ -84,6 +84,21 @@ def grid_start_s(track: Any, slots: int = 1, spacing: float = 1.0) -> float:
     return s
 
 
+def grid_poses(track: Any, slots: int, spacing: float, offset: float, s0: float | None = None) -> np.ndarray:
+    """Poses (slots, 3) of a staggered grid: the first slot at arc length ``s0`` (default:
+    :func:`grid_start_s`), each further one ``spacing`` behind the one before and, with
+    more than one slot, ``offset`` left and right of the centreline in turn."""
+    length = track.length
+    if s0 is None:
+        s0 = grid_start_s(track, slots, spacing)
+    out = np.zeros((int(slots), 3))
+    for k in range(int(slots)):
+        x, y, yaw = centreline_pose(track, (s0 - k * spacing) % length)
+        lat = 0.0 if slots == 1 else (offset if k % 2 == 0 else -offset)
+        out[k] = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
+    return out
+
+
 def perturb_pose(track: Any, pose: tuple[float, float, float], rng: np.random.Generator, lateral: float,
                  heading: float, half_width: float) -> tuple[float, float, float]:
     """``pose`` moved sideways by U(-lateral, lateral) (capped so the car's side stays

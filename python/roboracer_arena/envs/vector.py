@@ -157,9 +157,12 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
             from ..render.sim_view import SimView
 
             self._view = SimView(self.tracks, self.config.sim, size=self._render_size)
+        from ..render.sim_view import hud_lines
+
         b = self._batch
         scans = b.scans if self.config.observation.scan else [None] * self.num_envs
-        return tuple(self._view.draw(int(b.track_ids[e]), b.state[e], b.field_index, scans[e]) for e in range(self.num_envs))
+        return tuple(self._view.draw(int(b.track_ids[e]), b.state[e], b.field_index, scans[e], hud=hud_lines(b, e))
+                     for e in range(self.num_envs))
 
     # ------------------------------------------------------------------ helpers
     def _obs(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:

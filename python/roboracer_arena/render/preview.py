@@ -1,74 +1,106 @@
 """Track previews: a top-down picture of a map (with its extracted corridor, collision
-walls and ducts) or of a built USD stage (its meshes read back), plus — for a generated
-track — the centreline and the detected features from ``report.json``."""
+walls and ducts) or of a built USD stage (its meshes read back), framed with a title,
+legend, scale bar and map-frame axes (:mod:`.frame`), with the racing direction, start line
+and grid start as the env has them (:mod:`.race_marks`) and — for a generated track — the
+design centreline and the detected features from ``report.json``.
+
+The visible barriers are called *ducts* everywhere a user reads (air-duct tubes with
+rings; the stage keeps them under ``/World/Track/Barriers``); the invisible physics
+boundary is the *collision walls*."""
 
 from __future__ import annotations
 
 import csv
 import json
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .topdown import TopDown
+from .frame import LegendEntry, framed
+from .topdown import TopDown, save_image
 
 CORRIDOR = (60, 170, 90, 90)
 FLOOR = (30, 130, 60, 255)
 WALL = (220, 30, 30)
 DUCT = (120, 120, 130, 200)
-CENTRELINE = (30, 90, 220)
 GENERATED = (240, 140, 0)
 FEATURE = {"hairpin": (170, 0, 170), "chicane": (0, 120, 160), "sweeper": (160, 90, 0)}
 
 
 @dataclass
 class PreviewSummary:
-    """What a preview drew (the CLI prints it as JSON)."""
+    """What a preview drew (the CLI prints it as JSON); ``layout`` has the pixel boxes of
+    title, legend, scale bar, axes, map and labels in the written picture."""
 
     output: str
     source: str
     size_px: tuple[int, int]
     drawn: list[str] = field(default_factory=list)
     features: list[dict[str, Any]] = field(default_factory=list)
+    race: dict[str, Any] = field(default_factory=dict)
+    layout: dict[str, Any] = field(default_factory=dict)
 
 
-def preview_map(map_path: str | Path, out_png: str | Path, config: Any = None, start: Any = None, max_px: int = 2048) -> PreviewSummary:
-    """Extract the corridor of a ROS map and draw map, corridor, walls, ducts, centreline."""
+def track_name(map_path: Path) -> str:
+    """A map's display name: its folder for ``<name>/map.yaml`` (circuits, generated), else its stem."""
+    return map_path.parent.name if map_path.stem == "map" and map_path.parent.name else map_path.stem
+
+
+def preview_map(map_path: str | Path, out_png: str | Path, config: Any = None, start: Any = None, max_px: int = 2048,
+                vehicles: int = 1) -> PreviewSummary:
+    """Extract the corridor of a ROS map and draw map, corridor, collision walls, ducts,
+    racing direction, start line and grid (``vehicles`` cars); write PNG or JPEG."""
     from ..builder import parse_start, resolve_config
     from ..corridor import extract_corridor
+    from ..direction import direction_for_map
+    from ..track import Track
     from ..maps import load_map
+    from .formats import image_format
 
+    image_format(out_png)  # a bad extension fails before any work
+    map_path = Path(map_path)
     cfg = resolve_config(config)
     occ = load_map(map_path)
     canvas = TopDown.for_raster(occ.data, occ.resolution, occ.origin, max_px=max_px)
     geo = extract_corridor(occ, params=cfg.geometry_params(), start=parse_start(start))
     drawn = ["map"]
+    legend: list[LegendEntry] = []
     mask = getattr(geo, "corridor_mask", None)
     if mask is not None and np.shape(mask) == occ.data.shape:
         canvas.tint(mask, CORRIDOR)
         drawn.append("corridor")
+        legend.append(LegendEntry("drivable corridor", CORRIDOR[:3]))
     for duct in geo.ducts:
         canvas.polyline(duct, DUCT, width_m=cfg.geometry.tube_diameter_m, closed=True)
     for wall in geo.walls:
         canvas.polyline(wall, WALL, closed=True, min_px=2)
     drawn += ["ducts", "walls"]
-    if len(geo.centreline) > 1:
-        canvas.polyline(geo.centreline, CENTRELINE, closed=True)
-        drawn.append("centreline")
-    legend = [("corridor", CORRIDOR[:3]), ("collision walls", WALL), ("ducts", DUCT[:3]), ("centreline", CENTRELINE)]
-    features = _generated_overlay(canvas, Path(map_path), drawn, legend)
-    canvas.legend(legend)
-    canvas.save(out_png)
-    return PreviewSummary(str(out_png), str(map_path), canvas.image.size, drawn, features)
+    legend += [LegendEntry("ducts (visible)", DUCT[:3]), LegendEntry("collision walls (invisible)", WALL, "line")]
+    features = _generated_overlay(canvas, map_path, drawn, legend)
+    name = track_name(map_path)
+    race: dict[str, Any] = {}
+    if len(geo.centreline) > 2:
+        track = Track.from_polylines(list(geo.walls), geo.centreline, name=name).oriented(direction_for_map(map_path))
+        marks, race = _race_marks(canvas, track, vehicles)
+        drawn += ["centreline", "direction", "start"]
+        legend += marks
+    h, w = occ.data.shape
+    facts = [race.get("direction", "direction unknown"), f"lap {race['lap_length_m']:.1f} m" if race else None,
+             f"map {w * occ.resolution:.1f} x {h * occ.resolution:.1f} m at {occ.resolution:g} m/cell"]
+    title = f"{name}: {', '.join(f for f in facts if f)}"
+    return _write(canvas, title, _subtitle(race, vehicles), legend, out_png, map_path, drawn, features, race)
 
 
-def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048) -> PreviewSummary:
-    """Read a built stage's meshes back and draw floor, ducts and walls over the source map
-    (when the map named in the stage metadata is still there)."""
+def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, vehicles: int = 1) -> PreviewSummary:
+    """Read a built stage's meshes back and draw floor, ducts and collision walls over the
+    source map (when the map named in the stage metadata is still there, also its racing
+    direction, start line and grid); write PNG or JPEG."""
     from ..usd import open_stage, read_meshes, stage_metadata
+    from .formats import image_format
 
+    image_format(out_png)
     stage = open_stage(usd_path)
     meta = stage_metadata(stage)
     meshes = read_meshes(stage)
@@ -88,30 +120,65 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048) -
     if canvas is None:
         allp = np.concatenate([m.points for m in meshes.values() if len(m.points)])
         canvas = TopDown.for_bounds(allp.min(0)[:2], allp.max(0)[:2], max_px=max_px)
+    legend: list[LegendEntry] = []
     for path, m in meshes.items():
         if path.endswith("/Floor") and len(m.triangles):
             a, b = boundary_edges(m.triangles)
             canvas.segments(m.points[a, :2], m.points[b, :2], FLOOR[:3], width_px=3)
             drawn.append("floor outline")
-    barriers = [m for path, m in meshes.items() if "/Barriers" in path]
-    for m in barriers:
+            legend.append(LegendEntry("floor outline", FLOOR[:3], "line"))
+    ducts = [m for path, m in meshes.items() if "/Barriers" in path]
+    for m in ducts:
         canvas.triangles(m.points[m.triangles][:, :, :2], DUCT)
-    if barriers:
-        drawn.append("barriers")
+    if ducts:
+        drawn.append("ducts")
+        legend.append(LegendEntry("ducts (visible)", DUCT[:3]))
     walls = meshes.get("/World/Track/Walls")
     if walls is not None and len(walls.triangles):
         tri = walls.points[walls.triangles][:, :, :2]
         for a, b in ((0, 1), (1, 2), (2, 0)):
             canvas.segments(tri[:, a], tri[:, b], WALL, width_px=2)
         drawn.append("walls")
-    legend = [("floor outline", FLOOR[:3]), ("collision walls", WALL), ("barriers", DUCT[:3])]
+        legend.append(LegendEntry("collision walls (invisible)", WALL, "line"))
     features = _generated_overlay(canvas, src, drawn, legend) if src is not None else []
-    canvas.legend(legend)
-    canvas.save(out_png)
-    return PreviewSummary(str(out_png), str(usd_path), canvas.image.size, drawn, features)
+    race: dict[str, Any] = {}
+    if "map" in drawn and src is not None:
+        from ..track import track_from_map_path
+
+        marks, race = _race_marks(canvas, track_from_map_path(src), vehicles)
+        drawn += ["direction", "start"]
+        legend += marks
+    name = Path(usd_path).stem
+    facts = [race.get("direction", "direction unknown (source map not found)"),
+             f"lap {race['lap_length_m']:.1f} m" if race else None, "stage meshes read back"]
+    title = f"{name}: {', '.join(f for f in facts if f)}"
+    return _write(canvas, title, _subtitle(race, vehicles), legend, out_png, Path(usd_path), drawn, features, race)
 
 
-def _generated_overlay(canvas: TopDown, map_yaml: Path, drawn: list[str], legend: list) -> list[dict[str, Any]]:
+def _race_marks(canvas: TopDown, track: Any, vehicles: int) -> tuple[list[LegendEntry], dict[str, Any]]:
+    from .race_marks import draw_race_marks
+
+    return draw_race_marks(canvas, track, vehicles)
+
+
+def _subtitle(race: dict[str, Any], vehicles: int) -> str:
+    if not race:
+        return ""
+    x, y, yaw = race["grid"][0]
+    return (f"Arrows: the way the env drives it. Start: the env's grid start (reset_poses='grid', "
+            f"{vehicles} car{'s' if vehicles > 1 else ''}) at x {x:.2f} m, y {y:.2f} m, "
+            f"heading {np.degrees(yaw):.0f}°.")
+
+
+def _write(canvas: TopDown, title: str, subtitle: str, legend: list[LegendEntry], out: str | Path, source: Path,
+           drawn: list[str], features: list[dict[str, Any]], race: dict[str, Any]) -> PreviewSummary:
+    img, layout = framed(canvas, title, subtitle, legend)
+    save_image(img, out)
+    return PreviewSummary(str(out), str(source), img.size, drawn, features, race, asdict(layout))
+
+
+def _generated_overlay(canvas: TopDown, map_yaml: Path, drawn: list[str],
+                       legend: list[LegendEntry]) -> list[dict[str, Any]]:
     """If ``map_yaml`` is a generated track (``centreline.csv`` and ``report.json`` beside it,
     as :mod:`roboracer_arena.generate.outputs` writes them), draw its centreline and label
     each detected feature; returns the features drawn."""
@@ -123,7 +190,7 @@ def _generated_overlay(canvas: TopDown, map_yaml: Path, drawn: list[str], legend
     if len(line) > 1:
         canvas.polyline(line, GENERATED, closed=True, min_px=2)
         drawn.append("generated centreline")
-        legend.append(("generated centreline", GENERATED))
+        legend.append(LegendEntry("design centreline (generator)", GENERATED, "line"))
     try:
         report = json.loads(rep_path.read_text(encoding="utf-8"))
     except (OSError, json.JSONDecodeError):
@@ -135,8 +202,6 @@ def _generated_overlay(canvas: TopDown, map_yaml: Path, drawn: list[str], legend
         canvas.label((f["x"], f["y"]), f"{f['kind']} {counts[f['kind']]}", FEATURE.get(f["kind"], (0, 0, 0)))
     if features:
         drawn.append("features")
-    if line.size:
-        canvas.label(line[0], "start", (0, 0, 0))
     return features
 
 

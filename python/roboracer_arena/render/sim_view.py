@@ -1,5 +1,6 @@
 """Top-down drawing of a simulated episode with PIL: track walls, centreline, vehicles
-as oriented rectangles and lidar rays. Used by the envs' ``render()`` (rgb_array)."""
+as oriented rectangles, lidar rays and a read-out of time, speed and lap in the corner.
+Used by the envs' ``render()`` (rgb_array), so every rollout GIF/MP4 frame carries them."""
 
 from __future__ import annotations
 
@@ -51,8 +52,9 @@ class SimView:
         return img, tf
 
     def draw(self, track_id: int, state: np.ndarray, field_index: Mapping[str, int],
-             scans: np.ndarray | None = None) -> np.ndarray:
-        """One frame, (H, W, 3) uint8: vehicles from ``state`` (V, S) rows, rays from ``scans`` (V, B)."""
+             scans: np.ndarray | None = None, hud: Sequence[str] = ()) -> np.ndarray:
+        """One frame, (H, W, 3) uint8: vehicles from ``state`` (V, S) rows, rays from
+        ``scans`` (V, B), the text lines ``hud`` in the top-left corner."""
         bg, tf = self._background(track_id)
         veh, lid = self.sim.vehicle, self.sim.lidar
         fx, fy, fyaw = field_index["x"], field_index["y"], field_index["yaw"]
@@ -85,7 +87,52 @@ class SimView:
             d.polygon(_px(rot, tf), fill=VEHICLE_COLOURS[k % len(VEHICLE_COLOURS)], outline=(0, 0, 0))
             nose = np.array([[x, y], [x + hl * c, y + hl * s]])
             d.line(_px(nose, tf), fill=(255, 255, 255), width=max(1, round(tf[2] * 0.04)))
+        if hud:
+            cars = [p for x, y, yaw in poses if math.isfinite(x + y + yaw) for p in _px(np.array([[x, y]]), tf)]
+            _draw_hud(img, hud, max(12, self.size // 36), bg, cars, hl * tf[2])
         return np.asarray(img, dtype=np.uint8)
+
+
+def hud_lines(batch: Any, env: int = 0) -> list[str]:
+    """Time, speed and lap of env ``env`` of a :class:`~roboracer_arena.envs.batch.SimBatch`:
+    one line for the clock and one per vehicle (at most four) with its speed and lap."""
+    f = batch.field_index
+    t = float(batch.elapsed[env]) * batch.config.control_dt
+    lines = [f"time {t:.2f} s"]
+    rows = np.asarray(batch.state[env])
+    for k, row in enumerate(rows[:4]):
+        speed = float(row[f["speed"]]) if "speed" in f else float(np.hypot(row[f["vx"]], row[f["vy"]]))
+        if "laps" in f:
+            lap = int(row[f["laps"]]) + 1
+        else:
+            lap = int(batch.progress[env, k] // batch.lengths[batch.track_ids[env]]) + 1
+        who = f"car {k + 1}: " if len(rows) > 1 else "speed "
+        lines.append(f"{who}{speed:.2f} m/s, lap {lap}")
+    return lines
+
+
+def _draw_hud(img: Image.Image, lines: Sequence[str], size_px: int, background: Image.Image,
+              cars: Sequence[tuple[float, float]], car_px: float) -> None:
+    """``lines`` on a white panel in the corner of the picture that covers no car (centres
+    ``cars`` in pixels, ``car_px`` half-length) and the fewest track pixels (the drawn ``background``)."""
+    from .topdown import font
+
+    face = font(size_px)
+    d = ImageDraw.Draw(img, "RGBA")
+    step = size_px + 4
+    w, h = round(12 + max(d.textlength(line, font=face) for line in lines)), 8 + step * len(lines)
+    W, H = img.size
+    ink = np.any(np.asarray(background) != BACKGROUND, axis=2)
+    corners = [(4, 4), (W - w - 4, 4), (4, H - h - 4), (W - w - 4, H - h - 4)]
+    def cost(c: tuple[int, int]) -> int:
+        hidden = sum(c[0] - car_px <= cx <= c[0] + w + car_px and c[1] - car_px <= cy <= c[1] + h + car_px
+                     for cx, cy in cars)
+        return hidden * W * H + int(ink[max(c[1], 0):c[1] + h, max(c[0], 0):c[0] + w].sum())
+
+    x, y = min(corners, key=cost)
+    d.rectangle([x, y, x + w, y + h], fill=(255, 255, 255, 215), outline=(0, 0, 0))
+    for i, line in enumerate(lines):
+        d.text((x + 5, y + 3 + i * step), line, fill=(0, 0, 0), font=face)
 
 
 def _px(pts: np.ndarray, tf: tuple[float, float, float]) -> list[tuple[float, float]]:

@@ -11,15 +11,18 @@ from __future__ import annotations
 import io
 import math
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Sequence
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from ..fileio import atomic_write_bytes
+from .formats import image_format
 
 RGB = tuple[int, int, int]
 RGBA = tuple[int, int, int, int]
+#: A pixel box (left, top, right, bottom), right and bottom exclusive.
+Box = tuple[int, int, int, int]
 
 
 class TopDown:
@@ -46,6 +49,12 @@ class TopDown:
         size = (max(1, round(width * scale)), max(1, round(height * scale)))
         self.image = Image.new("RGB", size, background)
         self.draw = ImageDraw.Draw(self.image, "RGBA")
+        #: Text and pixel box of every label placed (see :meth:`label`).
+        self.label_boxes: list[tuple[str, Box]] = []
+        #: Labels left out for want of a free spot.
+        self.dropped_labels: list[str] = []
+        #: Pixel boxes labels keep clear of (see :meth:`reserve`).
+        self.reserved: list[Box] = []
 
     # --- construction ----------------------------------------------------------------
 
@@ -133,22 +142,59 @@ class TopDown:
         for x, y in self.to_px(xy):
             self.draw.ellipse([x - radius_px, y - radius_px, x + radius_px, y + radius_px], fill=colour)
 
-    def label(self, xy: Sequence[float], text: str, colour: RGB = (0, 0, 0), marker: bool = True, size_px: int = 14) -> None:
-        """Text at a world point, with a small marker and a white halo for legibility."""
+    def polygon(self, xy: np.ndarray, fill: RGB | RGBA, outline: RGB | None = None) -> None:
+        """A filled polygon with corners ``xy`` (N, 2) in world metres."""
+        self.draw.polygon([tuple(p) for p in self.to_px(xy)], fill=fill, outline=outline)
+
+    def reserve(self, xy: np.ndarray, pad_px: int = 3) -> Box:
+        """Keep labels clear of the pixel box around the world points ``xy`` (N, 2), e.g. a
+        marking a label would hide; returns the box."""
+        p = self.to_px(xy)
+        lo, hi = np.floor(p.min(axis=0)) - pad_px, np.ceil(p.max(axis=0)) + pad_px
+        box = (int(lo[0]), int(lo[1]), int(hi[0]), int(hi[1]))
+        self.reserved.append(box)
+        return box
+
+    def label(self, xy: Sequence[float], text: str, colour: RGB = (0, 0, 0), marker: bool = True,
+              size_px: int = 14) -> Box | None:
+        """Text near a world point, with a small marker and a white halo for legibility.
+
+        The text goes to the first spot around the point (nearest first, with a leader line
+        when it had to move away) where it lies inside the picture and clear of every label
+        placed before; its box is kept in :attr:`label_boxes`. If there is no such spot the
+        text is left out (its marker stays), recorded in :attr:`dropped_labels`, and None
+        is returned."""
         (x, y), = self.to_px(np.asarray(xy, dtype=np.float64)[None, :2])
         if marker:
             self.points(np.asarray(xy, dtype=np.float64)[None, :2], colour, radius_px=max(3, size_px // 4))
-        font = _font(size_px)
-        self.draw.text((x + size_px // 2, y - size_px), text, fill=colour, font=font, stroke_width=2, stroke_fill=(255, 255, 255))
+        face = font(size_px)
+        left, top, right, bottom = self.draw.textbbox((0, 0), text, font=face, stroke_width=2)
+        w, h = right - left, bottom - top
+        box = self._free_spot(x, y, w, h)
+        if box is None:
+            self.dropped_labels.append(text)
+            return None
+        if math.dist((x, y), _nearest_in_box(box, x, y)) > size_px:
+            self.draw.line([(x, y), _nearest_in_box(box, x, y)], fill=colour, width=1)
+        self.draw.text((box[0] - left, box[1] - top), text, fill=colour, font=face, stroke_width=2,
+                       stroke_fill=(255, 255, 255))
+        self.label_boxes.append((text, box))
+        return box
 
-    def legend(self, entries: Iterable[tuple[str, RGB]], size_px: int = 14) -> None:
-        """A key in the top-left corner: coloured squares and their names."""
-        font = _font(size_px)
-        y = 6
-        for name, colour in entries:
-            self.draw.rectangle([6, y, 6 + size_px, y + size_px], fill=colour, outline=(0, 0, 0))
-            self.draw.text((12 + size_px, y), name, fill=(0, 0, 0), font=font, stroke_width=2, stroke_fill=(255, 255, 255))
-            y += size_px + 6
+    def _free_spot(self, x: float, y: float, w: int, h: int, pad: int = 2) -> Box | None:
+        """Top-left-anchored box (w × h plus ``pad``) near (x, y), inside the image and clear
+        of :attr:`label_boxes` and :attr:`reserved`: tried right, above, left, below and the
+        diagonals, nearest first."""
+        W, H = self.image.size
+        for d in (6, 14, 28, 48, 80, 130, 200):
+            for px, py in ((x + d, y - h / 2), (x + d, y - d - h), (x - d - w, y - d - h), (x - w / 2, y - d - h),
+                           (x - d - w, y - h / 2), (x + d, y + d), (x - d - w, y + d), (x - w / 2, y + d)):
+                box = (math.floor(px) - pad, math.floor(py) - pad, math.ceil(px + w) + pad, math.ceil(py + h) + pad)
+                if box[0] >= 0 and box[1] >= 0 and box[2] <= W and box[3] <= H and \
+                        not any(boxes_overlap(box, b) for _, b in self.label_boxes) and \
+                        not any(boxes_overlap(box, b) for b in self.reserved):
+                    return box
+        return None
 
     # --- output ----------------------------------------------------------------------
 
@@ -158,9 +204,29 @@ class TopDown:
         return buf.getvalue()
 
     def save(self, path: str | Path) -> Path:
-        """Write the picture as PNG, atomically."""
-        atomic_write_bytes(path, self.png_bytes())
-        return Path(path)
+        """Write the picture atomically, as PNG or JPEG by the extension of ``path``."""
+        return save_image(self.image, path)
+
+
+def save_image(image: Image.Image, path: str | Path) -> Path:
+    """Write ``image`` atomically in the format of the extension of ``path`` (PNG or JPEG)."""
+    fmt = image_format(path)
+    buf = io.BytesIO()
+    if fmt == "JPEG":
+        image.convert("RGB").save(buf, format="JPEG", quality=92)
+    else:
+        image.save(buf, format=fmt, optimize=True)
+    atomic_write_bytes(path, buf.getvalue())
+    return Path(path)
+
+
+def boxes_overlap(a: Box, b: Box) -> bool:
+    """Whether two pixel boxes share any pixel."""
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+def _nearest_in_box(box: Box, x: float, y: float) -> tuple[float, float]:
+    return min(max(x, box[0]), box[2]), min(max(y, box[1]), box[3])
 
 
 def fit_scale(longest: int, max_px: int, min_px: int) -> float:
@@ -170,7 +236,7 @@ def fit_scale(longest: int, max_px: int, min_px: int) -> float:
     return min(4.0, min_px / longest, max_px / longest)
 
 
-def _font(size_px: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:
+def font(size_px: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:
     try:
         return ImageFont.load_default(size=size_px)
     except TypeError:  # Pillow < 10.1 has no sized default font

@@ -10,14 +10,15 @@ import numpy as np
 
 from ..errors import ConfigError
 from ..fileio import atomic_path
+from .formats import video_format
 
 
 def write_video(frames: Sequence[np.ndarray], path: str | Path, fps: float = 20.0) -> Path:
     """Write (H, W, 3) uint8 frames to ``path`` (``.gif`` or ``.mp4``); returns the path."""
     path = Path(path)
+    suffix = video_format(path)
     if not frames:
         raise ConfigError(f"{path}: no frames to write")
-    suffix = path.suffix.lower()
     if suffix == ".gif":
         from PIL import Image
 
@@ -28,17 +29,14 @@ def write_video(frames: Sequence[np.ndarray], path: str | Path, fps: float = 20.
                         duration=max(20, round(1000 / fps)), loop=0, optimize=False)
         return path
     if suffix == ".mp4":
-        try:
-            import imageio.v3 as iio
-        except ImportError as e:  # pragma: no cover - depends on the extra
-            raise ConfigError("MP4 output needs the 'video' extra (pip install roboracer-arena[video])") from e
+        import imageio.v3 as iio  # present: video_format checked the 'video' extra
+
         with atomic_path(path) as tmp:
             try:
                 iio.imwrite(tmp, np.stack([_pad16(f) for f in frames]), fps=fps, extension=".mp4")
             except Exception as e:  # imageio raises plain errors when no ffmpeg/pyav plugin is present
                 raise ConfigError(f"{path}: cannot write MP4 ({e}); install imageio-ffmpeg or av, or write a .gif") from e
-        return path
-    raise ConfigError(f"{path}: unsupported video format {suffix!r} (use .gif or .mp4)")
+    return path
 
 
 def _pad16(f: np.ndarray) -> np.ndarray:
@@ -53,6 +51,8 @@ def record_episode(env: Any, policy: Callable[[Any], Any], path: str | Path | No
     """Run one episode of a single env (``render_mode="rgb_array"``) with ``policy(obs)``,
     keep every ``every``-th frame and write them to ``path`` if given. Returns a summary
     with the frames, steps, total reward, the final info and whether it terminated."""
+    if path is not None:
+        video_format(path)  # a bad extension fails before the episode runs
     obs, info = env.reset(seed=seed, options=options)
     frames: list[np.ndarray] = [env.render()]
     total, steps, terminated, truncated = 0.0, 0, False, False

@@ -7,7 +7,7 @@ Layout (Z up, metres, kilograms, default prim ``/World``)::
     /World/Track                Xform
     /World/Track/Floor          Mesh, visual + collider (approximation none), physics material
     /World/Track/Walls          Mesh, collider (approximation none), purpose guide, invisible
-    /World/Track/Barriers       visual only: air-duct tubes and rings (a Mesh, or an Xform of Meshes)
+    /World/Track/Barriers       the ducts, visual only: air-duct tubes and rings (Xform of Meshes Ducts, Rings)
     /World/Looks/...            UsdPreviewSurface looks + the UsdPhysics material
 
 The geometry arrives as :class:`StageMesh` records (already in world coordinates); this
@@ -85,7 +85,7 @@ def author_stage(
     world = UsdGeom.Xform.Define(stage, "/World")
     stage.SetDefaultPrim(world.GetPrim())
     layer = stage.GetRootLayer()
-    layer.documentation = "RoboRacer Arena track: floor, invisible collision walls, visual air-duct barriers."
+    layer.documentation = "RoboRacer Arena track: floor, invisible collision walls, visible ducts (air-duct tubes with rings)."
     layer.customLayerData = {METADATA_KEY: _vt_dict(metadata)}
 
     scene = UsdPhysics.Scene.Define(stage, "/World/PhysicsScene")

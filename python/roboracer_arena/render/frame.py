@@ -1,0 +1,190 @@
+"""The frame around a top-down map picture: a title band above it and, below it, the
+legend, a scale bar and the map-frame axes (north arrow). Nothing of the frame is drawn
+over the map, so the legend never covers the track."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Sequence
+
+import numpy as np
+from PIL import Image, ImageDraw
+
+from .topdown import RGB, Box, TopDown, font
+
+#: Narrowest framed picture (px): room for the legend, scale bar and axes of a tiny map.
+MIN_WIDTH = 720
+PAD = 10
+TITLE_PX, TEXT_PX = 22, 15
+INK = (20, 20, 20)
+
+
+@dataclass(frozen=True)
+class LegendEntry:
+    """One key of the legend: ``kind`` is how its swatch looks (``area``, ``line``,
+    ``arrow`` for the racing direction, ``car``, ``startline``)."""
+
+    name: str
+    colour: RGB
+    kind: str = "area"
+
+
+@dataclass
+class Layout:
+    """Where everything went in the framed picture (pixel boxes, right/bottom exclusive)."""
+
+    size: tuple[int, int]
+    map_box: Box
+    title_box: Box
+    legend_box: Box
+    scale_box: Box
+    axes_box: Box
+    scale_m: float
+    label_boxes: list[tuple[str, Box]] = field(default_factory=list)
+    dropped_labels: list[str] = field(default_factory=list)
+
+
+def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEntry]) -> tuple[Image.Image, Layout]:
+    """The canvas with a title band above and legend, scale bar and axes below."""
+    mw, mh = canvas.image.size
+    width = max(mw, MIN_WIDTH)
+    probe = ImageDraw.Draw(Image.new("RGB", (1, 1)))
+    title_font, text_font = font(TITLE_PX), font(TEXT_PX)
+    title_lines = [(title, title_font), *([(subtitle, text_font)] if subtitle else [])]
+    title_lines = [(t, f) for line, f in title_lines for t in _wrap(probe, line, f, width - 2 * PAD)]
+    title_h = PAD + sum(_text_h(probe, t, f) + 4 for t, f in title_lines) + PAD // 2
+    tools_w = 330  # scale bar and axes, right of the legend
+    rows = _legend_rows(probe, legend, text_font, width - tools_w - 3 * PAD)
+    row_h = TEXT_PX + 10
+    footer_h = max(len(rows) * row_h + 2 * PAD, 112)
+    img = Image.new("RGB", (width, title_h + mh + footer_h), (255, 255, 255))
+    d = ImageDraw.Draw(img)
+    mx, my = (width - mw) // 2, title_h
+    img.paste(canvas.image, (mx, my))
+    d.rectangle([mx - 1, my - 1, mx + mw, my + mh], outline=(150, 150, 150))
+
+    y = PAD
+    for text, f in title_lines:
+        d.text((PAD, y), text, fill=INK, font=f)
+        y += _text_h(probe, text, f) + 4
+    title_box = (0, 0, width, title_h)
+
+    fy = my + mh + 1
+    legend_right = PAD
+    for r, row in enumerate(rows):
+        x, yy = PAD, fy + PAD + r * row_h
+        for entry, w in row:
+            _swatch(d, entry, (x, yy + 1, x + 28, yy + TEXT_PX + 1))
+            d.text((x + 34, yy), entry.name, fill=INK, font=text_font)
+            x += w
+        legend_right = max(legend_right, x)
+    legend_box = (PAD, fy + PAD, legend_right, fy + PAD + len(rows) * row_h)
+
+    scale_m, scale_px = scale_length(canvas.px_per_m(), 200)
+    sx, sy = width - tools_w + PAD, fy + PAD + 24
+    _scale_bar(d, sx, sy, scale_px, scale_m, text_font)
+    scale_box = (sx, fy + PAD, sx + 205, sy + 30)
+    ax, ay = width - 52, fy + 56
+    _axes(d, canvas, ax, ay, text_font)
+    axes_box = (ax - 50, ay - 50, ax + 50, ay + 50)
+
+    shift = lambda b: (b[0] + mx, b[1] + my, b[2] + mx, b[3] + my)  # noqa: E731
+    layout = Layout(img.size, (mx, my, mx + mw, my + mh), title_box, legend_box, scale_box, axes_box, scale_m,
+                    [(t, shift(b)) for t, b in canvas.label_boxes], list(canvas.dropped_labels))
+    return img, layout
+
+
+def _text_h(d: ImageDraw.ImageDraw, text: str, f) -> int:
+    l, t, r, b = d.textbbox((0, 0), text or " ", font=f)
+    return b
+
+
+def _wrap(d: ImageDraw.ImageDraw, text: str, f, width: int) -> list[str]:
+    """``text`` broken at spaces into lines at most ``width`` px wide."""
+    lines, cur = [], ""
+    for word in text.split(" "):
+        trial = f"{cur} {word}".strip()
+        if cur and d.textlength(trial, font=f) > width:
+            lines.append(cur)
+            cur = word
+        else:
+            cur = trial
+    return [*lines, cur]
+
+
+def _legend_rows(d: ImageDraw.ImageDraw, legend: Sequence[LegendEntry], f,
+                 width: int) -> list[list[tuple[LegendEntry, int]]]:
+    """Legend entries flowed into rows no wider than ``width`` px: [(entry, its width)]."""
+    rows: list[list[tuple[LegendEntry, int]]] = [[]]
+    used = 0
+    for e in legend:
+        w = 34 + math.ceil(d.textlength(e.name, font=f)) + 18
+        if rows[-1] and used + w > width:
+            rows.append([])
+            used = 0
+        rows[-1].append((e, w))
+        used += w
+    return rows if rows[0] else []
+
+
+def _swatch(d: ImageDraw.ImageDraw, e: LegendEntry, box: tuple[int, int, int, int]) -> None:
+    x0, y0, x1, y1 = box
+    cy = (y0 + y1) // 2
+    if e.kind == "line":
+        d.line([(x0, cy), (x1, cy)], fill=e.colour, width=3)
+    elif e.kind == "arrow":
+        d.line([(x0, cy), (x1, cy)], fill=e.colour, width=2)
+        direction_chevron(d, (x1 - 6, cy), (1.0, 0.0), e.colour)
+    elif e.kind == "car":
+        d.rectangle([x0 + 6, cy - 4, x1 - 6, cy + 4], fill=e.colour, outline=(0, 0, 0))
+    elif e.kind == "startline":
+        for k in range(0, x1 - x0, 6):
+            d.rectangle([x0 + k, cy - 3, min(x1, x0 + k + 5), cy + 3], fill=(0, 0, 0) if k % 12 else (255, 255, 255),
+                        outline=(0, 0, 0))
+    else:
+        d.rectangle([x0 + 4, y0, x1 - 4, y1 - 1], fill=e.colour, outline=(0, 0, 0))
+
+
+def direction_chevron(d: ImageDraw.ImageDraw, tip: tuple[float, float], heading: tuple[float, float], colour: RGB,
+                      size: float = 9.0) -> None:
+    """A filled arrow head at ``tip`` pointing along the image-space unit vector ``heading``."""
+    hx, hy = heading
+    nx, ny = -hy, hx
+    x, y = tip
+    pts = [(x, y), (x - size * hx + 0.6 * size * nx, y - size * hy + 0.6 * size * ny),
+           (x - 0.55 * size * hx, y - 0.55 * size * hy),
+           (x - size * hx - 0.6 * size * nx, y - size * hy - 0.6 * size * ny)]
+    d.polygon(pts, fill=colour, outline=(255, 255, 255))
+
+
+def scale_length(px_per_m: float, max_px: int) -> tuple[float, float]:
+    """The longest 1-2-5 length (m) whose bar fits in ``max_px`` pixels, and its pixels."""
+    best = 0.01
+    for exp in range(-2, 6):
+        for m in (1, 2, 5):
+            length = m * 10.0**exp
+            if length * px_per_m <= max_px:
+                best = length
+    return best, best * px_per_m
+
+
+def _scale_bar(d: ImageDraw.ImageDraw, x: int, y: int, px: float, metres: float, f) -> None:
+    """A two-tone bar ``px`` long at (x, y) with its length written above."""
+    half = px / 2
+    d.rectangle([x, y, x + half, y + 7], fill=(0, 0, 0))
+    d.rectangle([x + half, y, x + px, y + 7], fill=(255, 255, 255), outline=(0, 0, 0))
+    text = f"{metres:g} m" if metres >= 1 else f"{metres * 100:g} cm"
+    d.text((x, y - TEXT_PX - 6), f"scale  {text}", fill=INK, font=f)
+
+
+def _axes(d: ImageDraw.ImageDraw, canvas: TopDown, cx: int, cy: int, f) -> None:
+    """The map frame's x and y axes as arrows (y is "north" of the map frame); they turn
+    with a map whose origin has a yaw."""
+    o, ex, ey = canvas.to_px(np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]))
+    for end, name in ((ex, "x"), (ey, "y")):
+        v = (end - o) / max(float(np.linalg.norm(end - o)), 1e-12)
+        tip = (cx + 30 * v[0], cy + 30 * v[1])
+        d.line([(cx, cy), tip], fill=INK, width=2)
+        direction_chevron(d, tip, (float(v[0]), float(v[1])), INK, size=8)
+        d.text((cx + 40 * v[0] - 4, cy + 40 * v[1] - 9), name, fill=INK, font=f)
