@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from roboracer_arena.corridor import DEFAULT_PARAMS, extract_corridor
-from roboracer_arena.errors import CorridorError, InvalidArgumentError, MapFormatError
+from roboracer_arena.errors import ConfigError, CorridorError, InvalidArgumentError, MapFormatError
 from roboracer_arena.maps import FREE, OCCUPIED, UNKNOWN, OccupancyMap
 
 RES = 0.05
@@ -87,9 +87,9 @@ def test_params_change_geometry_and_bad_params_are_refused() -> None:
     moved = extract_corridor(m, {"wall_offset_m": 0.1})
     outer = max(float(np.hypot(w[:, 0], w[:, 1]).mean()) for w in moved.walls)
     assert outer == pytest.approx(R_MID + WIDTH / 2 + 0.1, abs=0.05)
-    with pytest.raises(InvalidArgumentError, match="unknown field"):
+    with pytest.raises(ConfigError, match="unknown field"):
         extract_corridor(m, {"tube_diamter_m": 0.3})
-    with pytest.raises(InvalidArgumentError, match="tube_diameter_m"):
+    with pytest.raises(ConfigError, match="tube_diameter_m"):
         extract_corridor(m, {"tube_diameter_m": -1})
     assert json.loads(json.dumps(DEFAULT_PARAMS))["tube_diameter_m"] == 0.33
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from ._core import (
     ArenaError,
+    ConfigError,
     CorridorError,
     InvalidArgumentError,
     MapFormatError,
@@ -16,10 +17,6 @@ from ._core import (
     SimulationError,
     SpecError,
 )
-
-
-class ConfigError(ArenaError):
-    """A configuration file or value (BuildConfig, VehicleConfig, ...) is invalid."""
 
 
 class RequestParseError(ArenaError):

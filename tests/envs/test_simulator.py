@@ -10,7 +10,7 @@ import pytest
 
 from roboracer_arena import _core
 from roboracer_arena.envs import LidarConfig, PhysicsConfig, SimConfig
-from roboracer_arena.errors import InvalidArgumentError
+from roboracer_arena.errors import ConfigError, InvalidArgumentError
 
 
 # Straights 6 m, centreline radius 3 m, corridor 2 m: walls are stadiums of radius 4 and 2.
@@ -96,7 +96,7 @@ def test_wrong_shapes_and_dtypes_raise():
         sim.reset(np.ones(2, bool), np.full((2, 2, 3), np.nan))
     with pytest.raises(InvalidArgumentError):
         sim.centreline_length(5)
-    with pytest.raises(InvalidArgumentError, match="config"):
+    with pytest.raises(ConfigError, match="config"):  # a config mistake is a ConfigError on either side
         _core.Simulator([STADIUM], 1, 1, '{"vehicle": {"mas": 1}}', 0)
     with pytest.raises(InvalidArgumentError):
         _core.Simulator([([np.zeros((3, 3))], STADIUM[1])], 1, 1, "{}", 0)

@@ -21,6 +21,10 @@ pub enum ArenaError {
     /// A caller passed an argument outside its documented domain.
     #[error("{0}")]
     InvalidArgument(String),
+    /// A configuration (simulator, build geometry, constructor) is outside its schema;
+    /// the pydantic models refuse the same values with the same class (`ConfigError`).
+    #[error("{0}")]
+    Config(String),
     /// A requirement specification is malformed (not: infeasible; that is a result).
     #[error("{0}")]
     Spec(String),
@@ -41,6 +45,9 @@ impl ArenaError {
             path: path.as_ref().display().to_string(),
             message: message.into(),
         }
+    }
+    pub fn config(message: impl Into<String>) -> Self {
+        ArenaError::Config(message.into())
     }
     pub fn invalid(message: impl Into<String>) -> Self {
         ArenaError::InvalidArgument(message.into())

@@ -37,6 +37,12 @@ pyo3::create_exception!(
 );
 pyo3::create_exception!(
     _core,
+    ConfigError,
+    ArenaError,
+    "A configuration file or value (BuildConfig, SimConfig, ...) is invalid."
+);
+pyo3::create_exception!(
+    _core,
     SpecError,
     ArenaError,
     "A track specification is malformed."
@@ -56,6 +62,7 @@ pub fn to_py(err: CoreError) -> PyErr {
         CoreError::MapFormat { .. } => MapFormatError::new_err(msg),
         CoreError::Corridor(_) => CorridorError::new_err(msg),
         CoreError::InvalidArgument(_) => InvalidArgumentError::new_err(msg),
+        CoreError::Config(_) => ConfigError::new_err(msg),
         CoreError::Spec(_) => SpecError::new_err(msg),
         CoreError::Simulation(_) => SimulationError::new_err(msg),
     }
@@ -82,6 +89,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "InvalidArgumentError",
         py.get_type::<InvalidArgumentError>(),
     )?;
+    m.add("ConfigError", py.get_type::<ConfigError>())?;
     m.add("SpecError", py.get_type::<SpecError>())?;
     m.add("SimulationError", py.get_type::<SimulationError>())?;
     Ok(())

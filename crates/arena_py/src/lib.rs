@@ -4,6 +4,7 @@
 use pyo3::prelude::*;
 
 mod build;
+mod config;
 mod errors;
 mod generate;
 mod grid;
@@ -19,6 +20,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     generate::register(m)?;
     maps::register(m)?;
     build::register(m)?;
+    config::register(m)?;
     library::register(m)?;
     sim::register(m)?;
     Ok(())

@@ -104,6 +104,12 @@ class LidarConfig(BaseModel):
         "Scan rate (Hz; paper: 39.9 Hz). Under a faster control loop the env holds the latest scan "
         "until the next is due; at or below the scan rate every step gets a fresh scan."))
 
+    @model_validator(mode="after")
+    def _range_order(self) -> LidarConfig:
+        if self.range_min >= self.range_max:
+            raise ValueError(f"range_min ({self.range_min}) must be below range_max ({self.range_max})")
+        return self
+
 
 class PhysicsConfig(BaseModel):
     """Rapier world settings. dt = 5 ms keeps the stiffest force (suspension, tyre

@@ -110,16 +110,22 @@ impl Default for ConstructorConfig {
 impl ConstructorConfig {
     pub fn from_json(text: &str) -> Result<ConstructorConfig> {
         let c: ConstructorConfig = serde_json::from_str(text)
-            .map_err(|e| ArenaError::invalid(format!("constructor config JSON: {e}")))?;
+            .map_err(|e| ArenaError::config(format!("constructor config JSON: {e}")))?;
         for (name, v) in [
             ("wall_thickness_m", c.wall_thickness_m),
             ("resolution_m", c.resolution_m),
         ] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(ArenaError::invalid(format!(
+                return Err(ArenaError::config(format!(
                     "constructor config {name}: must be > 0 (got {v})"
                 )));
             }
+        }
+        if c.resolution_m > 1.0 || !(1..=800).contains(&c.max_candidates) {
+            return Err(ArenaError::config(format!(
+                "constructor config: resolution_m must be ≤ 1 m (got {}) and max_candidates in 1..=800 (got {})",
+                c.resolution_m, c.max_candidates
+            )));
         }
         for (name, v) in [
             ("clearance_m", c.clearance_m),
@@ -127,7 +133,7 @@ impl ConstructorConfig {
             ("map_margin_m", c.map_margin_m),
         ] {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(ArenaError::invalid(format!(
+                return Err(ArenaError::config(format!(
                     "constructor config {name}: must be ≥ 0 (got {v})"
                 )));
             }

@@ -148,7 +148,7 @@ fn check(ok: bool, what: &str) -> Result<()> {
     if ok {
         Ok(())
     } else {
-        Err(ArenaError::invalid(format!("simulator config: {what}")))
+        Err(ArenaError::config(format!("simulator config: {what}")))
     }
 }
 
@@ -160,7 +160,7 @@ impl SimParams {
     /// Parse and validate `config_json` (an empty object gives the defaults).
     pub fn from_json(text: &str) -> Result<Self> {
         let p: SimParams = serde_json::from_str(text)
-            .map_err(|e| ArenaError::invalid(format!("simulator config JSON: {e}")))?;
+            .map_err(|e| ArenaError::config(format!("simulator config JSON: {e}")))?;
         p.validate()?;
         Ok(p)
     }

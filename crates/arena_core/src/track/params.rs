@@ -56,8 +56,7 @@ impl BuildParams {
         let p: BuildParams = if s.trim().is_empty() {
             BuildParams::default()
         } else {
-            serde_json::from_str(s)
-                .map_err(|e| ArenaError::invalid(format!("build params: {e}")))?
+            serde_json::from_str(s).map_err(|e| ArenaError::config(format!("build params: {e}")))?
         };
         p.validate()?;
         Ok(p)
@@ -94,7 +93,7 @@ impl BuildParams {
         ];
         for (k, v) in positive {
             if !(v.is_finite() && v > 0.0) {
-                return Err(ArenaError::invalid(format!(
+                return Err(ArenaError::config(format!(
                     "build params: {k} must be a finite number > 0, got {v}"
                 )));
             }
@@ -106,24 +105,33 @@ impl BuildParams {
         ];
         for (k, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(ArenaError::invalid(format!(
+                return Err(ArenaError::config(format!(
                     "build params: {k} must be a finite number ≥ 0, got {v}"
                 )));
             }
         }
-        if !self.wall_offset_m.is_finite() {
-            return Err(ArenaError::invalid(
-                "build params: wall_offset_m must be finite",
-            ));
+        // Upper (and the offset's lower) bounds, as the pydantic GeometryConfig states them.
+        let bounded = [
+            ("wall_height_m", self.wall_height_m, 0.0, 10.0),
+            ("wall_offset_m", self.wall_offset_m, -1.0, 1.0),
+            ("tube_diameter_m", self.tube_diameter_m, 0.0, 2.0),
+            ("ring_scale", self.ring_scale, 0.0, 3.0),
+        ];
+        for (k, v, lo, hi) in bounded {
+            if !(lo..=hi).contains(&v) {
+                return Err(ArenaError::config(format!(
+                    "build params: {k} must be in [{lo}, {hi}], got {v}"
+                )));
+            }
         }
         if !(3..=64).contains(&self.tube_segments) {
-            return Err(ArenaError::invalid(format!(
+            return Err(ArenaError::config(format!(
                 "build params: tube_segments must be in 3..=64, got {}",
                 self.tube_segments
             )));
         }
         if self.smoothing_iterations > 100 {
-            return Err(ArenaError::invalid(
+            return Err(ArenaError::config(
                 "build params: smoothing_iterations must be ≤ 100",
             ));
         }
