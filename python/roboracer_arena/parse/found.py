@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..errors import RequestParseError
+from .limits import FIELD_RANGES, check_range
 from .result import Span
 
 
@@ -18,7 +19,10 @@ class Found:
         self.spans: dict[str, list[Span]] = {}
 
     def set(self, name: str, value: Any, span: Span) -> None:
-        """Record ``name = value`` from ``span``; raise on a contradicting earlier value."""
+        """Record ``name = value`` from ``span``; raise on a value outside the field's range
+        (:data:`.limits.FIELD_RANGES`) or one contradicting an earlier value."""
+        if name in FIELD_RANGES:
+            check_range(name, float(value), self.text, span)
         if name in self.values and self.values[name] != value:
             (s0, e0), (s1, e1) = self.spans[name][0], span
             raise RequestParseError(

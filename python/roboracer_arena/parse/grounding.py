@@ -7,7 +7,9 @@ A value is traceable when
   in the unit written after it -- or, for a bare number, in some length unit -- within
   1 %, *and* a word naming that field occurs in the request ("radius" for the minimum
   radius, "straight" for the longest straight, ...). The second test catches a model that
-  copies a stated number into a field nobody asked for;
+  copies a stated number into a field nobody asked for. The one exception is the rules'
+  lone-length reading: a lap equal to the only number-with-unit that no other field
+  explains ("five hairpins, 45 metres") is traceable without a lap word;
 * feature counts: the feature's noun occurs and the count is written (a number, "a",
   "another", ...) or equals the number of times the noun occurs;
 * direction "clockwise": the request says clockwise (or "not counter-clockwise");
@@ -28,7 +30,7 @@ from typing import Any
 from ..errors import ArenaError, GroundingError
 from ..spec import TrackSpec
 from .lexer import Tok, tokenize
-from .result import DEFAULTS, FIELDS, Span
+from .result import DEFAULTS, FIELDS, Fragment, Span
 from .units import METRES_PER
 from .vocab import CORRIDOR_NOUNS, HALL_NOUNS, LAP_NOUNS, ORDER_FORWARD, ORDER_REVERSE, ORDER_START
 
@@ -80,17 +82,64 @@ def _trace_count(name: str, value: int, toks: list[Tok]) -> Span | None:
     if any(t.canon in _ONE_WORDS for t in toks):
         written.add(1)
     if any(t.canon == "each" for t in toks):  # "two sweepers, each followed by two chicanes"
-        written |= {a * b for a in written for b in written}
+        small = {w for w in written if 0 <= w <= 50}  # counts are small: keeps this product bounded
+        written |= {a * b for a in small for b in small}
     if value in written or value == len(hits):
         return hits[0].start, hits[-1].end
     return None
 
 
-def _trace(name: str, value: Any, text: str, toks: list[Tok]) -> Span | None:
+def _metres(toks: list[Tok], k: int) -> list[float]:
+    """What number token ``k`` may mean in metres: in its written unit, else in any unit."""
+    nxt = toks[k + 1] if k + 1 < len(toks) else None
+    units = [nxt.canon] if nxt is not None and nxt.kind == "unit" else list(METRES_PER)
+    return [float(toks[k].value or 0.0) * METRES_PER[u] for u in units]
+
+
+def _close(a: float, b: float) -> bool:
+    return abs(a - b) <= max(1e-6, _REL_TOL * abs(b))
+
+
+def _lone_length(value: float, values: dict[str, Any], toks: list[Tok]) -> Span | None:
+    others = [float(values[k]) for k in _LENGTH_CUES if k != "lap_length_m" and values[k] != DEFAULTS[k]]
+    lone = [
+        k for k, t in enumerate(toks)
+        if t.kind == "num" and k + 1 < len(toks) and toks[k + 1].kind == "unit"
+        and not any(_close(m, o) for m in _metres(toks, k) for o in others)
+    ]  # fmt: skip
+    if len(lone) == 1 and _close(_metres(toks, lone[0])[0], value):
+        return toks[lone[0]].start, toks[lone[0] + 1].end
+    return None
+
+
+def unexplained_numbers(text: str, values: dict[str, Any]) -> list[Fragment]:
+    """Numbers in ``text`` that no field of ``values`` explains: no length field equals
+    the number (in its unit, or any unit when none is written), no count equals it, and
+    it is not inside the name. A lone "one" with no unit is a pronoun, not a number."""
+    toks = tokenize(text)
+    name = str(values.get("name", ""))
+    at = text.lower().find(name.lower()) if name and values.get("name") != DEFAULTS["name"] else -1
+    lengths = [float(values[k]) for k in _LENGTH_CUES]
+    counts = [int(values[k]) for k in _COUNT_FIELDS]
+    out = []
+    for k, t in enumerate(toks):
+        if t.kind != "num" or t.value is None or (at >= 0 and at <= t.start and t.end <= at + len(name)):
+            continue
+        unit = k + 1 < len(toks) and toks[k + 1].kind == "unit"
+        if not unit and text[t.start : t.end].lower() == "one":
+            continue
+        if any(_close(m, v) for m in _metres(toks, k) for v in lengths) or (not unit and t.value in counts):
+            continue
+        end = toks[k + 1].end if unit else t.end
+        out.append(Fragment(text[t.start : end], t.start, end))
+    return out
+
+
+def _trace(name: str, value: Any, text: str, toks: list[Tok], values: dict[str, Any]) -> Span | None:
     words = {t.canon for t in toks}
     if name in _LENGTH_CUES:
         if not words & _LENGTH_CUES[name]:
-            return None
+            return _lone_length(float(value), values, toks) if name == "lap_length_m" else None
         return _trace_length(float(value), toks)
     if name in _COUNT_FIELDS:
         return _trace_count(name, int(value), toks)
@@ -145,7 +194,7 @@ def ground(text: str, spec: TrackSpec, *, strict: bool = True, rules_reading: bo
         if name in rules_vals and rules_vals[name] == v:
             spans[name] = rules_spans[name]
             continue
-        sp = _trace(name, v, text, toks)
+        sp = _trace(name, v, text, toks, values)
         if sp is None:
             invented[name] = v
         else:

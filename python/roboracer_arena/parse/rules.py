@@ -2,11 +2,17 @@
 would state in English and never invents one.
 
 Each rule is a regular expression over the canonical token string of :mod:`.lexer`
-(numbers as digits, units as symbols). Rules run in a fixed order -- name, hall, then
-quantities followed by their noun ("a 38 m lap"), then nouns followed by their quantity
-("lap of 45 m"), then bare fallbacks ("60 metres long") -- and each consumes its
-tokens, so no number is read twice. Whatever is left that is not a known filler word is
-reported in :attr:`ParseResult.unparsed`.
+(numbers as digits, units as symbols). Rules run in a fixed order -- ranges (refused),
+name, hall, then quantities followed by their noun ("a 38 m lap"), then nouns followed
+by their quantity ("lap of 45 m"), then values before their field ("six metres is the
+longest straight"), then bare fallbacks ("60 metres long") -- and each consumes its
+tokens, so no number is read twice. After the features and hedges (:mod:`.hedges`), a
+lone length left over is the lap (nothing else in a track request is a bare length);
+any other number left over is refused (``lenient=True``: ignored with a warning).
+Words left that are not known filler are reported in :attr:`ParseResult.unparsed`.
+
+Every rule pass is one left-to-right scan (:meth:`.lexer.Canon.text` is rebuilt once
+per pass), so the work is linear in the request's length.
 """
 
 from __future__ import annotations
@@ -18,7 +24,9 @@ from ..errors import RequestParseError, SpecError
 from ..spec import TrackSpec
 from .features import parse_features
 from .found import Found
+from .hedges import apply_hedges, read_hedges
 from .lexer import Canon, tokenize
+from .limits import MAX_REQUEST_CHARS, check_length
 from .result import FIELDS, Fragment, ParseResult
 from .units import to_metres
 from .vocab import CORR, FILL, FILLER, HALL, LAP, NUM, UNIT, alt
@@ -87,6 +95,10 @@ def _hall_one(m: re.Match[str], c: Canon, f: Found) -> None:
 
 
 _DIM = rf"(?: (?P<wa>{_LONG}|{_WIDE}))?"
+# Words that may join a value to the field after it ("6 m is the longest straight").
+_CONN = "(?:" + alt("is", "as", "for", "of", "be", "being", "the", "my", "our", "its", "a", "an", "should", "must", "will", "would", "to") + " ){0,3}"
+# "between 40 and 50 m", "40-50 m", "from 40 to 50", "2 or 3 hairpins": refused.
+_RANGE = _rx(rf"between {NUM}(?: {UNIT})? and {NUM}(?: {UNIT})?|(?:from )?{NUM}(?: {UNIT})? (?:to|or) {NUM}(?: {UNIT})?")
 _HALL_TAIL = rf"(?: {HALL})?"
 
 # (pattern, handler) in the order they run.
@@ -120,6 +132,11 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
      lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
     (_rx(rf"(?:(?:{LAP}|total|overall) )?(?:{LAP} )?{_LENGTHN} (?:{FILL}){_q('q')}{_QEND}"), _setter("lap_length_m")),
     (_rx(rf"{LAP} (?:{FILL}){_q('q')}(?: {_LONG}| around| round)?{_QEND}"), _setter("lap_length_m")),
+    # -- value before field: "six metres is the longest straight", "25 metres of lap"
+    (_rx(rf"{_q('q')} {_CONN}{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
+    (_rx(rf"{_q('q')} {_CONN}{_MINR}{_RKIND}radius"), _setter("min_radius_m")),
+    (_rx(rf"{_q('q')} {_CONN}(?:{CORR}|(?:{LAP} )?width)"), _setter("corridor_width_m")),
+    (_rx(rf"{_q('q')} {_CONN}{LAP}(?: {_LENGTHN})?"), _setter("lap_length_m")),
     # -- bare fallbacks: "60 metres long", "1.5 m wide"
     (_rx(rf"{_q('q')} (?:{_LONG}|around|round)"), _setter("lap_length_m")),
     (_rx(rf"{_q('q')} {_WIDE}"), _setter("corridor_width_m")),
@@ -220,24 +237,95 @@ def _unparsed(text: str, c: Canon) -> tuple[Fragment, ...]:
     return tuple(out)
 
 
-def parse_rules(text: str) -> ParseResult:
-    """Parse ``text`` with the rules backend. Raises :class:`RequestParseError` on a
-    contradiction or a request whose stated values do not form a valid TrackSpec."""
-    if not isinstance(text, str) or not text.strip():
-        raise RequestParseError("the request is empty")
+def _refuse_ranges(text: str, c: Canon) -> None:
+    m = _RANGE.search(c.text)
+    if m is not None:
+        s, e = c.span(m.start(), m.end())
+        raise RequestParseError(
+            f"the request gives a range, {text[s:e]!r} (characters {s}-{e}); a TrackSpec field takes one value: state one"
+        )
+
+
+def _is_pronoun(text: str, c: Canon, k: int) -> bool:
+    """ "one" as a pronoun ("a track, one with a chicane"), not a quantity."""
+    t = c.tokens[k]
+    nxt = c.tokens[k + 1] if k + 1 < len(c.tokens) else None
+    return text[t.start : t.end].lower() == "one" and (nxt is None or nxt.kind != "unit")
+
+
+def _leftover_numbers(text: str, c: Canon, f: Found) -> list[Fragment]:
+    """Numbers no rule attributed. A lone length (number + unit) is the lap when the lap is
+    not stated: a track request has no other bare length."""
+    left = [k for k, t in enumerate(c.tokens) if t.kind == "num" and not c.used[k] and not _is_pronoun(text, c, k)]
+    lengths = [k for k in left if k + 1 < len(c.tokens) and c.tokens[k + 1].kind == "unit"]
+    if "lap_length_m" not in f.values and len(lengths) == 1:
+        k = lengths[0]
+        value = to_metres(float(c.tokens[k].value or 0.0), c.tokens[k + 1].canon)
+        f.set("lap_length_m", value, (c.tokens[k].start, c.tokens[k + 1].end))
+        c.consume_token(k)
+        c.consume_token(k + 1)
+        left.remove(k)
+    out = []
+    for k in left:
+        t = c.tokens[k]
+        end = c.tokens[k + 1].end if k + 1 < len(c.tokens) and c.tokens[k + 1].kind == "unit" else t.end
+        out.append(Fragment(text[t.start : end], t.start, end))  # left unconsumed: still "unparsed"
+    return out
+
+
+def refuse_numbers(text: str, numbers: list[Fragment]) -> None:
+    """Refuse a request with numbers no field explains (the "nothing silently defaulted" rule)."""
+    if not numbers:
+        return
+    listing = ", ".join(f"{n.text!r} (characters {n.start}-{n.end})" for n in numbers)
+    raise RequestParseError(
+        f"the request states {listing}, which no TrackSpec field explains; say what it is "
+        "(e.g. 'a 45 m lap', '2 hairpins') or ignore it with --lenient (lenient=True)"
+    )
+
+
+def ignored_note(numbers: list[Fragment]) -> str:
+    """The lenient-mode warning for unexplained numbers."""
+    listing = ", ".join(f"{n.text!r} (characters {n.start}-{n.end})" for n in numbers)
+    return f"lenient: ignored {listing}, which no TrackSpec field explains; the fields they may have meant keep their defaults"
+
+
+def parse_rules(text: str, *, lenient: bool = False, max_chars: int | None = MAX_REQUEST_CHARS) -> ParseResult:
+    """Parse ``text`` with the rules backend.
+
+    Raises :class:`RequestParseError` on an empty or over-long request
+    (:data:`.limits.MAX_REQUEST_CHARS`; ``max_chars=None`` lifts the cap), a range, a
+    contradiction, a value outside its field's range, a number no field explains (unless
+    ``lenient``: then it is ignored with a warning), or stated values that do not form a
+    valid TrackSpec.
+    """
+    check_length(text, max_chars)
     f = Found(text)
     c = Canon(tokenize(text))
+    _refuse_ranges(text, c)
     named = _find_name(text, f)
     if named is not None:
         c.consume_source(named[0], named[2])
     for rx, handle in RULES:
-        while (m := rx.search(c.text)) is not None:
+        for m in rx.finditer(c.text):  # a handler consumes only its own match
             handle(m, c, f)
             c.consume(m.start(), m.end())
     _direction(c, f)
     parse_features(c, f)
     _qualifiers(c, f)
-    return finish(text, f, _unparsed(text, c), backend="rules")
+    hedges = read_hedges(c, f.spans)
+    notes = apply_hedges(text, {k: v for k, v in hedges.items() if k in f.values})
+    stray = _leftover_numbers(text, c, f)
+    if stray and not lenient:
+        refuse_numbers(text, stray)
+    if stray:
+        notes.append(ignored_note(stray))
+    result = finish(text, f, _unparsed(text, c), backend="rules")
+    return result.replace(
+        warnings=tuple(notes),
+        hedges={k: h for k, (h, _) in hedges.items() if k in result.stated},
+        ignored=tuple(stray),
+    )
 
 
 def finish(text: str, f: Found, unparsed: tuple[Fragment, ...], backend: str) -> ParseResult:

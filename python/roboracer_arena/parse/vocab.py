@@ -9,7 +9,8 @@ def alt(*words: str) -> str:
     return "(?:" + "|".join(sorted(words, key=len, reverse=True)) + ")"
 
 
-NUM = r"\d+(?:\.\d+)?"
+#: A canonical number (see :func:`.lexer._fmt`): sign, decimals and exponent included.
+NUM = r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
 UNIT = alt("m", "cm", "mm", "km", "ft", "yd", "inch")
 
 HALL_NOUNS = (
