@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from ..errors import RequestParseError
 from .found import Found
-from .limits import check_range
+from .limits import check_range, quote
 from .lexer import Canon
 from .vocab import FEATURE_ADJ, FEATURE_NOUN, FEATURE_RE, NUM, ORDER_FORWARD, ORDER_REVERSE, ORDER_START
 
@@ -88,7 +88,7 @@ def _collect(c: Canon, text: str) -> list[Mention]:
                 if not value.is_integer():
                     s0, e0 = c.span(m.start(), m.end())
                     raise RequestParseError(
-                        f"a feature count must be a whole number: {text[s0:e0]!r} (characters {s0}-{e0})"
+                        f"a feature count must be a whole number: {quote(text, s0, e0)} (characters {s0}-{e0})"
                     )
                 n = int(value)
             add(m, _feature(m["f"]), "zero" if n == 0 else "count", n)

@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..errors import RequestParseError
-from .limits import FIELD_RANGES, check_range
+from .limits import FIELD_RANGES, check_range, quote
 from .result import Span
 
 
@@ -27,7 +27,8 @@ class Found:
             (s0, e0), (s1, e1) = self.spans[name][0], span
             raise RequestParseError(
                 f"the request states {name} twice with different values: "
-                f"{self.values[name]!r} from {self.text[s0:e0]!r} and {value!r} from {self.text[s1:e1]!r}"
+                f"{self.values[name]!r} from {quote(self.text, s0, e0)} (characters {s0}-{e0}) and {value!r} "
+                f"from {quote(self.text, s1, e1)} (characters {s1}-{e1})"
             )
         self.values[name] = value
         self.spans.setdefault(name, []).append(span)

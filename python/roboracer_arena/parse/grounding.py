@@ -30,6 +30,7 @@ from typing import Any
 from ..errors import ArenaError, GroundingError
 from ..spec import TrackSpec
 from .lexer import Tok, tokenize
+from .limits import quote
 from .result import DEFAULTS, FIELDS, Fragment, Span
 from .units import METRES_PER
 from .vocab import CORRIDOR_NOUNS, HALL_NOUNS, LAP_NOUNS, ORDER_FORWARD, ORDER_REVERSE, ORDER_START
@@ -204,7 +205,7 @@ def ground(text: str, spec: TrackSpec, *, strict: bool = True, rules_reading: bo
     listing = ", ".join(f"{k}={v!r}" for k, v in invented.items())
     if strict:
         raise GroundingError(
-            f"invented constraint(s) not traceable to the request: {listing} (request: {text!r})"
+            f"invented constraint(s) not traceable to the request: {listing} (request: {quote(text, 0, len(text), 200)})"
         )
     fixed = dict(values)
     notes = []

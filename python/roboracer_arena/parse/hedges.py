@@ -85,7 +85,8 @@ def read_hedges(c: Canon, spans: dict[str, list[tuple[int, int]]]) -> dict[str, 
                 hedge, words = found
                 for j in words:
                     c.consume_token(j)
-                lo, hi = min(words.start, k), max(words.stop - 1, k)
+                unit = k + 1 if k + 1 < len(c.tokens) and c.tokens[k + 1].kind == "unit" else k
+                lo, hi = min(words.start, k), max(words.stop - 1, unit)
                 out.setdefault(name, (hedge, (c.tokens[lo].start, c.tokens[hi].end)))
     return out
 

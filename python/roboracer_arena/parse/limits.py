@@ -44,6 +44,15 @@ def check_length(text: object, max_chars: int | None = MAX_REQUEST_CHARS) -> Non
         )
 
 
+def quote(text: str, start: int, end: int, limit: int = 60) -> str:
+    """``repr`` of ``text[start:end]``, shortened in the middle beyond ``limit`` characters
+    (error messages stay one readable line whatever the request)."""
+    piece = text[start:end]
+    if len(piece) > limit:
+        piece = piece[: limit // 2] + " … " + piece[-limit // 2 :]
+    return repr(piece)
+
+
 def _fmt(v: float) -> str:
     return f"{v:g}"
 
@@ -53,7 +62,7 @@ def check_range(name: str, value: float, text: str, span: Span | None) -> None:
     lo, hi = FIELD_RANGES[name]
     if math.isfinite(value) and lo <= value <= hi:
         return
-    where = f" ({text[span[0]:span[1]]!r} at characters {span[0]}-{span[1]})" if span else ""
+    where = f" ({quote(text, *span)} at characters {span[0]}-{span[1]})" if span else ""
     unit = " m" if name.endswith("_m") else ""
     raise RequestParseError(
         f"{name} = {_fmt(value)}{unit}{where} is outside the range a request may state: {_fmt(lo)} to {_fmt(hi)}{unit}"

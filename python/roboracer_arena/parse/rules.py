@@ -26,7 +26,7 @@ from .features import parse_features
 from .found import Found
 from .hedges import apply_hedges, read_hedges
 from .lexer import Canon, tokenize
-from .limits import MAX_REQUEST_CHARS, check_length
+from .limits import MAX_REQUEST_CHARS, check_length, quote
 from .result import FIELDS, Fragment, ParseResult
 from .units import to_metres
 from .vocab import CORR, FILL, FILLER, HALL, LAP, NUM, UNIT, alt
@@ -242,7 +242,7 @@ def _refuse_ranges(text: str, c: Canon) -> None:
     if m is not None:
         s, e = c.span(m.start(), m.end())
         raise RequestParseError(
-            f"the request gives a range, {text[s:e]!r} (characters {s}-{e}); a TrackSpec field takes one value: state one"
+            f"the request gives a range, {quote(text, s, e)} (characters {s}-{e}); a TrackSpec field takes one value: state one"
         )
 
 
@@ -273,11 +273,16 @@ def _leftover_numbers(text: str, c: Canon, f: Found) -> list[Fragment]:
     return out
 
 
+def _listing(numbers: list[Fragment], shown: int = 5) -> str:
+    out = ", ".join(f"{quote(n.text, 0, len(n.text))} (characters {n.start}-{n.end})" for n in numbers[:shown])
+    return out + (f" and {len(numbers) - shown} more" if len(numbers) > shown else "")
+
+
 def refuse_numbers(text: str, numbers: list[Fragment]) -> None:
     """Refuse a request with numbers no field explains (the "nothing silently defaulted" rule)."""
     if not numbers:
         return
-    listing = ", ".join(f"{n.text!r} (characters {n.start}-{n.end})" for n in numbers)
+    listing = _listing(numbers)
     raise RequestParseError(
         f"the request states {listing}, which no TrackSpec field explains; say what it is "
         "(e.g. 'a 45 m lap', '2 hairpins') or ignore it with --lenient (lenient=True)"
@@ -286,7 +291,7 @@ def refuse_numbers(text: str, numbers: list[Fragment]) -> None:
 
 def ignored_note(numbers: list[Fragment]) -> str:
     """The lenient-mode warning for unexplained numbers."""
-    listing = ", ".join(f"{n.text!r} (characters {n.start}-{n.end})" for n in numbers)
+    listing = _listing(numbers)
     return f"lenient: ignored {listing}, which no TrackSpec field explains; the fields they may have meant keep their defaults"
 
 
