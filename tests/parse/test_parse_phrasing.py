@@ -4,15 +4,10 @@ length as the lap, bare areas as the hall, hedges. Sentences here are not in the
 from __future__ import annotations
 
 import pytest
+from test_parse_rules import stated
 
 from roboracer_arena.errors import RequestParseError
 from roboracer_arena.parse import parse_request
-
-
-def stated(text: str) -> dict:
-    r = parse_request(text)
-    d = r.spec.model_dump()
-    return {k: d[k] for k in r.stated}
 
 
 @pytest.mark.parametrize(
