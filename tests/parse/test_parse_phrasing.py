@@ -138,3 +138,24 @@ def test_a_cap_on_a_floor_is_refused():
         parse_request("radius at most 2 m")
     with pytest.raises(RequestParseError, match="longest_straight_m is a minimum"):
         parse_request("a straight of no more than 6 m")
+
+
+@pytest.mark.parametrize(
+    "text, want",
+    [
+        ("lap length (m): 52", {"lap_length_m": 52.0}),
+        ("corridor width in cm: 130", {"corridor_width_m": 1.3}),
+        ("hall [m]: 18 x 12, lap (m) 41", {"hall_x_m": 18.0, "hall_y_m": 12.0, "lap_length_m": 41.0}),
+        ("width 1.1m lap 39m", {"corridor_width_m": 1.1, "lap_length_m": 39.0}),
+        ("an 18x12m hall, a 41m loop", {"hall_x_m": 18.0, "hall_y_m": 12.0, "lap_length_m": 41.0}),
+        ("lap41 m", {"lap_length_m": 41.0}),
+        ("a 1:10 scale F1 track of 41 m", {"lap_length_m": 41.0}),
+    ],
+)
+def test_units_before_numbers_glued_tokens_and_adjacent_nouns(text, want):
+    assert stated(text) == want
+
+
+def test_other_scales_are_refused():
+    with pytest.raises(RequestParseError, match="'1:5 scale'.*1:10-scale tracks only"):
+        parse_request("a 1:5 scale track of 41 m")

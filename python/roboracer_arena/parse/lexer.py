@@ -19,14 +19,17 @@ from ..errors import RequestParseError
 
 from .numbers import read_number
 from .units import canonical_unit
+from .vocab import FILLER
 
 # A number is read whole: thousands separators ("4,000"), decimals and exponents ("6e1",
 # "1e308"); a sign or a range dash is decided from its neighbours in :func:`_raw_items`.
 _RAW = re.compile(
     r"(?P<num>\d{1,3}(?:,\d{3})+(?![\d,])(?:\.\d+)?|(?:\d+(?:\.\d+)?|\.\d+)(?:[eE][-+]?\d+)?)"
-    r"|(?P<word>[A-Za-z]+(?:\d+[A-Za-z]+)*(?:['’][A-Za-z]+)?)"  # "f1tenth" is one word
+    # "f1tenth", "F1", "ROS2" are names, one word; "x15" in "20x15m" is "x" then 15
+    r"|(?P<word>[xX](?=\d)|[A-Za-z]+(?:\d+[A-Za-z]+)*(?:\d+\b)?(?:['’][A-Za-z]+)?)"
     r"|(?P<other>[^\sA-Za-z\d])"
 )
+_GLUED = re.compile(r"([a-z]+)(\d+)$")
 _DASHES = {"-", "–", "—", "‐", "−"}  # join words ("twenty-five"); a sign or a range between numbers
 #: Canonical token of a range dash ("40-50 m" reads as "40 to 50 m").
 RANGE_WORD = "to"
@@ -116,6 +119,13 @@ def _raw_items(text: str) -> list[tuple[str, int, int, float | None]]:
                     negate_at = i
             continue
         lw = w.lower().replace("’", "'")
+        glued = _GLUED.match(lw)
+        if glued is not None and (glued[1] in FILLER or canonical_unit(glued[1]) is not None):
+            # "lap45": a known word and a number run together, not a name like "F1"
+            cut = m.start() + len(glued[1])
+            out.append((w[: len(glued[1])], m.start(), cut, None))
+            out.append((glued[2], cut, m.end(), float(glued[2])))
+            continue
         if lw.endswith("n't") and len(lw) > 3:  # "shouldn't" -> "should" + "not"
             out.append((_NEGATED_BASE.get(lw, w[:-3]), m.start(), m.end() - 3, None))
             out.append(("not", m.end() - 3, m.end(), None))
@@ -184,6 +194,28 @@ def tokenize(text: str) -> list[Tok]:
             i += 1
             continue
         out.append(Tok("x" if w == "×" else w, "punct", s, raw[i][2]))
+        i += 1
+    return _declared_units(out)
+
+
+def _declared_units(toks: list[Tok]) -> list[Tok]:
+    """A unit declared before its number ("lap length (m): 45", "width in cm: 120") moves
+    behind the number, as an empty-span unit token; the declaration's tokens go."""
+    out: list[Tok] = []
+    i, n = 0, len(toks)
+    while i < n:
+        t, unit, j = toks[i], None, i
+        if t.canon in ("(", "[") and i + 2 < n and toks[i + 2].canon in (")", "]"):
+            unit, j = canonical_unit(toks[i + 1].canon), i + 3
+        elif t.canon == "in" and i + 1 < n and toks[i + 1].kind == "word":
+            unit, j = canonical_unit(toks[i + 1].canon), i + 2
+        k = j + (1 if j < n and toks[j].canon in (":", "=") else 0)
+        if unit is not None and k < n and toks[k].kind == "num" and not (k + 1 < n and toks[k + 1].kind == "unit"):
+            out += toks[j : k + 1]
+            out.append(Tok(unit, "unit", toks[k].end, toks[k].end))
+            i = k + 1
+            continue
+        out.append(t)
         i += 1
     return out
 

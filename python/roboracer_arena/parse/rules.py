@@ -29,7 +29,7 @@ from .lexer import Canon, tokenize
 from .limits import MAX_REQUEST_CHARS, check_length, quote
 from .result import FIELDS, Fragment, ParseResult
 from .units import to_metres
-from .vocab import CORR, FILL, FILLER, HALL, LAP, NUM, UNIT, alt
+from .vocab import CORR, CORRIDOR_NOUNS, FILL, FILLER, HALL, LAP, LAP_NOUNS, NUM, UNIT, alt
 
 _B, _E = r"(?<![^ ])", r"(?![^ ])"  # token boundaries in the canonical string
 
@@ -94,6 +94,11 @@ def _hall_one(m: re.Match[str], c: Canon, f: Found) -> None:
     f.set(name, _qty(m, "q"), _span(c, m))
 
 
+# A number right after a field noun belongs to that noun ("width 1.2 m lap 40 m"): the
+# quantity-before-noun rules must not take it for the noun that follows.
+_FREE = "".join(
+    f"(?<!{w} )" for w in sorted({*LAP_NOUNS, *CORRIDOR_NOUNS, "width", "radius", "straight", "straights", "length"})
+)
 _DIM = rf"(?: (?P<wa>{_LONG}|{_WIDE}))?"
 # Words that may join a value to the field after it ("6 m is the longest straight").
 _CONN = "(?:" + alt("is", "as", "for", "of", "be", "being", "the", "my", "our", "its", "a", "an", "should", "must", "will", "would", "to") + " ){0,3}"
@@ -116,11 +121,11 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     # -- quantity then noun ("no turn tighter than 2 m radius" first: it ends in "radius")
     (_rx(rf"(?:{FILL})?(?:no|not|never) (?:{_TURNS} )?(?:{FILL})tighter than (?:a )?{_q('q')}(?: radius)?{_QEND}"),
      _setter("min_radius_m")),
-    (_rx(rf"{_q('q')} {_MINR}{_RKIND}radius"), _setter("min_radius_m")),
-    (_rx(rf"{_q('q')} (?:long )?{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
-    (_rx(rf"{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
+    (_rx(rf"{_FREE}{_q('q')} {_MINR}{_RKIND}radius"), _setter("min_radius_m")),
+    (_rx(rf"{_FREE}{_q('q')} (?:long )?{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
+    (_rx(rf"{_FREE}{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
      lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
-    (_rx(rf"{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
+    (_rx(rf"{_FREE}{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
          rf"|{_q('t')} (?:in )?(?:total|overall)(?: (?:{LAP} )?{_LENGTHN})?"),
      lambda m, c, f: f.set("lap_length_m", _qty(m, next(g for g in "qpt" if m[g])), _span(c, m))),
     # -- noun then quantity
@@ -133,10 +138,10 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     (_rx(rf"(?:(?:{LAP}|total|overall) )?(?:{LAP} )?{_LENGTHN} (?:{FILL}){_q('q')}{_QEND}"), _setter("lap_length_m")),
     (_rx(rf"{LAP} (?:{FILL}){_q('q')}(?: {_LONG}| around| round)?{_QEND}"), _setter("lap_length_m")),
     # -- value before field: "six metres is the longest straight", "25 metres of lap"
-    (_rx(rf"{_q('q')} {_CONN}{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
-    (_rx(rf"{_q('q')} {_CONN}{_MINR}{_RKIND}radius"), _setter("min_radius_m")),
-    (_rx(rf"{_q('q')} {_CONN}(?:{CORR}|(?:{LAP} )?width)"), _setter("corridor_width_m")),
-    (_rx(rf"{_q('q')} {_CONN}{LAP}(?: {_LENGTHN})?"), _setter("lap_length_m")),
+    (_rx(rf"{_FREE}{_q('q')} {_CONN}{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
+    (_rx(rf"{_FREE}{_q('q')} {_CONN}{_MINR}{_RKIND}radius"), _setter("min_radius_m")),
+    (_rx(rf"{_FREE}{_q('q')} {_CONN}(?:{CORR}|(?:{LAP} )?width)"), _setter("corridor_width_m")),
+    (_rx(rf"{_FREE}{_q('q')} {_CONN}{LAP}(?: {_LENGTHN})?"), _setter("lap_length_m")),
     # -- bare fallbacks: "60 metres long", "1.5 m wide"
     (_rx(rf"{_q('q')} (?:{_LONG}|around|round)"), _setter("lap_length_m")),
     (_rx(rf"{_q('q')} {_WIDE}"), _setter("corridor_width_m")),
@@ -246,6 +251,22 @@ def _refuse_ranges(text: str, c: Canon) -> None:
         )
 
 
+_SCALE = _rx(rf"(?P<a>{NUM}) (?::|/) (?P<b>{NUM})(?P<s> scale[ds]?)?")
+
+
+def _scale(text: str, c: Canon) -> None:
+    """ "1:10 scale": the arena's fixed scale, explained; any other scale is refused."""
+    for m in _SCALE.finditer(c.text):
+        one_tenth = float(m["a"]) == 1 and float(m["b"]) == 10
+        if one_tenth:
+            c.consume(m.start(), m.end())
+        elif m["s"]:
+            s, e = c.span(m.start(), m.end())
+            raise RequestParseError(
+                f"{quote(text, s, e)} (characters {s}-{e}): RoboRacer Arena builds 1:10-scale tracks only"
+            )
+
+
 def _is_pronoun(text: str, c: Canon, k: int) -> bool:
     """ "one" as a pronoun ("a track, one with a chicane"), not a quantity."""
     t = c.tokens[k]
@@ -308,6 +329,7 @@ def parse_rules(text: str, *, lenient: bool = False, max_chars: int | None = MAX
     f = Found(text)
     c = Canon(tokenize(text))
     _refuse_ranges(text, c)
+    _scale(text, c)
     named = _find_name(text, f)
     if named is not None:
         c.consume_source(named[0], named[2])
