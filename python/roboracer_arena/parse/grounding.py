@@ -116,7 +116,11 @@ def _lone_length(value: float, values: dict[str, Any], toks: list[Tok]) -> Span 
 def unexplained_numbers(text: str, values: dict[str, Any]) -> list[Fragment]:
     """Numbers in ``text`` that no field of ``values`` explains: no length field equals
     the number (in its unit, or any unit when none is written), no count equals it, and
-    it is not inside the name. A lone "one" with no unit is a pronoun, not a number."""
+    it is not inside the name. A lone "one" with no unit is a pronoun, not a number.
+
+    Defaults count as explanations (a model that keeps the 60 m default lap for "a 60 m
+    lap" is right), so a stray number equal to a default value ("in 20 minutes" with the
+    20 m default hall) passes: this check catches dropped numbers, not coincidences."""
     toks = tokenize(text)
     name = str(values.get("name", ""))
     at = text.lower().find(name.lower()) if name and values.get("name") != DEFAULTS["name"] else -1

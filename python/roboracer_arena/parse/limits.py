@@ -35,7 +35,9 @@ FIELD_RANGES: dict[str, tuple[float, float]] = {
 def check_length(text: object, max_chars: int | None = MAX_REQUEST_CHARS) -> None:
     """Refuse a non-string, an empty request or one longer than ``max_chars`` characters
     (default :data:`MAX_REQUEST_CHARS`; ``None``: no cap)."""
-    if not isinstance(text, str) or not text.strip():
+    if not isinstance(text, str):
+        raise RequestParseError(f"the request must be text, got {type(text).__name__}")
+    if not text.strip():
         raise RequestParseError("the request is empty")
     if max_chars is not None and len(text) > max_chars:
         raise RequestParseError(
