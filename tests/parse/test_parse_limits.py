@@ -24,6 +24,14 @@ def test_over_long_request_is_refused_before_any_work():
         parse_request(text, backend="ollama", ollama_host="http://127.0.0.1:9")  # refused before any call
 
 
+def test_cli_refuses_an_over_long_request_in_one_line(capsys):
+    from roboracer_arena.cli import EXIT_BAD_INPUT, main
+
+    assert main(["parse", "a 45 m lap " * 10_000]) == EXIT_BAD_INPUT
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "110000 characters long" in err
+
+
 @pytest.mark.parametrize(
     "unit",
     ["a 45 m lap with two hairpins then a chicane, ", "tight ", "the hairpins and ", "45 m ", 'called "x ',
@@ -48,14 +56,16 @@ _REQUEST_WORDS = st.sampled_from(
 
 
 def _check(text: str) -> None:
-    try:
-        r = parse_request(text, lenient=True)
-    except ArenaError:
-        return
-    spec = r.spec.model_dump()
-    for name, (lo, hi) in FIELD_RANGES.items():
-        if name in r.stated:
-            assert math.isfinite(spec[name]) and lo <= spec[name] <= hi, (name, spec[name], text)
+    for lenient in (False, True):
+        try:
+            r = parse_request(text, lenient=lenient)
+        except ArenaError:
+            continue
+        spec = r.spec.model_dump()
+        for name, (lo, hi) in FIELD_RANGES.items():
+            if name in r.stated:
+                assert math.isfinite(spec[name]) and lo <= spec[name] <= hi, (name, spec[name], text)
+        assert lenient or not r.ignored
 
 
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from ..errors import RequestParseError
 from .lexer import Canon
+from .limits import FIELD_RANGES
 
 APPROX, AT_MOST, AT_LEAST = "approximately", "at most", "at least"
 
@@ -75,6 +76,8 @@ def read_hedges(c: Canon, spans: dict[str, list[tuple[int, int]]]) -> dict[str, 
     starts = {t.start: k for k, t in enumerate(c.tokens) if t.kind == "num"}
     out: dict[str, tuple[str, tuple[int, int]]] = {}
     for name, field_spans in spans.items():
+        if name not in FIELD_RANGES:
+            continue  # only numeric fields take hedges (not the name, not the order)
         for s, e in field_spans:
             for k in (starts.get(p) for p in range(s, e) if p in starts):
                 if k is None:
