@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass
 
 from ..errors import RequestParseError
-
+from .limits import quote
 from .numbers import read_number
 from .units import canonical_unit
 from .vocab import FILLER
@@ -101,13 +101,7 @@ def _raw_items(text: str) -> list[tuple[str, int, int, float | None]]:
             start = m.start()
             if negate_at is not None and i - 1 == negate_at:
                 value, start = -value, ms[i - 1].start()
-            if not math.isfinite(value):
-                shown = text[start : m.end()]
-                shown = shown if len(shown) <= 24 else shown[:20] + "…"
-                raise RequestParseError(
-                    f"the number {shown!r} at characters {start}-{m.end()} is too large to be a length or a count"
-                )
-            out.append((w, start, m.end(), value))
+            out.append((w, start, m.end(), _finite(text, start, m.end(), value)))
             continue
         if w in _DASHES:
             nxt = ms[i + 1] if i + 1 < len(ms) else None
@@ -124,7 +118,7 @@ def _raw_items(text: str) -> list[tuple[str, int, int, float | None]]:
             # "lap45": a known word and a number run together, not a name like "F1"
             cut = m.start() + len(glued[1])
             out.append((w[: len(glued[1])], m.start(), cut, None))
-            out.append((glued[2], cut, m.end(), float(glued[2])))
+            out.append((glued[2], cut, m.end(), _finite(text, cut, m.end(), float(glued[2]))))
             continue
         if lw.endswith("n't") and len(lw) > 3:  # "shouldn't" -> "should" + "not"
             out.append((_NEGATED_BASE.get(lw, w[:-3]), m.start(), m.end() - 3, None))
@@ -132,6 +126,14 @@ def _raw_items(text: str) -> list[tuple[str, int, int, float | None]]:
         else:
             out.append((w, m.start(), m.end(), None))
     return out
+
+
+def _finite(text: str, start: int, end: int, value: float) -> float:
+    if not math.isfinite(value):
+        raise RequestParseError(
+            f"the number {quote(text, start, end, 24)} at characters {start}-{end} is too large to be a length or a count"
+        )
+    return value
 
 
 def _ends_quantity(items: list[tuple[str, int, int, float | None]], text: str, pos: int) -> bool:
