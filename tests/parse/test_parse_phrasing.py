@@ -159,3 +159,14 @@ def test_units_before_numbers_glued_tokens_and_adjacent_nouns(text, want):
 def test_other_scales_are_refused():
     with pytest.raises(RequestParseError, match="'1:5 scale'.*1:10-scale tracks only"):
         parse_request("a 1:5 scale track of 41 m")
+
+
+def test_a_count_of_laps_is_not_a_length():
+    assert stated("one lap of 41 m") == {"lap_length_m": 41.0}
+    with pytest.raises(RequestParseError, match="'3' \\(characters 17-18\\)"):
+        parse_request("a 41 metre loop, 3 laps")  # the number of laps is no TrackSpec field
+
+
+def test_ish_is_an_approximate_hedge():
+    r = parse_request("a lap of 41-ish metres")
+    assert r.spec.lap_length_m == 41.0 and r.hedges == {"lap_length_m": "approximately"}

@@ -5,7 +5,7 @@ A TrackSpec field holds one value, so a hedge never changes the number; it decid
 whether the number can be used:
 
 * *approximately* ("about", "around", "roughly", "approximately", "some", "circa",
-  "nearly", "almost", "~", "... or so", "...-ish"): the value is the target. Every length
+  "nearly", "almost", "~", "... or so", "45-ish"): the value is the target. Every length
   is a target the generator meets within its own tolerance anyway.
 * *at most* ("at most", "no more than", "up to", "max", "maximum", "under", "less than",
   "below", "within", "no longer/wider/bigger than", "... or less", "... tops") and
@@ -81,6 +81,9 @@ def read_hedges(c: Canon, spans: dict[str, list[tuple[int, int]]]) -> dict[str, 
         for s, e in field_spans:
             for k in (starts.get(p) for p in range(s, e) if p in starts):
                 if k is None:
+                    continue
+                if c.tokens[k].hedge is not None:
+                    out.setdefault(name, (c.tokens[k].hedge, (c.tokens[k].start, c.tokens[k].end)))
                     continue
                 found = _phrase_before(c, k) or _phrase_after(c, k)
                 if found is None:

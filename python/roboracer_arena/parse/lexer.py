@@ -77,6 +77,7 @@ class Tok:
     start: int
     end: int
     value: float | None = None
+    hedge: str | None = None  # "approximately" for a number written "45-ish"
 
 
 def _fmt(v: float) -> str:
@@ -159,6 +160,11 @@ def tokenize(text: str) -> list[Tok]:
         lw = words[i]
         if numv is not None:
             out.append(Tok(_fmt(numv), "num", s, raw[i][2], numv))
+            i += 1
+            continue
+        if lw == "ish" and out and out[-1].kind == "num":  # "45-ish"
+            out[-1].hedge = "approximately"
+            out[-1].end = raw[i][2]
             i += 1
             continue
         if lw[0].isalpha():

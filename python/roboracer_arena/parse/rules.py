@@ -100,6 +100,9 @@ _FREE = "".join(
     f"(?<!{w} )" for w in sorted({*LAP_NOUNS, *CORRIDOR_NOUNS, "width", "radius", "straight", "straights", "length"})
 )
 _DIM = rf"(?: (?P<wa>{_LONG}|{_WIDE}))?"
+# "one lap", "two laps" count laps: a unitless 1 before a lap noun, or a unitless number
+# before a plural one, is not a length.
+_NOT_LAP_COUNT = rf"(?!1 {LAP}(?: |$))(?!{NUM} {alt(*[w for w in LAP_NOUNS if w.endswith('s')])}(?: |$))"
 # Words that may join a value to the field after it ("6 m is the longest straight").
 _CONN = "(?:" + alt("is", "as", "for", "of", "be", "being", "the", "my", "our", "its", "a", "an", "should", "must", "will", "would", "to") + " ){0,3}"
 # "between 40 and 50 m", "40-50 m", "from 40 to 50", "2 or 3 hairpins": refused.
@@ -125,7 +128,7 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     (_rx(rf"{_FREE}{_q('q')} (?:long )?{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
     (_rx(rf"{_FREE}{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
      lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
-    (_rx(rf"{_FREE}{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
+    (_rx(rf"{_FREE}{_NOT_LAP_COUNT}{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
          rf"|{_q('t')} (?:in )?(?:total|overall)(?: (?:{LAP} )?{_LENGTHN})?"),
      lambda m, c, f: f.set("lap_length_m", _qty(m, next(g for g in "qpt" if m[g])), _span(c, m))),
     # -- noun then quantity
@@ -141,7 +144,7 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     (_rx(rf"{_FREE}{_q('q')} {_CONN}{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
     (_rx(rf"{_FREE}{_q('q')} {_CONN}{_MINR}{_RKIND}radius"), _setter("min_radius_m")),
     (_rx(rf"{_FREE}{_q('q')} {_CONN}(?:{CORR}|(?:{LAP} )?width)"), _setter("corridor_width_m")),
-    (_rx(rf"{_FREE}{_q('q')} {_CONN}{LAP}(?: {_LENGTHN})?"), _setter("lap_length_m")),
+    (_rx(rf"{_FREE}{_NOT_LAP_COUNT}{_q('q')} {_CONN}{LAP}(?: {_LENGTHN})?"), _setter("lap_length_m")),
     # -- bare fallbacks: "60 metres long", "1.5 m wide"
     (_rx(rf"{_q('q')} (?:{_LONG}|around|round)"), _setter("lap_length_m")),
     (_rx(rf"{_q('q')} {_WIDE}"), _setter("corridor_width_m")),
