@@ -78,3 +78,9 @@ def test_request_like_text_gives_a_typed_error_or_finite_values_in_range(text):
 @given(st.text(max_size=200))
 def test_arbitrary_text_gives_a_typed_error_or_finite_values_in_range(text):
     _check(text)
+
+
+@pytest.mark.parametrize("text", ["1e308 hairpin 1e308 hairpin", "1e308 chicanes", "9" * 400 + " m lap"])
+def test_huge_counts_and_numbers_are_typed_refusals(text):  # found by the property test
+    with pytest.raises(RequestParseError):
+        parse_request(text, lenient=True)

@@ -62,6 +62,10 @@ def _fmt(v: float) -> str:
 def check_range(name: str, value: float, text: str, span: Span | None) -> None:
     """Refuse a stated value outside the field's range, naming the span and the range."""
     lo, hi = FIELD_RANGES[name]
+    try:
+        value = float(value)  # a summed count may be an int beyond float range
+    except OverflowError:
+        value = math.inf
     if math.isfinite(value) and lo <= value <= hi:
         return
     where = f" ({quote(text, *span)} at characters {span[0]}-{span[1]})" if span else ""
