@@ -1,5 +1,10 @@
 """``roboracer-arena parse "REQUEST"``: a natural-language request to a TrackSpec, showing
-where in the request each stated value came from and which words were not understood.
+where in the request each stated value came from, which fields keep their defaults and
+which words were not understood.
+
+A number no field explains, a range, a contradiction or an out-of-range value is refused
+(exit 2, naming the text and its characters); --lenient ignores unexplained numbers with
+a warning instead.
 
 Example: roboracer-arena parse "a 38 m lap for a small 15 by 12 hall"
 """
