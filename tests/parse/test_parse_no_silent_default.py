@@ -124,3 +124,12 @@ def test_auto_lets_the_model_explain_what_the_rules_could_not(fake_ollama):
     fake_ollama.reply = Reply(content=TrackSpec(lap_length_m=45).model_dump_json())  # the model misses it too
     with pytest.raises(RequestParseError, match="'2 m'"):
         parse_request(text, backend="auto", ollama_host=fake_ollama.url)
+
+
+def test_cli_generate_lenient_warns_and_builds(tmp_path, capsys):
+    out = tmp_path / "g"
+    argv = ["generate", "a 60 m lap with two hairpins in a 20 by 15 m hall, 3 cones", "-o", str(out), "--lenient"]
+    assert main(argv) == EXIT_OK
+    err = capsys.readouterr().err
+    assert "warning: lenient: ignored '3' (characters 51-52)" in err and "defaulted: name" in err
+    assert (out / "map.yaml").is_file()
