@@ -170,3 +170,21 @@ def test_a_count_of_laps_is_not_a_length():
 def test_ish_is_an_approximate_hedge():
     r = parse_request("a lap of 41-ish metres")
     assert r.spec.lap_length_m == 41.0 and r.hedges == {"lap_length_m": "approximately"}
+
+
+@pytest.mark.parametrize(
+    "text, hairpins",
+    [
+        ("two hairpins then a chicane then two more hairpins", 4),
+        ("3 hairpins, then a chicane, then 2 hairpins", 5),  # an ordered run adds up
+        ("two hairpins and 3 extra hairpins", 5),
+        ("2 hairpins. Yes, 2 hairpins.", 2),  # an equal restatement is the same count
+    ],
+)
+def test_repeated_counts_add_or_restate(text, hairpins):
+    assert parse_request(text).spec.hairpins == hairpins
+
+
+def test_a_different_restated_count_is_refused_not_corrected():
+    with pytest.raises(RequestParseError, match="chicanes twice with different counts: 'four chicanes'"):
+        parse_request("four chicanes in a 40 m lap? Hmm, two chicanes.")

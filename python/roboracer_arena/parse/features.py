@@ -39,6 +39,7 @@ _EACH = re.compile(
 _REF = re.compile(_B + rf"(?:the|both|these|those|each|every|its|their|all|said)(?: \d+)? {_ADJS}{_F}" + _E)
 _BARE = re.compile(_B + rf"{_ADJS}{_F}" + _E)
 _IN_ORDER = re.compile(_B + r"in (?:(?:that|this|the|exactly|strict|given|listed|following) )*(?:order|sequence)" + _E)
+_ADDITIVE = {"more", "extra", "additional", "another", "further"}
 _ORDER_GLUE = {"by", "comes", "come", "order", "sequence", "that", "this", "which", "it", "them", "and", "then"}
 
 
@@ -52,6 +53,7 @@ class Mention:
     span: tuple[int, int]
     block: list[str] | None = None  # "2 hairpins, each followed by a chicane": h c h c
     absorbed: bool = False  # the "chicane" of that phrase: counted, ordered by ``block``
+    restated: bool = False  # a numbered count without "more"/"another"/...: a restatement if repeated
 
 
 def _feature(word: str) -> str:
@@ -92,6 +94,7 @@ def _collect(c: Canon, text: str) -> list[Mention]:
                     )
                 n = int(value)
             add(m, _feature(m["f"]), "zero" if n == 0 else "count", n)
+            out[-1].restated = m.groupdict().get("n") is not None and not _ADDITIVE & set(m.group().split())
             c.consume(m.start(), m.end())
     refs = list(_REF.finditer(c.text))
     ref_nouns = {r.start("f") for r in refs}
@@ -175,6 +178,7 @@ def parse_features(c: Canon, f: Found) -> None:
                 m.kind, m.count = "count", 1
         if m.kind == "bare-plural" and m.feature in counted:
             m.kind = "ref"
+    _restated_counts(c, f, ms)
     for m in ms:
         field = FEATURE_NOUN[m.feature]
         if m.kind == "count":
@@ -197,6 +201,32 @@ def parse_features(c: Canon, f: Found) -> None:
         check_range(FEATURE_NOUN[feat], n, f.text, (min(a for a, _ in spans), max(b for _, b in spans)))
         f.values[FEATURE_NOUN[feat]] = n
     _order(c, f, [m for m in ms if m.kind in ("count", "ref")], counts)
+
+
+def _restated_counts(c: Canon, f: Found, ms: list[Mention]) -> None:
+    """ "a dozen chicanes? No, just two chicanes": a numbered count of a feature already
+    counted, with no "more"/"another"/"extra" and no order word between them ("3 hairpins,
+    then a chicane, then 2 hairpins" adds up), restates the count. An equal restatement is a
+    reference; a different one is a contradiction (a correction is not guessed)."""
+    ordered_before = [0]  # ordered links among ms[0..k]
+    for a, b in zip(ms, ms[1:]):
+        ordered_before.append(ordered_before[-1] + (_link(c, a, b) in ("forward", "reverse")))
+    first: dict[str, int] = {}
+    for k, m in enumerate(ms):
+        if m.kind != "count" or m.absorbed:
+            continue
+        j = first.setdefault(m.feature, k)
+        if j == k or not m.restated or ordered_before[k] > ordered_before[j]:
+            continue
+        if m.count == ms[j].count:
+            m.kind = "ref"
+            continue
+        a, b = ms[j].span, m.span
+        raise RequestParseError(
+            f"the request states {FEATURE_NOUN[m.feature]} twice with different counts: "
+            f"{quote(f.text, *a)} (characters {a[0]}-{a[1]}) and {quote(f.text, *b)} (characters {b[0]}-{b[1]}); "
+            "say 'more' or 'another' to add"
+        )
 
 
 def _order(c: Canon, f: Found, ms: list[Mention], counts: Counter[str]) -> None:

@@ -85,9 +85,32 @@ def _trace_count(name: str, value: int, toks: list[Tok]) -> Span | None:
     if any(t.canon == "each" for t in toks):  # "two sweepers, each followed by two chicanes"
         small = {w for w in written if 0 <= w <= 50}  # counts are small: keeps this product bounded
         written |= {a * b for a in small for b in small}
-    if value in written or value == len(hits):
+    if value in written or value == len(hits) or value == _summed(toks, noun):
         return hits[0].start, hits[-1].end
     return None
+
+
+_FEATURE_WORDS = {w for n in _COUNT_FIELDS.values() for w in (n, n + "s")}
+
+
+def _summed(toks: list[Tok], noun: str) -> int:
+    """The counts written before each mention of ``noun``, added up ("two hairpins then a
+    chicane then two more hairpins": 4); a mention with no count adds nothing."""
+    total = 0
+    for k, t in enumerate(toks):
+        if t.canon not in (noun, noun + "s"):
+            continue
+        for j in range(k - 1, max(-1, k - 5), -1):
+            p = toks[j]
+            if p.kind == "punct" or p.canon in _FEATURE_WORDS:
+                break
+            if p.kind == "num" and p.value is not None and float(p.value).is_integer() and 0 <= p.value <= 50:
+                total += int(p.value)
+                break
+            if p.canon in _ONE_WORDS:
+                total += 1
+                break
+    return total
 
 
 def _metres(toks: list[Tok], k: int) -> list[float]:
