@@ -4,8 +4,11 @@ of sweeping bends", "two sweepers then a hairpin", "first a chicane, followed by
 
 A *mention* is one feature noun with what counts it: a number ("2 hairpins"), a single
 ("a", "another"), a zero ("no", "without"), a reference ("the hairpins") or nothing (a
-bare noun). Counts add up over mentions. Mentions linked by order words form an ordered
-run, which becomes ``feature_order``; a request with no order words leaves it empty.
+bare noun). Counts add up over mentions, except that a numbered count repeating one
+already given, with no order word between them and no "more"/"another"/"extra", restates
+it: equal, it is the same count; different, the request is refused. Mentions linked by
+order words form an ordered run, which becomes ``feature_order``; a request with no order
+words leaves it empty.
 """
 
 from __future__ import annotations
