@@ -133,3 +133,12 @@ def test_cli_generate_lenient_warns_and_builds(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "warning: lenient: ignored '3' (characters 51-52)" in err and "defaulted: name" in err
     assert (out / "map.yaml").is_file()
+
+
+def test_ollama_summed_counts_explain_each_written_count(fake_ollama):
+    text = "two hairpins then a chicane then two more hairpins, 45 m"
+    fake_ollama.reply = Reply(
+        content=TrackSpec(hairpins=4, chicanes=1, lap_length_m=45, feature_order=["hairpin"] * 2 + ["chicane"] + ["hairpin"] * 2).model_dump_json()
+    )
+    r = parse_request(text, backend="ollama", ollama_host=fake_ollama.url)
+    assert r.spec.hairpins == 4 and r.ignored == ()

@@ -40,9 +40,8 @@ from __future__ import annotations
 
 from ..errors import BackendError, InvalidArgumentError
 from ..spec import TrackSpec
-from .grounding import Grounded, ground
+from .grounding import Grounded, ground, unexplained_numbers
 from .ollama_backend import DEFAULT_MODEL, DEFAULT_TIMEOUT_S, ask_ollama, reachable
-from .grounding import unexplained_numbers
 from .limits import FIELD_RANGES, MAX_REQUEST_CHARS, check_length, check_range
 from .result import DEFAULTS, FIELDS, Fragment, ParseResult
 from .rules import ignored_note, parse_rules, refuse_numbers
@@ -110,13 +109,13 @@ def parse_request(
         return _explained(_from_model(text, ground(text, spec, strict=strict)), lenient)
     # auto: the rules first (leniently: the model may explain what they could not)
     rules = parse_rules(text, lenient=True)
+    alone = rules.replace(ignored=(), warnings=_without_ignored(rules))  # _explained re-judges
     if not (rules.unparsed or rules.ignored) or not reachable(ollama_host):
-        return _explained(rules.replace(ignored=(), warnings=_without_ignored(rules)), lenient)
+        return _explained(alone, lenient)
     try:
         spec, _ = ask_ollama(text, host=ollama_host, model=model, timeout=timeout)
     except BackendError as e:
-        kept = _with_warning(rules.replace(ignored=(), warnings=_without_ignored(rules)), f"rules parse kept: the Ollama backend failed ({e})")
-        return _explained(kept, lenient)
+        return _explained(_with_warning(alone, f"rules parse kept: the Ollama backend failed ({e})"), lenient)
     g = ground(text, spec, strict=strict)
     return _explained(_merge(rules, _from_model(text, g, rules.unparsed)), lenient)
 
@@ -152,7 +151,8 @@ def _merge(rules: ParseResult, model: ParseResult) -> ParseResult:
     spec = TrackSpec.from_dict(values, source="merged parse")
     stated = tuple(k for k in FIELDS if k in rules.stated or k in model.stated)
     spans = {k: rules.spans.get(k) or model.spans.get(k, ()) for k in stated}
-    return ParseResult(rules.text, spec, stated, spans, rules.unparsed, (*_without_ignored(rules), *notes), "auto", rules.hedges)
+    notes = [*_without_ignored(rules), *notes]
+    return ParseResult(rules.text, spec, stated, spans, rules.unparsed, tuple(notes), "auto", rules.hedges)
 
 
 __all__ = [

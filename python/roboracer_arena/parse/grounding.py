@@ -11,7 +11,8 @@ A value is traceable when
   lone-length reading: a lap equal to the only number-with-unit that no other field
   explains ("five hairpins, 45 metres") is traceable without a lap word;
 * feature counts: the feature's noun occurs and the count is written (a number, "a",
-  "another", ...) or equals the number of times the noun occurs;
+  "another", ...), equals the number of times the noun occurs, or equals the counts
+  written before each mention added up ("two hairpins ... two more hairpins");
 * direction "clockwise": the request says clockwise (or "not counter-clockwise");
 * name: the request contains it; feature order: the request uses an order word and
   names the features.
@@ -136,6 +137,19 @@ def _lone_length(value: float, values: dict[str, Any], toks: list[Tok]) -> Span 
     return None
 
 
+def _counts_a_feature(toks: list[Tok], k: int, values: dict[str, Any]) -> bool:
+    """Whether number ``k`` counts a feature the spec has at least that many of ("two
+    hairpins ... two more hairpins" with 4 hairpins; "hairpins x2")."""
+    near = [toks[j] for j in range(k + 1, min(len(toks), k + 5))]
+    near = near[: next((i for i, t in enumerate(near) if t.kind == "punct" and t.canon != "x"), len(near))]
+    near += [toks[j] for j in range(max(0, k - 2), k) if toks[j].canon in _FEATURE_WORDS]
+    for t in near:
+        if t.canon in _FEATURE_WORDS:
+            have = int(values[t.canon.rstrip("s") + "s"])
+            return have >= float(toks[k].value or 0.0) and (have > 0) == ((toks[k].value or 0.0) > 0)
+    return False
+
+
 def unexplained_numbers(text: str, values: dict[str, Any]) -> list[Fragment]:
     """Numbers in ``text`` that no field of ``values`` explains: no length field equals
     the number (in its unit, or any unit when none is written), no count equals it, and
@@ -157,6 +171,8 @@ def unexplained_numbers(text: str, values: dict[str, Any]) -> list[Fragment]:
         if not unit and text[t.start : t.end].lower() == "one":
             continue
         if any(_close(m, v) for m in _metres(toks, k) for v in lengths) or (not unit and t.value in counts):
+            continue
+        if not unit and _counts_a_feature(toks, k, values):
             continue
         end = toks[k + 1].end if unit else t.end
         out.append(Fragment(text[t.start : end], t.start, end))
