@@ -7,9 +7,10 @@ from pathlib import Path
 
 from fake_ollama import Reply
 
-from roboracer_arena.bench.parser import REPO_REQUESTS, load_requests, run, score
+from roboracer_arena.bench.parser import REPO_REQUESTS, load_requests, run, run_sets, score
 from roboracer_arena.cli import EXIT_OK, main
 from roboracer_arena.parse.result import DEFAULTS
+from roboracer_arena.paths import bench_data
 from roboracer_arena.spec import TrackSpec
 
 
@@ -64,3 +65,34 @@ def test_unreachable_ollama_is_a_row_not_a_failure(tmp_path, dead_url, capsys):
     d = json.loads(out.read_text())
     assert d["rows"]["rules"]["parse"] == "1/1"
     assert d["rows"]["ollama gemma4:31b"]["status"].startswith("not reachable")
+
+
+def test_refusal_rows_need_a_typed_error_naming_the_span(tmp_path):
+    lines = [
+        {"id": "r1", "set": "refuse", "text": "a 45 m lap in 10 minutes", "expected": {}, "span": "10"},
+        {"id": "r2", "set": "refuse", "text": "a 45 m lap", "expected": {}},  # accepted: a miss
+        {"id": "r3", "set": "refuse", "text": "a 45 m lap in 10 minutes", "expected": {}, "span": "99"},
+    ]
+    p = tmp_path / "r.jsonl"
+    p.write_text("\n".join(json.dumps(x) for x in lines) + "\n")
+    row = run(p, ("rules",), repeats=1)["rows"]["rules"]
+    assert row["refuse"] == "1/3"
+    assert [(m["id"], m["fields"]) for m in row["misses"]] == [("r2", ["(accepted)"]), ("r3", ["(span not named)"])]
+
+
+def test_every_shipped_set_with_the_recorded_blind_score(capsys):
+    everyday = load_requests(bench_data("requests_everyday.jsonl"))
+    assert len(everyday) >= 100 and sum(r["batch"] == "blind" for r in everyday) >= 40
+    assert len(load_requests(bench_data("requests_e2e.jsonl"))) == 8
+    res = run_sets()
+    sets = res["sets"]
+    e2e = sets["paper end-to-end (8)"]
+    assert e2e["parse_exact"] == e2e["parse_total"] == 8  # the end-to-end requests must parse exactly
+    for label in ("everyday, blind batch", "everyday, after batch"):
+        r = sets[label]
+        assert r["refuse_correct"] == r["refuse_total"]  # no refusal is ever missed
+        assert r["parse_exact"] >= r["parse_total"] - 1
+    blind = res["blind_recorded"]["files"]["requests_everyday.jsonl"]
+    assert blind["total"] == sum(r["batch"] == "blind" for r in everyday)
+    out = capsys.readouterr().out
+    assert "blind run: requests_everyday.jsonl" in out and "everyday, after batch" in out

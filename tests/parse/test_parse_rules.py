@@ -43,8 +43,10 @@ def test_a_alone_is_not_a_number():
     ],
 )  # fmt: skip
 def test_numbers_in_requests(text, lap):
-    if lap is None:
-        assert "lap_length_m" not in parse_request(text).stated
+    if lap is None:  # "1.5e" is no number-with-unit: the 1.5 is refused, not dropped
+        with pytest.raises(RequestParseError, match="'1.5'"):
+            parse_request(text)
+        assert "lap_length_m" not in parse_request(text, lenient=True).stated
     else:
         assert stated(text)["lap_length_m"] == lap
 
@@ -252,10 +254,13 @@ def test_unexplained_words_are_reported_with_spans():
         assert text[u.start : u.end] == u.text
 
 
-def test_stray_number_is_reported():
-    r = parse_request("a 40 m lap with 7 bumps")
+def test_stray_number_is_refused_or_reported_when_lenient():
+    with pytest.raises(RequestParseError, match=r"'7' \(characters 16-17\)"):
+        parse_request("a 40 m lap with 7 bumps")
+    r = parse_request("a 40 m lap with 7 bumps", lenient=True)
     assert [u.text for u in r.unparsed] == ["7 bumps"]
-    assert [u.text for u in parse_request("a track with three turns").unparsed] == ["three turns"]
+    assert [i.text for i in r.ignored] == ["7"] and "ignored '7'" in r.warnings[0]
+    assert [u.text for u in parse_request("a track with three turns", lenient=True).unparsed] == ["three turns"]
 
 
 def test_each_multiplies_counts():

@@ -2,10 +2,17 @@
 our backends -- exact parses on the parse set, invention-audit passes over repeated
 calls, median latency per call and, where known, memory.
 
-A request line (JSONL) holds ``id``, ``set`` ("parse" or "audit"), ``text`` and
-``expected`` (the stated fields only). *Exact*: every stated field matches and every
-unstated field keeps its default. *Audit pass*: no field outside ``expected`` differs
-from its default (no invented constraint); a call that errors is not a pass.
+A request line (JSONL) holds ``id``, ``set`` ("parse", "audit" or "refuse"), ``text``
+and ``expected`` (the stated fields only), optionally ``batch`` ("blind": written before
+the parser work it scores; "after": written later) and, for a refusal, ``span`` (text the
+error must name). *Exact*: every stated field matches and every unstated field keeps its
+default. *Audit pass*: no field outside ``expected`` differs from its default (no
+invented constraint); a call that errors is not a pass. *Refusal correct*: the call
+raises a typed error (exit 2 in the CLI) whose message names ``span``.
+
+Without ``--requests`` the rules backend also runs over every shipped set -- the
+held-out set, the everyday set by batch, the end-to-end requests -- beside the recorded
+blind score (the parser of main before this work, on the blind batch as written).
 """
 
 from __future__ import annotations
@@ -25,6 +32,15 @@ from ..parse.result import DEFAULTS
 from ..paths import bench_data
 
 REPO_REQUESTS = bench_data("requests.jsonl")  # shipped in the package (bench/data)
+#: (label, file, batch or None) of every shipped request set, in report order.
+SHIPPED_SETS = [
+    ("shipped (Table 2 set)", "requests.jsonl", None),
+    ("held-out", "requests_heldout.jsonl", None),
+    ("everyday, blind batch", "requests_everyday.jsonl", "blind"),
+    ("everyday, after batch", "requests_everyday.jsonl", "after"),
+    ("paper end-to-end (8)", "requests_e2e.jsonl", None),
+]
+BLIND_SCORE = bench_data("requests_blind_score.json")
 
 # The paper's Table 2 (Gemma 4 31B etc. through Ollama on an RTX PRO 6000).
 PAPER_ROWS = [
@@ -44,7 +60,7 @@ def load_requests(path: Path) -> list[dict[str, Any]]:
             continue
         try:
             d = json.loads(line)
-            assert d["set"] in ("parse", "audit") and isinstance(d["text"], str) and isinstance(d["expected"], dict)
+            assert d["set"] in ("parse", "audit", "refuse") and isinstance(d["text"], str) and isinstance(d["expected"], dict)
         except (json.JSONDecodeError, KeyError, AssertionError) as e:
             raise InvalidArgumentError(f"{path}:{n}: not a request line ({e})") from None
         out.append(d)
@@ -91,6 +107,7 @@ def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any
     rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     times: list[float] = []
     parse_ok, parse_n, audit_ok, audit_n, guard_caught, guard_false = 0, 0, 0, 0, 0, 0
+    refuse_ok, refuse_n = 0, 0
     misses: list[dict[str, Any]] = []
     for req in requests:
         for rep in range(1 if req["set"] == "parse" else repeats):
@@ -100,6 +117,13 @@ def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any
             except ArenaError as e:
                 got, err = None, f"{type(e).__name__}: {e}"
             times.append(time.perf_counter() - t0)
+            if req["set"] == "refuse":
+                refuse_n += 1
+                named = err is not None and str(req.get("span", "")) in err
+                refuse_ok += int(named)
+                if not named:
+                    misses.append({"id": req["id"], "set": "refuse", "fields": ["(accepted)" if err is None else "(span not named)"], "error": err})
+                continue
             exact, clean, wrong = score(got, req["expected"])
             if got is not None and not clean:  # would the grounding guard have caught it?
                 with warnings.catch_warnings():
@@ -122,6 +146,9 @@ def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any
         "parse_exact": parse_ok,
         "parse_total": parse_n,
         "audit": f"{audit_ok}/{audit_n}",
+        "refuse": f"{refuse_ok}/{refuse_n}",
+        "refuse_correct": refuse_ok,
+        "refuse_total": refuse_n,
         "audit_pass": audit_ok,
         "audit_calls": audit_n,
         "latency_median_s": statistics.median(times) if times else None,
@@ -131,6 +158,29 @@ def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any
         "inventions_missed_by_guard": guard_false,
         "misses": misses,
     }
+
+
+def run_sets() -> dict[str, Any]:
+    """The rules backend over every shipped set (:data:`SHIPPED_SETS`), with the recorded
+    blind score; prints a table and returns the rows."""
+    rows: dict[str, Any] = {}
+    for label, name, batch in SHIPPED_SETS:
+        reqs = [r for r in load_requests(bench_data(name)) if batch is None or r.get("batch") == batch]
+        rows[label] = evaluate(_rules_call, reqs, 1)
+    blind = json.loads(Path(BLIND_SCORE).read_text(encoding="utf-8"))
+    print(f"\nrules parser over the shipped request sets (audit once; blind = main at {blind['parser_commit']}, recorded)")
+    head = f"{'request set':<34} {'parse':>7} {'refusals':>9} {'audit':>7} {'all':>8}"
+    print(head)
+    print("-" * len(head))
+    for name, b in blind["files"].items():
+        print(f"{'blind run: ' + name:<34} {b['parse']:>7} {b['refuse']:>9} {'-':>7} {str(b['correct']) + '/' + str(b['total']):>8}")
+    for label, r in rows.items():
+        ok = r["parse_exact"] + r["refuse_correct"] + r["audit_pass"]
+        n = r["parse_total"] + r["refuse_total"] + r["audit_calls"]
+        print(f"{label:<34} {r['parse']:>7} {r['refuse']:>9} {r['audit']:>7} {f'{ok}/{n}':>8}")
+        for m in r["misses"]:
+            print(f"  miss {m['id']} ({m['set']}): {', '.join(m['fields'])}" + (f" — {m['error']}" if m["error"] else ""))
+    return {"sets": rows, "blind_recorded": blind}
 
 
 def _fmt_latency(s: float | None) -> str:
@@ -154,7 +204,10 @@ def run(
     results: dict[str, Any] = {"requests": str(requests_path), "repeats": repeats, "rows": {}}
     for backend in backends:
         if backend == "rules":
-            _rules_call(requests[0]["text"])  # warm the imports and regex caches
+            try:
+                _rules_call(requests[0]["text"])  # warm the imports and regex caches
+            except ArenaError:
+                pass  # a refusal row: warmed all the same
             results["rows"]["rules"] = evaluate(_rules_call, requests, repeats)
         elif backend == "ollama":
             key = f"ollama {model}"
@@ -187,13 +240,16 @@ def print_table(results: dict[str, Any]) -> None:
 
 
 def run_quick() -> dict[str, Any]:
-    """``bench all``: the rules backend on the shipped request set."""
-    return run()
+    """``bench all``: the rules backend on the shipped request set, then every set."""
+    return {**run(), **run_sets()}
 
 
 def register(kinds) -> None:
     p = kinds.add_parser("parser", help="parser evaluation (the paper's Table 2)", description=__doc__)
-    p.add_argument("--requests", type=Path, default=REPO_REQUESTS, metavar="FILE.jsonl", help="request set")
+    p.add_argument(
+        "--requests", type=Path, metavar="FILE.jsonl",
+        help="request set (default: the shipped Table 2 set, then the rules over every shipped set)",
+    )  # fmt: skip
     p.add_argument("--backend", nargs="+", default=["rules"], choices=["rules", "ollama"], help="backends to evaluate")
     p.add_argument("--repeats", type=int, default=3, help="repeats of the audit set (default 3, as in the paper)")
     p.add_argument("--ollama-host", metavar="URL", help="Ollama server (default $OLLAMA_HOST)")
@@ -206,7 +262,9 @@ def register(kinds) -> None:
 def _cli(args: argparse.Namespace) -> int:
     if args.repeats < 1:
         raise InvalidArgumentError(f"--repeats must be ≥ 1, got {args.repeats}")
-    results = run(args.requests, tuple(args.backend), args.repeats, args.ollama_host, args.model, args.timeout)
+    results = run(args.requests or REPO_REQUESTS, tuple(args.backend), args.repeats, args.ollama_host, args.model, args.timeout)
+    if args.requests is None:
+        results.update(run_sets())
     if args.json:
         atomic_write_text(args.json, json.dumps(results, indent=2))
         print(f"wrote {args.json}")

@@ -1,5 +1,10 @@
 """``roboracer-arena parse "REQUEST"``: a natural-language request to a TrackSpec, showing
-where in the request each stated value came from and which words were not understood.
+where in the request each stated value came from, which fields keep their defaults and
+which words were not understood.
+
+A number no field explains, a range, a contradiction or an out-of-range value is refused
+(exit 2, naming the text and its characters); --lenient ignores unexplained numbers with
+a warning instead.
 
 Example: roboracer-arena parse "a 38 m lap for a small 15 by 12 hall"
 """
@@ -27,7 +32,8 @@ def add_backend_args(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--lenient",
         action="store_true",
-        help="reset values the grounding guard cannot trace to the request (default: reject them)",
+        help="ignore numbers no field explains and reset values the grounding guard cannot trace "
+        "to the request, each with a warning (default: refuse the request, exit 2)",
     )
 
 
@@ -42,6 +48,7 @@ def parse_from_args(args: argparse.Namespace, text: str):
         model=args.model,
         timeout=args.timeout,
         strict=not args.lenient,
+        lenient=args.lenient,
     )
 
 
@@ -90,9 +97,12 @@ def print_result(result, file=None) -> None:
         if name in result.stated:
             spans = result.spans.get(name, ())
             where = "; ".join(f"{result.text[s:e]!r} @{s}-{e}" for s, e in spans) or "(model)"
-            print(f"  {name:<19} {shown:<28} ← {where}", file=file)
+            hedge = f" ({result.hedges[name]})" if name in result.hedges else ""
+            print(f"  {name:<19} {shown:<28} ← {where}{hedge}", file=file)
         else:
             print(f"  {name:<19} {shown:<28}   (default)", file=file)
+    print("stated: " + (", ".join(result.stated) or "(none)"), file=file)
+    print("defaulted: " + (", ".join(result.defaulted) or "(none)"), file=file)
     if result.unparsed:
         print("not understood: " + ", ".join(repr(u.text) for u in result.unparsed), file=file)
     for w in result.warnings:

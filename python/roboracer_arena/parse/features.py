@@ -4,8 +4,11 @@ of sweeping bends", "two sweepers then a hairpin", "first a chicane, followed by
 
 A *mention* is one feature noun with what counts it: a number ("2 hairpins"), a single
 ("a", "another"), a zero ("no", "without"), a reference ("the hairpins") or nothing (a
-bare noun). Counts add up over mentions. Mentions linked by order words form an ordered
-run, which becomes ``feature_order``; a request with no order words leaves it empty.
+bare noun). Counts add up over mentions, except that a numbered count repeating one
+already given, with no order word between them and no "more"/"another"/"extra", restates
+it: equal, it is the same count; different, the request is refused. Mentions linked by
+order words form an ordered run, which becomes ``feature_order``; a request with no order
+words leaves it empty.
 """
 
 from __future__ import annotations
@@ -16,20 +19,21 @@ from dataclasses import dataclass
 
 from ..errors import RequestParseError
 from .found import Found
+from .limits import check_range, quote
 from .lexer import Canon
-from .vocab import FEATURE_ADJ, FEATURE_NOUN, FEATURE_RE, ORDER_FORWARD, ORDER_REVERSE, ORDER_START
+from .vocab import FEATURE_ADJ, FEATURE_NOUN, FEATURE_RE, NUM, ORDER_FORWARD, ORDER_REVERSE, ORDER_START
 
 _B, _E = r"(?<![^ ])", r"(?![^ ])"
-_ADJS = rf"(?:{FEATURE_ADJ} )*"
+_ADJS = rf"(?:{FEATURE_ADJ} ){{0,4}}"  # bounded: no regex backtracking over long runs
 _F = rf"(?P<f>{FEATURE_RE})"
 _ZERO_LIST = re.compile(
     _B + rf"(?:no|zero|without(?: any)?) {_ADJS}{FEATURE_RE}(?: (?:or|nor|and|,) (?:(?:no|any) )?{_ADJS}{FEATURE_RE})*" + _E
 )
 _FEATURE_WORD = re.compile(_B + FEATURE_RE + _E)
 _COUNTED = [
-    re.compile(_B + rf"(?P<n>\d+(?:\.\d+)?)(?: x)? {_ADJS}{_F}" + _E),
+    re.compile(_B + rf"(?P<n>{NUM})(?: x)? {_ADJS}{_F}" + _E),
     re.compile(_B + rf"(?P<one>a single|single|another|a|an) {_ADJS}{_F}" + _E),
-    re.compile(_B + rf"{_F} (?::|=|x) (?P<n>\d+(?:\.\d+)?)" + _E),
+    re.compile(_B + rf"{_F} (?::|=|x) (?P<n>{NUM})" + _E),
 ]
 _EACH = re.compile(
     _B + rf"(?P<n>\d+) {_ADJS}(?P<f1>{FEATURE_RE})(?: ,)? each (?:followed by|then|leading into|with|before) "
@@ -38,6 +42,7 @@ _EACH = re.compile(
 _REF = re.compile(_B + rf"(?:the|both|these|those|each|every|its|their|all|said)(?: \d+)? {_ADJS}{_F}" + _E)
 _BARE = re.compile(_B + rf"{_ADJS}{_F}" + _E)
 _IN_ORDER = re.compile(_B + r"in (?:(?:that|this|the|exactly|strict|given|listed|following) )*(?:order|sequence)" + _E)
+_ADDITIVE = {"more", "extra", "additional", "another", "further"}
 _ORDER_GLUE = {"by", "comes", "come", "order", "sequence", "that", "this", "which", "it", "them", "and", "then"}
 
 
@@ -51,20 +56,21 @@ class Mention:
     span: tuple[int, int]
     block: list[str] | None = None  # "2 hairpins, each followed by a chicane": h c h c
     absorbed: bool = False  # the "chicane" of that phrase: counted, ordered by ``block``
+    restated: bool = False  # a numbered count without "more"/"another"/...: a restatement if repeated
 
 
 def _feature(word: str) -> str:
     return word.rstrip("s")
 
 
-def _collect(c: Canon) -> list[Mention]:
+def _collect(c: Canon, text: str) -> list[Mention]:
     out: list[Mention] = []
 
     def add(m: re.Match[str], feature: str, kind: str, count: int, group: str | int = 0) -> None:
         r = c.token_range(m.start(group), m.end(group))
         out.append(Mention(feature, kind, count, r.start, r.stop - 1, c.span(m.start(group), m.end(group))))
 
-    while (m := _EACH.search(c.text)) is not None:
+    for m in _EACH.finditer(c.text):
         n, k = int(m["n"]), (1 if not m["m"][0].isdigit() else int(m["m"]))
         f1, f2 = _feature(m["f1"]), _feature(m["f2"])
         add(m, f1, "count", n, "f1")
@@ -73,27 +79,32 @@ def _collect(c: Canon) -> list[Mention]:
         out[-1].absorbed = True
         out[-1].span = out[-2].span = c.span(m.start(), m.end())
         c.consume(m.start(), m.end())
-    while (m := _ZERO_LIST.search(c.text)) is not None:
+    for m in _ZERO_LIST.finditer(c.text):
         for fm in _FEATURE_WORD.finditer(m.group()):
             r = c.token_range(m.start() + fm.start(), m.start() + fm.end())
             out.append(Mention(_feature(fm.group()), "zero", 0, r.start, r.stop - 1, c.span(m.start(), m.end())))
         c.consume(m.start(), m.end())
     for rx in _COUNTED:
-        while (m := rx.search(c.text)) is not None:
+        for m in rx.finditer(c.text):
             if m.groupdict().get("one"):
                 n = 1
             else:
                 value = float(m["n"])
                 if not value.is_integer():
-                    raise RequestParseError(f"a feature count must be a whole number, got {m['n']} {m['f']}")
+                    s0, e0 = c.span(m.start(), m.end())
+                    raise RequestParseError(
+                        f"a feature count must be a whole number: {quote(text, s0, e0)} (characters {s0}-{e0})"
+                    )
                 n = int(value)
             add(m, _feature(m["f"]), "zero" if n == 0 else "count", n)
+            out[-1].restated = m.groupdict().get("n") is not None and not _ADDITIVE & set(m.group().split())
             c.consume(m.start(), m.end())
     refs = list(_REF.finditer(c.text))
+    ref_nouns = {r.start("f") for r in refs}
     for m in refs:
         add(m, _feature(m["f"]), "ref", 0)
     for m in _BARE.finditer(c.text):
-        if any(r.start() <= m.start("f") < r.end() for r in refs):
+        if m.start("f") in ref_nouns:
             continue  # the noun of a reference ("the hairpins")
         add(m, _feature(m["f"]), "bare-plural" if m["f"].endswith("s") else "bare", 0)
     out.sort(key=lambda x: x.first)
@@ -139,7 +150,8 @@ def _is_ordered(c: Canon, run: list[Mention], links: list[str], next_first: int)
     if any(c.tokens[j].canon in ORDER_START or c.tokens[j].canon == "order" for j in before):
         ordered = True
     end_tok = next_first if next_first >= 0 else len(c.tokens)
-    m = _IN_ORDER.search(c.text, c.start_of(run[-1].last))
+    end_pos = c.start_of(end_tok) if end_tok < len(c.tokens) else len(c.text)
+    m = _IN_ORDER.search(c.text, c.start_of(run[-1].last), end_pos)  # bounded: linear over all runs
     if m is not None and c.token_at(m.start()) < end_tok:
         ordered = True
         glue += list(c.token_range(m.start(), m.end()))
@@ -154,7 +166,7 @@ def _is_ordered(c: Canon, run: list[Mention], links: list[str], next_first: int)
 
 def parse_features(c: Canon, f: Found) -> None:
     """Find feature counts and order in ``c``; record them in ``f``; consume their tokens."""
-    ms = _collect(c)
+    ms = _collect(c, f.text)
     counted = {m.feature for m in ms if m.kind == "count"}
     counts: Counter[str] = Counter()
     zero: dict[str, Mention] = {}
@@ -169,6 +181,7 @@ def parse_features(c: Canon, f: Found) -> None:
                 m.kind, m.count = "count", 1
         if m.kind == "bare-plural" and m.feature in counted:
             m.kind = "ref"
+    _restated_counts(c, f, ms)
     for m in ms:
         field = FEATURE_NOUN[m.feature]
         if m.kind == "count":
@@ -187,8 +200,36 @@ def parse_features(c: Canon, f: Found) -> None:
             )
         f.values[FEATURE_NOUN[feat]] = 0
     for feat, n in counts.items():
+        spans = f.spans[FEATURE_NOUN[feat]]
+        check_range(FEATURE_NOUN[feat], n, f.text, (min(a for a, _ in spans), max(b for _, b in spans)))
         f.values[FEATURE_NOUN[feat]] = n
     _order(c, f, [m for m in ms if m.kind in ("count", "ref")], counts)
+
+
+def _restated_counts(c: Canon, f: Found, ms: list[Mention]) -> None:
+    """ "a dozen chicanes? No, just two chicanes": a numbered count of a feature already
+    counted, with no "more"/"another"/"extra" and no order word between them ("3 hairpins,
+    then a chicane, then 2 hairpins" adds up), restates the count. An equal restatement is a
+    reference; a different one is a contradiction (a correction is not guessed)."""
+    ordered_before = [0]  # ordered links among ms[0..k]
+    for a, b in zip(ms, ms[1:]):
+        ordered_before.append(ordered_before[-1] + (_link(c, a, b) in ("forward", "reverse")))
+    first: dict[str, int] = {}
+    for k, m in enumerate(ms):
+        if m.kind != "count" or m.absorbed:
+            continue
+        j = first.setdefault(m.feature, k)
+        if j == k or not m.restated or ordered_before[k] > ordered_before[j]:
+            continue
+        if m.count == ms[j].count:
+            m.kind = "ref"
+            continue
+        a, b = ms[j].span, m.span
+        raise RequestParseError(
+            f"the request states {FEATURE_NOUN[m.feature]} twice with different counts: "
+            f"{quote(f.text, *a)} (characters {a[0]}-{a[1]}) and {quote(f.text, *b)} (characters {b[0]}-{b[1]}); "
+            "say 'more' or 'another' to add"
+        )
 
 
 def _order(c: Canon, f: Found, ms: list[Mention], counts: Counter[str]) -> None:

@@ -1,5 +1,6 @@
-"""Number words: "three", "twenty-five", "one hundred and twenty", "one point five",
-"two and a half", "a pair of", "a couple of", "a dozen".
+"""Number words: "three", "twenty-five", "forty five", "one hundred and twenty", "two
+thousand", "one point five", "two and a half", "a pair of", "a couple of", "a dozen",
+"half a dozen", "two dozen".
 
 The lexer hands :func:`read_number` a list of lower-case words (hyphenated words already
 split); it returns the value and how many words it used, or ``None``. Bare "a"/"an"/"one"
@@ -24,7 +25,7 @@ TENS: dict[str, int] = {
 DIGIT_WORDS = {w: v for w, v in UNITS.items() if v < 10}
 
 #: Words that are numbers on their own or start one (used by the grounding guard too).
-NUMBER_WORDS = set(UNITS) | set(TENS) | {"hundred", "dozen", "half", "pair", "couple"}
+NUMBER_WORDS = set(UNITS) | set(TENS) | {"hundred", "thousand", "dozen", "half", "pair", "couple"}
 
 
 def _below_hundred(words: Sequence[str], i: int) -> tuple[int, int] | None:
@@ -42,6 +43,29 @@ def _below_hundred(words: Sequence[str], i: int) -> tuple[int, int] | None:
 
 
 def _integer(words: Sequence[str], i: int) -> tuple[int, int] | None:
+    """An integer in words below a million ("two thousand five hundred", "a thousand")."""
+    if i + 1 < len(words) and words[i] in ("a", "one") and words[i + 1] == "thousand":
+        head: tuple[int, int] | None = (1, 1)
+    else:
+        head = _hundreds(words, i)
+    if head is None:
+        return None
+    j = i + head[1]
+    if j < len(words) and words[j] == "thousand" and 0 < head[0] < 1000:
+        value, used = head[0] * 1000, head[1] + 1
+        k = i + used
+        if k < len(words) and words[k] == "and":
+            tail = _hundreds(words, k + 1)
+            if tail is not None and tail[0] > 0:
+                return value + tail[0], used + 1 + tail[1]
+        tail = _hundreds(words, k)
+        if tail is not None and tail[0] > 0:
+            return value + tail[0], used + tail[1]
+        return value, used
+    return head
+
+
+def _hundreds(words: Sequence[str], i: int) -> tuple[int, int] | None:
     """An integer in words, up to the hundreds ("one hundred and twenty", "a hundred")."""
     if i + 1 < len(words) and words[i] in ("a", "one") and words[i + 1] == "hundred":
         value, used = 100, 2
@@ -85,6 +109,8 @@ def read_number(words: Sequence[str], i: int) -> tuple[float, int] | None:
     if w == "dozen":
         return 12.0, 1
     if w == "half" and nxt in ("a", "an"):
+        if i + 2 < n and words[i + 2] == "dozen":
+            return 6.0, 3
         return 0.5, 2
     whole = _integer(words, i)
     if whole is None:
@@ -103,7 +129,9 @@ def read_number(words: Sequence[str], i: int) -> tuple[float, int] | None:
     # "two and a half"
     if j + 2 < n and words[j] == "and" and words[j + 1] in ("a", "an") and words[j + 2] == "half":
         return value + 0.5, used + 3
-    # "a dozen" after a number ("two dozen") is not a track quantity; stop here
+    # "two dozen"
+    if j < n and words[j] == "dozen":
+        return value * 12, used + 1
     return value, used
 
 

@@ -3,7 +3,7 @@ request each stated value came from, and what the parser could not explain."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, NamedTuple
 
 from ..spec import TrackSpec
@@ -33,8 +33,13 @@ class ParseResult:
     * ``spans`` -- for each stated field, the character spans of ``text`` it came from
       (several for a count summed over mentions, e.g. "a hairpin ... another hairpin").
     * ``unparsed`` -- words the parser could not explain (reported, never guessed).
-    * ``warnings`` -- e.g. values the grounding guard reset in non-strict mode.
+    * ``warnings`` -- e.g. values the grounding guard reset in non-strict mode, a bound
+      read as a target, numbers ignored in lenient mode.
     * ``backend`` -- which parser produced the values ("rules" or "ollama").
+    * ``hedges`` -- stated fields whose value was hedged: "approximately", "at most" or
+      "at least" (see :mod:`roboracer_arena.parse.hedges`).
+    * ``ignored`` -- numbers no field explains, ignored in lenient mode (refused otherwise).
+    * ``defaulted`` (property) -- the fields the request did not state, which hold defaults.
     """
 
     text: str
@@ -44,6 +49,17 @@ class ParseResult:
     unparsed: tuple[Fragment, ...] = ()
     warnings: tuple[str, ...] = ()
     backend: str = "rules"
+    hedges: dict[str, str] = field(default_factory=dict)
+    ignored: tuple[Fragment, ...] = ()
+
+    @property
+    def defaulted(self) -> tuple[str, ...]:
+        """The fields the request did not state (they hold their documented defaults)."""
+        return tuple(k for k in FIELDS if k not in self.stated)
+
+    def replace(self, **changes: Any) -> "ParseResult":
+        """A copy with ``changes`` applied (the result is frozen)."""
+        return replace(self, **changes)
 
     def span(self, name: str) -> Span | None:
         """The hull of the spans of field ``name`` (``None`` if it was not stated)."""
@@ -75,9 +91,12 @@ class ParseResult:
             "backend": self.backend,
             "spec": self.spec.model_dump(),
             "stated": list(self.stated),
+            "defaulted": list(self.defaulted),
+            "hedges": dict(self.hedges),
             "sources": {
                 k: [{"start": s, "end": e, "text": self.text[s:e]} for s, e in v] for k, v in self.spans.items()
             },
             "unparsed": [f._asdict() for f in self.unparsed],
+            "ignored": [f._asdict() for f in self.ignored],
             "warnings": list(self.warnings),
         }

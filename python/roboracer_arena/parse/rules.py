@@ -2,11 +2,17 @@
 would state in English and never invents one.
 
 Each rule is a regular expression over the canonical token string of :mod:`.lexer`
-(numbers as digits, units as symbols). Rules run in a fixed order -- name, hall, then
-quantities followed by their noun ("a 38 m lap"), then nouns followed by their quantity
-("lap of 45 m"), then bare fallbacks ("60 metres long") -- and each consumes its
-tokens, so no number is read twice. Whatever is left that is not a known filler word is
-reported in :attr:`ParseResult.unparsed`.
+(numbers as digits, units as symbols). Rules run in a fixed order -- ranges (refused),
+name, hall, then quantities followed by their noun ("a 38 m lap"), then nouns followed
+by their quantity ("lap of 45 m"), then values before their field ("six metres is the
+longest straight"), then bare fallbacks ("60 metres long") -- and each consumes its
+tokens, so no number is read twice. After the features and hedges (:mod:`.hedges`), a
+lone length left over is the lap (nothing else in a track request is a bare length);
+any other number left over is refused (``lenient=True``: ignored with a warning).
+Words left that are not known filler are reported in :attr:`ParseResult.unparsed`.
+
+Every rule pass is one left-to-right scan (:meth:`.lexer.Canon.text` is rebuilt once
+per pass), so the work is linear in the request's length.
 """
 
 from __future__ import annotations
@@ -18,10 +24,12 @@ from ..errors import RequestParseError, SpecError
 from ..spec import TrackSpec
 from .features import parse_features
 from .found import Found
+from .hedges import apply_hedges, read_hedges
 from .lexer import Canon, tokenize
+from .limits import MAX_REQUEST_CHARS, check_length, quote
 from .result import FIELDS, Fragment, ParseResult
 from .units import to_metres
-from .vocab import CORR, FILL, FILLER, HALL, LAP, NUM, UNIT, alt
+from .vocab import CORR, CORRIDOR_NOUNS, FILL, FILLER, HALL, LAP, LAP_NOUNS, NUM, UNIT, alt
 
 _B, _E = r"(?<![^ ])", r"(?![^ ])"  # token boundaries in the canonical string
 
@@ -86,7 +94,19 @@ def _hall_one(m: re.Match[str], c: Canon, f: Found) -> None:
     f.set(name, _qty(m, "q"), _span(c, m))
 
 
+# A number right after a field noun belongs to that noun ("width 1.2 m lap 40 m"): the
+# quantity-before-noun rules must not take it for the noun that follows.
+_FREE = "".join(
+    f"(?<!{w} )" for w in sorted({*LAP_NOUNS, *CORRIDOR_NOUNS, "width", "radius", "straight", "straights", "length"})
+)
 _DIM = rf"(?: (?P<wa>{_LONG}|{_WIDE}))?"
+# "one lap", "two laps" count laps: a unitless 1 before a lap noun, or a unitless number
+# before a plural one, is not a length.
+_NOT_LAP_COUNT = rf"(?!1 {LAP}(?: |$))(?!{NUM} {alt(*[w for w in LAP_NOUNS if w.endswith('s')])}(?: |$))"
+# Words that may join a value to the field after it ("6 m is the longest straight").
+_CONN = "(?:" + alt("is", "as", "for", "of", "be", "being", "the", "my", "our", "its", "a", "an", "should", "must", "will", "would", "to") + " ){0,3}"
+# "between 40 and 50 m", "40-50 m", "from 40 to 50", "2 or 3 hairpins": refused.
+_RANGE = _rx(rf"between {NUM}(?: {UNIT})? and {NUM}(?: {UNIT})?|(?:from )?{NUM}(?: {UNIT})? (?:to|or) {NUM}(?: {UNIT})?")
 _HALL_TAIL = rf"(?: {HALL})?"
 
 # (pattern, handler) in the order they run.
@@ -104,11 +124,11 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     # -- quantity then noun ("no turn tighter than 2 m radius" first: it ends in "radius")
     (_rx(rf"(?:{FILL})?(?:no|not|never) (?:{_TURNS} )?(?:{FILL})tighter than (?:a )?{_q('q')}(?: radius)?{_QEND}"),
      _setter("min_radius_m")),
-    (_rx(rf"{_q('q')} {_MINR}{_RKIND}radius"), _setter("min_radius_m")),
-    (_rx(rf"{_q('q')} (?:long )?{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
-    (_rx(rf"{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
+    (_rx(rf"{_FREE}{_q('q')} {_MINR}{_RKIND}radius"), _setter("min_radius_m")),
+    (_rx(rf"{_FREE}{_q('q')} (?:long )?{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
+    (_rx(rf"{_FREE}{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
      lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
-    (_rx(rf"{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
+    (_rx(rf"{_FREE}{_NOT_LAP_COUNT}{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
          rf"|{_q('t')} (?:in )?(?:total|overall)(?: (?:{LAP} )?{_LENGTHN})?"),
      lambda m, c, f: f.set("lap_length_m", _qty(m, next(g for g in "qpt" if m[g])), _span(c, m))),
     # -- noun then quantity
@@ -120,6 +140,11 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
      lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
     (_rx(rf"(?:(?:{LAP}|total|overall) )?(?:{LAP} )?{_LENGTHN} (?:{FILL}){_q('q')}{_QEND}"), _setter("lap_length_m")),
     (_rx(rf"{LAP} (?:{FILL}){_q('q')}(?: {_LONG}| around| round)?{_QEND}"), _setter("lap_length_m")),
+    # -- value before field: "six metres is the longest straight", "25 metres of lap"
+    (_rx(rf"{_FREE}{_q('q')} {_CONN}{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
+    (_rx(rf"{_FREE}{_q('q')} {_CONN}{_MINR}{_RKIND}radius"), _setter("min_radius_m")),
+    (_rx(rf"{_FREE}{_q('q')} {_CONN}(?:{CORR}|(?:{LAP} )?width)"), _setter("corridor_width_m")),
+    (_rx(rf"{_FREE}{_NOT_LAP_COUNT}{_q('q')} {_CONN}{LAP}(?: {_LENGTHN})?"), _setter("lap_length_m")),
     # -- bare fallbacks: "60 metres long", "1.5 m wide"
     (_rx(rf"{_q('q')} (?:{_LONG}|around|round)"), _setter("lap_length_m")),
     (_rx(rf"{_q('q')} {_WIDE}"), _setter("corridor_width_m")),
@@ -220,24 +245,117 @@ def _unparsed(text: str, c: Canon) -> tuple[Fragment, ...]:
     return tuple(out)
 
 
-def parse_rules(text: str) -> ParseResult:
-    """Parse ``text`` with the rules backend. Raises :class:`RequestParseError` on a
-    contradiction or a request whose stated values do not form a valid TrackSpec."""
-    if not isinstance(text, str) or not text.strip():
-        raise RequestParseError("the request is empty")
+def _refuse_ranges(text: str, c: Canon) -> None:
+    m = _RANGE.search(c.text)
+    if m is not None:
+        s, e = c.span(m.start(), m.end())
+        raise RequestParseError(
+            f"the request gives a range, {quote(text, s, e)} (characters {s}-{e}); a TrackSpec field takes one value: state one"
+        )
+
+
+_SCALE = _rx(rf"(?P<a>{NUM}) (?::|/) (?P<b>{NUM})(?P<s> scale[ds]?)?")
+
+
+def _scale(text: str, c: Canon) -> None:
+    """ "1:10 scale": the arena's fixed scale, explained; any other scale is refused."""
+    for m in _SCALE.finditer(c.text):
+        one_tenth = float(m["a"]) == 1 and float(m["b"]) == 10
+        if one_tenth:
+            c.consume(m.start(), m.end())
+        elif m["s"]:
+            s, e = c.span(m.start(), m.end())
+            raise RequestParseError(
+                f"{quote(text, s, e)} (characters {s}-{e}): RoboRacer Arena builds 1:10-scale tracks only"
+            )
+
+
+def _is_pronoun(text: str, c: Canon, k: int) -> bool:
+    """ "one" as a pronoun ("a track, one with a chicane"), not a quantity."""
+    t = c.tokens[k]
+    nxt = c.tokens[k + 1] if k + 1 < len(c.tokens) else None
+    return text[t.start : t.end].lower() == "one" and (nxt is None or nxt.kind != "unit")
+
+
+def _leftover_numbers(text: str, c: Canon, f: Found) -> list[Fragment]:
+    """Numbers no rule attributed. A lone length (number + unit) is the lap when the lap is
+    not stated: a track request has no other bare length."""
+    left = [k for k, t in enumerate(c.tokens) if t.kind == "num" and not c.used[k] and not _is_pronoun(text, c, k)]
+    lengths = [k for k in left if k + 1 < len(c.tokens) and c.tokens[k + 1].kind == "unit"]
+    if "lap_length_m" not in f.values and len(lengths) == 1:
+        k = lengths[0]
+        value = to_metres(float(c.tokens[k].value or 0.0), c.tokens[k + 1].canon)
+        f.set("lap_length_m", value, (c.tokens[k].start, c.tokens[k + 1].end))
+        c.consume_token(k)
+        c.consume_token(k + 1)
+        left.remove(k)
+    out = []
+    for k in left:
+        t = c.tokens[k]
+        end = c.tokens[k + 1].end if k + 1 < len(c.tokens) and c.tokens[k + 1].kind == "unit" else t.end
+        out.append(Fragment(text[t.start : end], t.start, end))  # left unconsumed: still "unparsed"
+    return out
+
+
+def _listing(numbers: list[Fragment], shown: int = 5) -> str:
+    out = ", ".join(f"{quote(n.text, 0, len(n.text))} (characters {n.start}-{n.end})" for n in numbers[:shown])
+    return out + (f" and {len(numbers) - shown} more" if len(numbers) > shown else "")
+
+
+def refuse_numbers(text: str, numbers: list[Fragment]) -> None:
+    """Refuse a request with numbers no field explains (the "nothing silently defaulted" rule)."""
+    if not numbers:
+        return
+    listing = _listing(numbers)
+    raise RequestParseError(
+        f"the request states {listing}, which no TrackSpec field explains; say what it is "
+        "(e.g. 'a 45 m lap', '2 hairpins') or ignore it with --lenient (lenient=True)"
+    )
+
+
+def ignored_note(numbers: list[Fragment]) -> str:
+    """The lenient-mode warning for unexplained numbers."""
+    listing = _listing(numbers)
+    return f"lenient: ignored {listing}, which no TrackSpec field explains; the fields they may have meant keep their defaults"
+
+
+def parse_rules(text: str, *, lenient: bool = False, max_chars: int | None = MAX_REQUEST_CHARS) -> ParseResult:
+    """Parse ``text`` with the rules backend.
+
+    Raises :class:`RequestParseError` on an empty or over-long request
+    (:data:`.limits.MAX_REQUEST_CHARS`; ``max_chars=None`` lifts the cap), a range, a
+    contradiction, a value outside its field's range, a number no field explains (unless
+    ``lenient``: then it is ignored with a warning), or stated values that do not form a
+    valid TrackSpec.
+    """
+    check_length(text, max_chars)
     f = Found(text)
     c = Canon(tokenize(text))
+    _refuse_ranges(text, c)
+    _scale(text, c)
     named = _find_name(text, f)
     if named is not None:
         c.consume_source(named[0], named[2])
     for rx, handle in RULES:
-        while (m := rx.search(c.text)) is not None:
+        for m in rx.finditer(c.text):  # a handler consumes only its own match
             handle(m, c, f)
             c.consume(m.start(), m.end())
     _direction(c, f)
     parse_features(c, f)
     _qualifiers(c, f)
-    return finish(text, f, _unparsed(text, c), backend="rules")
+    hedges = read_hedges(c, f.spans)
+    notes = apply_hedges(text, {k: v for k, v in hedges.items() if k in f.values})
+    stray = _leftover_numbers(text, c, f)
+    if stray and not lenient:
+        refuse_numbers(text, stray)
+    if stray:
+        notes.append(ignored_note(stray))
+    result = finish(text, f, _unparsed(text, c), backend="rules")
+    return result.replace(
+        warnings=tuple(notes),
+        hedges={k: h for k, (h, _) in hedges.items() if k in result.stated},
+        ignored=tuple(stray),
+    )
 
 
 def finish(text: str, f: Found, unparsed: tuple[Fragment, ...], backend: str) -> ParseResult:

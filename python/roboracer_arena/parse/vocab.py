@@ -9,7 +9,8 @@ def alt(*words: str) -> str:
     return "(?:" + "|".join(sorted(words, key=len, reverse=True)) + ")"
 
 
-NUM = r"\d+(?:\.\d+)?"
+#: A canonical number (see :func:`.lexer._fmt`): sign, decimals and exponent included.
+NUM = r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
 UNIT = alt("m", "cm", "mm", "km", "ft", "yd", "inch")
 
 HALL_NOUNS = (
@@ -38,7 +39,8 @@ FILL_WORDS = (
     "smaller", "shorter", "than", "minimum", "min", "measuring", "measures", "measure",
     "that", "which", "just", "nearly", "almost", "precisely", "ideally", "set", "equal",
     "equals", "always", "needs", "need", "it", "its", ":", "=", "~", ">", "≥", "some",
-    "total", "overall", "whose",
+    "total", "overall", "whose", "most", "more", "up", "under", "over", "max", "maximum", "below",
+    "above", "exceeding", "longer", "wider", "bigger", "larger", "circa", "ca",
 )  # fmt: skip
 FILL = "(?:" + alt(*[w for w in FILL_WORDS if w]) + " ){0,5}"
 
