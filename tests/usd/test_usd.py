@@ -13,7 +13,7 @@ from roboracer_arena.config import BuildConfig
 from roboracer_arena.errors import ConfigError
 from roboracer_arena.usd import METADATA_KEY, read_meshes, stage_metadata, validate_stage, write_stage
 
-from .synthetic import ring_meshes
+from builder.synthetic import ring_meshes
 
 META = {"source_map": "/maps/ring.yaml", "resolution": 0.05, "origin": [-5.0, -5.0, 0.0], "build_config": "{}"}
 
