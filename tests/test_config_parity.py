@@ -18,9 +18,9 @@ import pytest
 from pydantic import BaseModel, ValidationError
 
 from roboracer_arena import _core
-from roboracer_arena.config import GeometryConfig
+from roboracer_arena.build_config import GeometryConfig
 from roboracer_arena.constructor_config import ConstructorConfig
-from roboracer_arena.envs.config import SimConfig
+from roboracer_arena.sim_config import SimConfig
 from roboracer_arena.errors import ArenaError
 
 PAIRS: list[tuple[str, type[BaseModel]]] = [("sim", SimConfig), ("build", GeometryConfig), ("constructor", ConstructorConfig)]

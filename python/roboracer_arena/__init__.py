@@ -24,7 +24,7 @@ _LAZY = {
     "OccupancyMap": "roboracer_arena.maps",
     "extract_corridor": "roboracer_arena.corridor",
     "build_environment": "roboracer_arena.builder",
-    "BuildConfig": "roboracer_arena.config",
+    "BuildConfig": "roboracer_arena.build_config",
     "BuildReport": "roboracer_arena.builder",
     "generate_track": "roboracer_arena.generate",
     "parse_request": "roboracer_arena.parse",

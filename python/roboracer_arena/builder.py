@@ -18,7 +18,7 @@ import numpy as np
 from pydantic import BaseModel, Field
 
 from . import __version__
-from .config import BuildConfig
+from .build_config import BuildConfig
 from .errors import ConfigError, InvalidArgumentError
 
 MapLike = Any  # OccupancyMap | str | Path

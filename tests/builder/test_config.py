@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from roboracer_arena.config import BuildConfig
+from roboracer_arena.build_config import BuildConfig
 from roboracer_arena.errors import ArenaError, ConfigError
 
 # The Rust BuildParams field names the geometry section must mirror exactly.

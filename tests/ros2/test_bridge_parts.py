@@ -110,7 +110,7 @@ def test_library_bridge_on_an_env_and_on_a_simulator(ellipse_map, domain_id):
     import gymnasium as gym
 
     from roboracer_arena import _core
-    from roboracer_arena.envs.config import SimConfig
+    from roboracer_arena.sim_config import SimConfig
     from roboracer_arena.ros2 import Bridge
 
     env = gym.make("RoboRacerArena-v0", track=str(ellipse_map))

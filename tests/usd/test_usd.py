@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from pxr import Usd, UsdGeom, UsdPhysics, UsdShade
 
-from roboracer_arena.config import BuildConfig
+from roboracer_arena.build_config import BuildConfig
 from roboracer_arena.errors import ConfigError
 from roboracer_arena.usd import METADATA_KEY, read_meshes, stage_metadata, validate_stage, write_stage
 

@@ -134,7 +134,7 @@ def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
     import resource
 
     from ..builder import build_environment
-    from ..config import BuildConfig
+    from ..build_config import BuildConfig
     from ..usd import textures as tex
     from ..usd.stage import warm_up
 

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from .. import _core
-from ..envs.config import PhysicsConfig, SimConfig
+from ..sim_config import PhysicsConfig, SimConfig
 from ..fileio import atomic_write_text
 
 # Paper (Isaac Sim, AMD EPYC 9654 + RTX PRO 6000): vehicle-steps/s by vehicle count.

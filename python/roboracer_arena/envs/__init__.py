@@ -8,7 +8,7 @@ gymnasium is already imported, otherwise right after gymnasium's own import), so
 work; ``gymnasium.make("roboracer_arena:RoboRacerArena-v0", ...)`` works without it.
 """
 
-from .config import LidarConfig, PhysicsConfig, SimConfig, VehicleConfig
+from ..sim_config import LidarConfig, PhysicsConfig, SimConfig, VehicleConfig
 
 ENV_ID = "RoboRacerArena-v0"
 

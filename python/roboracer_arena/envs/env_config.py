@@ -2,7 +2,7 @@
 
 :class:`EnvConfig` holds everything about the task (control rate, observation, action,
 reward, episode ends, reset poses, vehicles per env) and the native simulator's
-:class:`~roboracer_arena.envs.config.SimConfig` (vehicle, lidar, physics). Every field
+:class:`~roboracer_arena.sim_config.SimConfig` (vehicle, lidar, physics). Every field
 can also be passed as a keyword to ``gymnasium.make``/``make_vec``; unknown keys fail.
 """
 
@@ -14,7 +14,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from ..errors import ConfigError
 
-from .config import SimConfig
+from ..sim_config import SimConfig
 
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 

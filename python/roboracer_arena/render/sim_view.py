@@ -10,7 +10,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 from PIL import Image, ImageDraw
 
-from ..envs.config import SimConfig
+from ..sim_config import SimConfig
 
 BACKGROUND = (246, 246, 242)
 WALL = (40, 40, 48)

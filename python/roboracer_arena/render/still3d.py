@@ -100,7 +100,7 @@ def _vtk() -> Any:
 
 def _material_colours(meta: dict[str, Any]) -> dict[str, tuple[float, float, float]]:
     """Floor, duct and ring colours the stage was built with (its build config), else the defaults."""
-    from ..config import BuildConfig
+    from ..build_config import BuildConfig
 
     cfg = BuildConfig()
     raw = meta.get("build_config")
@@ -164,7 +164,7 @@ def _add(vtk: Any, ren: Any, points: np.ndarray, triangles: np.ndarray, rgb: tup
 
 def _add_car(vtk: Any, ren: Any, pose: tuple[float, float, float]) -> None:
     """The env's car body (chassis length × width, 0.15 m tall) at ``pose``."""
-    from ..envs.config import SimConfig
+    from ..sim_config import SimConfig
 
     veh = SimConfig().vehicle
     box = vtk.vtkCubeSource()

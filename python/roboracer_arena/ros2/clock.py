@@ -17,7 +17,7 @@ from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from ..envs.config import SimConfig
+from ..sim_config import SimConfig
 from ..errors import ConfigError
 
 _EPS = 1e-9

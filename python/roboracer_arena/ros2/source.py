@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..envs.config import SimConfig
+from ..sim_config import SimConfig
 from ..errors import ConfigError
 
 

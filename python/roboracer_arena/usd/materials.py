@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pxr import Gf, Sdf, Usd, UsdPhysics, UsdShade
 
-from ..config import PhysicsConfig
+from ..build_config import StagePhysicsConfig
 from .textures import SHADE_MEAN
 
 LOOKS = "/World/Looks"
@@ -57,7 +57,7 @@ def define_preview_material(
     return mat
 
 
-def define_physics_material(stage: Usd.Stage, physics: PhysicsConfig) -> UsdShade.Material:
+def define_physics_material(stage: Usd.Stage, physics: StagePhysicsConfig) -> UsdShade.Material:
     """``/World/Looks/TrackPhysics``: static/dynamic friction and restitution of the track
     surfaces (one material, since the paper gives one tyre-surface friction)."""
     mat = UsdShade.Material.Define(stage, PHYSICS_MATERIAL)

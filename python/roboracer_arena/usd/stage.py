@@ -24,7 +24,7 @@ from typing import Any, Mapping
 import numpy as np
 from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics, Vt
 
-from ..config import BuildConfig
+from ..build_config import BuildConfig
 from ..errors import ConfigError
 from ..fileio import atomic_path
 from . import materials as looks

@@ -134,7 +134,7 @@ class MaterialsConfig(BaseModel):
     )
 
 
-class PhysicsConfig(BaseModel):
+class StagePhysicsConfig(BaseModel):
     """Physics material and scene."""
 
     model_config = _STRICT
@@ -167,7 +167,7 @@ class BuildConfig(BaseModel):
 
     geometry: GeometryConfig = Field(default_factory=GeometryConfig)
     materials: MaterialsConfig = Field(default_factory=MaterialsConfig)
-    physics: PhysicsConfig = Field(default_factory=PhysicsConfig)
+    physics: StagePhysicsConfig = Field(default_factory=StagePhysicsConfig)
     usd_format: Literal["usdc", "usda"] = Field(
         "usdc",
         description="USD encoding; binary crate (usdc) is ~5x smaller and faster to load, usda is for reading by eye.",
@@ -226,4 +226,4 @@ def _parse_json(p: Path, text: str) -> Any:
         raise ConfigError(f"{p}: not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from e
 
 
-__all__ = ["BuildConfig", "GeometryConfig", "MaterialsConfig", "PhysicsConfig"]
+__all__ = ["BuildConfig", "GeometryConfig", "MaterialsConfig", "StagePhysicsConfig"]
