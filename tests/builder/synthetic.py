@@ -62,3 +62,11 @@ def ring_meshes(r_in: float = 3.0, r_out: float = 4.5) -> list[StageMesh]:
         StageMesh("/World/Track/Walls", walls_p, walls_t, "Wall", collider=True, guide=True),
         StageMesh("/World/Track/Barriers/Ducts", np.r_[d_in, d_out], np.r_[d_in_t, d_out_t + len(d_in)], "Duct", st=np.r_[st, st]),
     ]
+
+
+def load_physics(stage):
+    """usd-core's UsdPhysics parse of a stage (the newer name when usd-core has it)."""
+    from pxr import UsdPhysics
+
+    load = getattr(UsdPhysics, "UsdPhysicsLoadStageFromPrimRange", None) or UsdPhysics.LoadUsdPhysicsFromRange
+    return load(stage, ["/"])

@@ -11,7 +11,7 @@ from roboracer_arena.errors import ArenaError, ConfigError, CorridorError, Inval
 from roboracer_arena.usd import read_meshes, stage_metadata, validation_errors
 
 from .ringmap import ring_raster, write_map
-from .test_usd import load_physics
+from .synthetic import load_physics
 
 
 @pytest.fixture(scope="module")

@@ -13,15 +13,9 @@ from roboracer_arena.build_config import BuildConfig
 from roboracer_arena.errors import ConfigError
 from roboracer_arena.usd import METADATA_KEY, read_meshes, stage_metadata, validate_stage, write_stage
 
-from builder.synthetic import ring_meshes
+from builder.synthetic import load_physics, ring_meshes
 
 META = {"source_map": "/maps/ring.yaml", "resolution": 0.05, "origin": [-5.0, -5.0, 0.0], "build_config": "{}"}
-
-
-def load_physics(stage: Usd.Stage) -> dict:
-    """The UsdPhysics parse (the newer name when usd-core has it)."""
-    load = getattr(UsdPhysics, "UsdPhysicsLoadStageFromPrimRange", None) or UsdPhysics.LoadUsdPhysicsFromRange
-    return load(stage, ["/"])
 
 
 @pytest.fixture(scope="module")
