@@ -10,6 +10,7 @@ from __future__ import annotations
 from ._core import (
     ArenaError,
     CorridorError,
+    InternalError,
     InvalidArgumentError,
     MapFormatError,
     MapIOError,
@@ -58,6 +59,7 @@ __all__ = [
     "ConfigError",
     "CorridorError",
     "GroundingError",
+    "InternalError",
     "InvalidArgumentError",
     "MapFormatError",
     "MalformedOutputError",
