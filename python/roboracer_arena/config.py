@@ -18,9 +18,11 @@ import json
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import ConfigDict, Field, ValidationError
 
-from .errors import ConfigError
+from .errors import ArenaError, ConfigError
+from .fileio import read_text
+from .strict import NumbersAreNumbers
 from .spec import format_validation_error
 
 Colour = tuple[float, float, float]
@@ -28,7 +30,7 @@ Colour = tuple[float, float, float]
 _STRICT = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
-class GeometryConfig(BaseModel):
+class GeometryConfig(NumbersAreNumbers):
     """Corridor extraction and mesh geometry (mirrors Rust ``BuildParams``)."""
 
     model_config = _STRICT
@@ -96,7 +98,7 @@ class GeometryConfig(BaseModel):
     )
 
 
-class MaterialsConfig(BaseModel):
+class MaterialsConfig(NumbersAreNumbers):
     """Colours (linear RGB in [0, 1]) and procedural textures of the visual materials."""
 
     model_config = _STRICT
@@ -134,7 +136,7 @@ class MaterialsConfig(BaseModel):
     )
 
 
-class PhysicsConfig(BaseModel):
+class PhysicsConfig(NumbersAreNumbers):
     """Physics material and scene."""
 
     model_config = _STRICT
@@ -160,7 +162,7 @@ class PhysicsConfig(BaseModel):
     gravity_m_s2: float = Field(9.81, gt=0, description="Gravity magnitude (m/s^2) along -Z; standard gravity.")
 
 
-class BuildConfig(BaseModel):
+class BuildConfig(NumbersAreNumbers):
     """Everything the map → environment builder can be told. All fields have defaults."""
 
     model_config = _STRICT
@@ -192,9 +194,9 @@ class BuildConfig(BaseModel):
         """Load from ``.toml`` or ``.json`` (chosen by suffix; other suffixes try JSON then TOML)."""
         p = Path(path)
         try:
-            text = p.read_text(encoding="utf-8")
-        except OSError as e:
-            raise ConfigError(f"{p}: cannot read build config: {e.strerror or e}") from e
+            text = read_text(p, "build config")
+        except ArenaError as e:
+            raise ConfigError(str(e)) from None
         suffix = p.suffix.lower()
         if suffix == ".toml":
             data = _parse_toml(p, text)
@@ -205,6 +207,8 @@ class BuildConfig(BaseModel):
                 data = json.loads(text)
             except json.JSONDecodeError:
                 data = _parse_toml(p, text)
+            except RecursionError:
+                raise ConfigError(f"{p}: JSON nested too deeply to be a build config") from None
         return cls.from_dict(data, source=str(p))
 
 
@@ -224,6 +228,8 @@ def _parse_json(p: Path, text: str) -> Any:
         return json.loads(text)
     except json.JSONDecodeError as e:
         raise ConfigError(f"{p}: not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from e
+    except RecursionError:
+        raise ConfigError(f"{p}: JSON nested too deeply to be a build config") from None
 
 
 __all__ = ["BuildConfig", "GeometryConfig", "MaterialsConfig", "PhysicsConfig"]

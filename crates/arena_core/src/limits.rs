@@ -124,11 +124,23 @@ pub fn check_range(field: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Res
 /// The count `length_m / spacing_m` (rounded up), refused when it would exceed
 /// [`MAX_DERIVED_COUNT`]; the message names `field` and the smallest allowed spacing.
 pub fn derived_count(field: &str, length_m: f64, spacing_m: f64) -> Result<usize> {
+    derived_count_each(field, length_m, spacing_m, 1)
+}
+
+/// [`derived_count`] for items of `each` elements (e.g. vertices per ring): the total
+/// `count × each` is what must stay within [`MAX_DERIVED_COUNT`].
+pub fn derived_count_each(
+    field: &str,
+    length_m: f64,
+    spacing_m: f64,
+    each: usize,
+) -> Result<usize> {
     let n = (length_m / spacing_m).ceil();
-    if !(n.is_finite() && n <= MAX_DERIVED_COUNT) {
-        let min = length_m / MAX_DERIVED_COUNT;
+    let total = n * each.max(1) as f64;
+    if !(total.is_finite() && total <= MAX_DERIVED_COUNT) {
+        let min = length_m * each.max(1) as f64 / MAX_DERIVED_COUNT;
         return Err(ArenaError::invalid(format!(
-            "{field} = {spacing_m} m would need {n:.3e} samples over {length_m:.1} m; \
+            "{field} = {spacing_m} m would need {total:.3e} samples over {length_m:.1} m; \
              it must be ≥ {min:.3e} m for this map"
         )));
     }
