@@ -44,10 +44,10 @@ def check_output(path: str | Path, inputs: Iterable[str | Path | None] = ()) -> 
     directory, a name over 255 bytes, a parent that is not a writable directory, or one
     of the command's own ``inputs`` (which it would destroy)."""
     path = Path(path)
+    if not path.name or len(os.fsencode(path.name)) > MAX_NAME_BYTES:
+        raise MapIOError(f"{str(path)[:80]}…: file name must be 1 to {MAX_NAME_BYTES} bytes")
     if path.is_dir():
         raise MapIOError(f"{path}: is a directory; give a file name to write")
-    if not path.name or len(os.fsencode(path.name)) > MAX_NAME_BYTES:
-        raise MapIOError(f"{path}: file name must be 1 to {MAX_NAME_BYTES} bytes")
     for src in inputs:
         if src is not None and Path(src).exists() and _same_file(path, Path(src)):
             raise InvalidArgumentError(f"{path}: the output would overwrite the input {src}")
@@ -128,11 +128,10 @@ def atomic_write_text(path: str | Path, text: str) -> None:
     atomic_write_bytes(path, text.encode("utf-8"))
 
 
-def read_regular_bytes(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BYTES) -> bytes:
-    """The bytes of the regular file ``path`` (a ``what``, for messages), at most
-    ``max_bytes``. A missing path, a directory, a FIFO, a device, a symlink loop or an
-    oversized file is refused with a one-line :class:`MapIOError` saying which, before
-    anything is opened (a FIFO would block, ``/dev/zero`` never ends)."""
+def require_regular(path: str | Path, what: str) -> os.stat_result:
+    """The ``stat`` of ``path`` if it is a regular file (symlinks followed); else a
+    one-line :class:`MapIOError` saying what it is instead: missing, a directory, a FIFO,
+    a device or a symlink loop. Nothing is opened (a FIFO would block)."""
     path = Path(path)
     try:
         st = os.stat(path)
@@ -146,9 +145,18 @@ def read_regular_bytes(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BY
             "a directory" if stat.S_ISDIR(st.st_mode)
             else "a FIFO (named pipe)" if stat.S_ISFIFO(st.st_mode)
             else "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
-            else "not a regular file"
+            else "a socket or other special file"
         )
         raise MapIOError(f"{path}: cannot read {what}: it is {kind}, not a regular file")
+    return st
+
+
+def read_regular_bytes(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BYTES) -> bytes:
+    """The bytes of the regular file ``path`` (a ``what``, for messages), at most
+    ``max_bytes``; anything but a regular file is refused by :func:`require_regular`
+    before it is opened (a FIFO would block, ``/dev/zero`` never ends)."""
+    path = Path(path)
+    st = require_regular(path, what)
     if st.st_size > max_bytes:
         raise MapIOError(f"{path}: {what} is {st.st_size} bytes, more than the {max_bytes} allowed")
     try:

@@ -24,6 +24,16 @@ pub const MAX_YAW_RAD: f64 = 2.0 * std::f64::consts::PI + 1e-9;
 /// Most samples, vertices or rings one derived count may reach.
 pub const MAX_DERIVED_COUNT: f64 = 5_000_000.0;
 
+/// A number for an error message: short scientific notation when it is huge or tiny
+/// (`1e300`, not three hundred digits).
+pub fn show(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-3..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// The pixel budget in force: [`MAX_PIXELS_ENV`] if set, else [`DEFAULT_MAX_PIXELS`].
 pub fn max_pixels() -> Result<u64> {
     match std::env::var(MAX_PIXELS_ENV) {
@@ -59,7 +69,8 @@ pub fn check_resolution(resolution: f64) -> Result<()> {
     let (lo, hi) = RESOLUTION_RANGE_M;
     if !(lo..=hi).contains(&resolution) {
         return Err(ArenaError::invalid(format!(
-            "resolution must be in [{lo}, {hi}] m per cell, got {resolution}"
+            "resolution must be in [{lo}, {hi}] m per cell, got {}",
+            show(resolution)
         )));
     }
     Ok(())
@@ -71,12 +82,15 @@ pub fn check_origin(origin: [f64; 3]) -> Result<()> {
     let span = -MAX_ORIGIN_M..=MAX_ORIGIN_M;
     if !(span.contains(&x) && span.contains(&y)) {
         return Err(ArenaError::invalid(format!(
-            "origin x and y must be in [-{MAX_ORIGIN_M}, {MAX_ORIGIN_M}] m, got [{x}, {y}]"
+            "origin x and y must be in [-{MAX_ORIGIN_M}, {MAX_ORIGIN_M}] m, got [{}, {}]",
+            show(x),
+            show(y)
         )));
     }
     if !(-MAX_YAW_RAD..=MAX_YAW_RAD).contains(&yaw) {
         return Err(ArenaError::invalid(format!(
-            "origin yaw must be in [-2π, 2π] rad, got {yaw}"
+            "origin yaw must be in [-2π, 2π] rad, got {}",
+            show(yaw)
         )));
     }
     Ok(())
@@ -115,7 +129,8 @@ pub fn check_grid_header(
 pub fn check_range(field: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<()> {
     if !(lo..=hi).contains(&value) {
         return Err(ArenaError::invalid(format!(
-            "{field} must be in [{lo}, {hi}]{unit}, got {value}"
+            "{field} must be in [{lo}, {hi}]{unit}, got {}",
+            show(value)
         )));
     }
     Ok(())
@@ -140,8 +155,9 @@ pub fn derived_count_each(
     if !(total.is_finite() && total <= MAX_DERIVED_COUNT) {
         let min = length_m * each.max(1) as f64 / MAX_DERIVED_COUNT;
         return Err(ArenaError::invalid(format!(
-            "{field} = {spacing_m} m would need {total:.3e} samples over {length_m:.1} m; \
-             it must be ≥ {min:.3e} m for this map"
+            "{field} = {} m would need {total:.3e} samples over {length_m:.1} m; \
+             it must be ≥ {min:.3e} m for this map",
+            show(spacing_m)
         )));
     }
     Ok(n.max(0.0) as usize)

@@ -28,10 +28,12 @@ def register(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import InvalidArgumentError
+    from ..fileio import check_output
     from ..render.preview import preview_map, preview_usd
 
     if args.max_px < 16:
         raise InvalidArgumentError(f"--max-px must be at least 16, got {args.max_px}")
+    check_output(args.out, inputs=[args.source, *_map_image(args.source)])
     if args.source.suffix.lower() in USD_SUFFIXES:
         summary = preview_usd(args.source, args.out, max_px=args.max_px)
     else:
@@ -41,3 +43,21 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"wrote {summary.output} ({summary.size_px[0]}x{summary.size_px[1]} px): {', '.join(summary.drawn)}")
     return 0
+
+
+def _map_image(source: Path) -> list[Path]:
+    """The image a map YAML names (so the picture cannot overwrite it), if readable;
+    a broken YAML is left for the loader to report."""
+    import re
+
+    from ..errors import ArenaError
+    from ..fileio import read_text
+
+    if source.suffix.lower() in USD_SUFFIXES:
+        return []
+    try:
+        text = read_text(source, "map YAML", 1 << 20)
+    except ArenaError:
+        return []
+    m = re.search(r"^image:\s*['\"]?([^'\"\n#]+?)['\"]?\s*$", text, re.M)
+    return [source.parent / m.group(1)] if m else []

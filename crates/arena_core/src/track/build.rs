@@ -130,15 +130,7 @@ pub fn build_geometry(
         t = Instant::now();
     };
     params.validate()?;
-    if !(g.resolution.is_finite() && g.resolution > 0.0) || g.data.len() != g.width * g.height {
-        return Err(ArenaError::invalid(format!(
-            "invalid map: resolution {} and {} cells for {}×{}",
-            g.resolution,
-            g.data.len(),
-            g.width,
-            g.height
-        )));
-    }
+    g.check()?;
     let p = params.effective(g.resolution);
     let res = g.resolution;
     let corridor = isolate_corridor(g, start)?;

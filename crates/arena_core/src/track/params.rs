@@ -111,7 +111,8 @@ impl BuildParams {
             return Err(ArenaError::invalid(format!(
                 "build params: geometry.ring_spacing_m must be 0 (no rings) or in [{}, 1000] m \
                  (at least ring_width_m), got {}",
-                self.ring_width_m, self.ring_spacing_m
+                self.ring_width_m,
+                crate::limits::show(self.ring_spacing_m)
             )));
         }
         if !(3..=64).contains(&self.tube_segments) {
