@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 import stat
 import tempfile
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import Iterable, Iterator, Sequence
 
@@ -99,16 +99,14 @@ def atomic_paths(paths: Sequence[str | Path]) -> Iterator[list[Path]]:
         where = getattr(e, "filename", None) or (targets[0] if targets else "")
         raise MapIOError(f"{where}: cannot write: {_why(e)}") from e
     finally:
-        for tmp in temps:
-            Path(tmp).unlink(missing_ok=True)
+        leftovers = temps if ok else [*temps, *committed]
+        for p in leftovers:
+            with suppress(OSError):
+                Path(p).unlink(missing_ok=True)
         if not ok:
-            for t in committed:
-                t.unlink(missing_ok=True)
             for d in reversed(made_dirs):
-                try:
+                with suppress(OSError):
                     d.rmdir()
-                except OSError:
-                    pass
 
 
 @contextmanager
