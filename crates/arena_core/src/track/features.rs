@@ -226,7 +226,12 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
 
     // Start the scan on the sample that is most straight so no turn wraps around 0.
     let start = (0..n)
-        .min_by(|&a, &b| kappa[a].abs().total_cmp(&kappa[b].abs()))
+        .min_by(|&a, &b| {
+            kappa[a]
+                .abs()
+                .partial_cmp(&kappa[b].abs())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
         .unwrap_or(0);
     let at = |k: usize| kappa[(start + k) % n];
 
