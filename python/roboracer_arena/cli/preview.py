@@ -48,16 +48,14 @@ def run(args: argparse.Namespace) -> int:
 def _map_image(source: Path) -> list[Path]:
     """The image a map YAML names (so the picture cannot overwrite it), if readable;
     a broken YAML is left for the loader to report."""
-    import re
-
     from ..errors import ArenaError
     from ..fileio import read_text
+    from ..maps import image_named_by
 
     if source.suffix.lower() in USD_SUFFIXES:
         return []
     try:
-        text = read_text(source, "map YAML", 1 << 20)
+        image = image_named_by(read_text(source, "map YAML", 1 << 20))
     except ArenaError:
         return []
-    m = re.search(r"^image:\s*['\"]?([^'\"\n#]+?)['\"]?\s*$", text, re.M)
-    return [source.parent / m.group(1)] if m else []
+    return [source.parent / image] if image else []

@@ -12,6 +12,7 @@ from typing import Any
 
 from .. import __version__
 from ..fileio import atomic_write_text
+from ..maps import image_named_by
 from .catalog import Catalog, provenance, sha256_file
 from .directions import annotate_directions
 from .recorded import assess_all
@@ -93,8 +94,7 @@ def _recorded_entries(sources: Path, jobs: int, progress) -> tuple[list[dict[str
             left_out.append({"id": r["id"], "source_path": r["source_path"], "reason": r["reason"]})
             continue
         yaml_path = sources / r["source_path"]
-        img = re.search(r"^\s*image:\s*['\"]?([^'\"\n]+?)['\"]?\s*$", yaml_path.read_text(encoding="utf-8"), re.M)
-        img_path = yaml_path.parent / img.group(1).strip()  # type: ignore[union-attr]
+        img_path = yaml_path.parent / str(image_named_by(yaml_path.read_text(encoding="utf-8")))
         notes = [f"corridor checked with {r['corridor_check']}"]
         if r.get("infields", 1) > 1:
             notes.append(f"{r['infields']} enclosed regions (obstacles or islands in the corridor)")

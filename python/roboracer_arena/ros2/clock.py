@@ -18,7 +18,8 @@ from pathlib import Path
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from ..envs.config import SimConfig
-from ..errors import ConfigError
+from ..errors import ArenaError, ConfigError
+from ..fileio import read_text
 
 _EPS = 1e-9
 
@@ -48,11 +49,13 @@ class BridgeConfig(BaseModel):
         """Read a JSON file; bad JSON or fields fail with :class:`ConfigError` naming the file."""
         p = Path(path)
         try:
-            raw = json.loads(p.read_text(encoding="utf-8"))
-        except OSError as e:
-            raise ConfigError(f"{p}: cannot read bridge config: {e.strerror or e}") from e
+            raw = json.loads(read_text(p, "bridge config"))
+        except ArenaError as e:
+            raise ConfigError(str(e)) from None
         except json.JSONDecodeError as e:
             raise ConfigError(f"{p}: not valid JSON: {e}") from e
+        except RecursionError:
+            raise ConfigError(f"{p}: JSON nested too deeply to be a bridge config") from None
         try:
             return cls.model_validate(raw)
         except ValidationError as e:
