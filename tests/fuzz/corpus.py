@@ -40,6 +40,12 @@ CORPUS: list[dict] = [
                                                "b.pgm": b64(pgm_declaring(2**62, 2**62, 65535, ascii=False))}, codes=[2]),
     build_case("png-2^31-1-squared", {"ring.yaml": text(map_yaml("b.png")), "b.png": b64(png_declaring(2**31 - 1, 2**31 - 1))},
                codes=[2], one_line=True),
+    # the pixel budget is configurable: a 120² map is over a 10 kP budget, and a bad budget is named
+    build_case("pixel-budget-env", ring_map(), codes=[2], env={"ROBORACER_ARENA_MAX_PIXELS": "10000"},
+               says=["ROBORACER_ARENA_MAX_PIXELS"], one_line=True),
+    build_case("pixel-budget-env-garbage", ring_map(), codes=[2], env={"ROBORACER_ARENA_MAX_PIXELS": "lots"},
+               says=["ROBORACER_ARENA_MAX_PIXELS"], one_line=True),
+    build_case("pixel-budget-env-raised", ring_map(), codes=[0], env={"ROBORACER_ARENA_MAX_PIXELS": "20000"}),
     # implausible resolutions and origins: refused with the allowed range
     *(build_case(f"resolution-{r}", ring_map(resolution=r), codes=[2], says=["resolution"], one_line=True)
       for r in ("1e6", "1e300", "1e-300", "1000", ".nan", "-0.05")),

@@ -4,6 +4,7 @@ Reads a JSON list of cases on stdin. Each case is run in a fresh directory:
 
 * ``files``: name → ``{"text": ...}`` | ``{"b64": ...}`` | ``{"fifo": true}`` |
   ``{"dir": true}`` | ``{"symlink": target}`` written there first;
+* ``env``: environment variables set for the case only;
 * then either ``argv`` (the CLI, ``roboracer_arena.cli.main``) or ``api`` (a name from
   :data:`API` with ``args``) is run with stderr captured.
 
@@ -93,7 +94,8 @@ def run_case(case: dict) -> dict:
         _materialise(root, case.get("files", {}))
         before = {p.relative_to(root) for p in root.rglob("*")}
         err, exc, code = io.StringIO(), None, None
-        cwd = os.getcwd()
+        cwd, env = os.getcwd(), dict(os.environ)
+        os.environ.update(case.get("env", {}))
         os.chdir(root)
         try:
             with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
@@ -113,6 +115,8 @@ def run_case(case: dict) -> dict:
             exc = "".join(traceback.format_exception(e))[-2000:]
         finally:
             os.chdir(cwd)
+            os.environ.clear()
+            os.environ.update(env)
         left = sorted(str(q) for q in (p.relative_to(root) for p in root.rglob("*")) if q not in before)
         return {"id": case["id"], "code": code, "err": err.getvalue()[-2000:], "exc": exc, "left": left}
 

@@ -356,8 +356,15 @@ pub fn save_map(
             .map_err(|e| ArenaError::io(&image_path, e))?,
         ImageFormat::Pgm => pgm::encode(&grid.data, grid.width, grid.height),
     };
+    // Both files or neither: an image this call created is removed if the YAML fails.
+    let image_existed = image_path.exists();
     atomic_write(&image_path, &bytes)?;
-    atomic_write(yaml_path, map_yaml(grid, &image_name).as_bytes())?;
+    if let Err(e) = atomic_write(yaml_path, map_yaml(grid, &image_name).as_bytes()) {
+        if !image_existed {
+            let _ = std::fs::remove_file(&image_path);
+        }
+        return Err(e);
+    }
     Ok(image_path)
 }
 

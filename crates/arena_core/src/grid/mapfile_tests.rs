@@ -354,3 +354,15 @@ fn hostile_headers_and_fields_are_refused_before_allocating() {
         assert!(e.to_string().contains("device"), "{e}");
     }
 }
+
+#[test]
+fn save_writes_both_files_or_neither() {
+    let d = TmpDir::new("save");
+    let g = OccupancyGrid::filled(4, 3, 0.05, [0.0; 3], FREE);
+    // The YAML's name is taken by a directory: the write fails and no image is left.
+    std::fs::create_dir_all(d.0.join("m.yaml")).unwrap();
+    assert!(save_map(&g, d.0.join("m.yaml"), ImageFormat::Png).is_err());
+    assert!(!d.0.join("m.png").exists());
+    let img = save_map(&g, d.0.join("ok.yaml"), ImageFormat::Pgm).unwrap();
+    assert!(img.exists() && d.0.join("ok.yaml").exists());
+}
