@@ -92,6 +92,10 @@ CORPUS: list[dict] = [
      "codes": [2], "target": "p.png"},
     {"id": "preview-usd-bad-indices", "files": {"s.usda": text(BAD_INDEX_USDA)}, "argv": ["preview", "s.usda", "-o", "p.png"],
      "codes": [2], "target": "p.png"},
+    {"id": "drive-gif-is-directory", "files": {**ring_map(), "g.gif": {"dir": True}},
+     "argv": ["drive", "ring.yaml", "--gif", "g.gif"], "codes": [2], "says": ["directory"], "one_line": True},
+    {"id": "drive-gif-overwrites-map", "files": ring_map(), "argv": ["drive", "ring.yaml", "--gif", "ring.yaml"],
+     "codes": [2], "says": ["overwrite"]},
     # CLI numbers
     {"id": "drive-max-time-nan", "files": ring_map(), "argv": ["drive", "ring.yaml", "--max-time", "nan"], "codes": [2],
      "says": ["--max-time"]},
