@@ -14,7 +14,9 @@ from pathlib import Path
 #: below it, and an allocation bomb that slips through dies here instead of the machine.
 MEMORY_CAP_BYTES = 3 << 30
 WORKER = Path(__file__).with_name("worker.py")
-PANIC_TEXT = ("panicked", "PanicException", "Traceback")
+#: A caught panic is reported as ``InternalError`` ("internal error on this input"): the
+#: boundary keeps the process alive, but for the fuzz suite it is still a bug.
+PANIC_TEXT = ("panicked", "PanicException", "Traceback", "internal error", "InternalError")
 
 
 def _cap_memory() -> None:
@@ -39,6 +41,9 @@ def run_cases(cases: list[dict], timeout_s: float = 240.0) -> dict[str, dict]:
         raise AssertionError(
             f"worker died (exit {proc.returncode}) on case {current!r}: {proc.stderr[-1500:]}"
         )
+    # Whatever reached the process's own stderr (Rust writes there directly) must be clean too.
+    leaked = [t for t in PANIC_TEXT if t in proc.stderr]
+    assert not leaked, f"panic text on the worker's stderr: {proc.stderr[-1500:]}"
     return results
 
 

@@ -194,3 +194,32 @@ fn map_yaml_fields_never_panic() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn geometry_building_blocks_never_panic() {
+    use arena_core::geometry::{contour, smooth, tube};
+    use arena_core::grid::edt;
+    let mut rng = ChaCha8Rng::seed_from_u64(15);
+    for _ in 0..CASES {
+        let n = (rng.next_u32() % 8) as usize;
+        let pts: Vec<[f64; 2]> = (0..n).map(|_| [num(&mut rng), num(&mut rng)]).collect();
+        let (a, b) = (num(&mut rng), (rng.next_u32() % 70) as usize);
+        no_panic(("simplify", &pts, a), || smooth::simplify_closed(&pts, a));
+        no_panic(("smooth", &pts, b), || smooth::smooth_closed(&pts, b));
+        // Spacing and radius come validated from BuildParams; only plausible ones here.
+        let s = a.abs().clamp(1e-3, 10.0);
+        if arena_core::geometry::polyline_length(&pts, true) / s < 1e6 {
+            no_panic(("resample", &pts, s), || smooth::resample_closed(&pts, s));
+            no_panic(("tube", &pts, s), || {
+                tube::sweep_closed_tube(&pts, s, 0.0, 3 + b % 10)
+            });
+        }
+        let (w, h) = ((rng.next_u32() % 9) as usize, (rng.next_u32() % 9) as usize);
+        let f: Vec<f32> = (0..w * h).map(|_| num(&mut rng) as f32).collect();
+        no_panic(("marching", w, h), || {
+            contour::marching_squares(&f, w, h, a as f32)
+        });
+        let mask: Vec<bool> = (0..w * h).map(|_| rng.next_u32() % 3 == 0).collect();
+        no_panic(("edt", w, h, a), || edt::edt_within(&mask, w, h, a));
+    }
+}
