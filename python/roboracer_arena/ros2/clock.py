@@ -15,16 +15,17 @@ import math
 import time
 from pathlib import Path
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import ConfigDict, Field, ValidationError
 
 from ..envs.config import SimConfig
 from ..errors import ArenaError, ConfigError
 from ..fileio import read_text
+from ..strict import NumbersAreNumbers
 
 _EPS = 1e-9
 
 
-class RatesConfig(BaseModel):
+class RatesConfig(NumbersAreNumbers):
     """Publication and control rates (Hz). Defaults are the paper's (scan 39.9 Hz, odometry
     50 Hz, drive commands 20 Hz); ``/clock`` at 100 Hz, ``/tf`` with odometry."""
 
@@ -36,7 +37,7 @@ class RatesConfig(BaseModel):
     clock_hz: float = Field(100.0, gt=0, le=1000, description="/clock rate.")
 
 
-class BridgeConfig(BaseModel):
+class BridgeConfig(NumbersAreNumbers):
     """Everything ``roboracer-arena ros2 --config F`` reads (JSON): rates and the simulator."""
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
