@@ -5,6 +5,7 @@ behind on failure."""
 from __future__ import annotations
 
 import json
+import os
 import resource
 import subprocess
 import sys
@@ -25,9 +26,11 @@ def _cap_memory() -> None:
 
 def run_cases(cases: list[dict], timeout_s: float = 240.0) -> dict[str, dict]:
     """Results by case id. A worker that dies or overruns fails with the case it was on."""
+    # Few threads, so the address space the cap measures does not grow with the CI's cores.
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "RAYON_NUM_THREADS": "2", "PXR_WORK_THREAD_LIMIT": "2"}
     proc = subprocess.run(
         [sys.executable, str(WORKER)], input=json.dumps(cases), capture_output=True, text=True,
-        timeout=timeout_s, preexec_fn=_cap_memory,
+        timeout=timeout_s, preexec_fn=_cap_memory, env=env,
     )
     results, current = {}, None
     for line in proc.stdout.splitlines():
