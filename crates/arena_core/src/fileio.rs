@@ -138,7 +138,7 @@ pub fn read_regular(path: &Path, what: &str, max_bytes: u64) -> Result<Vec<u8>> 
         .map_err(|e| ArenaError::io(path, format!("cannot read {what}: {e}")))?;
     let mut bytes = Vec::with_capacity(meta.len() as usize);
     // `take` also bounds a file that grows after the size check.
-    f.take(max_bytes + 1)
+    f.take(max_bytes.saturating_add(1))
         .read_to_end(&mut bytes)
         .map_err(|e| ArenaError::io(path, format!("cannot read {what}: {e}")))?;
     if bytes.len() as u64 > max_bytes {
