@@ -5,8 +5,8 @@
 
 use crate::error::{ArenaError, Result};
 
-/// Default pixel budget of one raster (width × height). At ~33 bytes per pixel for a
-/// build this keeps the peak near 7 GB; raise it with [`MAX_PIXELS_ENV`].
+/// Default pixel budget of one raster (width × height). At ~31 MB per MP for a build
+/// (BENCHMARKS.md) this keeps the peak near 6 GB; raise it with [`MAX_PIXELS_ENV`].
 pub const DEFAULT_MAX_PIXELS: u64 = 200_000_000;
 /// Environment variable overriding [`DEFAULT_MAX_PIXELS`] (a positive integer).
 pub const MAX_PIXELS_ENV: &str = "ROBORACER_ARENA_MAX_PIXELS";
