@@ -10,6 +10,12 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
+import io
+
+from PIL import Image
+
+from builder.ringmap import ring_raster
+
 from .cases import b64, build_case, map_yaml, pgm_declaring, png_declaring, ring_map, ring_png, text
 from .corpus import SPEC_OK
 from .harness import check_all
@@ -77,6 +83,23 @@ def hostile_map(draw) -> dict:
 
 
 @st.composite
+def random_raster(draw) -> dict:
+    """A build of a small random map: blobs, noise and rings of free, occupied and unknown
+    cells at a valid resolution (real corridors sometimes, degenerate ones mostly)."""
+    import numpy as np
+
+    h, w = draw(st.integers(1, 48)), draw(st.integers(1, 48))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    img = rng.choice(np.array([0, 254, 205, 128], np.uint8), size=(h, w), p=[0.3, 0.55, 0.1, 0.05])
+    if draw(st.booleans()):  # a ring corridor under the noise
+        img = np.where(rng.random((h, w)) < 0.9, ring_raster(max(h, w))[:h, :w], img).astype(np.uint8)
+    buf = io.BytesIO()
+    Image.fromarray(img, mode="L").save(buf, format="PNG")
+    start = draw(st.none() | st.tuples(st.floats(-5.1, -2.5), st.floats(-5.1, -2.5)).map(lambda p: f"--start={p[0]},{p[1]}"))
+    return build_case("", {"ring.png": b64(buf.getvalue()), "ring.yaml": text(map_yaml())}, *([start] if start else []))
+
+
+@st.composite
 def hostile_spec(draw) -> dict:
     """``validate`` of a valid ring map against a spec with 1–3 hostile fields."""
     spec = dict(SPEC_OK)
@@ -135,6 +158,10 @@ def hostile_flags(draw) -> dict:
 
 def test_hostile_maps():
     check_all(numbered("map", draw_cases(hostile_map(), 40)))
+
+
+def test_random_rasters():
+    check_all(numbered("raster", draw_cases(random_raster(), 40)))
 
 
 def test_hostile_specs():
