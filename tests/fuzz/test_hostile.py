@@ -157,23 +157,23 @@ def hostile_flags(draw) -> dict:
 # -- tests ----------------------------------------------------------------------------
 
 def test_hostile_maps():
-    check_all(numbered("map", draw_cases(hostile_map(), 40)))
+    check_all(numbered("map", draw_cases(hostile_map(), 60)))
 
 
 def test_random_rasters():
-    check_all(numbered("raster", draw_cases(random_raster(), 40)))
+    check_all(numbered("raster", draw_cases(random_raster(), 80)))
 
 
 def test_hostile_specs():
-    check_all(numbered("spec", draw_cases(hostile_spec(), 25)))
+    check_all(numbered("spec", draw_cases(hostile_spec(), 40)))
 
 
 def test_hostile_configs():
-    check_all(numbered("config", draw_cases(hostile_config(), 25)))
+    check_all(numbered("config", draw_cases(hostile_config(), 40)))
 
 
 def test_hostile_cli_numbers():
-    check_all(numbered("flags", draw_cases(hostile_flags(), 40)))
+    check_all(numbered("flags", draw_cases(hostile_flags(), 60)))
 
 
 @pytest.mark.xfail(reason="owned by parser branch: long and numeric requests", strict=False)
