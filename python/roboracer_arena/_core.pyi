@@ -16,9 +16,12 @@ class InvalidArgumentError(ArenaError): ...
 class ConfigError(ArenaError): ...
 class SpecError(ArenaError): ...
 class SimulationError(ArenaError): ...
+class InternalError(ArenaError):
+    """A caught Rust panic: the core failed on an input it should have refused."""
 
 def distance_transform(feature: npt.NDArray[np.bool_]) -> npt.NDArray[np.float32]:
-    """Exact Euclidean distance (cells) from every cell to the nearest True cell."""
+    """Exact Euclidean distance (cells) from every cell to the nearest True cell.
+    InvalidArgumentError above the pixel budget (``ROBORACER_ARENA_MAX_PIXELS``)."""
 
 # --- generate (requirements → track): rasteriser, screen, lattice, validator ---------
 def rasterise_centreline(
@@ -66,11 +69,15 @@ def check_config(kind: str, json: str) -> str:
     """Parse and validate a config as the core does (raises ConfigError); returns it normalised."""
 
 def analyse_curve(xy: npt.NDArray[np.float64], corner_radius: float, exclude_m: float) -> str:
-    """Curvature analysis of a closed curve as JSON (turns, features, min radius, self_clearance_m)."""
+    """Curvature analysis of a closed curve as JSON (turns, features, min radius, self_clearance_m).
+    InvalidArgumentError unless ≥ 3 finite points span a length in (0, 5000] m and
+    ``corner_radius`` / ``exclude_m`` are finite and in range."""
 
 # --- maps (ROS map YAML + PGM/PNG, nav2 rules) ---------------------------------------
 def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], str]:
-    """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta_json)``."""
+    """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta_json)``.
+    The YAML and image must be regular files; the image size is checked against the pixel
+    budget from its header, resolution and origin against ``arena_core::limits``."""
 
 def save_map(
     data: npt.NDArray[np.uint8],

@@ -18,9 +18,11 @@ import json
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import ConfigDict, Field, ValidationError, model_validator
 
-from .errors import ConfigError
+from .errors import ArenaError, ConfigError
+from .fileio import read_text
+from .strict import NumbersAreNumbers
 from .spec import format_validation_error
 
 Colour = tuple[float, float, float]
@@ -28,14 +30,14 @@ Colour = tuple[float, float, float]
 _STRICT = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
-class GeometryConfig(BaseModel):
+class GeometryConfig(NumbersAreNumbers):
     """Corridor extraction and mesh geometry (mirrors Rust ``BuildParams``)."""
 
     model_config = _STRICT
 
     wall_height_m: float = Field(
         0.5,
-        gt=0,
+        ge=1e-3,
         le=10,
         description="Height of the extruded collision walls (m). 0.5 m is well above the 1:10 car's lidar (~0.1 m) and chassis, so nothing drives or scans over a wall.",
     )
@@ -47,7 +49,7 @@ class GeometryConfig(BaseModel):
     )
     tube_diameter_m: float = Field(
         0.33,
-        gt=0,
+        ge=1e-3,
         le=2,
         description="Diameter of the visual air-duct tubes (m): the 33 cm air ducts that bound RoboRacer tracks (the paper's default).",
     )
@@ -60,22 +62,25 @@ class GeometryConfig(BaseModel):
     ring_spacing_m: float = Field(
         1.0,
         ge=0,
+        le=1000,
         description="Arc-length spacing of the rings drawn on the ducts (m); ~1 m matches the segment joints of real air ducts. 0 disables rings.",
     )
     ring_width_m: float = Field(
         0.05,
-        gt=0,
+        ge=1e-3,
+        le=10,
         description="Length of each ring band along the duct (m); 5 cm reads as a band without hiding the tube.",
     )
     ring_scale: float = Field(
         1.12,
-        gt=0,
+        ge=0.1,
         le=3,
         description="Ring radius as a multiple of the tube radius; 1.12 makes the band stand just proud of the tube so it is visible without z-fighting.",
     )
     simplify_tolerance_m: float = Field(
         0.0,
         ge=0,
+        le=10,
         description="Douglas-Peucker tolerance for walls and ducts (m); 0 means half a map cell, the raster's own uncertainty, so simplification never moves a wall by more than the map can resolve.",
     )
     smoothing_iterations: int = Field(
@@ -86,17 +91,25 @@ class GeometryConfig(BaseModel):
     )
     centreline_spacing_m: float = Field(
         0.1,
-        gt=0,
+        ge=1e-3,
+        le=10,
         description="Sample spacing of the extracted centreline (m); 0.1 m is finer than the car's wheelbase (0.33 m).",
     )
     floor_margin_m: float = Field(
         0.5,
         ge=0,
+        le=100,
         description="Margin of the floor quad around the ducts (m); 0.5 m keeps the ducts' footprint (0.33 m) on the floor.",
     )
 
+    @model_validator(mode="after")
+    def _rings_apart(self) -> GeometryConfig:
+        if 0 < self.ring_spacing_m < self.ring_width_m:
+            raise ValueError(f"ring_spacing_m must be 0 (no rings) or at least ring_width_m ({self.ring_width_m}), got {self.ring_spacing_m}")
+        return self
 
-class MaterialsConfig(BaseModel):
+
+class MaterialsConfig(NumbersAreNumbers):
     """Colours (linear RGB in [0, 1]) and procedural textures of the visual materials."""
 
     model_config = _STRICT
@@ -134,7 +147,7 @@ class MaterialsConfig(BaseModel):
     )
 
 
-class StagePhysicsConfig(BaseModel):
+class StagePhysicsConfig(NumbersAreNumbers):
     """Physics material and scene."""
 
     model_config = _STRICT
@@ -160,7 +173,7 @@ class StagePhysicsConfig(BaseModel):
     gravity_m_s2: float = Field(9.81, gt=0, description="Gravity magnitude (m/s^2) along -Z; standard gravity.")
 
 
-class BuildConfig(BaseModel):
+class BuildConfig(NumbersAreNumbers):
     """Everything the map → environment builder can be told. All fields have defaults."""
 
     model_config = _STRICT
@@ -192,9 +205,9 @@ class BuildConfig(BaseModel):
         """Load from ``.toml`` or ``.json`` (chosen by suffix; other suffixes try JSON then TOML)."""
         p = Path(path)
         try:
-            text = p.read_text(encoding="utf-8")
-        except OSError as e:
-            raise ConfigError(f"{p}: cannot read build config: {e.strerror or e}") from e
+            text = read_text(p, "build config")
+        except ArenaError as e:
+            raise ConfigError(str(e)) from None
         suffix = p.suffix.lower()
         if suffix == ".toml":
             data = _parse_toml(p, text)
@@ -205,6 +218,8 @@ class BuildConfig(BaseModel):
                 data = json.loads(text)
             except json.JSONDecodeError:
                 data = _parse_toml(p, text)
+            except RecursionError:
+                raise ConfigError(f"{p}: JSON nested too deeply to be a build config") from None
         return cls.from_dict(data, source=str(p))
 
 
@@ -224,6 +239,8 @@ def _parse_json(p: Path, text: str) -> Any:
         return json.loads(text)
     except json.JSONDecodeError as e:
         raise ConfigError(f"{p}: not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from e
+    except RecursionError:
+        raise ConfigError(f"{p}: JSON nested too deeply to be a build config") from None
 
 
 __all__ = ["BuildConfig", "GeometryConfig", "MaterialsConfig", "StagePhysicsConfig"]

@@ -20,6 +20,7 @@ from pydantic import BaseModel, Field
 from . import __version__
 from .build_config import BuildConfig
 from .errors import ConfigError, InvalidArgumentError
+from .fileio import check_output
 
 MapLike = Any  # OccupancyMap | str | Path
 ConfigLike = BuildConfig | Mapping[str, Any] | str | Path | None
@@ -122,10 +123,13 @@ def build_environment(
     cfg = resolve_config(config)
     pose = parse_start(start)
     out = Path(out_path)
-    resolve_format(out, cfg)  # refuse a bad suffix before any work
+    resolve_format(out, cfg)  # refuse a bad suffix or an unwritable output before any work
+    src = map_or_path if isinstance(map_or_path, (str, Path)) else getattr(map_or_path, "path", None)
+    check_output(out, inputs=[src])
 
     t0 = time.perf_counter()
     occ = load_map(map_or_path) if isinstance(map_or_path, (str, Path)) else map_or_path
+    check_output(out, inputs=[(occ.meta or {}).get("image_path")])
     t1 = time.perf_counter()
     geo = extract_corridor(occ, params=cfg.geometry_params(), start=pose)
     t2 = time.perf_counter()

@@ -8,10 +8,12 @@ L_max ≈ 123.7 m for a 20 × 15 m hall.
 
 from __future__ import annotations
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import ConfigDict, Field
+
+from .strict import NumbersAreNumbers
 
 
-class ConstructorConfig(BaseModel):
+class ConstructorConfig(NumbersAreNumbers):
     """Geometry constants shared by the screen, the constructors and the validator."""
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)

@@ -44,6 +44,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from .errors import CorridorError, InvalidArgumentError
 from .maps import OccupancyMap, load_map
 
 Mesh = tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
@@ -113,7 +114,16 @@ def extract_corridor(
     """
     m = map_or_path if isinstance(map_or_path, OccupancyMap) else load_map(map_or_path)
     s = None if start is None else [float(v) for v in start]
-    out = _core.build_geometry(m.data, m.resolution, m.origin, json.dumps(params or {}), s)
+    try:
+        params_json = json.dumps(params or {}, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise InvalidArgumentError(f"params must be a JSON-able mapping of finite numbers: {e}") from None
+    try:
+        out = _core.build_geometry(m.data, m.resolution, m.origin, params_json, s)
+    except CorridorError as e:
+        if m.path is None:
+            raise
+        raise CorridorError(f"{m.path}: {e}") from None
     return CorridorGeometry(
         walls=list(out["walls"]),
         ducts=list(out["ducts"]),

@@ -33,7 +33,8 @@ from typing import Any
 
 import numpy as np
 
-from .errors import InvalidArgumentError, MapFormatError, MapIOError
+from .errors import InvalidArgumentError, MapFormatError
+from .fileio import read_text
 
 CLOCKWISE = "clockwise"
 COUNTERCLOCKWISE = "counterclockwise"
@@ -122,10 +123,7 @@ def read_centreline_file(path: str | Path) -> np.ndarray:
     ``centreline.csv`` and the TUM/f1tenth ``x_m, y_m, w_right, w_left`` CSVs (comma,
     ``#`` comments) and the f1tenth ``s_m; x_m; y_m; ...`` racelines (semicolons)."""
     p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as e:
-        raise MapIOError(f"{p}: cannot read centreline: {e.strerror or e}") from e
+    text = read_text(p, "centreline")
     rows = []
     raceline = False
     for lineno, line in enumerate(text.splitlines(), 1):

@@ -1,32 +1,120 @@
-"""Atomic file output: write to a temporary file beside the target, then rename, so a
-crash or a bad input never leaves a half-written file behind."""
+"""File access at the edges: outputs checked up front and written atomically, inputs
+read only when they are regular files of bounded size.
+
+Outputs go to temporary files created exclusively (``mkstemp``: ``O_EXCL``, random short
+names) beside their targets and are renamed into place only when every one of them is
+complete, so a crash, a bad input or a planted symlink never leaves a half-written,
+partial or redirected output behind. Every ``OSError`` becomes a one-line
+:class:`~roboracer_arena.errors.MapIOError`.
+"""
 
 from __future__ import annotations
 
 import os
+import stat
 import tempfile
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
-from typing import Iterator
+from typing import Iterable, Iterator, Sequence
+
+from .errors import InvalidArgumentError, MapIOError
 
 _UMASK = os.umask(0)  # read the process umask once (os.umask can only read by setting)
 os.umask(_UMASK)
+
+#: Largest text input (spec, config, centreline CSV) read, in bytes.
+MAX_TEXT_BYTES = 16 << 20
+#: Longest file name most file systems accept, in bytes.
+MAX_NAME_BYTES = 255
+
+
+def _why(e: OSError) -> str:
+    return e.strerror or str(e)
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return a.resolve() == b.resolve()
+
+
+def check_output(path: str | Path, inputs: Iterable[str | Path | None] = ()) -> Path:
+    """Refuse an output path that cannot be written as a file, before any work: a
+    directory, a name over 255 bytes, a parent that is not a writable directory, or one
+    of the command's own ``inputs`` (which it would destroy)."""
+    path = Path(path)
+    if not path.name or len(os.fsencode(path.name)) > MAX_NAME_BYTES:
+        raise MapIOError(f"{str(path)[:80]}…: file name must be 1 to {MAX_NAME_BYTES} bytes")
+    if path.is_dir():
+        raise MapIOError(f"{path}: is a directory; give a file name to write")
+    for src in inputs:
+        if src is not None and Path(src).exists() and _same_file(path, Path(src)):
+            raise InvalidArgumentError(f"{path}: the output would overwrite the input {src}")
+    anc = path.parent
+    while not anc.exists() and anc != anc.parent:
+        anc = anc.parent
+    if not anc.is_dir():
+        raise MapIOError(f"{path}: {anc} is not a directory")
+    if not os.access(anc, os.W_OK | os.X_OK):
+        raise MapIOError(f"{path}: directory {anc} is not writable")
+    return path
+
+
+def _temp_beside(path: Path) -> Path:
+    # Short random name (the target's own name may already be 255 bytes); keep a short
+    # suffix, since some writers (usd-core) choose the encoding by extension.
+    suffix = path.suffix if len(path.suffix) <= 16 else ""
+    fd, tmp = tempfile.mkstemp(prefix=".arena-", suffix=suffix, dir=path.parent)
+    os.close(fd)
+    return Path(tmp)
+
+
+@contextmanager
+def atomic_paths(paths: Sequence[str | Path]) -> Iterator[list[Path]]:
+    """Yield one temporary path per target (same order); when the block succeeds rename
+    them all into place, else delete them. Files and directories that this call created
+    are removed again if any rename fails, so the set appears completely or not at all."""
+    targets = [check_output(p) for p in paths]
+    made_dirs: list[Path] = []
+    temps: list[Path] = []
+    committed: list[Path] = []
+    ok = False
+    try:
+        for t in targets:
+            missing = [d for d in [t.parent, *t.parent.parents] if not d.exists()]
+            t.parent.mkdir(parents=True, exist_ok=True)
+            made_dirs.extend(reversed(missing))
+            temps.append(_temp_beside(t))
+        yield list(temps)
+        for tmp, t in zip(temps, targets):
+            os.chmod(tmp, 0o666 & ~_UMASK)  # mkstemp makes 0600; give the usual permissions
+        for tmp, t in zip(temps, targets):
+            existed = t.exists()
+            os.replace(tmp, t)
+            if not existed:
+                committed.append(t)
+        ok = True
+    except OSError as e:
+        where = getattr(e, "filename", None) or (targets[0] if targets else "")
+        raise MapIOError(f"{where}: cannot write: {_why(e)}") from e
+    finally:
+        leftovers = temps if ok else [*temps, *committed]
+        for p in leftovers:
+            with suppress(OSError):
+                Path(p).unlink(missing_ok=True)
+        if not ok:
+            for d in reversed(made_dirs):
+                with suppress(OSError):
+                    d.rmdir()
 
 
 @contextmanager
 def atomic_path(path: str | Path) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; on success rename it onto ``path``,
     on any exception delete it. For writers that insist on a file name (usd-core)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    try:
-        yield Path(tmp)
-        os.chmod(tmp, 0o666 & ~_UMASK)  # mkstemp makes 0600; give the usual permissions
-        os.replace(tmp, path)
-    finally:
-        Path(tmp).unlink(missing_ok=True)
+    with atomic_paths([path]) as (tmp,):
+        yield tmp
 
 
 def atomic_write_bytes(path: str | Path, data: bytes) -> None:
@@ -36,3 +124,55 @@ def atomic_write_bytes(path: str | Path, data: bytes) -> None:
 
 def atomic_write_text(path: str | Path, text: str) -> None:
     atomic_write_bytes(path, text.encode("utf-8"))
+
+
+def require_regular(path: str | Path, what: str) -> os.stat_result:
+    """The ``stat`` of ``path`` if it is a regular file (symlinks followed); else a
+    one-line :class:`MapIOError` saying what it is instead: missing, a directory, a FIFO,
+    a device or a symlink loop. Nothing is opened (a FIFO would block)."""
+    path = Path(path)
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        raise MapIOError(f"{path}: cannot read {what}: does not exist") from None
+    except OSError as e:
+        why = "is a symlink loop" if e.errno == 40 or "symbolic links" in _why(e) else _why(e)
+        raise MapIOError(f"{path}: cannot read {what}: {why}") from None
+    if not stat.S_ISREG(st.st_mode):
+        kind = (
+            "a directory" if stat.S_ISDIR(st.st_mode)
+            else "a FIFO (named pipe)" if stat.S_ISFIFO(st.st_mode)
+            else "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
+            else "a socket or other special file"
+        )
+        raise MapIOError(f"{path}: cannot read {what}: it is {kind}, not a regular file")
+    return st
+
+
+def read_regular_bytes(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BYTES) -> bytes:
+    """The bytes of the regular file ``path`` (a ``what``, for messages), at most
+    ``max_bytes``; anything but a regular file is refused by :func:`require_regular`
+    before it is opened (a FIFO would block, ``/dev/zero`` never ends)."""
+    path = Path(path)
+    st = require_regular(path, what)
+    if st.st_size > max_bytes:
+        raise MapIOError(f"{path}: {what} is {st.st_size} bytes, more than the {max_bytes} allowed")
+    try:
+        with open(path, "rb") as f:
+            data = f.read(max_bytes + 1)
+    except OSError as e:
+        raise MapIOError(f"{path}: cannot read {what}: {_why(e)}") from None
+    if len(data) > max_bytes:
+        raise MapIOError(f"{path}: {what} is more than the {max_bytes} bytes allowed")
+    return data
+
+
+def read_text(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BYTES) -> str:
+    """:func:`read_regular_bytes` decoded as UTF-8 (a BOM is allowed); UTF-16 or other
+    encodings are refused with a one-line error naming the file."""
+    data = read_regular_bytes(path, what, max_bytes)
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        hint = " (it looks like UTF-16; save it as UTF-8)" if data[:2] in (b"\xff\xfe", b"\xfe\xff") else ""
+        raise MapIOError(f"{path}: {what} is not UTF-8 text (byte {e.start}){hint}") from None

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -82,6 +83,13 @@ class OccupancyMap:
         return Path(yaml_path)
 
 
+def image_named_by(yaml_text: str) -> str | None:
+    """The ``image:`` file name a map YAML's text gives (without parsing the YAML, so a
+    caller can guard that file before the loader runs), or None."""
+    m = re.search(r"^\s*image:\s*['\"]?([^'\"\n]+?)['\"]?\s*$", yaml_text, re.M)
+    return m.group(1).strip() if m else None
+
+
 def load_map(path: str | Path) -> OccupancyMap:
     """Load a ROS map YAML and its image.
 
@@ -113,4 +121,4 @@ def save_map(
     return Path(_core.save_map(arr, float(resolution), o, Path(yaml_path), image_format))
 
 
-__all__ = ["FREE", "OCCUPIED", "UNKNOWN", "OccupancyMap", "load_map", "save_map"]
+__all__ = ["FREE", "OCCUPIED", "UNKNOWN", "OccupancyMap", "image_named_by", "load_map", "save_map"]

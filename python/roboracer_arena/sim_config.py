@@ -12,12 +12,14 @@ from __future__ import annotations
 import json
 import math
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import ConfigDict, Field, model_validator
+
+from .strict import NumbersAreNumbers
 
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
-class VehicleConfig(BaseModel):
+class VehicleConfig(NumbersAreNumbers):
     """Rigid chassis on four suspended wheels with Ackermann steering and a VESC-like
     speed controller. Mass, inertia, geometry, steering limit and tyre friction are the
     paper's Traxxas 1:10 figures; suspension and controller gains are chosen so the car
@@ -84,7 +86,7 @@ class VehicleConfig(BaseModel):
         return self
 
 
-class LidarConfig(BaseModel):
+class LidarConfig(NumbersAreNumbers):
     """Planar scanning lidar (Hokuyo UST-10LX on the real car): 1081 beams over 270 deg,
     30 m range; ranges are exact 2D ray casts against the walls and other vehicles'
     chassis outlines, plus optional Gaussian noise from a per-vehicle seeded RNG."""
@@ -111,7 +113,7 @@ class LidarConfig(BaseModel):
         return self
 
 
-class PhysicsConfig(BaseModel):
+class PhysicsConfig(NumbersAreNumbers):
     """Rapier world settings. dt = 5 ms keeps the stiffest force (suspension, tyre
     relaxation) well inside the explicit-integration stability limit and moves the car
     at most 3.5 cm per step at 7 m/s, far less than its half-length, so walls never tunnel."""
@@ -137,7 +139,7 @@ class PhysicsConfig(BaseModel):
     )
 
 
-class SimConfig(BaseModel):
+class SimConfig(NumbersAreNumbers):
     """Everything the native simulator needs besides tracks, counts and the seed."""
 
     model_config = _FROZEN

@@ -12,15 +12,17 @@ import json
 from pathlib import Path
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from .errors import SpecError
+from .errors import ArenaError, SpecError
+from .fileio import read_text
+from .strict import NumbersAreNumbers
 
 FeatureName = Literal["hairpin", "chicane", "sweeper"]
 Direction = Literal["clockwise", "counterclockwise"]
 
 
-class TrackSpec(BaseModel):
+class TrackSpec(NumbersAreNumbers):
     """A requirement specification for one closed racing corridor."""
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
@@ -34,25 +36,27 @@ class TrackSpec(BaseModel):
     lap_length_m: float = Field(
         60.0,
         gt=0,
+        le=10_000,
         description="Centreline lap length (m). 60 m is a typical RoboRacer competition lap in a sports hall.",
     )
     corridor_width_m: float = Field(
         1.5,
         gt=0,
+        le=100,
         description=(
             "Free corridor width between walls (m). 1.5 m lets two 0.3 m-wide cars pass, as on"
             " most RoboRacer tracks, and gives the paper's pitch p = 2.15 m with the default walls."
         ),
     )
-    hall_x_m: float = Field(20.0, gt=0, description="Hall length (m). A 20 m x 15 m hall is the paper's reference venue.")
-    hall_y_m: float = Field(15.0, gt=0, description="Hall width (m). A 20 m x 15 m hall is the paper's reference venue.")
+    hall_x_m: float = Field(20.0, gt=0, le=5_000, description="Hall length (m). A 20 m x 15 m hall is the paper's reference venue.")
+    hall_y_m: float = Field(15.0, gt=0, le=5_000, description="Hall width (m). A 20 m x 15 m hall is the paper's reference venue.")
     direction: Direction = Field(
         "counterclockwise",
         description="Driving direction seen from above; counter-clockwise is the mathematical positive sense and the convention of F1TENTH maps.",
     )
-    hairpins: int = Field(0, ge=0, description="Number of hairpins (~180 deg turns). 0: none unless requested.")
-    chicanes: int = Field(0, ge=0, description="Number of chicanes (opposite-sense turn pairs). 0: none unless requested.")
-    sweepers: int = Field(0, ge=0, description="Number of sweepers (long, large-radius turns). 0: none unless requested.")
+    hairpins: int = Field(0, ge=0, le=100, description="Number of hairpins (~180 deg turns). 0: none unless requested.")
+    chicanes: int = Field(0, ge=0, le=100, description="Number of chicanes (opposite-sense turn pairs). 0: none unless requested.")
+    sweepers: int = Field(0, ge=0, le=100, description="Number of sweepers (long, large-radius turns). 0: none unless requested.")
     feature_order: list[FeatureName] = Field(
         default_factory=list,
         description="Order of named features along the lap; empty (any order) unless the request orders them.",
@@ -60,11 +64,13 @@ class TrackSpec(BaseModel):
     min_radius_m: float = Field(
         0.0,
         ge=0,
+        le=1_000,
         description="Requested minimum centreline radius (m); 0 means unstated, the constructor then uses max(0.9 m, 0.75 w).",
     )
     longest_straight_m: float = Field(
         0.0,
         ge=0,
+        le=10_000,
         description="Required longest straight (m); 0 means unstated (no requirement).",
     )
 
@@ -102,13 +108,15 @@ class TrackSpec(BaseModel):
         """Load a spec from a JSON file; errors name the file and the offending field."""
         p = Path(path)
         try:
-            text = p.read_text(encoding="utf-8")
-        except OSError as e:
-            raise SpecError(f"{p}: cannot read spec file: {e.strerror or e}") from e
+            text = read_text(p, "spec file")
+        except ArenaError as e:
+            raise SpecError(str(e)) from None
         try:
             data = json.loads(text)
         except json.JSONDecodeError as e:
             raise SpecError(f"{p}: not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from e
+        except RecursionError:
+            raise SpecError(f"{p}: JSON nested too deeply to be a spec") from None
         return cls.from_dict(data, source=str(p))
 
     @classmethod

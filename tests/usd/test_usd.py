@@ -10,7 +10,7 @@ import pytest
 from pxr import Usd, UsdGeom, UsdPhysics, UsdShade
 
 from roboracer_arena.build_config import BuildConfig
-from roboracer_arena.errors import ConfigError
+from roboracer_arena.errors import ConfigError, MapIOError
 from roboracer_arena.usd import METADATA_KEY, read_meshes, stage_metadata, validate_stage, write_stage
 
 from builder.synthetic import load_physics, ring_meshes
@@ -152,7 +152,7 @@ def test_failed_write_leaves_nothing(tmp_path):
     file is in the way) leaves neither the stage nor a temporary file behind."""
     (tmp_path / "textures").write_text("in the way")
     before = set(tmp_path.iterdir())
-    with pytest.raises(OSError):
+    with pytest.raises(MapIOError):
         write_stage(tmp_path / "track.usdc", ring_meshes(), BuildConfig(), META)
     assert set(tmp_path.iterdir()) == before
 
@@ -162,7 +162,7 @@ def test_failed_write_keeps_the_previous_stage(tmp_path):
     write_stage(out, ring_meshes(), BuildConfig.from_dict({"materials": {"textures": False}}), META)
     old = out.read_bytes()
     (tmp_path / "textures").write_text("in the way")
-    with pytest.raises(OSError):
+    with pytest.raises(MapIOError):
         write_stage(out, ring_meshes(), BuildConfig(), {**META, "source_map": "other"})
     assert out.read_bytes() == old
     assert sorted(p.name for p in tmp_path.iterdir()) == ["textures", "track.usdc"]

@@ -5,12 +5,14 @@
 //! * [`track`]: corridor isolation, centreline, metrics, validation
 //! * [`generate`]: requirement screening and the lattice constructor
 //! * [`sim`]: vehicles, worlds, lidar and batched stepping
+//! * [`limits`]: pixel budget and plausible ranges checked before allocating
 
 pub mod error;
 pub mod fileio;
 pub mod generate;
 pub mod geometry;
 pub mod grid;
+pub mod limits;
 pub mod sim;
 pub mod track;
 

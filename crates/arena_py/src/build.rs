@@ -5,7 +5,7 @@ use numpy::{PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::errors::IntoPyResult;
+use crate::boundary;
 use crate::generate::line_to_py;
 use arena_core::geometry::mesh::TriMesh;
 use arena_core::track::build;
@@ -41,7 +41,6 @@ fn build_geometry<'py>(
     params_json: &str,
     start: Option<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let params = BuildParams::from_json(params_json).py()?;
     let start = match start.as_deref() {
         None => None,
         Some([x, y]) | Some([x, y, _]) if x.is_finite() && y.is_finite() => Some([*x, *y]),
@@ -51,11 +50,12 @@ fn build_geometry<'py>(
             )))
         }
     };
-    let g = crate::maps::grid_from_py(&data, resolution, origin);
+    let g = crate::maps::grid_from_py(py, &data, resolution, origin)?;
     let (w, h) = (g.width, g.height);
-    let geo = py
-        .detach(move || build::build_geometry(&g, &params, start))
-        .py()?;
+    let geo = boundary::call(py, "build_geometry", move || {
+        let params = BuildParams::from_json(params_json)?;
+        build::build_geometry(&g, &params, start)
+    })?;
     let d = PyDict::new(py);
     let lines = |ls: &[Vec<[f64; 2]>]| PyList::new(py, ls.iter().map(|l| line_to_py(py, l)));
     d.set_item("walls", lines(&geo.walls)?)?;

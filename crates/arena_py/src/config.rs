@@ -8,7 +8,7 @@ use arena_core::track::params::BuildParams;
 use arena_core::ArenaError;
 use pyo3::prelude::*;
 
-use crate::errors::IntoPyResult;
+use crate::boundary;
 
 const KINDS: &str = "'sim', 'build' or 'constructor'";
 
@@ -28,25 +28,26 @@ fn normalised(kind: &str, json: &str) -> arena_core::Result<String> {
 
 /// The core's defaults for one schema, as JSON.
 #[pyfunction]
-fn config_defaults(kind: &str) -> PyResult<String> {
-    let text = match kind {
-        "sim" => serde_json::to_string(&SimParams::default()),
-        "build" => Ok(BuildParams::default().to_json()),
-        "constructor" => serde_json::to_string(&ConstructorConfig::default()),
-        _ => {
-            return Err(ArenaError::invalid(format!(
-                "config kind {kind:?}: expected {KINDS}"
-            )))
-            .py()
-        }
-    };
-    Ok(text.expect("plain data serialises"))
+fn config_defaults(py: Python<'_>, kind: &str) -> PyResult<String> {
+    boundary::call(py, "config_defaults", || {
+        let text = match kind {
+            "sim" => serde_json::to_string(&SimParams::default()),
+            "build" => Ok(BuildParams::default().to_json()),
+            "constructor" => serde_json::to_string(&ConstructorConfig::default()),
+            _ => {
+                return Err(ArenaError::invalid(format!(
+                    "config kind {kind:?}: expected {KINDS}"
+                )))
+            }
+        };
+        Ok(text.expect("plain data serialises"))
+    })
 }
 
 /// Parse and validate `json` as the core does; returns it normalised (defaults filled in).
 #[pyfunction]
-fn check_config(kind: &str, json: &str) -> PyResult<String> {
-    normalised(kind, json).py()
+fn check_config(py: Python<'_>, kind: &str, json: &str) -> PyResult<String> {
+    boundary::call(py, "check_config", || normalised(kind, json))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

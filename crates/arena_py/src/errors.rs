@@ -54,6 +54,13 @@ pyo3::create_exception!(
     "The simulator refused a track, config or call."
 );
 
+pyo3::create_exception!(
+    _core,
+    InternalError,
+    ArenaError,
+    "The core failed on an input it should have refused (a caught panic); please report it."
+);
+
 /// Converts a core error into the matching Python exception.
 pub fn to_py(err: CoreError) -> PyErr {
     let msg = err.to_string();
@@ -65,17 +72,6 @@ pub fn to_py(err: CoreError) -> PyErr {
         CoreError::Config(_) => ConfigError::new_err(msg),
         CoreError::Spec(_) => SpecError::new_err(msg),
         CoreError::Simulation(_) => SimulationError::new_err(msg),
-    }
-}
-
-/// `result.py()?` turns a core `Result` into a `PyResult` (orphan rules forbid `From`).
-pub trait IntoPyResult<T> {
-    fn py(self) -> PyResult<T>;
-}
-
-impl<T> IntoPyResult<T> for arena_core::Result<T> {
-    fn py(self) -> PyResult<T> {
-        self.map_err(to_py)
     }
 }
 
@@ -92,5 +88,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ConfigError", py.get_type::<ConfigError>())?;
     m.add("SpecError", py.get_type::<SpecError>())?;
     m.add("SimulationError", py.get_type::<SimulationError>())?;
+    m.add("InternalError", py.get_type::<InternalError>())?;
     Ok(())
 }

@@ -4,7 +4,7 @@
 use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::errors::IntoPyResult;
+use crate::boundary;
 use arena_core::generate::construct::{self, Outcome};
 use arena_core::generate::spec::{ConstructorConfig, Spec};
 use arena_core::track::{features, validate};
@@ -53,25 +53,29 @@ fn rasterise_centreline<'py>(
 ) -> PyResult<MapTuple<'py>> {
     let pts = points_from_py(&xy, "xy")?;
     let w: Vec<f64> = widths.as_array().iter().copied().collect();
-    let g = py
-        .detach(move || {
-            arena_core::grid::rasterise::rasterise_centreline(
-                &pts,
-                &w,
-                resolution,
-                wall_thickness,
-                margin,
-            )
-        })
-        .py()?;
+    let g = boundary::call(py, "rasterise_centreline", move || {
+        arena_core::grid::rasterise::rasterise_centreline(
+            &pts,
+            &w,
+            resolution,
+            wall_thickness,
+            margin,
+        )
+    })?;
     Ok(grid_to_py(py, g))
 }
 
-fn parse(spec_json: &str, config_json: &str) -> PyResult<(Spec, ConstructorConfig)> {
-    Ok((
-        Spec::from_json(spec_json).py()?,
-        ConstructorConfig::from_json(config_json).py()?,
-    ))
+fn parse(
+    py: Python<'_>,
+    spec_json: &str,
+    config_json: &str,
+) -> PyResult<(Spec, ConstructorConfig)> {
+    boundary::call(py, "spec/config", || {
+        Ok((
+            Spec::from_json(spec_json)?,
+            ConstructorConfig::from_json(config_json)?,
+        ))
+    })
 }
 
 fn to_json<T: serde::Serialize>(v: &T) -> String {
@@ -86,16 +90,20 @@ pub(crate) fn line_to_py<'py>(py: Python<'py>, line: &[[f64; 2]]) -> Bound<'py, 
 
 /// The admissibility screen (Eqs. 1–2) as JSON: passed, violations and every quantity.
 #[pyfunction]
-fn screen(spec_json: &str, config_json: &str) -> PyResult<String> {
-    let (spec, cfg) = parse(spec_json, config_json)?;
-    Ok(to_json(&arena_core::generate::screen::screen(&spec, &cfg)))
+fn screen(py: Python<'_>, spec_json: &str, config_json: &str) -> PyResult<String> {
+    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    boundary::call_ok(py, "screen", move || {
+        to_json(&arena_core::generate::screen::screen(&spec, &cfg))
+    })
 }
 
 /// Derived geometry (r_min, pitch, L_max, s_min, corner radius) as JSON.
 #[pyfunction]
-fn derived_geometry(spec_json: &str, config_json: &str) -> PyResult<String> {
-    let (spec, cfg) = parse(spec_json, config_json)?;
-    Ok(to_json(&arena_core::generate::spec::derive(&spec, &cfg)))
+fn derived_geometry(py: Python<'_>, spec_json: &str, config_json: &str) -> PyResult<String> {
+    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    boundary::call_ok(py, "derived_geometry", move || {
+        to_json(&arena_core::generate::spec::derive(&spec, &cfg))
+    })
 }
 
 /// Algorithm 1 with the lattice constructor. Returns ``(kind, info_json, data, origin,
@@ -114,8 +122,10 @@ fn generate_lattice<'py>(
     Option<MapTuple<'py>>,
     Option<Bound<'py, PyArray2<f64>>>,
 )> {
-    let (spec, cfg) = parse(spec_json, config_json)?;
-    let out = py.detach(move || construct::generate(&spec, &cfg, seed));
+    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    let out = boundary::call_ok(py, "generate_lattice", move || {
+        construct::generate(&spec, &cfg, seed)
+    })?;
     Ok(match out {
         Outcome::Accepted {
             grid,
@@ -155,8 +165,10 @@ fn construct_lattice<'py>(
     config_json: &str,
     seed: u64,
 ) -> PyResult<(String, Option<Bound<'py, PyArray2<f64>>>)> {
-    let (spec, cfg) = parse(spec_json, config_json)?;
-    let out = py.detach(move || construct::first_candidate(&spec, &cfg, seed));
+    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    let out = boundary::call_ok(py, "construct_lattice", move || {
+        construct::first_candidate(&spec, &cfg, seed)
+    })?;
     Ok(match out {
         Ok((c, tried)) => (
             serde_json::json!({"tried": tried, "pitch_m": c.pitch_m}).to_string(),
@@ -180,9 +192,11 @@ fn validate_map<'py>(
     spec_json: &str,
     config_json: &str,
 ) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
-    let (spec, cfg) = parse(spec_json, config_json)?;
-    let grid = crate::maps::grid_from_py(&data, resolution, origin);
-    let report = py.detach(move || validate::validate_map(&grid, &spec, &cfg));
+    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    let grid = crate::maps::grid_from_py(py, &data, resolution, origin)?;
+    let report = boundary::call_ok(py, "validate_map", move || {
+        validate::validate_map(&grid, &spec, &cfg)
+    })?;
     Ok((to_json(&report), line_to_py(py, &report.centreline)))
 }
 
@@ -197,20 +211,14 @@ fn analyse_curve(
     exclude_m: f64,
 ) -> PyResult<String> {
     let pts = points_from_py(&xy, "xy")?;
-    if pts.len() < 3 || !(corner_radius.is_finite() && corner_radius > 0.0) {
-        return Err(crate::errors::InvalidArgumentError::new_err(
-            "analyse_curve needs ≥ 3 points and corner_radius > 0",
-        ));
-    }
-    let (a, c) = py.detach(move || {
-        (
-            features::analyse_closed_curve(&pts, corner_radius),
-            features::self_clearance(&pts, exclude_m, 0.1),
-        )
-    });
-    let mut v = serde_json::to_value(&a).expect("plain data");
-    v["self_clearance_m"] = serde_json::json!(if c.is_finite() { c } else { -1.0 });
-    Ok(v.to_string())
+    boundary::call(py, "analyse_curve", move || {
+        features::check_curve_args(&pts, corner_radius, exclude_m)?;
+        let a = features::analyse_closed_curve(&pts, corner_radius);
+        let c = features::self_clearance(&pts, exclude_m, 0.1);
+        let mut v = serde_json::to_value(&a).expect("plain data");
+        v["self_clearance_m"] = serde_json::json!(if c.is_finite() { c } else { -1.0 });
+        Ok(v.to_string())
+    })
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -1,8 +1,10 @@
 //! `roboracer_arena._core`: thin pyo3 bindings over `arena_core`, one file per core
-//! module. No logic lives here: extract inputs, release the GIL, call the core, map errors.
+//! module. No logic lives here: extract inputs, call the core through `boundary::call` (GIL released, panics
+//! caught, errors typed).
 
 use pyo3::prelude::*;
 
+mod boundary;
 mod build;
 mod config;
 mod errors;
@@ -15,6 +17,7 @@ mod sim;
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    boundary::install_panic_hook();
     errors::register(m)?;
     grid::register(m)?;
     generate::register(m)?;

@@ -5,7 +5,7 @@
 use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 
-use crate::errors::IntoPyResult;
+use crate::boundary;
 use arena_core::track::metrics;
 
 /// Measure a trinary grid (254 free / 0 occupied / 205 unknown) as the validator does.
@@ -21,13 +21,8 @@ fn measure_map<'py>(
     resolution: f64,
     origin: (f64, f64, f64),
 ) -> PyResult<(String, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
-    if !(resolution > 0.0 && resolution.is_finite()) {
-        return Err(crate::errors::InvalidArgumentError::new_err(format!(
-            "resolution must be > 0, got {resolution}"
-        )));
-    }
-    let grid = crate::maps::grid_from_py(&data, resolution, origin);
-    let t = py.detach(move || metrics::measure_raster(&grid)).py()?;
+    let grid = crate::maps::grid_from_py(py, &data, resolution, origin)?;
+    let t = boundary::call(py, "measure_map", move || metrics::measure_raster(&grid))?;
     let length = arena_core::geometry::polyline_length(&t.centreline, true);
     let info = serde_json::json!({
         "corridor_components": t.corridor_components,

@@ -3,31 +3,37 @@
 use numpy::{PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::errors::IntoPyResult;
+use crate::boundary;
 use arena_core::grid::mapfile::{self, ImageFormat};
 use arena_core::grid::OccupancyGrid;
 
 /// A map from Python: `data` (H, W) uint8 (254 free, 0 occupied, 205 unknown, row 0 =
-/// top image row), resolution (m/cell) and origin (x, y, yaw).
+/// top image row), resolution (m/cell) and origin (x, y, yaw). Size, resolution and
+/// origin are checked by the core (`limits::check_grid_header`) before the copy.
 pub(crate) fn grid_from_py(
+    py: Python<'_>,
     data: &PyReadonlyArray2<'_, u8>,
     resolution: f64,
     origin: (f64, f64, f64),
-) -> OccupancyGrid {
+) -> PyResult<OccupancyGrid> {
     let (h, w) = (data.shape()[0], data.shape()[1]);
+    let o = [origin.0, origin.1, origin.2];
+    boundary::call(py, "map", || {
+        arena_core::limits::check_grid_header(w, h, resolution, o)
+    })?;
     // A C-contiguous array is one memcpy; anything else (Fortran order, strided views)
     // goes element by element in logical order (`as_slice` accepts Fortran order too).
     let cells: Vec<u8> = match data.as_slice() {
         Ok(s) if data.is_c_contiguous() => s.to_vec(),
         _ => data.as_array().iter().copied().collect(),
     };
-    OccupancyGrid {
+    Ok(OccupancyGrid {
         width: w,
         height: h,
         resolution,
-        origin: [origin.0, origin.1, origin.2],
+        origin: o,
         data: cells,
-    }
+    })
 }
 
 /// `(data, resolution, origin, meta_json)` as returned to Python.
@@ -37,7 +43,7 @@ type LoadedMap<'py> = (Bound<'py, PyArray2<u8>>, f64, (f64, f64, f64), String);
 /// Returns ``(data uint8 (H, W), resolution, origin (x, y, yaw), meta_json)``.
 #[pyfunction]
 fn load_map<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<LoadedMap<'py>> {
-    let (g, meta) = py.detach(move || mapfile::load_map(&path)).py()?;
+    let (g, meta) = boundary::call(py, "load_map", move || mapfile::load_map(&path))?;
     let res = g.resolution;
     let (data, origin) = crate::generate::grid_to_py(py, g);
     Ok((
@@ -60,11 +66,10 @@ fn save_map(
     yaml_path: std::path::PathBuf,
     image_format: &str,
 ) -> PyResult<String> {
-    let fmt = ImageFormat::parse(image_format).py()?;
-    let g = grid_from_py(&data, resolution, origin);
-    let img = py
-        .detach(move || mapfile::save_map(&g, &yaml_path, fmt))
-        .py()?;
+    let g = grid_from_py(py, &data, resolution, origin)?;
+    let img = boundary::call(py, "save_map", move || {
+        mapfile::save_map(&g, &yaml_path, ImageFormat::parse(image_format)?)
+    })?;
     Ok(img.display().to_string())
 }
 

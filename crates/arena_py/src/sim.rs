@@ -12,7 +12,8 @@ use numpy::{
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::errors::{to_py, IntoPyResult};
+use crate::boundary;
+use crate::errors::to_py;
 
 /// (vertices (V, 3) float32, triangles (T, 3) uint32) of a mesh.
 type MeshArrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
@@ -117,7 +118,7 @@ impl Simulator {
         config_json: &str,
         seed: u64,
     ) -> PyResult<Self> {
-        let params = SimParams::from_json(config_json).py()?;
+        let params = boundary::call(py, "Simulator", || SimParams::from_json(config_json))?;
         let mut raw = Vec::new();
         for (i, item) in tracks.try_iter()?.enumerate() {
             let item = item?;
@@ -131,20 +132,18 @@ impl Simulator {
             raw.push((ws, points(&centre, &format!("tracks[{i}] centreline"))?));
         }
         let h = params.physics.wall_height;
-        let inner = py
-            .detach(move || {
-                let built: arena_core::Result<Vec<Arc<Track>>> = raw
-                    .iter()
-                    .enumerate()
-                    .map(|(i, (w, c))| {
-                        Track::new(w, c, h)
-                            .map(Arc::new)
-                            .map_err(|e| CoreError::invalid(format!("tracks[{i}]: {e}")))
-                    })
-                    .collect();
-                CoreSim::new(built?, num_envs, vehicles_per_env, params, seed)
-            })
-            .py()?;
+        let inner = boundary::call(py, "Simulator", move || {
+            let built: arena_core::Result<Vec<Arc<Track>>> = raw
+                .iter()
+                .enumerate()
+                .map(|(i, (w, c))| {
+                    Track::new(w, c, h)
+                        .map(Arc::new)
+                        .map_err(|e| CoreError::invalid(format!("tracks[{i}]: {e}")))
+                })
+                .collect();
+            CoreSim::new(built?, num_envs, vehicles_per_env, params, seed)
+        })?;
         Ok(Simulator { inner })
     }
 
@@ -193,11 +192,12 @@ impl Simulator {
         PyArray1::from_vec(py, ids)
     }
 
-    fn set_tracks(&mut self, track_ids: &Bound<'_, PyAny>) -> PyResult<()> {
+    fn set_tracks(&mut self, py: Python<'_>, track_ids: &Bound<'_, PyAny>) -> PyResult<()> {
         let ids: Vec<i64> = track_ids
             .extract()
             .map_err(|_| invalid("track_ids must be a sequence of int"))?;
-        self.inner.set_tracks(&ids).py()
+        let inner = &mut self.inner;
+        boundary::call(py, "set_tracks", move || inner.set_tracks(&ids))
     }
 
     fn reset(
@@ -210,13 +210,14 @@ impl Simulator {
         let mask = read_mask(env_mask, e)?;
         let poses = read_f64_3d(poses, "poses", [e, v, 3])?;
         let inner = &mut self.inner;
-        py.detach(move || inner.reset(&mask, &poses)).py()
+        boundary::call(py, "reset", move || inner.reset(&mask, &poses))
     }
 
     /// Rolling start: forward speeds (E, V) m/s for the envs where `env_mask` is True,
     /// right after `reset`.
     fn set_speeds(
         &mut self,
+        py: Python<'_>,
         env_mask: &Bound<'_, PyAny>,
         speeds: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
@@ -235,7 +236,8 @@ impl Simulator {
             .iter()
             .copied()
             .collect();
-        self.inner.set_speeds(&mask, &speeds).py()
+        let inner = &mut self.inner;
+        boundary::call(py, "set_speeds", move || inner.set_speeds(&mask, &speeds))
     }
 
     #[pyo3(signature = (actions, substeps, scans, state, events))]
@@ -264,13 +266,24 @@ impl Simulator {
     }
 
     /// Pose (x, y, heading) on track `track_id`'s centreline at arc length `s` (wrapped).
-    fn centreline_pose(&self, track_id: usize, s: f64) -> PyResult<(f64, f64, f64)> {
-        let p = self.inner.track(track_id).py()?.centreline.pose_at(s);
+    fn centreline_pose(
+        &self,
+        py: Python<'_>,
+        track_id: usize,
+        s: f64,
+    ) -> PyResult<(f64, f64, f64)> {
+        let inner = &self.inner;
+        let p = boundary::call(py, "centreline_pose", move || {
+            Ok(inner.track(track_id)?.centreline.pose_at(s))
+        })?;
         Ok((p[0], p[1], p[2]))
     }
 
-    fn centreline_length(&self, track_id: usize) -> PyResult<f64> {
-        Ok(self.inner.track(track_id).py()?.centreline.length())
+    fn centreline_length(&self, py: Python<'_>, track_id: usize) -> PyResult<f64> {
+        let inner = &self.inner;
+        boundary::call(py, "centreline_length", move || {
+            Ok(inner.track(track_id)?.centreline.length())
+        })
     }
 
     /// The (closed) centreline points of a track, (M, 2) float64.
@@ -279,16 +292,21 @@ impl Simulator {
         py: Python<'py>,
         track_id: usize,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let c = &self.inner.track(track_id).py()?.centreline;
-        let n = c.num_segments();
-        let rows: Vec<Vec<f64>> = (0..n).map(|i| c.point(i).to_vec()).collect();
+        let inner = &self.inner;
+        let rows: Vec<Vec<f64>> = boundary::call(py, "centreline", move || {
+            let c = &inner.track(track_id)?.centreline;
+            Ok((0..c.num_segments()).map(|i| c.point(i).to_vec()).collect())
+        })?;
         PyArray2::from_vec2(py, &rows).map_err(|e| invalid(e.to_string()))
     }
 
     /// The collision wall mesh of a track as the physics engine holds it (shared by all
     /// envs on that track): (vertices (V, 3) float32, triangles (T, 3) uint32).
     fn wall_mesh<'py>(&self, py: Python<'py>, track_id: usize) -> PyResult<MeshArrays<'py>> {
-        let (v, t) = self.inner.track(track_id).py()?.wall_mesh();
+        let inner = &self.inner;
+        let (v, t) = boundary::call(py, "wall_mesh", move || {
+            Ok(inner.track(track_id)?.wall_mesh())
+        })?;
         let v: Vec<Vec<f32>> = v.iter().map(|p| p.to_vec()).collect();
         let t: Vec<Vec<u32>> = t.iter().map(|p| p.to_vec()).collect();
         Ok((
@@ -344,11 +362,10 @@ impl Simulator {
             None => None,
         };
         let inner = &mut self.inner;
-        py.detach(move || match step {
+        boundary::call(py, "step", move || match step {
             Some((acts, substeps)) => inner.step(&acts, substeps, sc, st, ev),
             None => inner.observe(sc, st, ev),
         })
-        .py()
     }
 }
 
@@ -372,7 +389,9 @@ fn stadium_track<'py>(
             "stadium_track needs straight >= 0, radius > 0 and 0 < width < 2 radius",
         ));
     }
-    let (walls, centre) = arena_core::sim::shapes::stadium_track(straight, radius, width);
+    let (walls, centre) = boundary::call_ok(py, "stadium_track", move || {
+        arena_core::sim::shapes::stadium_track(straight, radius, width)
+    })?;
     let arr = |pts: &[[f64; 2]]| {
         PyArray2::from_vec2(py, &pts.iter().map(|p| p.to_vec()).collect::<Vec<_>>())
             .map_err(|e| invalid(e.to_string()))

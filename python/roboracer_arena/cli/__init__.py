@@ -16,6 +16,7 @@ from typing import Sequence
 
 from .. import __version__
 from ..errors import ArenaError
+from ._common import check_numeric_flags
 
 # Subcommand modules, in the order `--help` lists them.
 COMMANDS: list[str] = [
@@ -49,6 +50,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return EXIT_BAD_INPUT
     try:
+        check_numeric_flags(args)
         return int(args.func(args) or 0)
     except ArenaError as e:
         print(f"roboracer-arena {args.command}: error: {e}", file=sys.stderr)

@@ -14,3 +14,47 @@ def add_json_flag(parser) -> None:
 def print_json(obj: Any) -> None:
     json.dump(obj, sys.stdout, indent=2, default=str)
     sys.stdout.write("\n")
+
+
+#: Plausible range of every numeric flag, by argparse ``dest`` (inclusive; a flag whose
+#: dest is not listed must still be finite). Checked once in ``main`` for every command.
+FLAG_RANGES: dict[str, tuple[float, float]] = {
+    "laps": (1, 1000),
+    "fps": (0.1, 240),
+    "max_speed": (0.01, 100),
+    "max_time": (0.01, 1e6),
+    "seed": (0, 2**64 - 1),
+    "seeds": (0, 2**64 - 1),
+    "timeout": (0.1, 86400),
+    "max_px": (16, 16384),
+    "resolution": (0.001, 1.0),
+    "jobs": (1, 1024),
+    "cars": (1, 64),
+    "domain_id": (0, 232),
+    "duration": (0.001, 1e7),
+    "sim_time": (0.001, 1e7),
+    "limit": (1, 1_000_000),
+    "columns": (1, 100),
+    "count": (1, 100_000),
+}
+
+
+def check_numeric_flags(args: Any) -> None:
+    """Refuse a NaN, an infinity or an out-of-range value in any numeric flag with an
+    :class:`InvalidArgumentError` naming the flag and its range (the CLI exits 2)."""
+    import math
+
+    from ..errors import InvalidArgumentError
+
+    for dest, value in vars(args).items():
+        values = value if isinstance(value, (list, tuple)) else [value]
+        for v in values:
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                continue
+            flag = "--" + dest.replace("_", "-")
+            lo, hi = FLAG_RANGES.get(dest, (-math.inf, math.inf))
+            if not (math.isfinite(v) and lo <= v <= hi):
+                rng = f" in [{lo:g}, {hi:g}]" if dest in FLAG_RANGES else ""
+                if dest in ("seed", "seeds"):
+                    rng = " in [0, 2**64 - 1]"
+                raise InvalidArgumentError(f"{flag} must be a finite number{rng}, got {v}")

@@ -33,9 +33,13 @@ def register(sub) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..drivers import PurePursuitParams, drive_laps
     from ..errors import InvalidArgumentError
+    from ..fileio import check_output
 
     if args.laps < 1:
         raise InvalidArgumentError(f"--laps must be >= 1, got {args.laps}")
+    for out in (args.gif, getattr(args, "mcap", None)):
+        if out is not None:
+            check_output(out, inputs=[args.map])
     params = None
     if args.max_speed is not None:
         if not args.max_speed > 0:

@@ -13,7 +13,7 @@ from pathlib import Path
 from . import EXIT_GENERATION_FAILURE, EXIT_OK, EXIT_REJECTED
 from ._common import add_json_flag, print_json
 from .parse import add_backend_args, parse_from_args, print_result
-from ..errors import InvalidArgumentError
+from ..errors import InvalidArgumentError, MapIOError
 from ..spec import TrackSpec
 
 
@@ -52,6 +52,8 @@ def run(args: argparse.Namespace) -> int:
 
     if args.seed < 0:
         raise InvalidArgumentError(f"--seed must be ≥ 0, got {args.seed}")
+    if args.out.exists() and not args.out.is_dir():
+        raise MapIOError(f"{args.out}: exists and is not a directory; -o names the output folder")
     spec, parsed = _spec_from_args(args)
     if parsed is not None and not args.json:
         print_result(parsed, file=sys.stderr)

@@ -43,6 +43,7 @@ def register(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import InvalidArgumentError
+    from ..fileio import check_output
     from ..render.formats import image_format
 
     image_format(args.out)  # before any work: a wrong extension is bad input
@@ -50,6 +51,7 @@ def run(args: argparse.Namespace) -> int:
         raise InvalidArgumentError(f"--max-px must be at least 16, got {args.max_px}")
     if not 1 <= args.cars <= 64:
         raise InvalidArgumentError(f"--cars must be between 1 and 64, got {args.cars}")
+    check_output(args.out, inputs=[args.source, *_map_image(args.source)])
     is_stage = args.source.suffix.lower() in USD_SUFFIXES
     if args.three_d:
         if not is_stage:
@@ -71,3 +73,19 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"wrote {summary.output} ({summary.size_px[0]}x{summary.size_px[1]} px): {', '.join(summary.drawn)}")
     return 0
+
+
+def _map_image(source: Path) -> list[Path]:
+    """The image a map YAML names (so the picture cannot overwrite it), if readable;
+    a broken YAML is left for the loader to report."""
+    from ..errors import ArenaError
+    from ..fileio import read_text
+    from ..maps import image_named_by
+
+    if source.suffix.lower() in USD_SUFFIXES:
+        return []
+    try:
+        image = image_named_by(read_text(source, "map YAML", 1 << 20))
+    except ArenaError:
+        return []
+    return [source.parent / image] if image else []

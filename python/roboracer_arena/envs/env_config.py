@@ -13,8 +13,8 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import ConfigError
-
 from ..sim_config import SimConfig
+from ..strict import NumbersAreNumbers
 
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
@@ -22,7 +22,7 @@ _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 ODOMETRY_FIELDS = ("x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed")
 
 
-class ObservationConfig(BaseModel):
+class ObservationConfig(NumbersAreNumbers):
     """What the agent sees: the lidar scan and/or odometry columns, raw or normalised.
 
     Raw (``normalise=False``, for control people): ranges in metres, odometry in SI units
@@ -73,7 +73,7 @@ class ObservationConfig(BaseModel):
         return self
 
 
-class RewardConfig(BaseModel):
+class RewardConfig(NumbersAreNumbers):
     """Per vehicle and step: ``progress * Δs − collision_penalty * [contact] − time_penalty * dt``.
 
     Δs is the signed progress along the centreline (m) during the step, wrapped at the lap.
@@ -88,7 +88,7 @@ class RewardConfig(BaseModel):
     wrong_way_penalty: float = Field(0.0, ge=0, description="Subtracted on each step the vehicle drives the wrong way.")
 
 
-class RandomisationConfig(BaseModel):
+class RandomisationConfig(NumbersAreNumbers):
     """Per-episode domain randomisation of the observation, drawn from each env's own RNG.
 
     The simulator's scan is exact; each episode draws a range-noise std uniformly from
@@ -123,7 +123,7 @@ OBSERVATION_PRESETS = {
 }
 
 
-class EnvConfig(BaseModel):
+class EnvConfig(NumbersAreNumbers):
     """Task configuration of ``RoboRacerArena-v0`` (single env and vector env)."""
 
     model_config = _FROZEN

@@ -15,15 +15,17 @@ import math
 import time
 from pathlib import Path
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import ConfigDict, Field, ValidationError
 
+from ..errors import ArenaError, ConfigError
+from ..fileio import read_text
 from ..sim_config import SimConfig
-from ..errors import ConfigError
+from ..strict import NumbersAreNumbers
 
 _EPS = 1e-9
 
 
-class RatesConfig(BaseModel):
+class RatesConfig(NumbersAreNumbers):
     """Publication and control rates (Hz). Defaults are the paper's (scan 39.9 Hz, odometry
     50 Hz, drive commands 20 Hz); ``/clock`` at 100 Hz, ``/tf`` with odometry."""
 
@@ -35,7 +37,7 @@ class RatesConfig(BaseModel):
     clock_hz: float = Field(100.0, gt=0, le=1000, description="/clock rate.")
 
 
-class BridgeConfig(BaseModel):
+class BridgeConfig(NumbersAreNumbers):
     """Everything ``roboracer-arena ros2 --config F`` reads (JSON): rates and the simulator."""
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
@@ -48,11 +50,13 @@ class BridgeConfig(BaseModel):
         """Read a JSON file; bad JSON or fields fail with :class:`ConfigError` naming the file."""
         p = Path(path)
         try:
-            raw = json.loads(p.read_text(encoding="utf-8"))
-        except OSError as e:
-            raise ConfigError(f"{p}: cannot read bridge config: {e.strerror or e}") from e
+            raw = json.loads(read_text(p, "bridge config"))
+        except ArenaError as e:
+            raise ConfigError(str(e)) from None
         except json.JSONDecodeError as e:
             raise ConfigError(f"{p}: not valid JSON: {e}") from e
+        except RecursionError:
+            raise ConfigError(f"{p}: JSON nested too deeply to be a bridge config") from None
         try:
             return cls.model_validate(raw)
         except ValidationError as e:

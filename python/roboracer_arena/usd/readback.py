@@ -10,7 +10,8 @@ from typing import Any
 import numpy as np
 from pxr import Usd, UsdGeom
 
-from ..errors import MapIOError
+from ..errors import MapFormatError, MapIOError
+from ..fileio import require_regular
 from .stage import METADATA_KEY
 
 
@@ -25,8 +26,7 @@ class ReadMesh:
 
 def open_stage(path: str | Path) -> Usd.Stage:
     p = Path(path)
-    if not p.is_file():
-        raise MapIOError(f"{p}: no such USD file")
+    require_regular(p, "USD stage")
     try:
         stage = Usd.Stage.Open(str(p))
     except Exception as e:  # pxr raises Tf.ErrorException
@@ -59,6 +59,7 @@ def read_meshes(stage: Usd.Stage, root: str = "/World/Track") -> dict[str, ReadM
             pts = pts @ xf[:3, :3] + xf[3, :3]  # USD matrices are row-vector convention
         counts = np.asarray(mesh.GetFaceVertexCountsAttr().Get() or [], dtype=np.int64)
         idx = np.asarray(mesh.GetFaceVertexIndicesAttr().Get() or [], dtype=np.int64)
+        _check_mesh(f"{stage.GetRootLayer().realPath or 'stage'}: {prim.GetPath()}", pts, counts, idx)
         tris = _triangulate(counts, idx)
         img = UsdGeom.Imageable(prim)
         out[str(prim.GetPath())] = ReadMesh(
@@ -69,6 +70,17 @@ def read_meshes(stage: Usd.Stage, root: str = "/World/Track") -> dict[str, ReadM
             img.ComputeVisibility() != UsdGeom.Tokens.invisible,
         )
     return out
+
+
+def _check_mesh(where: str, pts: np.ndarray, counts: np.ndarray, idx: np.ndarray) -> None:
+    """Refuse a mesh a reader cannot trust: non-finite points, faces of fewer than three
+    vertices, counts that do not add up to the indices, or indices outside the points."""
+    if not np.isfinite(pts).all():
+        raise MapFormatError(f"{where}: mesh points are not all finite (NaN or infinite)")
+    if len(counts) and (counts.min() < 3 or int(counts.sum()) != len(idx)):
+        raise MapFormatError(f"{where}: face vertex counts must be ≥ 3 and add up to the {len(idx)} indices")
+    if len(idx) and (idx.min() < 0 or idx.max() >= len(pts)):
+        raise MapFormatError(f"{where}: face vertex indices must be in [0, {len(pts) - 1}], got {idx.min()}..{idx.max()}")
 
 
 def _triangulate(counts: np.ndarray, idx: np.ndarray) -> np.ndarray:

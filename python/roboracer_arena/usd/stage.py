@@ -25,8 +25,8 @@ import numpy as np
 from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics, Vt
 
 from ..build_config import BuildConfig
-from ..errors import ConfigError
-from ..fileio import atomic_path
+from ..errors import ConfigError, MapIOError
+from ..fileio import atomic_paths
 from . import materials as looks
 from .textures import Texture, duct_texture, floor_texture
 
@@ -115,9 +115,9 @@ def write_stage(
     config: BuildConfig,
     metadata: Mapping[str, Any],
 ) -> WrittenStage:
-    """Author and write the stage atomically (temporary file + rename); textures go to
-    ``textures/`` beside it, each written atomically. On any error nothing is left at
-    ``out_path``."""
+    """Author and write the stage atomically; textures go to ``textures/`` beside it.
+    The stage and every texture not already there with identical bytes are written to
+    temporary files and renamed together: on any error nothing new is left behind."""
     import time
 
     out = Path(out_path)
@@ -125,13 +125,14 @@ def write_stage(
     t0 = time.perf_counter()
     stage, textures = author_stage(meshes, config, metadata)
     t1 = time.perf_counter()
-    written: list[Path] = []
-    with atomic_path(out) as tmp:
+    written = [out.parent / tex.relpath for tex in textures]
+    fresh = [(p, tex) for p, tex in zip(written, textures) if not tex.present(out.parent)]
+    with atomic_paths([out, *(p for p, _ in fresh)]) as (tmp, *tex_tmps):
         args = {"format": fmt} if out.suffix.lower() == ".usd" else {}
         if not stage.GetRootLayer().Export(os.fspath(tmp), args=args):
-            raise OSError(f"{out}: usd-core could not write the stage")
-        for tex in textures:
-            written.append(tex.write(out.parent))
+            raise MapIOError(f"{out}: usd-core could not write the stage")
+        for t, (_, tex) in zip(tex_tmps, fresh):
+            t.write_bytes(tex.png)
         size = tmp.stat().st_size
     return WrittenStage(out, size, fmt, written, t1 - t0, time.perf_counter() - t1)
 

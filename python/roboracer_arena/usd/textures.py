@@ -1,4 +1,4 @@
-"""Procedural PNG textures for the stage, drawn with numpy + PIL and written atomically.
+"""Procedural PNG textures for the stage, drawn with numpy + PIL (written with the stage, see ``stage.write_stage``).
 
 Textures are single-channel *shade* maps stored as raw (linear) values around
 :data:`SHADE_MEAN`; the material multiplies them by its colour through the UsdUVTexture
@@ -18,7 +18,6 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, PngImagePlugin  # noqa: F401  (imported here, not inside a timed build)
 
-from ..fileio import atomic_write_bytes
 
 TEXTURE_DIR = "textures"
 SHADE_MEAN = 0.9  # mean texel value; the material's scale is colour / SHADE_MEAN
@@ -31,16 +30,14 @@ class Texture:
     relpath: str
     png: bytes
 
-    def write(self, stage_dir: Path) -> Path:
-        """Write atomically under ``stage_dir``, skipping the write if identical bytes are there."""
+    def present(self, stage_dir: Path) -> bool:
+        """Whether ``stage_dir`` already holds this texture with identical bytes (then a
+        build shares it instead of rewriting it)."""
         path = stage_dir / self.relpath
         try:
-            if path.stat().st_size == len(self.png) and path.read_bytes() == self.png:
-                return path
+            return path.stat().st_size == len(self.png) and path.read_bytes() == self.png
         except OSError:
-            pass
-        atomic_write_bytes(path, self.png)
-        return path
+            return False
 
 
 def _png(shade: np.ndarray) -> bytes:

@@ -15,7 +15,8 @@
 use super::image::{MapMode, PixelImage, Thresholds};
 use super::{pgm, png_io, OccupancyGrid, FREE, OCCUPIED, UNKNOWN};
 use crate::error::{ArenaError, Result};
-use crate::fileio::atomic_write;
+use crate::fileio::{atomic_write, read_regular};
+use crate::limits;
 use serde::Serialize;
 use serde_yaml::Value;
 use std::path::{Path, PathBuf};
@@ -106,11 +107,7 @@ fn parse_yaml(path: &Path, text: &str) -> Result<YamlFields> {
         Some(v) => number(v)
             .ok_or_else(|| bad(format!("'resolution' must be a number, got {}", show(v))))?,
     };
-    if !(resolution.is_finite() && resolution > 0.0) {
-        return Err(bad(format!(
-            "'resolution' must be a finite number > 0, got {resolution}"
-        )));
-    }
+    limits::check_resolution(resolution).map_err(|e| bad(e.to_string()))?;
     let origin = match get("origin") {
         None => {
             return Err(bad(
@@ -127,11 +124,12 @@ fn parse_yaml(path: &Path, text: &str) -> Result<YamlFields> {
                     ))
                 })?;
             }
+            limits::check_origin(o).map_err(|e| bad(e.to_string()))?;
             o
         }
         Some(v) => {
             return Err(bad(format!(
-                "'origin' must be a list [x, y, yaw], got {}",
+                "'origin' must be a list [x, y] or [x, y, yaw], got {}",
                 show(v)
             )))
         }
@@ -197,10 +195,24 @@ fn parse_yaml(path: &Path, text: &str) -> Result<YamlFields> {
     })
 }
 
+/// A YAML value on one line (flow style via JSON), cut to a readable length.
 fn show(v: &Value) -> String {
-    serde_yaml::to_string(v)
-        .map(|s| s.trim().to_string())
-        .unwrap_or_else(|_| format!("{v:?}"))
+    let s = serde_json::to_string(v).unwrap_or_else(|_| format!("{v:?}"));
+    match s.char_indices().nth(80) {
+        Some((i, _)) => format!("{}…", &s[..i]),
+        None => s,
+    }
+}
+
+/// Largest map YAML read (bytes): real ones are a few hundred bytes.
+pub const MAX_YAML_BYTES: u64 = 1 << 20;
+
+/// Largest map image file read (bytes): enough for the pixel budget as 16-bit ASCII PGM
+/// ("65535 " per sample), plus a header.
+fn max_image_bytes() -> Result<u64> {
+    Ok(limits::max_pixels()?
+        .saturating_mul(6)
+        .saturating_add(1 << 20))
 }
 
 /// A helpful sentence when the image named by the YAML does not exist: the yaml's
@@ -226,8 +238,7 @@ fn missing_image_hint(yaml: &Path) -> String {
 
 /// Decode an image file by its content (PNG signature or P2/P5 magic).
 pub fn read_image(path: &Path) -> Result<(PixelImage, &'static str)> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| ArenaError::io(path, format!("cannot read map image: {e}")))?;
+    let bytes = read_regular(path, "map image", max_image_bytes()?)?;
     let bad = |m: String| ArenaError::map_format(path, m);
     if bytes.is_empty() {
         return Err(bad("map image is empty (0 bytes)".into()));
@@ -246,20 +257,15 @@ pub fn read_image(path: &Path) -> Result<(PixelImage, &'static str)> {
 /// Load a ROS map YAML and its image as a trinary grid (254/0/205).
 pub fn load_map(yaml_path: impl AsRef<Path>) -> Result<(OccupancyGrid, MapMeta)> {
     let yaml_path = yaml_path.as_ref();
-    if yaml_path.is_dir() {
-        return Err(ArenaError::io(
-            yaml_path,
-            "is a directory, expected a map YAML file",
-        ));
-    }
-    let text = std::fs::read_to_string(yaml_path)
-        .map_err(|e| ArenaError::io(yaml_path, format!("cannot read map YAML: {e}")))?;
+    let bytes = read_regular(yaml_path, "map YAML", MAX_YAML_BYTES)?;
+    let text = String::from_utf8(bytes)
+        .map_err(|_| ArenaError::map_format(yaml_path, "map YAML is not UTF-8 text"))?;
     let y = parse_yaml(yaml_path, &text)?;
     let image_path: PathBuf = match Path::new(&y.image) {
         p if p.is_absolute() => p.to_path_buf(),
         p => yaml_path.parent().unwrap_or(Path::new(".")).join(p),
     };
-    if !image_path.is_file() {
+    if std::fs::symlink_metadata(&image_path).is_err() {
         return Err(ArenaError::map_format(
             yaml_path,
             format!(
@@ -271,6 +277,8 @@ pub fn load_map(yaml_path: impl AsRef<Path>) -> Result<(OccupancyGrid, MapMeta)>
         ));
     }
     let (img, format) = read_image(&image_path)?;
+    limits::check_grid_header(img.width, img.height, y.resolution, y.origin)
+        .map_err(|e| ArenaError::map_format(yaml_path, e.to_string()))?;
     let data = img.to_occupancy(&y.thresholds);
     let grid = OccupancyGrid {
         width: img.width,
@@ -348,8 +356,15 @@ pub fn save_map(
             .map_err(|e| ArenaError::io(&image_path, e))?,
         ImageFormat::Pgm => pgm::encode(&grid.data, grid.width, grid.height),
     };
+    // Both files or neither: an image this call created is removed if the YAML fails.
+    let image_existed = image_path.exists();
     atomic_write(&image_path, &bytes)?;
-    atomic_write(yaml_path, map_yaml(grid, &image_name).as_bytes())?;
+    if let Err(e) = atomic_write(yaml_path, map_yaml(grid, &image_name).as_bytes()) {
+        if !image_existed {
+            let _ = std::fs::remove_file(&image_path);
+        }
+        return Err(e);
+    }
     Ok(image_path)
 }
 

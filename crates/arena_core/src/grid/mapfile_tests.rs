@@ -203,14 +203,14 @@ fn broken_yaml_and_images_say_what_is_wrong() {
             "c.yaml",
             b"image: ok.pgm\nresolution: .nan\norigin: [0, 0, 0]\n",
         )),
-        "finite number > 0",
+        "resolution must be in [0.001, 1]",
     );
     expect_format_err(
         load_map(d.write(
             "c2.yaml",
             b"image: ok.pgm\nresolution: -1\norigin: [0, 0, 0]\n",
         )),
-        "finite number > 0",
+        "resolution must be in [0.001, 1]",
     );
     expect_format_err(
         load_map(d.write(
@@ -279,4 +279,90 @@ fn broken_yaml_and_images_say_what_is_wrong() {
         Err(ArenaError::Io { path, .. }) => assert!(path.ends_with("absent.yaml")),
         other => panic!("{other:?}"),
     }
+}
+
+#[test]
+fn hostile_headers_and_fields_are_refused_before_allocating() {
+    let d = TmpDir::new("hostile");
+    // Allocation bombs: tiny files declaring huge rasters.
+    d.write("p2.pgm", b"P2\n150000 150000\n255\n0 0 0\n");
+    d.write("p5.pgm", b"P5 4294967295 4294967295 65535\n\0\0");
+    d.write("p5x.pgm", b"P5 18446744073709551615 2 65535\n\0\0");
+    for (i, img) in ["p2.pgm", "p5.pgm", "p5x.pgm"].iter().enumerate() {
+        expect_format_err(
+            load_map(d.write(&format!("bomb{i}.yaml"), yaml(img, "").as_bytes())),
+            "",
+        );
+    }
+    let mut png = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut png, 1, 1);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.write_header().unwrap().write_image_data(&[0]).unwrap();
+    }
+    // Patch IHDR to 2^31-1 squared (the CRC is then wrong, or the size is refused first).
+    png[16..20].copy_from_slice(&0x7fff_ffffu32.to_be_bytes());
+    png[20..24].copy_from_slice(&0x7fff_ffffu32.to_be_bytes());
+    d.write("bomb.png", &png);
+    expect_format_err(
+        load_map(d.write("bombpng.yaml", yaml("bomb.png", "").as_bytes())),
+        "",
+    );
+    // Implausible resolutions and origins name the field and the range.
+    d.write("ok.pgm", &pgm::encode(&[254; 10_000], 100, 100));
+    for (i, r) in ["1e300", "1e-300", "1e6", "1000", ".inf"]
+        .iter()
+        .enumerate()
+    {
+        let y = format!("image: ok.pgm\nresolution: {r}\norigin: [0, 0, 0]\n");
+        expect_format_err(
+            load_map(d.write(&format!("r{i}.yaml"), y.as_bytes())),
+            "resolution",
+        );
+    }
+    let y = "image: ok.pgm\nresolution: 0.9\norigin: [0, 0, 0]\n";
+    assert!(load_map(d.write("r_ok.yaml", y.as_bytes())).is_ok());
+    for (i, o) in ["[1e300, -1e300, 0]", "[0, 0, .nan]", "[1e6, 0, 0]"]
+        .iter()
+        .enumerate()
+    {
+        let y = format!("image: ok.pgm\nresolution: 0.05\norigin: {o}\n");
+        expect_format_err(
+            load_map(d.write(&format!("o{i}.yaml"), y.as_bytes())),
+            "origin",
+        );
+    }
+    // A 4-element origin is reported on one line.
+    let y = "image: ok.pgm\nresolution: 0.05\norigin: [1, 2, 3, 4]\n";
+    match load_map(d.write("o4.yaml", y.as_bytes())) {
+        Err(e) => assert!(!e.to_string().contains('\n'), "{e}"),
+        Ok(_) => panic!("4-element origin accepted"),
+    }
+    // Inputs must be regular files: a directory and a device say what they are.
+    let dirimg = format!(
+        "image: {}\nresolution: 0.05\norigin: [0, 0, 0]\n",
+        d.0.display()
+    );
+    let e = load_map(d.write("dir.yaml", dirimg.as_bytes())).unwrap_err();
+    assert!(e.to_string().contains("directory"), "{e}");
+    #[cfg(unix)]
+    {
+        let y = "image: /dev/zero\nresolution: 0.05\norigin: [0, 0, 0]\n";
+        let e = load_map(d.write("zero.yaml", y.as_bytes())).unwrap_err();
+        assert!(e.to_string().contains("device"), "{e}");
+        let e = load_map("/dev/zero").unwrap_err();
+        assert!(e.to_string().contains("device"), "{e}");
+    }
+}
+
+#[test]
+fn save_writes_both_files_or_neither() {
+    let d = TmpDir::new("save");
+    let g = OccupancyGrid::filled(4, 3, 0.05, [0.0; 3], FREE);
+    // The YAML's name is taken by a directory: the write fails and no image is left.
+    std::fs::create_dir_all(d.0.join("m.yaml")).unwrap();
+    assert!(save_map(&g, d.0.join("m.yaml"), ImageFormat::Png).is_err());
+    assert!(!d.0.join("m.png").exists());
+    let img = save_map(&g, d.0.join("ok.yaml"), ImageFormat::Pgm).unwrap();
+    assert!(img.exists() && d.0.join("ok.yaml").exists());
 }

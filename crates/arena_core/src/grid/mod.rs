@@ -51,6 +51,22 @@ impl OccupancyGrid {
         }
     }
 
+    /// The door check of every function taking a grid from outside: size within the
+    /// pixel budget, resolution, origin and extent in range (see [`crate::limits`]), and
+    /// exactly `width × height` cells.
+    pub fn check(&self) -> crate::Result<()> {
+        crate::limits::check_grid_header(self.width, self.height, self.resolution, self.origin)?;
+        if self.data.len() != self.width * self.height {
+            return Err(crate::ArenaError::invalid(format!(
+                "map holds {} cells for {}×{}",
+                self.data.len(),
+                self.width,
+                self.height
+            )));
+        }
+        Ok(())
+    }
+
     #[inline]
     pub fn index(&self, col: usize, row: usize) -> usize {
         row * self.width + col

@@ -34,11 +34,14 @@ pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
     if maxval == 0 || maxval > 65535 {
         return Err(format!("PGM maxval {maxval} is outside 1..=65535"));
     }
+    // The budget is checked from the header, before anything is allocated.
+    crate::limits::check_cells(w as usize, h as usize, "PGM image").map_err(|e| e.to_string())?;
     let n = (w as usize)
         .checked_mul(h as usize)
         .ok_or("PGM size overflows")?;
     let samples = if ascii {
-        let mut v = Vec::with_capacity(n);
+        // Each ASCII sample takes at least two bytes: never reserve more than the file holds.
+        let mut v = Vec::with_capacity(n.min(bytes.len() / 2 + 1));
         for i in 0..n {
             let t = token(bytes, &mut pos)
                 .ok_or_else(|| format!("PGM data truncated: {i} of {n} samples"))?;
@@ -56,7 +59,7 @@ pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
     } else {
         pos += 1; // exactly one whitespace byte after maxval
         let bps = if maxval < 256 { 1 } else { 2 };
-        let need = n * bps;
+        let need = n.checked_mul(bps).ok_or("PGM size overflows")?;
         let data = bytes.get(pos..).unwrap_or(&[]);
         if data.len() < need {
             return Err(format!(

@@ -18,6 +18,9 @@ pub fn decode(bytes: &[u8]) -> Result<PixelImage, String> {
     );
     dec.set_transformations(png::Transformations::EXPAND);
     let mut reader = dec.read_info().map_err(|e| format!("corrupt PNG: {e}"))?;
+    // The budget is checked from the IHDR header, before the pixels are allocated.
+    let (hw, hh) = (reader.info().width, reader.info().height);
+    crate::limits::check_cells(hw as usize, hh as usize, "PNG image").map_err(|e| e.to_string())?;
     let size = reader
         .output_buffer_size()
         .ok_or("PNG too large to decode")?;

@@ -39,11 +39,9 @@ pub fn rasterise_centreline(
     let origin = [lo[0] - pad, lo[1] - pad, 0.0];
     let width = ((hi[0] - lo[0] + 2.0 * pad) / resolution).ceil() as usize;
     let height = ((hi[1] - lo[1] + 2.0 * pad) / resolution).ceil() as usize;
-    if width.saturating_mul(height) > 400_000_000 {
-        return Err(ArenaError::invalid(format!(
-            "rasterise: a {width}×{height} grid is too large; raise the resolution (Δ = {resolution} m)"
-        )));
-    }
+    // Size, extent and origin are checked before the grid is allocated.
+    crate::limits::check_grid_header(width, height, resolution, origin)
+        .map_err(|e| ArenaError::invalid(format!("rasterise: {e}")))?;
     // Signed margin m(x) per cell (metres), f32 keeps 10-MP maps at 40 MB.
     let mut m = vec![f32::INFINITY; width * height];
     for i in 0..n {

@@ -130,15 +130,7 @@ pub fn build_geometry(
         t = Instant::now();
     };
     params.validate()?;
-    if !(g.resolution.is_finite() && g.resolution > 0.0) || g.data.len() != g.width * g.height {
-        return Err(ArenaError::invalid(format!(
-            "invalid map: resolution {} and {} cells for {}×{}",
-            g.resolution,
-            g.data.len(),
-            g.width,
-            g.height
-        )));
-    }
+    g.check()?;
     let p = params.effective(g.resolution);
     let res = g.resolution;
     let corridor = isolate_corridor(g, start)?;
@@ -217,9 +209,34 @@ pub fn build_geometry(
     if signed_area(&centreline) < 0.0 {
         centreline.reverse();
     }
+    crate::limits::derived_count(
+        "geometry.centreline_spacing_m",
+        crate::geometry::polyline_length(&centreline, true),
+        p.centreline_spacing_m,
+    )?;
     let centreline = resample_closed(&centreline, p.centreline_spacing_m);
     lap("centreline", &mut timings);
 
+    if walls.is_empty() {
+        return Err(ArenaError::Corridor(format!(
+            "no collision walls at wall_offset_m = {} m: the offset leaves no corridor \
+             (use a value closer to 0)",
+            p.wall_offset_m
+        )));
+    }
+    if p.ring_spacing_m > 0.0 {
+        let duct_length: f64 = ducts
+            .iter()
+            .map(|d| crate::geometry::polyline_length(d, true))
+            .sum();
+        // Each ring is a band of 2 × tube_segments vertices: bound the mesh, not the rings.
+        crate::limits::derived_count_each(
+            "geometry.ring_spacing_m",
+            duct_length,
+            p.ring_spacing_m,
+            2 * p.tube_segments,
+        )?;
+    }
     let wall_mesh = extrude_walls(&walls, 0.0, p.wall_height_m);
     let (mut duct_mesh, mut ring_mesh) = (TriMesh::default(), TriMesh::default());
     for d in &ducts {

@@ -16,6 +16,7 @@
 //! * *sweeper*: any other turn of `45° ≤ |θ| < 135°` whose peak radius is `≥ 1.5 r_c`;
 //! * a *straight* is a maximal run where `|κ| < 1/(8 r_c)`.
 
+use crate::error::{ArenaError, Result};
 use crate::geometry::dist;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -179,6 +180,38 @@ pub fn curvature_profile(pts: &[[f64; 2]], ds: f64, half_window: f64) -> Vec<f64
     smooth_periodic(&kappa, h, |a| a * inv)
 }
 
+/// Longest closed curve [`analyse_closed_curve`] and [`self_clearance`] accept (m): the
+/// clearance is quadratic in the number of 0.1 m samples.
+pub const MAX_CURVE_LENGTH_M: f64 = 5_000.0;
+
+/// The door of the curve analysis: ≥ 3 finite points spanning a positive length of at
+/// most [`MAX_CURVE_LENGTH_M`], `corner_radius` finite and > 0, `exclude_m` finite ≥ 0.
+pub fn check_curve_args(points: &[[f64; 2]], corner_radius: f64, exclude_m: f64) -> Result<()> {
+    if points.len() < 3 {
+        return Err(ArenaError::invalid(format!(
+            "analyse_curve needs at least 3 points, got {}",
+            points.len()
+        )));
+    }
+    if let Some(p) = points
+        .iter()
+        .find(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
+        return Err(ArenaError::invalid(format!(
+            "analyse_curve points must be finite, got {p:?}"
+        )));
+    }
+    let length = crate::geometry::polyline_length(points, true);
+    if !(length > 0.0 && length <= MAX_CURVE_LENGTH_M) {
+        return Err(ArenaError::invalid(format!(
+            "analyse_curve needs a curve of length in (0, {MAX_CURVE_LENGTH_M}] m, got {length} m"
+        )));
+    }
+    crate::limits::check_range("corner_radius", corner_radius, 1e-3, 1e4, " m")?;
+    crate::limits::check_range("exclude_m", exclude_m, 0.0, 1e6, " m")?;
+    Ok(())
+}
+
 /// Analyse a closed curve whose point order is the driving direction.
 pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAnalysis {
     let length = crate::geometry::polyline_length(points, true);
@@ -193,7 +226,12 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
 
     // Start the scan on the sample that is most straight so no turn wraps around 0.
     let start = (0..n)
-        .min_by(|&a, &b| kappa[a].abs().partial_cmp(&kappa[b].abs()).unwrap())
+        .min_by(|&a, &b| {
+            kappa[a]
+                .abs()
+                .partial_cmp(&kappa[b].abs())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
         .unwrap_or(0);
     let at = |k: usize| kappa[(start + k) % n];
 

@@ -43,6 +43,7 @@ pub struct RasterTrack {
 /// (`edt_within`); the cap is checked on the corridor, so every value the zero loop and
 /// the widths read is exact, and the full transform is the fallback when it is not.
 pub fn measure_raster(g: &OccupancyGrid) -> Result<RasterTrack> {
+    g.check()?;
     measure_with_cap(g, DISTANCE_CAP)
 }
 

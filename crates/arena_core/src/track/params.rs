@@ -83,57 +83,50 @@ impl BuildParams {
         }
     }
 
+    /// Every field within its plausible range (NaN refused), each error naming the field
+    /// and the range. Counts derived from a map's lengths are checked by the builder
+    /// (`limits::derived_count`) once those lengths are known.
     pub fn validate(&self) -> Result<()> {
-        let positive = [
-            ("wall_height_m", self.wall_height_m),
-            ("tube_diameter_m", self.tube_diameter_m),
-            ("ring_width_m", self.ring_width_m),
-            ("ring_scale", self.ring_scale),
-            ("centreline_spacing_m", self.centreline_spacing_m),
-        ];
-        for (k, v) in positive {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(ArenaError::config(format!(
-                    "build params: {k} must be a finite number > 0, got {v}"
-                )));
-            }
-        }
-        let non_negative = [
-            ("ring_spacing_m", self.ring_spacing_m),
-            ("simplify_tolerance_m", self.simplify_tolerance_m),
-            ("floor_margin_m", self.floor_margin_m),
-        ];
-        for (k, v) in non_negative {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(ArenaError::config(format!(
-                    "build params: {k} must be a finite number ≥ 0, got {v}"
-                )));
-            }
-        }
-        // Upper (and the offset's lower) bounds, as the pydantic GeometryConfig states them.
-        let bounded = [
-            ("wall_height_m", self.wall_height_m, 0.0, 10.0),
+        // The same ranges as the pydantic GeometryConfig (tests/test_config_parity.py).
+        let ranges = [
+            ("wall_height_m", self.wall_height_m, 1e-3, 10.0),
             ("wall_offset_m", self.wall_offset_m, -1.0, 1.0),
-            ("tube_diameter_m", self.tube_diameter_m, 0.0, 2.0),
-            ("ring_scale", self.ring_scale, 0.0, 3.0),
+            ("tube_diameter_m", self.tube_diameter_m, 1e-3, 2.0),
+            ("ring_width_m", self.ring_width_m, 1e-3, 10.0),
+            ("ring_scale", self.ring_scale, 0.1, 3.0),
+            (
+                "centreline_spacing_m",
+                self.centreline_spacing_m,
+                1e-3,
+                10.0,
+            ),
+            ("ring_spacing_m", self.ring_spacing_m, 0.0, 1000.0),
+            ("simplify_tolerance_m", self.simplify_tolerance_m, 0.0, 10.0),
+            ("floor_margin_m", self.floor_margin_m, 0.0, 100.0),
         ];
-        for (k, v, lo, hi) in bounded {
-            if !(lo..=hi).contains(&v) {
-                return Err(ArenaError::config(format!(
-                    "build params: {k} must be in [{lo}, {hi}], got {v}"
-                )));
-            }
+        for (k, v, lo, hi) in ranges {
+            crate::limits::check_range(&format!("build params: geometry.{k}"), v, lo, hi, " m")
+                .map_err(|e| ArenaError::config(e.to_string()))?;
+        }
+        if self.ring_spacing_m > 0.0 && self.ring_spacing_m < self.ring_width_m {
+            return Err(ArenaError::config(format!(
+                "build params: geometry.ring_spacing_m must be 0 (no rings) or in [{}, 1000] m \
+                 (at least ring_width_m), got {}",
+                self.ring_width_m,
+                crate::limits::show(self.ring_spacing_m)
+            )));
         }
         if !(3..=64).contains(&self.tube_segments) {
             return Err(ArenaError::config(format!(
-                "build params: tube_segments must be in 3..=64, got {}",
+                "build params: geometry.tube_segments must be in 3..=64, got {}",
                 self.tube_segments
             )));
         }
         if self.smoothing_iterations > 100 {
-            return Err(ArenaError::config(
-                "build params: smoothing_iterations must be ≤ 100",
-            ));
+            return Err(ArenaError::config(format!(
+                "build params: geometry.smoothing_iterations must be in 0..=100, got {}",
+                self.smoothing_iterations
+            )));
         }
         Ok(())
     }
@@ -154,6 +147,16 @@ mod tests {
             .to_string()
             .contains("unknown field"));
         assert!(BuildParams::from_json(r#"{"tube_diameter_m": -1}"#).is_err());
+        for bad in [
+            r#"{"centreline_spacing_m": 1e-7}"#,
+            r#"{"ring_spacing_m": 1e-7}"#,
+            r#"{"wall_offset_m": -5}"#,
+            r#"{"wall_height_m": 1e300}"#,
+        ] {
+            let e = BuildParams::from_json(bad).unwrap_err().to_string();
+            let field = bad.split('"').nth(1).unwrap();
+            assert!(e.contains(field) && e.contains('['), "{bad}: {e}");
+        }
         assert_eq!(
             BuildParams::default().effective(0.05).simplify_tolerance_m,
             0.025
