@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import Any, Callable, Iterator, Sequence, TypeVar
 
+from ..errors import InvalidArgumentError
 from .executor import DEFAULT_RETRIES, WorkerLostError
 from .ray_cluster import cluster_cpus, connect, import_ray
 
@@ -20,13 +21,17 @@ def _call(fn: Callable[[Any], Any], item: Any) -> Any:
 class RayExecutor:
     """Run tasks on the Ray cluster at ``address`` (see :mod:`.ray_cluster`)."""
 
-    def __init__(self, address: str = "auto", max_retries: int = DEFAULT_RETRIES, max_in_flight: int | None = None) -> None:
+    def __init__(self, address: str = "auto", max_retries: int = DEFAULT_RETRIES, workers: int | None = None) -> None:
+        """``workers``: tasks in flight at most (default: the cluster's CPUs, with as many
+        again queued so no CPU waits for the driver's round trip)."""
         self._owns = connect(address)
         ray = import_ray()
         self.max_retries = int(max_retries)
-        self.workers = cluster_cpus()
-        # A bounded window keeps the driver's memory flat for libraries of thousands of tracks.
-        self.max_in_flight = max_in_flight or 4 * self.workers
+        self.workers = int(workers) if workers else cluster_cpus()
+        if self.workers < 1:
+            raise InvalidArgumentError(f"workers must be >= 1, got {workers}")
+        # A bounded window also keeps the driver's memory flat for libraries of thousands of tracks.
+        self.max_in_flight = self.workers if workers else 2 * self.workers
         self._remote = ray.remote(num_cpus=1, max_retries=self.max_retries, retry_exceptions=False)(_call)
 
     def __enter__(self) -> "RayExecutor":
