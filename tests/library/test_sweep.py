@@ -113,3 +113,9 @@ def test_budget_exhausted_exits_4(tmp_path, capsys):
     assert "only 0 of 2 tracks" in capsys.readouterr().err
     s = json.loads((tmp_path / "o" / "sweep.json").read_text())
     assert s["requests"] == 3 and s["rejected"] == 3 and load_catalog(tmp_path / "o" / "catalog.json").entries == []
+
+
+def test_packaged_example_sweep_is_the_examples_file():
+    from roboracer_arena.library.sweep import EXAMPLE_SWEEP
+
+    assert json.loads(EXAMPLE.read_text()) == EXAMPLE_SWEEP

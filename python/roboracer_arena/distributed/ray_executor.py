@@ -32,7 +32,9 @@ class RayExecutor:
             raise InvalidArgumentError(f"workers must be >= 1, got {workers}")
         # A bounded window also keeps the driver's memory flat for libraries of thousands of tracks.
         self.max_in_flight = self.workers if workers else 2 * self.workers
-        self._remote = ray.remote(num_cpus=1, max_retries=self.max_retries, retry_exceptions=False)(_call)
+        # One CPU per task, so one native thread (rayon) per task: tasks on a node do not oversubscribe it.
+        self._remote = ray.remote(num_cpus=1, max_retries=self.max_retries, retry_exceptions=False,
+                                  runtime_env={"env_vars": {"RAYON_NUM_THREADS": "1"}})(_call)
 
     def __enter__(self) -> "RayExecutor":
         return self

@@ -83,7 +83,8 @@ class RayVectorEnv(VectorEnv):
     ``env_kwargs`` are what ``gym.make_vec("RoboRacerArena-v0", ...)`` takes (``track=``,
     ``config=``, ``autoreset_mode=``, overrides); a catalog id or map path must resolve on
     every node. ``address`` is as for ``--ray`` (default: the current Ray connection, else
-    ``auto``); ``num_cpus_per_actor`` is the CPU share Ray reserves per actor."""
+    ``auto``); ``num_cpus_per_actor`` is the CPU share Ray reserves per actor, and the
+    number of threads its native batch steps with."""
 
     def __init__(self, num_actors: int, envs_per_actor: int, *, address: str | None = None,
                  num_cpus_per_actor: float = 1.0, **env_kwargs: Any) -> None:
@@ -95,7 +96,9 @@ class RayVectorEnv(VectorEnv):
         self._owns = connect(address or "auto")
         self.num_actors, self.envs_per_actor = int(num_actors), int(envs_per_actor)
         self.num_envs = self.num_actors * self.envs_per_actor
-        remote = ray.remote(num_cpus=num_cpus_per_actor)(BatchWorker)
+        # The native batch's thread pool gets the CPUs Ray reserved for the actor, no more.
+        threads = str(max(1, int(num_cpus_per_actor)))
+        remote = ray.remote(num_cpus=num_cpus_per_actor, runtime_env={"env_vars": {"RAYON_NUM_THREADS": threads}})(BatchWorker)
         m = self.envs_per_actor
         self._actors = [remote.remote(m, a * m, env_kwargs) for a in range(self.num_actors)]
         d = ray.get(self._actors[0].describe.remote())  # errors in env_kwargs surface here

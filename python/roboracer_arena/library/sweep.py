@@ -36,6 +36,10 @@ from ..errors import SpecError
 from ..spec import TrackSpec
 
 
+#: The example sweep (also ``examples/sweep.json``): varied halls, lap lengths and features.
+EXAMPLE_SWEEP: dict[str, Any] = {"name": "hall-sweep", "base_seed": 0, "decimals": 1, "ranges": {"lap_length_m": [40, 120], "corridor_width_m": [1.2, 2.0], "hall_x_m": [18, 30], "hall_y_m": [14, 22], "hairpins": [0, 2], "chicanes": [0, 1], "sweepers": [0, 1], "direction": {"choice": ["clockwise", "counterclockwise"]}}, "fixed": {}}
+
+
 class Choice(BaseModel):
     """``{"choice": [...]}``: one of the listed values, uniformly."""
 
