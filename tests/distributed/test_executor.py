@@ -48,3 +48,18 @@ def test_task_exceptions_propagate_and_bad_jobs_are_refused():
 
 def _inverse(x: int) -> float:
     return 1 / x
+
+
+def test_ray_flag_without_ray_installed_is_a_clear_bad_input(tmp_path, monkeypatch, capsys):
+    import json
+    import sys
+
+    from roboracer_arena.cli import main
+
+    monkeypatch.setitem(sys.modules, "ray", None)  # as if the [ray] extra were not installed
+    sweep = tmp_path / "s.json"
+    sweep.write_text(json.dumps({"ranges": {"lap_length_m": [30, 40]}}))
+    assert main(["tracks", "generate", "--sweep", str(sweep), "--count", "1", "-o", str(tmp_path / "o"),
+                 "--ray", "auto"]) == 2
+    assert "pip install 'roboracer-arena[ray]'" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()  # nothing written

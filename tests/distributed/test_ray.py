@@ -178,3 +178,9 @@ def test_es_on_ray_actors_gives_the_local_curve():
     local = train(track, cfg)
     assert np.array_equal(on_ray.theta, local.theta)
     assert [strip(r) for r in on_ray.curve] == [strip(r) for r in local.curve]
+
+
+def test_ray_vector_env_bad_kwargs_raise_the_envs_own_error(oval):
+    with pytest.raises(Exception, match="lidar|num_beams") as e:
+        RayVectorEnv(1, 2, track=oval, sim={"lidar": {"num_beams": -3}})
+    assert "Ray" not in type(e.value).__name__

@@ -45,6 +45,7 @@ def register(kinds) -> None:
     p.add_argument("--steps", type=int, default=300, help="timed steps per rollout configuration (default 300)")
     p.add_argument("--beams", type=int, default=1081, help="lidar beams (default 1081)")
     p.add_argument("--map", type=Path, default=None, help="map YAML (default: f1tenth-gym berlin from the sources)")
+    p.add_argument("--only", choices=["generation", "rollouts"], help="run one half only (no projection)")
     p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
@@ -71,26 +72,11 @@ def _strip(results: list) -> list:
 
 
 # ---------------------------------------------------------------------------- generation
-def _gen_local(jobs: int, tasks: list, repeats: int) -> tuple[list[float], list]:
-    from ..distributed import LocalExecutor, map_ordered
+def _timed_runs(ex: Any, tasks: list, repeats: int) -> tuple[list[float], list]:
+    """Wall times of ``repeats`` runs of the tasks on ``ex`` and the first run's results."""
+    from ..distributed import map_ordered
     from ..library.generated import generate_files
 
-    walls, first = [], None
-    with LocalExecutor(jobs) as ex:
-        for _ in range(repeats):
-            t0 = time.perf_counter()
-            res = map_ordered(ex, generate_files, tasks)
-            walls.append(time.perf_counter() - t0)
-            first = first or res
-    return walls, first  # type: ignore[return-value]
-
-
-def _gen_ray(workers: int, tasks: list, repeats: int) -> tuple[list[float], list]:
-    from ..distributed import RayExecutor, map_ordered
-    from ..library.generated import generate_files
-
-    ex = RayExecutor("auto", workers=workers)
-    map_ordered(ex, _noop, list(range(2 * workers)))  # start the workers (not timed; reported apart)
     walls, first = [], None
     for _ in range(repeats):
         t0 = time.perf_counter()
@@ -98,6 +84,21 @@ def _gen_ray(workers: int, tasks: list, repeats: int) -> tuple[list[float], list
         walls.append(time.perf_counter() - t0)
         first = first or res
     return walls, first  # type: ignore[return-value]
+
+
+def _gen_local(jobs: int, tasks: list, repeats: int) -> tuple[list[float], list]:
+    from ..distributed import LocalExecutor
+
+    with LocalExecutor(jobs) as ex:
+        return _timed_runs(ex, tasks, repeats)
+
+
+def _gen_ray(workers: int, tasks: list, repeats: int) -> tuple[list[float], list]:
+    from ..distributed import RayExecutor, map_ordered
+
+    ex = RayExecutor("auto", workers=workers)
+    map_ordered(ex, _noop, list(range(2 * workers)))  # start the workers (not timed; reported apart)
+    return _timed_runs(ex, tasks, repeats)
 
 
 def _noop(x: Any) -> Any:
@@ -226,11 +227,13 @@ def bench_rollouts(track: Any, per: int, steps: int, beams: int) -> dict[str, An
 # ---------------------------------------------------------------------------- projection
 def project(gen: dict[str, Any], roll: dict[str, Any]) -> dict[str, Any]:
     """Throughput on W workers from the measured per-worker cost and overheads (a projection):
-    generation ``W / (t + o)`` capped by the measured no-op task rate (the driver and
-    scheduler); rollouts ``W E / (t_step + o(W))`` with the per-step overhead growing
+    generation ``W / (t + o)`` (``o`` at least one no-op task's round trip) capped by the
+    measured no-op task rate (the driver and scheduler); rollouts ``W E / (t_step + o(W))`` with the per-step overhead growing
     linearly in actors as measured from 1 to 2 (the driver sends and gathers per actor)."""
-    t, o = gen["seconds_per_request_1_core"], max(0.0, gen["ray_overhead_per_request_s"])
     cap = gen["ray_noop_tasks_per_s"]
+    # The wall-time difference is noise-dominated on a shared machine (it can come out negative):
+    # never assume less than one no-op task's round trip.
+    t, o = gen["seconds_per_request_1_core"], max(1.0 / cap, gen["ray_overhead_per_request_s"])
     ts, o1, o2 = (roll["compute_ms_per_step_1_thread"], max(0.0, roll["ray_overhead_ms_per_step_1_actor"]),
                   max(0.0, roll["ray_overhead_ms_per_step_2_actors"]))
     per = roll["envs_per_actor"]
@@ -244,7 +247,8 @@ def project(gen: dict[str, Any], roll: dict[str, Any]) -> dict[str, Any]:
 
 
 def run(requests: int = 24, repeats: int = 3, envs_per_actor: int = 64, steps: int = 300, beams: int = 1081,
-        map_path: Path | None = None) -> dict[str, Any]:
+        map_path: Path | None = None, only: str | None = None) -> dict[str, Any]:
+    """Measure, print the tables (and the projection when both halves ran); returns the results."""
     from ..distributed.ray_cluster import import_ray
     from ..envs.tracks import resolve_tracks
     from .env import _default_map
@@ -257,22 +261,35 @@ def run(requests: int = 24, repeats: int = 3, envs_per_actor: int = 64, steps: i
         ray.init(num_cpus=2, include_dashboard=False, logging_level="ERROR", log_to_driver=False)
     start = time.perf_counter() - t0
     try:
-        gen = bench_generation(requests, repeats)
-        roll = bench_rollouts(resolve_tracks(map_path or _default_map())[0], envs_per_actor, steps, beams)
+        gen = bench_generation(requests, repeats) if only != "rollouts" else None
+        roll = (bench_rollouts(resolve_tracks(map_path or _default_map())[0], envs_per_actor, steps, beams)
+                if only != "generation" else None)
     finally:
         if owns:
             ray.shutdown()
     res = {"cluster": "local, ray.init(num_cpus=2)", "ray_version": ray.__version__, "cluster_start_s": round(start, 2),
            "load_average_1min": {"start": round(load0, 2), "end": round(os.getloadavg()[0], 2)}, "cores": os.cpu_count(),
-           "generation": gen, "rollouts": roll, "projection": project(gen, roll)}
+           "generation": gen, "rollouts": roll, "projection": project(gen, roll) if gen and roll else None}
     _print(res)
     return res
 
 
 def _print(res: dict[str, Any]) -> None:
-    g, r, p = res["generation"], res["rollouts"], res["projection"]
     print(f"Ray {res['ray_version']}, {res['cluster']}, {res['cores']} cores; cluster start {res['cluster_start_s']} s; "
           f"load average {res['load_average_1min']['start']} -> {res['load_average_1min']['end']} (shared machine)")
+    if res["generation"]:
+        _print_generation(res["generation"])
+    if res["rollouts"]:
+        _print_rollouts(res["rollouts"])
+    if res["projection"]:
+        p = res["projection"]
+        print(f"\nPROJECTION ({p['note']}):")
+        print(f"{'workers':>8}{'requests/s':>12}{'env-steps/s':>14}{'step overhead ms':>18}")
+        for row in p["rows"]:
+            print(f"{row['workers']:>8}{row['requests_per_s']:>12,.1f}{row['env_steps_per_s']:>14,.0f}{row['step_overhead_ms']:>18.2f}")
+
+
+def _print_generation(g: dict[str, Any]) -> None:
     print(f"\ntrack generation: {g['requests']} requests of the example sweep ({g['accepted']} accepted), median of runs")
     print(f"{'executor':<28}{'wall s':>9}{'req/s':>8}{'tracks/s':>10}  same tracks")
     for row in g["rows"]:
@@ -281,6 +298,9 @@ def _print(res: dict[str, Any]) -> None:
           f"{1e3 * g['ray_vs_local_pool_overhead_per_request_s']:.1f} ms vs the local pool (compute {1e3 * g['seconds_per_request_1_core']:.0f} ms"
           f"/request on 1 core); scaling 1 -> 2 workers: Ray {g['ray_scaling_1_to_2']}x, local {g['local_scaling_1_to_2']}x; "
           f"no-op task ceiling {g['ray_noop_tasks_per_s']:.0f} tasks/s")
+
+
+def _print_rollouts(r: dict[str, Any]) -> None:
     print(f"\nrollouts: {r['envs_per_actor']} envs per actor/batch, {r['beams']}-beam lidar every 0.01 s step, median of {r['steps']} steps")
     print(f"{'configuration':<32}{'envs':>6}{'ms/step':>10}{'p90':>8}{'env-steps/s':>13}")
     for row in r["rows"]:
@@ -288,10 +308,6 @@ def _print(res: dict[str, Any]) -> None:
     print(f"Ray overhead per step: {r['ray_overhead_ms_per_step_1_actor']:.2f} ms (1 actor), "
           f"{r['ray_overhead_ms_per_step_2_actors']:.2f} ms (2 actors); scaling 1 -> 2 actors {r['ray_scaling_1_to_2']}x; "
           f"rollouts equal to the local vector env: {r['same_rollouts_as_local']}")
-    print(f"\nPROJECTION ({p['note']}):")
-    print(f"{'workers':>8}{'requests/s':>12}{'env-steps/s':>14}{'step overhead ms':>18}")
-    for row in p["rows"]:
-        print(f"{row['workers']:>8}{row['requests_per_s']:>12,.1f}{row['env_steps_per_s']:>14,.0f}{row['step_overhead_ms']:>18.2f}")
 
 
 def run_quick() -> dict[str, Any]:
@@ -304,7 +320,7 @@ def run_quick() -> dict[str, Any]:
 
 
 def _run_cli(args: argparse.Namespace) -> int:
-    res = run(args.requests, args.repeats, args.envs_per_actor, args.steps, args.beams, args.map)
+    res = run(args.requests, args.repeats, args.envs_per_actor, args.steps, args.beams, args.map, args.only)
     if args.json:
         atomic_write_text(args.json, json.dumps(res, indent=2))
         print(f"wrote {args.json}")

@@ -101,8 +101,15 @@ class RayVectorEnv(VectorEnv):
         remote = ray.remote(num_cpus=num_cpus_per_actor, runtime_env={"env_vars": {"RAYON_NUM_THREADS": threads}})(BatchWorker)
         m = self.envs_per_actor
         self._actors = [remote.remote(m, a * m, env_kwargs) for a in range(self.num_actors)]
-        d = ray.get(self._actors[0].describe.remote())  # errors in env_kwargs surface here
-        ray.get([a.describe.remote() for a in self._actors[1:]])
+        try:
+            d = ray.get([a.describe.remote() for a in self._actors])[0]
+        except ray.exceptions.RayError as e:  # bad env_kwargs: re-raise the env's own error, kill the actors
+            for a in self._actors:
+                ray.kill(a)
+            if self._owns:
+                ray.shutdown()
+            cause = getattr(e, "cause", None) or (e.as_instanceof_cause() if hasattr(e, "as_instanceof_cause") else None)
+            raise (cause if isinstance(cause, Exception) else e) from None
         self.single_observation_space = d["single_observation_space"]
         self.single_action_space = d["single_action_space"]
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
@@ -112,14 +119,24 @@ class RayVectorEnv(VectorEnv):
         self.render_mode = d["render_mode"]
         self.max_episode_steps = d["max_episode_steps"]
         self._closed = False
+        self._seeded = False
 
     def _gather(self, refs: list[Any]) -> list[Any]:
-        return import_ray().get(refs)
+        """``ray.get``; an actor's exception is raised as its own type (e.g. ValueError)."""
+        ray = import_ray()
+        try:
+            return ray.get(refs)
+        except ray.exceptions.RayTaskError as e:
+            raise e.as_instanceof_cause() from None
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         if isinstance(seed, (list, tuple)):
             raise ValueError("pass one integer seed; environment i is seeded with (seed, i)")
+        if seed is None and not self._seeded:
+            # First reset unseeded: ONE entropy seed for all actors, as the local env draws one for all envs.
+            seed = int(np.random.SeedSequence().entropy % (2**63))
         if seed is not None:
+            self._seeded = True
             self._np_random_seed = int(seed)
             self._np_random = np.random.default_rng(seed)
         parts = [self._slice_options(options, a) for a in range(self.num_actors)]
