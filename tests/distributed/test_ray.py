@@ -164,6 +164,20 @@ def test_ray_vector_env_passes_gymnasium_checks_and_wrappers(oval):
         RayVectorEnv(0, 2, track=oval)
 
 
+def test_es_example_script_runs_with_ray(tmp_path, monkeypatch):
+    import runpy
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "train_es.py"
+    out = tmp_path / "es.json"
+    monkeypatch.setattr(sys, "argv", ["train_es.py", "--track", "gen-l070-w20-h0c0s0-ccw-s0", "--generations", "1",
+                                      "--pairs", "2", "--episode-steps", "10", "--no-lap", "--ray", "auto",
+                                      "--ray-actors", "2", "--json", str(out)])
+    with pytest.raises(SystemExit) as e:
+        runpy.run_path(str(example), run_name="__main__")
+    assert e.value.code == 0 and len(json.loads(out.read_text())["curve"]) == 1
+    assert ray.is_initialized()  # the example used the test's cluster and left it running
+
+
 def test_es_on_ray_actors_gives_the_local_curve():
     from roboracer_arena.learn import ESConfig, train
     from roboracer_arena.learn.es import make_training_env
