@@ -5,8 +5,9 @@ retry runs normally. Picklable, so it crosses process and Ray boundaries."""
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 
 class ExitOnce:

@@ -4,11 +4,10 @@ that dies mid-run is replaced and its task rerun, without duplicates or holes.""
 from __future__ import annotations
 
 import pytest
+from faults import ExitOnce, always_dies, first, square
 
 from roboracer_arena.distributed import LocalExecutor, WorkerLostError, map_ordered
 from roboracer_arena.errors import ArenaError
-
-from faults import ExitOnce, always_dies, first, square
 
 
 def test_results_in_item_order_for_any_pool_size():
@@ -59,7 +58,9 @@ def test_ray_flag_without_ray_installed_is_a_clear_bad_input(tmp_path, monkeypat
     monkeypatch.setitem(sys.modules, "ray", None)  # as if the [ray] extra were not installed
     sweep = tmp_path / "s.json"
     sweep.write_text(json.dumps({"ranges": {"lap_length_m": [30, 40]}}))
-    assert main(["tracks", "generate", "--sweep", str(sweep), "--count", "1", "-o", str(tmp_path / "o"),
-                 "--ray", "auto"]) == 2
+    assert (
+        main(["tracks", "generate", "--sweep", str(sweep), "--count", "1", "-o", str(tmp_path / "o"), "--ray", "auto"])
+        == 2
+    )
     assert "pip install 'roboracer-arena[ray]'" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()  # nothing written

@@ -9,10 +9,12 @@ import json
 import sys
 from pathlib import Path
 
+import faults
 import gymnasium as gym
 import numpy as np
 import pytest
 import ray  # CI installs the [ray] extra: these tests never skip
+from faults import ExitOnce, task_index
 from gymnasium.utils.env_checker import check_reset_seed_determinism, data_equivalence
 from gymnasium.vector import AutoresetMode
 
@@ -21,14 +23,17 @@ from roboracer_arena.cli import main
 from roboracer_arena.distributed import LocalExecutor, RayExecutor, RayVectorEnv, map_ordered
 from roboracer_arena.library.generated import generate_files
 from roboracer_arena.library.sweep import SweepFile
-from roboracer_arena.library.sweep_run import generate_library
 
-import faults
-from faults import ExitOnce, task_index
-
-SWEEP = {"name": "r", "base_seed": 3, "ranges": {"lap_length_m": [30, 45], "hairpins": [0, 1],
-                                                 "direction": {"choice": ["clockwise", "counterclockwise"]}},
-         "fixed": {"corridor_width_m": 1.5, "hall_x_m": 15, "hall_y_m": 12}}
+SWEEP = {
+    "name": "r",
+    "base_seed": 3,
+    "ranges": {
+        "lap_length_m": [30, 45],
+        "hairpins": [0, 1],
+        "direction": {"choice": ["clockwise", "counterclockwise"]},
+    },
+    "fixed": {"corridor_width_m": 1.5, "hall_x_m": 15, "hall_y_m": 12},
+}
 SMALL_ENV = {"sim": {"lidar": {"num_beams": 109}}, "reset_poses": "random"}
 
 
@@ -55,10 +60,14 @@ def strip(rec: dict) -> dict:
 
 def same_results(a: list, b: list) -> bool:
     """generate_files results equal but for wall-clock seconds (record and report.json)."""
+
     def norm(r):
         rec, files = r
-        files = {k: (v if k != "report.json" else json.dumps({**json.loads(v), "seconds": 0})) for k, v in files.items()}
+        files = {
+            k: (v if k != "report.json" else json.dumps({**json.loads(v), "seconds": 0})) for k, v in files.items()
+        }
         return strip(rec), files
+
     return [norm(r) for r in a] == [norm(r) for r in b]
 
 
@@ -91,8 +100,12 @@ def test_tracks_generate_and_verify_ray_cli_end_to_end(tmp_path, capsys):
     sweep = tmp_path / "sweep.json"
     sweep.write_text(json.dumps(SWEEP))
     ray_out, local_out = tmp_path / "ray", tmp_path / "local"
-    assert main(["tracks", "generate", "--sweep", str(sweep), "--count", "3", "-o", str(ray_out), "--ray", "auto",
-                 "--json"]) == 0
+    assert (
+        main(
+            ["tracks", "generate", "--sweep", str(sweep), "--count", "3", "-o", str(ray_out), "--ray", "auto", "--json"]
+        )
+        == 0
+    )
     s = json.loads(capsys.readouterr().out)
     assert s["kept"] == 3 and s["executor"] == "RayExecutor" and s["workers"] == 2
     assert main(["tracks", "generate", "--sweep", str(sweep), "--count", "3", "-o", str(local_out), "--jobs", "1"]) == 0
@@ -100,18 +113,22 @@ def test_tracks_generate_and_verify_ray_cli_end_to_end(tmp_path, capsys):
     for d in ("r-00000", "r-00001"):
         for f in ("map.png", "map.yaml", "centreline.csv", "spec.json"):
             assert (ray_out / "generated" / d / f).read_bytes() == (local_out / "generated" / d / f).read_bytes()
-    assert [strip(r) for r in json.loads((ray_out / "sweep.json").read_text())["records"]] == \
-        [strip(r) for r in json.loads((local_out / "sweep.json").read_text())["records"]]
-    assert main(["tracks", "verify", "--catalog", str(ray_out / "catalog.json"), "--no-usd", "--ray", "auto",
-                 "--json"]) == 0
+    assert [strip(r) for r in json.loads((ray_out / "sweep.json").read_text())["records"]] == [
+        strip(r) for r in json.loads((local_out / "sweep.json").read_text())["records"]
+    ]
+    assert (
+        main(["tracks", "verify", "--catalog", str(ray_out / "catalog.json"), "--no-usd", "--ray", "auto", "--json"])
+        == 0
+    )
     v = json.loads(capsys.readouterr().out)
     assert v["passed"] == v["tracks"] == 3 and all(r["checks"]["drive"]["status"] == "pass" for r in v["results"])
 
 
 # ---------------------------------------------------------------- RayVectorEnv
 def local_vec(n, tracks, **kw):
-    return gym.make_vec("RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=tracks,
-                        **{**SMALL_ENV, **kw})
+    return gym.make_vec(
+        "RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=tracks, **{**SMALL_ENV, **kw}
+    )
 
 
 @pytest.mark.parametrize("mode", [AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP])
@@ -169,9 +186,28 @@ def test_es_example_script_runs_with_ray(tmp_path, monkeypatch):
 
     example = Path(__file__).resolve().parents[2] / "examples" / "train_es.py"
     out = tmp_path / "es.json"
-    monkeypatch.setattr(sys, "argv", ["train_es.py", "--track", "gen-l070-w20-h0c0s0-ccw-s0", "--generations", "1",
-                                      "--pairs", "2", "--episode-steps", "10", "--no-lap", "--ray", "auto",
-                                      "--ray-actors", "2", "--json", str(out)])
+    monkeypatch.setattr(
+        sys,
+        "argv",
+        [
+            "train_es.py",
+            "--track",
+            "gen-l070-w20-h0c0s0-ccw-s0",
+            "--generations",
+            "1",
+            "--pairs",
+            "2",
+            "--episode-steps",
+            "10",
+            "--no-lap",
+            "--ray",
+            "auto",
+            "--ray-actors",
+            "2",
+            "--json",
+            str(out),
+        ],
+    )
     with pytest.raises(SystemExit) as e:
         runpy.run_path(str(example), run_name="__main__")
     assert e.value.code == 0 and len(json.loads(out.read_text())["curve"]) == 1

@@ -17,9 +17,16 @@ from roboracer_arena.library.sweep import SweepFile, load_sweep
 from roboracer_arena.library.sweep_run import generate_library
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "sweep.json"
-SMALL = {"name": "t", "base_seed": 7, "ranges": {"lap_length_m": [30, 45], "hairpins": [0, 1],
-                                                 "direction": {"choice": ["clockwise", "counterclockwise"]}},
-         "fixed": {"corridor_width_m": 1.5, "hall_x_m": 15, "hall_y_m": 12}}
+SMALL = {
+    "name": "t",
+    "base_seed": 7,
+    "ranges": {
+        "lap_length_m": [30, 45],
+        "hairpins": [0, 1],
+        "direction": {"choice": ["clockwise", "counterclockwise"]},
+    },
+    "fixed": {"corridor_width_m": 1.5, "hall_x_m": 15, "hall_y_m": 12},
+}
 
 
 def write(tmp_path: Path, doc) -> Path:
@@ -46,15 +53,18 @@ def test_request_k_does_not_depend_on_the_window():
     assert [other.spec(k) for k in range(5)] != [sw.spec(k) for k in range(5)]
 
 
-@pytest.mark.parametrize("doc, msg", [
-    ("{not json", "not valid JSON"),
-    ({**SMALL, "ranges": {"lap_lenght_m": [1, 2]}}, "unknown TrackSpec field"),
-    ({**SMALL, "ranges": {"lap_length_m": [50, 40]}}, "lower bound 50 is above"),
-    ({**SMALL, "ranges": {"hairpins": [0, 1.5]}}, "integer bounds"),
-    ({**SMALL, "fixed": {"hairpins": "two"}}, "hairpins"),
-    ({**SMALL, "name": "a b/c"}, "name"),
-    ({**SMALL, "seeds": 3}, "seeds"),
-])
+@pytest.mark.parametrize(
+    "doc, msg",
+    [
+        ("{not json", "not valid JSON"),
+        ({**SMALL, "ranges": {"lap_lenght_m": [1, 2]}}, "unknown TrackSpec field"),
+        ({**SMALL, "ranges": {"lap_length_m": [50, 40]}}, "lower bound 50 is above"),
+        ({**SMALL, "ranges": {"hairpins": [0, 1.5]}}, "integer bounds"),
+        ({**SMALL, "fixed": {"hairpins": "two"}}, "hairpins"),
+        ({**SMALL, "name": "a b/c"}, "name"),
+        ({**SMALL, "seeds": 3}, "seeds"),
+    ],
+)
 def test_bad_sweep_files_name_file_and_field(tmp_path, doc, msg):
     p = write(tmp_path, doc)
     with pytest.raises(SpecError, match=msg) as e:
@@ -67,8 +77,13 @@ def test_cli_bad_sweep_and_count_exit_2(tmp_path, capsys):
     assert main(["tracks", "generate", "--sweep", str(p), "--count", "2", "-o", str(tmp_path / "o")]) == 2
     assert "unknown TrackSpec field" in capsys.readouterr().err
     p = write(tmp_path, SMALL)
-    assert main(["tracks", "generate", "--sweep", str(p), "--count", "0", "-o", str(tmp_path / "o"), "--jobs", "1"]) == 2
-    assert main(["tracks", "generate", "--sweep", str(tmp_path / "missing.json"), "--count", "1", "-o", str(tmp_path)]) == 2
+    assert (
+        main(["tracks", "generate", "--sweep", str(p), "--count", "0", "-o", str(tmp_path / "o"), "--jobs", "1"]) == 2
+    )
+    assert (
+        main(["tracks", "generate", "--sweep", str(tmp_path / "missing.json"), "--count", "1", "-o", str(tmp_path)])
+        == 2
+    )
 
 
 def tree(d: Path) -> dict[str, bytes]:
@@ -97,8 +112,21 @@ def test_library_is_identical_on_one_and_two_processes_and_verifies(tmp_path):
     assert not list((tmp_path / "j2" / "generated").glob(".*"))  # no temporaries left
     cat = load_catalog(tmp_path / "j2" / "catalog.json")
     assert [e["id"] for e in cat.entries] == kept and all(e["direction"] for e in cat.entries)
-    assert main(["tracks", "verify", "--catalog", str(tmp_path / "j2" / "catalog.json"), "--no-usd", "--no-drive",
-                 "--jobs", "1"]) == 0
+    assert (
+        main(
+            [
+                "tracks",
+                "verify",
+                "--catalog",
+                str(tmp_path / "j2" / "catalog.json"),
+                "--no-usd",
+                "--no-drive",
+                "--jobs",
+                "1",
+            ]
+        )
+        == 0
+    )
     # A smaller rerun into the same directory leaves exactly its tracks behind.
     with LocalExecutor(1) as ex:
         generate_library(sw, 2, tmp_path / "j2", ex)
@@ -108,8 +136,25 @@ def test_library_is_identical_on_one_and_two_processes_and_verifies(tmp_path):
 def test_budget_exhausted_exits_4(tmp_path, capsys):
     doc = {**SMALL, "fixed": {**SMALL["fixed"], "hall_x_m": 4, "hall_y_m": 4}}  # nothing fits: all rejected
     p = write(tmp_path, doc)
-    assert main(["tracks", "generate", "--sweep", str(p), "--count", "2", "-o", str(tmp_path / "o"),
-                 "--jobs", "1", "--max-requests", "3"]) == 4
+    assert (
+        main(
+            [
+                "tracks",
+                "generate",
+                "--sweep",
+                str(p),
+                "--count",
+                "2",
+                "-o",
+                str(tmp_path / "o"),
+                "--jobs",
+                "1",
+                "--max-requests",
+                "3",
+            ]
+        )
+        == 4
+    )
     assert "only 0 of 2 tracks" in capsys.readouterr().err
     s = json.loads((tmp_path / "o" / "sweep.json").read_text())
     assert s["requests"] == 3 and s["rejected"] == 3 and load_catalog(tmp_path / "o" / "catalog.json").entries == []

@@ -280,9 +280,9 @@ def run_catalog(args) -> int:
 
 
 def run_generate(args) -> int:
-    from . import EXIT_GENERATION_FAILURE
     from ..library.sweep import load_sweep
     from ..library.sweep_run import generate_library
+    from . import EXIT_GENERATION_FAILURE
 
     sweep = load_sweep(args.sweep)
     with _executor(args) as ex:

@@ -20,4 +20,12 @@ def __getattr__(name: str):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-__all__ = ["Executor", "LocalExecutor", "RayExecutor", "RayVectorEnv", "WorkerLostError", "make_executor", "map_ordered"]
+__all__ = [
+    "Executor",
+    "LocalExecutor",
+    "RayExecutor",
+    "RayVectorEnv",
+    "WorkerLostError",
+    "make_executor",
+    "map_ordered",
+]

@@ -11,9 +11,10 @@ raised by ``fn`` itself are not retried: they propagate to the caller.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
-from typing import Any, Callable, Iterator, Protocol, Sequence, TypeVar
+from typing import Any, Protocol, TypeVar
 
 from ..errors import ArenaError
 
@@ -43,18 +44,19 @@ class Executor(Protocol):
         """Release the pool or the cluster connection this executor opened."""
         ...
 
-    def __enter__(self) -> "Executor": ...
+    def __enter__(self) -> Executor: ...
 
     def __exit__(self, *exc: object) -> None: ...
 
 
-def map_ordered(executor: Executor, fn: Callable[[T], R], items: Sequence[T],
-                progress: Progress | None = None) -> list[R]:
+def map_ordered(
+    executor: Executor, fn: Callable[[T], R], items: Sequence[T], progress: Progress | None = None
+) -> list[R]:
     """``[fn(x) for x in items]`` on ``executor``, results in item order (``progress``
     sees them in completion order)."""
     out: list[Any] = [None] * len(items)
     it: Iterator[tuple[int, R]] = executor.run(fn, items)
-    for i, r in (progress(it, len(items)) if progress else it):
+    for i, r in progress(it, len(items)) if progress else it:
         out[i] = r
     return out
 
@@ -72,7 +74,7 @@ class LocalExecutor:
         self.max_retries = int(max_retries)
         self._pool: ProcessPoolExecutor | None = None
 
-    def __enter__(self) -> "LocalExecutor":
+    def __enter__(self) -> LocalExecutor:
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -117,11 +119,13 @@ class LocalExecutor:
                 if failures > self.max_retries:
                     raise WorkerLostError(
                         f"a worker process died {failures} times ({len(pending)} task(s) unfinished); "
-                        f"giving up after {self.max_retries} retries") from None
+                        f"giving up after {self.max_retries} retries"
+                    ) from None
 
 
-def make_executor(jobs: int | None = None, ray_address: str | None = None,
-                  max_retries: int = DEFAULT_RETRIES) -> Executor:
+def make_executor(
+    jobs: int | None = None, ray_address: str | None = None, max_retries: int = DEFAULT_RETRIES
+) -> Executor:
     """A :class:`LocalExecutor` with ``jobs`` processes (default: all cores), or, with
     ``ray_address`` (``"auto"``, ``"local"`` or ``"ray://HOST:PORT"`` / ``"HOST:PORT"``),
     a :class:`~roboracer_arena.distributed.ray_executor.RayExecutor` on that cluster."""

@@ -4,7 +4,8 @@ alone writes files, so a retried task can neither duplicate nor lose an output."
 
 from __future__ import annotations
 
-from typing import Any, Callable, Iterator, Sequence, TypeVar
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any, TypeVar
 
 from ..errors import InvalidArgumentError
 from .executor import DEFAULT_RETRIES, WorkerLostError
@@ -33,10 +34,14 @@ class RayExecutor:
         # A bounded window also keeps the driver's memory flat for libraries of thousands of tracks.
         self.max_in_flight = self.workers if workers else 2 * self.workers
         # One CPU per task, so one native thread (rayon) per task: tasks on a node do not oversubscribe it.
-        self._remote = ray.remote(num_cpus=1, max_retries=self.max_retries, retry_exceptions=False,
-                                  runtime_env={"env_vars": {"RAYON_NUM_THREADS": "1"}})(_call)
+        self._remote = ray.remote(
+            num_cpus=1,
+            max_retries=self.max_retries,
+            retry_exceptions=False,
+            runtime_env={"env_vars": {"RAYON_NUM_THREADS": "1"}},
+        )(_call)
 
-    def __enter__(self) -> "RayExecutor":
+    def __enter__(self) -> RayExecutor:
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -70,7 +75,9 @@ class RayExecutor:
                     try:
                         r = ray.get(ref)
                     except WorkerCrashedError as e:
-                        raise WorkerLostError(f"task {i}: its worker died more than {self.max_retries} times ({e})") from None
+                        raise WorkerLostError(
+                            f"task {i}: its worker died more than {self.max_retries} times ({e})"
+                        ) from None
                     except ray.exceptions.RayTaskError as e:
                         raise e.as_instanceof_cause() from None  # the task's own exception, as raised
                     yield i, r

@@ -32,16 +32,22 @@ class BatchWorker:
         import gymnasium as gym
 
         import roboracer_arena  # noqa: F401  (registers the env id)
+
         from ..envs import ENV_ID
 
-        self.env = gym.make_vec(ENV_ID, num_envs=num_envs, vectorization_mode="vector_entry_point",
-                                env_index_offset=offset, **env_kwargs)
+        self.env = gym.make_vec(
+            ENV_ID, num_envs=num_envs, vectorization_mode="vector_entry_point", env_index_offset=offset, **env_kwargs
+        )
 
     def describe(self) -> dict[str, Any]:
         e = self.env
-        return {"single_observation_space": e.single_observation_space, "single_action_space": e.single_action_space,
-                "metadata": e.metadata, "max_episode_steps": getattr(e.spec, "max_episode_steps", None),
-                "render_mode": e.render_mode}
+        return {
+            "single_observation_space": e.single_observation_space,
+            "single_action_space": e.single_action_space,
+            "metadata": e.metadata,
+            "max_episode_steps": getattr(e.spec, "max_episode_steps", None),
+            "render_mode": e.render_mode,
+        }
 
     def reset(self, seed: int | None, options: dict[str, Any] | None) -> tuple[Any, Any]:
         return self.env.reset(seed=seed, options=options)
@@ -55,7 +61,8 @@ class BatchWorker:
 
     def start_state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Track index, start poses and start speeds of each env's current episode."""
-        return self.env.unwrapped.start_state()
+        env: Any = self.env.unwrapped
+        return env.start_state()
 
     def render(self) -> Any:
         return self.env.render()
@@ -86,8 +93,15 @@ class RayVectorEnv(VectorEnv):
     ``auto``); ``num_cpus_per_actor`` is the CPU share Ray reserves per actor, and the
     number of threads its native batch steps with."""
 
-    def __init__(self, num_actors: int, envs_per_actor: int, *, address: str | None = None,
-                 num_cpus_per_actor: float = 1.0, **env_kwargs: Any) -> None:
+    def __init__(
+        self,
+        num_actors: int,
+        envs_per_actor: int,
+        *,
+        address: str | None = None,
+        num_cpus_per_actor: float = 1.0,
+        **env_kwargs: Any,
+    ) -> None:
         if num_actors < 1 or envs_per_actor < 1:
             raise ValueError(f"num_actors and envs_per_actor must be >= 1, got {num_actors} and {envs_per_actor}")
         if "num_envs" in env_kwargs or "env_index_offset" in env_kwargs:
@@ -98,7 +112,9 @@ class RayVectorEnv(VectorEnv):
         self.num_envs = self.num_actors * self.envs_per_actor
         # The native batch's thread pool gets the CPUs Ray reserved for the actor, no more.
         threads = str(max(1, int(num_cpus_per_actor)))
-        remote = ray.remote(num_cpus=num_cpus_per_actor, runtime_env={"env_vars": {"RAYON_NUM_THREADS": threads}})(BatchWorker)
+        remote = ray.remote(num_cpus=num_cpus_per_actor, runtime_env={"env_vars": {"RAYON_NUM_THREADS": threads}})(
+            BatchWorker
+        )
         m = self.envs_per_actor
         self._actors = [remote.remote(m, a * m, env_kwargs) for a in range(self.num_actors)]
         try:
@@ -108,7 +124,9 @@ class RayVectorEnv(VectorEnv):
                 ray.kill(a)
             if self._owns:
                 ray.shutdown()
-            cause = getattr(e, "cause", None) or (e.as_instanceof_cause() if hasattr(e, "as_instanceof_cause") else None)
+            cause = getattr(e, "cause", None) or (
+                e.as_instanceof_cause() if hasattr(e, "as_instanceof_cause") else None
+            )
             raise (cause if isinstance(cause, Exception) else e) from None
         self.single_observation_space = d["single_observation_space"]
         self.single_action_space = d["single_action_space"]
@@ -134,7 +152,7 @@ class RayVectorEnv(VectorEnv):
             raise ValueError("pass one integer seed; environment i is seeded with (seed, i)")
         if seed is None and not self._seeded:
             # First reset unseeded: ONE entropy seed for all actors, as the local env draws one for all envs.
-            seed = int(np.random.SeedSequence().entropy % (2**63))
+            seed = int(np.random.default_rng().integers(2**63))
         if seed is not None:
             self._seeded = True
             self._np_random_seed = int(seed)

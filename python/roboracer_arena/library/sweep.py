@@ -35,9 +35,23 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from ..errors import SpecError
 from ..spec import TrackSpec
 
-
 #: The example sweep (also ``examples/sweep.json``): varied halls, lap lengths and features.
-EXAMPLE_SWEEP: dict[str, Any] = {"name": "hall-sweep", "base_seed": 0, "decimals": 1, "ranges": {"lap_length_m": [40, 120], "corridor_width_m": [1.2, 2.0], "hall_x_m": [18, 30], "hall_y_m": [14, 22], "hairpins": [0, 2], "chicanes": [0, 1], "sweepers": [0, 1], "direction": {"choice": ["clockwise", "counterclockwise"]}}, "fixed": {}}
+EXAMPLE_SWEEP: dict[str, Any] = {
+    "name": "hall-sweep",
+    "base_seed": 0,
+    "decimals": 1,
+    "ranges": {
+        "lap_length_m": [40, 120],
+        "corridor_width_m": [1.2, 2.0],
+        "hall_x_m": [18, 30],
+        "hall_y_m": [14, 22],
+        "hairpins": [0, 2],
+        "chicanes": [0, 1],
+        "sweepers": [0, 1],
+        "direction": {"choice": ["clockwise", "counterclockwise"]},
+    },
+    "fixed": {},
+}
 
 
 class Choice(BaseModel):
@@ -62,12 +76,14 @@ class SweepFile(BaseModel):
     fixed: dict[str, Any] = Field(default_factory=dict)
 
     @model_validator(mode="after")
-    def _fields_exist(self) -> "SweepFile":
+    def _fields_exist(self) -> SweepFile:
         fields = set(TrackSpec.model_fields) - {"name"}
         for where, keys in (("ranges", self.ranges), ("fixed", self.fixed)):
             bad = sorted(set(keys) - fields)
             if bad:
-                raise ValueError(f"{where}: unknown TrackSpec field(s) {', '.join(bad)}; known: {', '.join(sorted(fields))}")
+                raise ValueError(
+                    f"{where}: unknown TrackSpec field(s) {', '.join(bad)}; known: {', '.join(sorted(fields))}"
+                )
         both = sorted(set(self.ranges) & set(self.fixed))
         if both:
             raise ValueError(f"field(s) {', '.join(both)} are in both ranges and fixed")

@@ -19,8 +19,9 @@ import math
 import re
 import shutil
 import time
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any
 
 from .. import __version__
 from ..distributed.executor import Executor
@@ -71,7 +72,7 @@ def generate_library(
         tasks = sweep.requests(start, start + size)
         results: list[Any] = [None] * size
         it = executor.run(generate_files, tasks)
-        for i, res in (progress(it, size) if progress else it):
+        for i, res in progress(it, size) if progress else it:
             results[i] = res
         for k, (rec, files) in enumerate(results, start):
             rec = {"k": k, **rec}
