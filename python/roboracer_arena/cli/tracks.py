@@ -63,9 +63,7 @@ def register(sub) -> None:
     _ray_flag(a)
     a.set_defaults(func=run_verify)
     a = t.add_parser("generate", help="generate a library of tracks from a sweep file (locally or on Ray)",
-                     description="Generate --count accepted tracks from a sweep file (format: roboracer_arena.library.sweep; "
-                                 "example: examples/sweep.json) into DIR/generated/, with DIR/sweep.json and DIR/catalog.json. "
-                                 "The result depends only on the sweep file and --count, never on the workers.")
+                     description=GENERATE_DOC, formatter_class=argparse.RawDescriptionHelpFormatter)
     a.add_argument("--sweep", type=Path, required=True, metavar="SWEEP.json", help="sweep file: spec ranges and base seed")
     a.add_argument("--count", type=int, required=True, metavar="N", help="accepted tracks to keep")
     a.add_argument("-o", "--out", type=Path, required=True, metavar="DIR", help="output directory")
@@ -88,6 +86,22 @@ def register(sub) -> None:
     a.add_argument("--count", type=int, default=60, help="generated tracks to keep (default 60)")
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
     a.set_defaults(func=run_catalog)
+
+
+GENERATE_DOC = """Generate --count accepted tracks from a sweep file into DIR/generated/<id>/, then write
+DIR/sweep.json (every request up to the last kept one) and DIR/catalog.json (readable by
+'tracks verify --catalog'; each map.yaml is a track= for the env). The result depends only on the sweep file
+and --count, never on the number of workers.
+
+Sweep file (JSON; example: examples/sweep.json; full text: roboracer_arena.library.sweep):
+  {"name": "hall-sweep", "base_seed": 0, "decimals": 1,
+   "ranges": {"lap_length_m": [40, 120], "hairpins": [0, 2],
+              "direction": {"choice": ["clockwise", "counterclockwise"]}},
+   "fixed": {"corridor_width_m": 1.5}}
+[lo, hi] draws a uniform float (an integer, inclusive, for integer fields). Request k
+draws its fields from numpy default_rng([base_seed, k]) and generates with seed
+SeedSequence([base_seed, k, 1]); track k is "<name>-<k:05d>"; the library is the
+first --count acceptances in k order."""
 
 
 def _ray_flag(p: argparse.ArgumentParser) -> None:

@@ -9,7 +9,7 @@ atomically (:func:`~roboracer_arena.fileio.atomic_write_dir`), ``sweep.json`` an
 
     generated/<id>/{map.yaml, map.png, centreline.csv, spec.json, report.json}
     sweep.json      every request up to the last kept one, with its outcome
-    catalog.json    the kept tracks, readable by ``tracks verify --catalog`` and ``track=``
+    catalog.json    the kept tracks, readable by ``tracks verify --catalog``
 """
 
 from __future__ import annotations
