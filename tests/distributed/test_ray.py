@@ -132,7 +132,10 @@ def local_vec(n, tracks, **kw):
 
 
 @pytest.mark.parametrize("mode", [AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP])
-def test_ray_vector_env_rolls_out_exactly_like_the_local_vector_env(oval, mode):
+def test_ray_vector_env_rolls_out_exactly_like_the_local_vector_env(oval, mode, monkeypatch):
+    from roboracer_arena.distributed import ray_vector
+
+    monkeypatch.setattr(ray_vector, "INLINE_BYTES", 2000)  # step results come back in several pieces
     kw = {"autoreset_mode": mode, "max_episode_steps": 15}  # short episodes: autoresets happen
     renv, lenv = RayVectorEnv(2, 3, track=oval, **SMALL_ENV, **kw), local_vec(6, oval, **kw)
     try:
@@ -150,6 +153,7 @@ def test_ray_vector_env_rolls_out_exactly_like_the_local_vector_env(oval, mode):
             ended += int((r[2] | r[3]).sum())
             finals += int(r[4].get("_final_obs", np.zeros(1, bool)).sum())
         assert ended >= 6  # every env went through at least one autoreset
+        assert renv._chunks > 1
         assert finals == (ended if mode == AutoresetMode.SAME_STEP else 0)
         # Partial reset with per-env options is split over the actors the same way.
         opts = {"reset_mask": np.array([1, 0, 0, 0, 1, 1], bool), "track_ids": np.array([1, 0, 0, 0, 1, 0])}

@@ -15,6 +15,8 @@ concatenates the arrays: the cost per step is one round trip per actor, not per 
 
 from __future__ import annotations
 
+import math
+import pickle
 from typing import Any
 
 import numpy as np
@@ -22,6 +24,12 @@ from gymnasium.vector import VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from .ray_cluster import connect, import_ray
+
+#: Ray returns a result smaller than its direct-call limit (100 KiB by default) inline in
+#: the reply and a larger one through the object store, a slower path for every step (64
+#: envs x 1081 beams is 277 KB). ``step`` therefore returns its pickled result in pieces
+#: below this size; the driver joins and unpickles them (``bench ray`` measures the step).
+INLINE_BYTES = 90_000
 
 
 class BatchWorker:
@@ -54,6 +62,14 @@ class BatchWorker:
 
     def step(self, actions: np.ndarray) -> tuple[Any, ...]:
         return self.env.step(actions)
+
+    def step_chunks(self, actions: np.ndarray, chunks: int) -> tuple[bytes, ...] | bytes:
+        """:meth:`step`, its result pickled and cut into ``chunks`` pieces (see
+        :data:`INLINE_BYTES`); one piece is returned bare (Ray's ``num_returns=1``)."""
+        data = pickle.dumps(self.env.step(actions), protocol=pickle.HIGHEST_PROTOCOL)
+        size = -(-len(data) // chunks)
+        parts = tuple(data[i * size : (i + 1) * size] for i in range(chunks))
+        return parts if chunks > 1 else parts[0]
 
     def get(self, name: str) -> Any:
         """An attribute of the native vector env (e.g. ``current_track_ids``)."""
@@ -138,6 +154,7 @@ class RayVectorEnv(VectorEnv):
         self.max_episode_steps = d["max_episode_steps"]
         self._closed = False
         self._seeded = False
+        self._chunks = 1
 
     def _gather(self, refs: list[Any]) -> list[Any]:
         """``ray.get``; an actor's exception is raised as its own type (e.g. ValueError)."""
@@ -165,8 +182,17 @@ class RayVectorEnv(VectorEnv):
         a = np.asarray(actions)
         if a.shape[:1] != (self.num_envs,):
             raise ValueError(f"actions must have a leading axis of {self.num_envs} envs, got shape {a.shape}")
-        chunks = np.split(a, self.num_actors)
-        out = self._gather([actor.step.remote(c) for actor, c in zip(self._actors, chunks)])
+        k = self._chunks
+        refs = [
+            actor.step_chunks.options(num_returns=k).remote(c, k)
+            for actor, c in zip(self._actors, np.split(a, self.num_actors))
+        ]
+        pieces = self._gather([r for ref in refs for r in (ref if k > 1 else [ref])])
+        blobs = [b"".join(pieces[i * k : (i + 1) * k]) for i in range(self.num_actors)]
+        # Pieces for the next step: the result size is fixed by the spaces (SAME_STEP's final
+        # observations add to it on some steps; a larger result is still correct, only slower).
+        self._chunks = max(1, math.ceil(max(len(b) for b in blobs) / INLINE_BYTES))
+        out = [pickle.loads(b) for b in blobs]
         obs, rew, term, trunc, info = (concat(list(x)) for x in zip(*out))
         return obs, rew, term, trunc, info
 
