@@ -4,10 +4,12 @@
     python examples/train_es.py                       # gym-berlin, about a minute on 2 cores
     python examples/train_es.py --track generated:gen-l040-* --generations 40
     python examples/train_es.py --png curve.png --json result.json
+    python examples/train_es.py --ray auto --ray-actors 2   # rollouts in Ray actors ([ray] extra)
 
 The trainer (roboracer_arena.learn.es) is ~200 lines of numpy: a 56 -> 32 -> 2 MLP on 54
 lidar beams (clipped to 10 m, scaled to [0, 1]) plus speed and steer, antithetic ES on
-one native vector env (autoreset DISABLED, each +/- pair started at the same pose with
+one native vector env (or, with --ray, a RayVectorEnv: the same environments split over
+Ray actors, each holding one native batch; same seeds, same curve) (autoreset DISABLED, each +/- pair started at the same pose with
 reset(options={"track_ids", "poses"})), centred ranks, Adam. After training it drives the
 mean policy from the grid start and reports the lap.
 """
@@ -32,6 +34,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--png", help="write the learning curve here (PNG)")
     p.add_argument("--json", help="write curve and lap result here (JSON)")
     p.add_argument("--no-lap", action="store_true", help="skip the final lap evaluation")
+    p.add_argument("--ray", metavar="ADDRESS", help="roll out in Ray actors: auto, local or HOST:PORT")
+    p.add_argument("--ray-actors", type=int, default=2, metavar="N", help="Ray actors (2 x pairs must divide by N)")
     args = p.parse_args(argv)
     cfg = replace(ESConfig(), generations=args.generations, pairs=args.pairs, episode_steps=args.episode_steps,
                   seed=args.seed)
@@ -40,7 +44,16 @@ def main(argv: list[str] | None = None) -> int:
         print(f"gen {row['generation']:3d}  mean return {row['mean_return']:7.2f}  best {row['max_return']:7.2f}"
               f"  env-steps {row['env_steps']:8d}  {row['seconds']:6.1f} s", flush=True)
 
-    result = train(args.track, cfg, progress=show)
+    env = None
+    if args.ray:
+        from roboracer_arena.distributed.ray_cluster import connect
+        from roboracer_arena.learn.es import make_training_env
+
+        connect(args.ray)
+        env = make_training_env(args.track, cfg, ray_actors=args.ray_actors)
+    result = train(args.track, cfg, progress=show, env=env)
+    if env is not None:
+        env.close()
     rate = result.env_steps / max(result.seconds, 1e-9)
     print(f"trained: {result.env_steps} env-steps in {result.seconds:.1f} s ({rate:,.0f} env-steps/s)")
     out = result.summary()

@@ -176,3 +176,28 @@ def read_text(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BYTES) -> s
     except UnicodeDecodeError as e:
         hint = " (it looks like UTF-16; save it as UTF-8)" if data[:2] in (b"\xff\xfe", b"\xfe\xff") else ""
         raise MapIOError(f"{path}: {what} is not UTF-8 text (byte {e.start}){hint}") from None
+
+
+def atomic_write_dir(path: str | Path, files: dict[str, bytes]) -> None:
+    """Write ``files`` (name -> bytes) as the directory ``path``, all or nothing: they go to a
+    temporary sibling directory that is then renamed onto ``path`` (a previous ``path`` is
+    moved aside first and deleted after), so readers see the old or the new set, never a mix."""
+    import shutil
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
+    old = None
+    try:
+        for name, data in files.items():
+            (tmp / name).write_bytes(data)
+            os.chmod(tmp / name, 0o666 & ~_UMASK)
+        os.chmod(tmp, 0o777 & ~_UMASK)
+        if path.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{path.name}.old.", dir=path.parent))
+            os.replace(path, old / path.name)
+        os.replace(tmp, path)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)

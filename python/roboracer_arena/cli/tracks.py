@@ -6,6 +6,7 @@
   verify                    load, corridor ring, USD build and pure-pursuit lap per track
   sheet -o sheet.png        contact sheet: every track with name, lap length, extent and scale bar
   catalog                   rebuild tracks/catalog.json (--generate reruns the generated sweep)
+  generate --sweep S -o DIR generate a library of N tracks from a sweep file (--ray: as Ray tasks)
 
 A track id or a selection (circuits, recorded, generated, all) is what the gymnasium env
 accepts as ``track=``. Recorded maps are read from --sources (default
@@ -14,6 +15,7 @@ $ROBORACER_ARENA_SOURCES or ../shared/track-sources)."""
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from . import EXIT_BAD_INPUT, EXIT_OK
@@ -58,7 +60,18 @@ def register(sub) -> None:
     a.add_argument("--reverse", action="store_true", help="drive each lap against the track's racing direction")
     a.add_argument("--update-catalog", action="store_true",
                    help="record the results in the catalog; recorded maps that fail move to left_out")
+    _ray_flag(a)
     a.set_defaults(func=run_verify)
+    a = t.add_parser("generate", help="generate a library of tracks from a sweep file (locally or on Ray)",
+                     description=GENERATE_DOC, formatter_class=argparse.RawDescriptionHelpFormatter)
+    a.add_argument("--sweep", type=Path, required=True, metavar="SWEEP.json", help="sweep file: spec ranges and base seed")
+    a.add_argument("--count", type=int, required=True, metavar="N", help="accepted tracks to keep")
+    a.add_argument("-o", "--out", type=Path, required=True, metavar="DIR", help="output directory")
+    a.add_argument("--max-requests", type=int, default=None, metavar="M", help="give up after M requests (default 10 x N)")
+    a.add_argument("--jobs", type=int, default=None, metavar="N", help="local worker processes (default: all cores)")
+    _ray_flag(a)
+    add_json_flag(a)
+    a.set_defaults(func=run_generate)
     a = t.add_parser("sheet", help="contact sheet of every track")
     a.add_argument("-o", "--out", type=Path, required=True, metavar="sheet.png", help="picture to write (.png, .jpg or .jpeg)")
     a.add_argument("--columns", type=int, default=12, help="thumbnails per row (default 12)")
@@ -73,6 +86,37 @@ def register(sub) -> None:
     a.add_argument("--count", type=int, default=60, help="generated tracks to keep (default 60)")
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
     a.set_defaults(func=run_catalog)
+
+
+GENERATE_DOC = """Generate --count accepted tracks from a sweep file into DIR/generated/<id>/, then write
+DIR/sweep.json (every request up to the last kept one) and DIR/catalog.json (readable by
+'tracks verify --catalog'; each map.yaml is a track= for the env). The result depends only on the sweep file
+and --count, never on the number of workers.
+
+Sweep file (JSON; example: examples/sweep.json; full text: roboracer_arena.library.sweep):
+  {"name": "hall-sweep", "base_seed": 0, "decimals": 1,
+   "ranges": {"lap_length_m": [40, 120], "hairpins": [0, 2],
+              "direction": {"choice": ["clockwise", "counterclockwise"]}},
+   "fixed": {"corridor_width_m": 1.5}}
+[lo, hi] draws a uniform float (an integer, inclusive, for integer fields). Request k
+draws its fields from numpy default_rng([base_seed, k]) and generates with seed
+SeedSequence([base_seed, k, 1]); track k is "<name>-<k:05d>"; the library is the
+first --count acceptances in k order."""
+
+
+def _ray_flag(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--ray", default=None, metavar="ADDRESS",
+                   help="run the work as Ray tasks: auto (running cluster / $RAY_ADDRESS), local (start one) or "
+                        "HOST:PORT; needs the [ray] extra")
+
+
+def _executor(args):
+    from ..distributed.executor import make_executor
+    from ..errors import InvalidArgumentError
+
+    if args.jobs is not None and args.jobs < 1:
+        raise InvalidArgumentError(f"--jobs must be >= 1, got {args.jobs}")
+    return make_executor(args.jobs, args.ray)
 
 
 def _progress(desc: str):
@@ -165,8 +209,6 @@ def run_build(args) -> int:
 
 
 def run_verify(args) -> int:
-    import os
-
     from ..library.verify import verify
 
     from ..errors import InvalidArgumentError
@@ -175,9 +217,9 @@ def run_verify(args) -> int:
         raise InvalidArgumentError("--reverse and --update-catalog: the catalog records laps in the racing direction")
     cat = _load(args)
     entries = _select(cat, args)
-    jobs = args.jobs or os.cpu_count() or 1
-    s = verify(cat, entries, args.sources, jobs=jobs, usd=not args.no_usd, drive=not args.no_drive,
-               progress=_progress("verify"), reverse=args.reverse)
+    with _executor(args) as ex:
+        s = verify(cat, entries, args.sources, usd=not args.no_usd, drive=not args.no_drive,
+                   progress=_progress("verify"), reverse=args.reverse, executor=ex)
     if args.update_catalog:
         from ..fileio import atomic_write_text
         from ..library.verify import prune_catalog
@@ -205,7 +247,7 @@ def run_verify(args) -> int:
         if s["drive_cautious"]:
             print(f"  {len(s['drive_cautious'])} lap(s) needed the cautious retry: {', '.join(s['drive_cautious'])}")
         print(f"{s['passed']}/{s['tracks']} tracks without a failed check in {s['seconds']:.1f} s "
-              f"({s['jobs']} process(es)); by kind: " + ", ".join(f"{k} {v['passed']}/{v['tracks']}" for k, v in s["by_kind"].items()))
+              f"({s['jobs']} worker(s)); by kind: " + ", ".join(f"{k} {v['passed']}/{v['tracks']}" for k, v in s["by_kind"].items()))
     return EXIT_OK if not s["failed"] else EXIT_BAD_INPUT
 
 
@@ -244,4 +286,26 @@ def run_catalog(args) -> int:
         print(f"wrote {cat.path}: {len(cat.entries)} tracks {cat.meta['counts']}; {len(cat.left_out)} recorded maps left out:")
         for lo in cat.left_out:
             print(f"  {lo['source_path']}: {lo['reason']}")
+    return EXIT_OK
+
+
+def run_generate(args) -> int:
+    from ..library.sweep import load_sweep
+    from ..library.sweep_run import generate_library
+    from . import EXIT_GENERATION_FAILURE
+
+    sweep = load_sweep(args.sweep)
+    with _executor(args) as ex:
+        s = generate_library(sweep, args.count, args.out, ex, max_requests=args.max_requests,
+                             progress=_progress("generate"))
+    if args.json:
+        print_json({k: v for k, v in s.items() if k != "records"})
+    else:
+        print(f"{s['kept']}/{s['count']} tracks in {args.out / 'generated'} from {s['requests']} requests "
+              f"({s['accepted']} accepted, {s['rejected']} rejected, {s['failed']} failed) in {s['seconds']:.1f} s "
+              f"on {s['workers']} worker(s) ({s['executor']}); catalog {args.out / 'catalog.json'}")
+    if s["kept"] < s["count"]:
+        print(f"roboracer-arena tracks: error: only {s['kept']} of {s['count']} tracks within --max-requests "
+              f"{s['requests']}; widen the sweep ranges or raise --max-requests", file=sys.stderr)
+        return EXIT_GENERATION_FAILURE
     return EXIT_OK

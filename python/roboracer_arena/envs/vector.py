@@ -29,7 +29,10 @@ bit-identical results across ``num_envs`` hold for noise-free lidar (the default
 
 Seeding: ``reset(seed=s)`` gives environment ``i`` the RNG ``default_rng([s, i])`` for its
 track and start-pose draws and reseeds the simulator with ``s``, so environment ``i``
-sees the same episode whatever ``num_envs`` is.
+sees the same episode whatever ``num_envs`` is. ``env_index_offset=k`` numbers the
+environments ``k, k+1, ...`` for that purpose: a batch that is a slice of a larger one
+(e.g. one actor of :class:`~roboracer_arena.distributed.RayVectorEnv`) sees the episodes
+of that slice.
 """
 
 from __future__ import annotations
@@ -63,10 +66,14 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         render_size: int = 400,
         max_episode_steps: int | None = None,
         autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
+        env_index_offset: int = 0,
         **overrides: Any,
     ) -> None:
         if num_envs < 1:
             raise ValueError(f"num_envs must be >= 1, got {num_envs}")
+        if env_index_offset < 0:
+            raise ValueError(f"env_index_offset must be >= 0, got {env_index_offset}")
+        self._env_offset = int(env_index_offset)
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']}, got {render_mode!r}")
         explicit = time_limit_given({**overrides, "config": config})
@@ -112,7 +119,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         if seed is not None:
             self._np_random_seed = int(seed)
             self._np_random = np.random.default_rng(seed)
-            self._rngs = [np.random.default_rng([int(seed), i]) for i in range(self.num_envs)]
+            self._rngs = [np.random.default_rng([int(seed), self._env_offset + i]) for i in range(self.num_envs)]
             self._batch.rebuild(int(seed))
         mask = self._all
         if options and options.get("reset_mask") is not None:
@@ -190,6 +197,12 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
     def current_track_ids(self) -> np.ndarray:
         """Index (into :attr:`tracks`) of each environment's current track, (E,)."""
         return self._batch.track_ids.copy()
+
+    def start_state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Track index (E,), start poses (E, V, 3) and start speeds (E, V) of each environment's
+        current episode (pass them back as reset options to replay the same starts)."""
+        b = self._batch
+        return b.track_ids.copy(), b.start_pose.copy(), b.start_speed.copy()
 
     def odometry_raw(self, obs: dict[str, np.ndarray]) -> np.ndarray:
         """``obs["odometry"]`` in SI units, shape (E, V, K), whatever the normalisation."""

@@ -6,7 +6,8 @@ ranges clipped to a 10 m horizon, plus speed and steer) to a normalised action
 speed: the policy cannot reverse). Each generation evaluates ``pairs`` antithetic pairs
 (theta + sigma eps, theta - sigma eps) on ONE native vector env of ``2 * pairs``
 environments: both members of a pair start on the same track at the same pose
-(``reset(options={"track_ids", "poses"})``), episodes run with autoreset DISABLED and a
+(``reset(options={"track_ids", "poses"})``; a :class:`~roboracer_arena.distributed.RayVectorEnv`
+spreads them over Ray actors), episodes run with autoreset DISABLED and a
 finished environment's later rewards are ignored. The update uses centred ranks and Adam.
 
 Everything is seeded: the same :class:`ESConfig` and track give the same curve.
@@ -137,9 +138,22 @@ class TrainResult:
                 "seconds": round(self.seconds, 2), "curve": self.curve}
 
 
-def make_training_env(track: Any, cfg: ESConfig) -> Any:
-    """The vector env :func:`train` uses (build it once to train several seeds on a big pool)."""
-    return _make_env(track, 2 * cfg.pairs, cfg)
+def make_training_env(track: Any, cfg: ESConfig, ray_actors: int | None = None) -> Any:
+    """The vector env :func:`train` uses (build it once to train several seeds on a big pool).
+    With ``ray_actors``, a :class:`~roboracer_arena.distributed.RayVectorEnv` of that many
+    actors (``2 * pairs`` must divide evenly; Ray connected or ``auto``): the same
+    environments and seeds, so the same curve as the local env."""
+    if not ray_actors:
+        return _make_env(track, 2 * cfg.pairs, cfg)
+    from gymnasium.vector import AutoresetMode
+
+    from ..distributed.ray_vector import RayVectorEnv
+    from ..errors import ConfigError
+
+    if ray_actors < 1 or (2 * cfg.pairs) % ray_actors:
+        raise ConfigError(f"--ray actors: 2 * pairs = {2 * cfg.pairs} envs do not split over {ray_actors} actors")
+    return RayVectorEnv(ray_actors, 2 * cfg.pairs // ray_actors, track=track, autoreset_mode=AutoresetMode.DISABLED,
+                        **env_kwargs(cfg))
 
 
 def train(track: Any, cfg: ESConfig = ESConfig(), progress: Callable[[dict[str, float]], None] | None = None,
@@ -167,9 +181,7 @@ def train(track: Any, cfg: ESConfig = ESConfig(), progress: Callable[[dict[str, 
         thetas[1::2] -= cfg.sigma * eps
         # Each pair shares a start: draw tracks and poses for every env, then copy env 2i's to 2i+1.
         env.reset(seed=cfg.seed * 100_003 + gen)
-        ids = env.current_track_ids[0::2].repeat(2)
-        poses = env._batch.start_pose[0::2].repeat(2, axis=0)
-        speeds = env._batch.start_speed[0::2].repeat(2, axis=0)
+        ids, poses, speeds = (x[0::2].repeat(2, axis=0) for x in env.start_state())
         ret, n = rollout(env, policy, thetas, cfg.episode_steps, {"track_ids": ids, "poses": poses, "speeds": speeds})
         steps_total += n
         shaped = _centred_ranks(ret)

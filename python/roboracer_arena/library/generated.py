@@ -12,11 +12,12 @@ import itertools
 import json
 import time
 from pathlib import Path
-from typing import Callable, Iterator
+from typing import Any, Callable, Iterator
 
 import numpy as np
 
-from ..fileio import atomic_write_text
+from ..distributed.executor import Executor, LocalExecutor
+from ..fileio import atomic_write_dir, atomic_write_text
 from ..spec import TrackSpec
 
 #: (lap length m, corridor width m, hall x m, hall y m): small to large venues.
@@ -55,50 +56,62 @@ def sweep() -> Iterator[tuple[str, TrackSpec, int]]:
         yield tid, spec, seed
 
 
-def _one(args: tuple[str, TrackSpec, int, str]) -> dict:
+def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, bytes]]:
+    """Worker side of one request ``(id, spec, seed)``: run :func:`generate_track` and return
+    its record and, for an acceptance, its files (name -> bytes: map, centreline, spec,
+    report). Files go back to the caller, which alone writes them (no shared disk needed,
+    and a retried task cannot leave a partial directory)."""
+    import tempfile
+
     from ..generate import generate_track, write_outputs
     from ..generate.outputs import centreline_csv
 
-    tid, spec, seed, outdir = args
+    tid, spec, seed = task
     out = generate_track(spec, seed)
     rec = {"id": tid, "seed": seed, "outcome": out.kind, "seconds": round(out.seconds, 3),
            "spec": json.loads(spec.model_dump_json())}
+    files: dict[str, bytes] = {}
     if out.kind == "accepted":
-        paths = write_outputs(out, Path(outdir) / tid, stem="map")
-        # The committed centreline is thinned to ~CSV_SPACING m (the map is the reference).
-        line = np.asarray(out.centreline, float)
-        step = np.median(np.hypot(*np.diff(line, axis=0).T))
-        every = max(1, int(round(CSV_SPACING / step))) if step > 0 else 1
-        atomic_write_text(paths["centreline_csv"], centreline_csv(line[::every], spec.corridor_width_m))
+        with tempfile.TemporaryDirectory(prefix="rra-gen-") as tmp:
+            paths = write_outputs(out, tmp, stem="map")
+            # The committed centreline is thinned to ~CSV_SPACING m (the map is the reference).
+            line = np.asarray(out.centreline, float)
+            step = np.median(np.hypot(*np.diff(line, axis=0).T))
+            every = max(1, int(round(CSV_SPACING / step))) if step > 0 else 1
+            atomic_write_text(paths["centreline_csv"], centreline_csv(line[::every], spec.corridor_width_m))
+            files = {p.name: p.read_bytes() for p in paths.values()}
         rec["candidates_tried"] = out.candidates_tried
     elif out.kind == "rejected":
         rec["violations"] = out.violations
-    return rec
+    return rec, files
 
 
 def build_generated(
     outdir: str | Path,
     count: int = 60,
     jobs: int = 1,
-    progress: Callable[[Iterator[dict], int], Iterator[dict]] | None = None,
+    progress: Callable[[Iterator[Any], int], Iterator[Any]] | None = None,
+    executor: Executor | None = None,
 ) -> dict:
-    """Run the whole sweep (in ``jobs`` processes), keep the first ``count`` acceptances
-    (delete nothing else: outputs of dropped acceptances are removed), write
+    """Run the whole sweep (on ``executor``, default a local pool of ``jobs`` processes), keep
+    the first ``count`` acceptances (outputs of dropped acceptances are removed), write
     ``outdir/sweep.json`` with every outcome, and return it."""
-    import os
     import shutil
-    from multiprocessing import get_context
 
     t0 = time.perf_counter()
-    tasks = [(tid, spec, seed, str(outdir)) for tid, spec, seed in sweep()]
+    tasks = list(sweep())
     Path(outdir).mkdir(parents=True, exist_ok=True)
-    if jobs > 1:
-        with get_context("spawn").Pool(jobs) as pool:
-            it: Iterator[dict] = pool.imap(_one, tasks)
-            recs = list(progress(it, len(tasks)) if progress else it)
-    else:
-        it = map(_one, tasks)
-        recs = list(progress(it, len(tasks)) if progress else it)
+    recs: list[dict] = [{}] * len(tasks)
+    ex = executor or LocalExecutor(jobs)
+    try:
+        it = ex.run(generate_files, tasks)
+        for i, (rec, files) in (progress(it, len(tasks)) if progress else it):
+            if files:
+                atomic_write_dir(Path(outdir) / rec["id"], files)
+            recs[i] = rec
+    finally:
+        if executor is None:
+            ex.close()
     # Every seed-0 acceptance first (one per spec: the widest spread), then seed 1.
     accepted = sorted((r for r in recs if r["outcome"] == "accepted"), key=lambda r: r["seed"])
     kept = {r["id"] for r in accepted[:count]}

@@ -138,18 +138,13 @@ def min_radius(line: np.ndarray, span_m: float = 0.5) -> float:
 
 def assess_all(sources: Path, jobs: int = 1, progress=None) -> list[dict]:
     """Assess every recorded map; identical grids after the first are marked duplicates."""
-    import os
     from functools import partial
-    from multiprocessing import get_context
+
+    from ..distributed.executor import LocalExecutor, map_ordered
 
     yamls = find_map_yamls(sources)
-    fn = partial(assess_map, sources)
-    if jobs > 1:
-        with get_context("spawn").Pool(jobs) as pool:
-            it = pool.imap(fn, yamls)
-            recs = list(progress(it, len(yamls)) if progress else it)
-    else:
-        recs = list(progress(map(fn, yamls), len(yamls)) if progress else map(fn, yamls))
+    with LocalExecutor(jobs) as ex:
+        recs = map_ordered(ex, partial(assess_map, sources), yamls, progress)
     seen: dict[str, str] = {}
     ids: set[str] = set()
     for r in recs:

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from .. import _core
+from ..distributed.executor import Executor, LocalExecutor, map_ordered
 from ..errors import ArenaError
 from .catalog import Catalog, sha256_file
 from .tracks import entry_track
@@ -166,21 +167,19 @@ def _work(args) -> dict:
 
 
 def verify(cat: Catalog, entries: list[dict], sources: Path | None = None, jobs: int = 1, usd: bool = True,
-           drive: bool = True, progress=None, reverse: bool = False) -> dict[str, Any]:
-    """Verify ``entries`` (laps against the racing direction with ``reverse``); returns
-    per-track results and a summary."""
-    import os
-    from multiprocessing import get_context
-
+           drive: bool = True, progress=None, reverse: bool = False, executor: Executor | None = None) -> dict[str, Any]:
+    """Verify ``entries`` (laps against the racing direction with ``reverse``) on ``executor``
+    (default: a local pool of ``jobs`` processes); returns per-track results in entry order
+    and a summary. On a Ray cluster every node must see the same catalog and sources paths."""
     t0 = time.perf_counter()
     tasks = [(cat, e, sources, usd, drive, reverse) for e in entries]
-    if jobs > 1 and len(tasks) > 1:
-        with get_context("spawn").Pool(jobs) as pool:
-            it = pool.imap(_work, tasks)
-            results = list(progress(it, len(tasks)) if progress else it)
-    else:
-        it = map(_work, tasks)
-        results = list(progress(it, len(tasks)) if progress else it)
+    ex = executor or LocalExecutor(jobs)
+    try:
+        results = map_ordered(ex, _work, tasks, progress)
+    finally:
+        if executor is None:
+            ex.close()
+    jobs = ex.workers
     names = ("load", "ring", "usd", "drive")
     per_check = {n: {s: sum(1 for r in results if r["checks"].get(n, {}).get("status") == s) for s in (PASS, FAIL, NOT_RUN)}
                  for n in names}

@@ -1,0 +1,48 @@
+"""Connecting to a Ray cluster (the optional ``[ray]`` extra).
+
+``address`` is what ``--ray`` takes: ``auto`` (a running cluster on this machine or the
+one ``RAY_ADDRESS`` names), ``local`` (start a throw-away single-machine cluster), or a
+cluster address (``HOST:PORT`` or ``ray://HOST:PORT``). If Ray is already initialised in
+this process (e.g. a test called ``ray.init(num_cpus=2)``), that connection is used.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..errors import ArenaError, InvalidArgumentError
+
+
+def import_ray() -> Any:
+    """``import ray``, or a one-line error saying how to install it."""
+    try:
+        import ray
+    except ImportError:
+        raise ArenaError("Ray is not installed: pip install 'roboracer-arena[ray]'") from None
+    return ray
+
+
+def connect(address: str) -> bool:
+    """Make sure this process is connected to a cluster; returns True if this call
+    connected (and so the caller should disconnect), False if Ray was already up."""
+    ray = import_ray()
+    if ray.is_initialized():
+        return False
+    if not address or not isinstance(address, str):
+        raise InvalidArgumentError(f"--ray: expected auto, local or HOST:PORT, got {address!r}")
+    kwargs: dict[str, Any] = {"include_dashboard": False, "logging_level": "ERROR", "log_to_driver": False}
+    try:
+        if address == "local":
+            ray.init(**kwargs)
+        else:
+            ray.init(address=address, **kwargs)
+    except (ConnectionError, RuntimeError, ValueError) as e:
+        first = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        raise ArenaError(f"--ray {address}: cannot connect to a Ray cluster: {first}") from None
+    return True
+
+
+def cluster_cpus() -> int:
+    """CPUs the connected cluster offers (at least 1)."""
+    ray = import_ray()
+    return max(1, int(ray.cluster_resources().get("CPU", 1)))

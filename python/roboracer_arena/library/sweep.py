@@ -1,0 +1,144 @@
+"""Sweep files for ``roboracer-arena tracks generate --sweep SWEEP.json``: the spec ranges
+and seed scheme of a generated-track library (example: ``examples/sweep.json``).
+
+Format (JSON object)::
+
+    {
+      "name": "hall-sweep",            # id prefix: track k is "<name>-<k:05d>"
+      "base_seed": 0,                  # the whole library follows from it
+      "decimals": 1,                   # float draws are rounded to this many decimals
+      "ranges": {                      # TrackSpec fields drawn per request
+        "lap_length_m": [40, 80],      #   [lo, hi]: uniform float, or uniform integer
+        "hairpins": [0, 2],            #   (inclusive) for an integer field
+        "direction": {"choice": ["clockwise", "counterclockwise"]}   # one of a list
+      },
+      "fixed": {"chicanes": 0}         # TrackSpec fields set for every request
+    }
+
+Seed scheme: request ``k`` (k = 0, 1, 2, ...) draws its ranged fields, in sorted field
+order, from ``numpy.random.default_rng([base_seed, k])``; its generation seed is
+``SeedSequence([base_seed, k, 1]).generate_state(1)[0]`` (a uint32). So request ``k``
+is the same spec and the same track whatever the number of workers, the wave it ran in
+or the ``--count`` asked for; a library of N tracks is the first N acceptances in ``k``
+order.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from ..errors import SpecError
+from ..spec import TrackSpec
+
+#: The example sweep (also ``examples/sweep.json``): varied halls, lap lengths and features.
+EXAMPLE_SWEEP: dict[str, Any] = {
+    "name": "hall-sweep",
+    "base_seed": 0,
+    "decimals": 1,
+    "ranges": {
+        "lap_length_m": [40, 120],
+        "corridor_width_m": [1.2, 2.0],
+        "hall_x_m": [18, 30],
+        "hall_y_m": [14, 22],
+        "hairpins": [0, 2],
+        "chicanes": [0, 1],
+        "sweepers": [0, 1],
+        "direction": {"choice": ["clockwise", "counterclockwise"]},
+    },
+    "fixed": {},
+}
+
+
+class Choice(BaseModel):
+    """``{"choice": [...]}``: one of the listed values, uniformly."""
+
+    model_config = ConfigDict(extra="forbid")
+    choice: list[Any] = Field(min_length=1)
+
+
+def _is_int_field(name: str) -> bool:
+    return TrackSpec.model_fields[name].annotation is int
+
+
+class SweepFile(BaseModel):
+    """A parsed, checked sweep file (see the module docstring for the format)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    name: str = Field("sweep", min_length=1, max_length=60, pattern=r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+    base_seed: int = Field(0, ge=0)
+    decimals: int = Field(1, ge=0, le=6)
+    ranges: dict[str, tuple[float, float] | Choice] = Field(default_factory=dict)
+    fixed: dict[str, Any] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _fields_exist(self) -> SweepFile:
+        fields = set(TrackSpec.model_fields) - {"name"}
+        for where, keys in (("ranges", self.ranges), ("fixed", self.fixed)):
+            bad = sorted(set(keys) - fields)
+            if bad:
+                raise ValueError(
+                    f"{where}: unknown TrackSpec field(s) {', '.join(bad)}; known: {', '.join(sorted(fields))}"
+                )
+        both = sorted(set(self.ranges) & set(self.fixed))
+        if both:
+            raise ValueError(f"field(s) {', '.join(both)} are in both ranges and fixed")
+        for k, r in self.ranges.items():
+            if isinstance(r, tuple):
+                if r[0] > r[1]:
+                    raise ValueError(f"ranges.{k}: lower bound {r[0]:g} is above upper bound {r[1]:g}")
+                if _is_int_field(k) and (r[0] != int(r[0]) or r[1] != int(r[1])):
+                    raise ValueError(f"ranges.{k}: an integer field takes integer bounds, got [{r[0]:g}, {r[1]:g}]")
+        self.spec(0)  # a fixed value of the wrong type fails here, not in a worker
+        return self
+
+    def draw(self, k: int) -> dict[str, Any]:
+        """The ranged field values of request ``k``."""
+        rng = np.random.default_rng([self.base_seed, k])
+        out: dict[str, Any] = {}
+        for name in sorted(self.ranges):
+            r = self.ranges[name]
+            if isinstance(r, Choice):
+                out[name] = r.choice[int(rng.integers(len(r.choice)))]
+            elif _is_int_field(name):
+                out[name] = int(rng.integers(int(r[0]), int(r[1]) + 1))
+            else:
+                out[name] = round(float(rng.uniform(r[0], r[1])), self.decimals)
+        return out
+
+    def track_id(self, k: int) -> str:
+        return f"{self.name}-{k:05d}"
+
+    def seed(self, k: int) -> int:
+        """Generation seed of request ``k``."""
+        return int(np.random.SeedSequence([self.base_seed, k, 1]).generate_state(1)[0])
+
+    def spec(self, k: int) -> TrackSpec:
+        return TrackSpec(name=self.track_id(k), **{**self.fixed, **self.draw(k)})
+
+    def requests(self, start: int, stop: int) -> list[tuple[str, TrackSpec, int]]:
+        """``(id, spec, seed)`` of requests ``start .. stop - 1``."""
+        return [(self.track_id(k), self.spec(k), self.seed(k)) for k in range(start, stop)]
+
+
+def load_sweep(path: str | Path) -> SweepFile:
+    """Read and check a sweep file; errors name the file and the field."""
+    p = Path(path)
+    try:
+        doc = json.loads(p.read_text(encoding="utf-8"))
+    except OSError as e:
+        raise SpecError(f"{p}: cannot read the sweep file: {e.strerror or e}") from None
+    except json.JSONDecodeError as e:
+        raise SpecError(f"{p}: not valid JSON (line {e.lineno}): {e.msg}") from None
+    try:
+        return SweepFile.model_validate(doc)
+    except ValidationError as e:
+        err = e.errors()[0]
+        where = ".".join(str(x) for x in err["loc"]) or "(top level)"
+        raise SpecError(f"{p}: {where}: {err['msg']}") from None
+    except SpecError as e:
+        raise SpecError(f"{p}: {e}") from None

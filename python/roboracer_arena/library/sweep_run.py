@@ -1,0 +1,128 @@
+"""``tracks generate``: build a library of N generated tracks from a sweep file on an
+executor (local processes or Ray tasks), deterministically.
+
+Requests run in waves of consecutive ``k`` (:mod:`.sweep`); the library is the first
+``count`` acceptances in ``k`` order, so it does not depend on the number of workers or
+the wave sizes. Workers return files; only this process writes, each track directory
+atomically (:func:`~roboracer_arena.fileio.atomic_write_dir`), ``sweep.json`` and
+``catalog.json`` last, atomically. Layout of ``outdir``::
+
+    generated/<id>/{map.yaml, map.png, centreline.csv, spec.json, report.json}
+    sweep.json      every request up to the last kept one, with its outcome
+    catalog.json    the kept tracks, readable by ``tracks verify --catalog``
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import shutil
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+from .. import __version__
+from ..distributed.executor import Executor
+from ..errors import InvalidArgumentError
+from ..fileio import atomic_write_dir, atomic_write_text
+from .catalog import Catalog
+from .directions import annotate_directions
+from .generated import generate_files
+from .index import _generated_entries
+from .sweep import SweepFile
+
+#: Most requests held in memory at once (their files wait until the wave is complete).
+MAX_WAVE = 256
+
+
+def _wave_size(need: int, tried: int, accepted: int, workers: int, left: int) -> int:
+    """Requests for the next wave: enough for ``need`` more acceptances at the rate seen so
+    far (plus a quarter), at least one per worker, at most MAX_WAVE and the budget left."""
+    rate = accepted / tried if tried and accepted else (0.1 if tried else 1.0)
+    return max(1, min(left, MAX_WAVE, max(workers, math.ceil(1.25 * need / rate))))
+
+
+def generate_library(
+    sweep: SweepFile,
+    count: int,
+    outdir: str | Path,
+    executor: Executor,
+    max_requests: int | None = None,
+    progress: Callable[[Iterator[Any], int], Iterator[Any]] | None = None,
+) -> dict[str, Any]:
+    """Generate ``count`` accepted tracks from ``sweep`` into ``outdir`` (see module doc),
+    trying at most ``max_requests`` requests (default ``10 * count``). Returns the summary
+    written to ``sweep.json``; ``kept < count`` means the budget ran out."""
+    if count < 1:
+        raise InvalidArgumentError(f"--count must be >= 1, got {count}")
+    budget = max_requests if max_requests is not None else 10 * count
+    if budget < count:
+        raise InvalidArgumentError(f"--max-requests {budget} is below --count {count}")
+    t0 = time.perf_counter()
+    out = Path(outdir)
+    gen = out / "generated"
+    records: list[dict[str, Any]] = []
+    kept: list[str] = []
+    n_acc = 0
+    while len(kept) < count and len(records) < budget:
+        start = len(records)
+        size = _wave_size(count - len(kept), start, n_acc, executor.workers, budget - start)
+        tasks = sweep.requests(start, start + size)
+        results: list[Any] = [None] * size
+        it = executor.run(generate_files, tasks)
+        for i, res in progress(it, size) if progress else it:
+            results[i] = res
+        for k, (rec, files) in enumerate(results, start):
+            rec = {"k": k, **rec}
+            n_acc += rec["outcome"] == "accepted"
+            rec["kept"] = bool(files) and len(kept) < count
+            if rec["kept"]:
+                atomic_write_dir(gen / rec["id"], files)
+                kept.append(rec["id"])
+            records.append(rec)
+    if kept:  # requests after the last kept one depend on the wave size: leave them out
+        last = next(r["k"] for r in records if r["id"] == kept[-1])
+        records = records[: last + 1]
+    _remove_stale(gen, sweep.name, set(kept))
+    summary = {
+        "sweep": sweep.model_dump(mode="json"),
+        "count": count,
+        "kept": len(kept),
+        "requests": len(records),
+        "accepted": sum(r["outcome"] == "accepted" for r in records),
+        "rejected": sum(r["outcome"] == "rejected" for r in records),
+        "failed": sum(r["outcome"] == "failed" for r in records),
+        "workers": executor.workers,
+        "executor": type(executor).__name__,
+        "seconds": round(time.perf_counter() - t0, 2),
+        "records": records,
+    }
+    atomic_write_text(out / "sweep.json", json.dumps(summary, indent=2) + "\n")
+    _write_catalog(out, kept, summary)
+    return summary
+
+
+def _remove_stale(gen: Path, name: str, kept: set[str]) -> None:
+    """Delete track directories of an earlier run of the same sweep name that this run
+    does not keep (e.g. a larger --count before), so the directory matches the catalog."""
+    pattern = re.compile(rf"^{re.escape(name)}-\d{{5,}}$")
+    for d in gen.glob(f"{name}-*") if gen.is_dir() else []:
+        if d.is_dir() and pattern.match(d.name) and d.name not in kept:
+            shutil.rmtree(d, ignore_errors=True)
+
+
+def _write_catalog(out: Path, kept: list[str], summary: dict[str, Any]) -> None:
+    by_id = {e["id"]: e for e in _generated_entries(out)}
+    entries = [by_id[i] for i in kept]
+    meta = {
+        "schema": "roboracer-arena track catalog v1",
+        "built_with": f"roboracer-arena {__version__} tracks generate",
+        "sources_note": "generated tracks: 'map' is relative to this file's directory",
+        "counts": {"circuit": 0, "recorded": 0, "generated": len(entries)},
+        "sweep": {k: summary[k] for k in ("sweep", "count", "requests", "accepted", "rejected", "failed")},
+    }
+    cat = Catalog(entries=entries, meta=meta, path=out / "catalog.json")
+    annotate_directions(cat)
+    atomic_write_text(out / "catalog.json", cat.to_json())
