@@ -81,7 +81,7 @@ CORPUS: list[dict] = [
     {"id": "out-256-byte-name", "files": ring_map(), "argv": ["build", "ring.yaml", "-o", "x" * 251 + ".usdc"],
      "codes": [2], "one_line": True},
     {"id": "preview-overwrites-its-yaml", "files": ring_map(), "argv": ["preview", "ring.yaml", "-o", "ring.yaml"],
-     "codes": [2], "says": ["overwrite"]},
+     "codes": [2], "says": ["picture format"]},  # refused by its extension first, before any work
     {"id": "preview-overwrites-its-image", "files": ring_map(), "argv": ["preview", "ring.yaml", "-o", "ring.png"],
      "codes": [2], "says": ["overwrite"]},
     {"id": "build-overwrites-its-image", "files": ring_map(), "argv": ["build", "ring.yaml", "--usda", "-o", "ring.png"],
