@@ -4,13 +4,17 @@
 
 use std::sync::Arc;
 
-use arena_core::sim::{SimParams, Simulator as CoreSim, Track, STATE_FIELDS, STATE_SIZE};
+use arena_core::sim::{
+    ResetGiven, ResetOut, SimParams, Simulator as CoreSim, StartSpec, Track, STATE_FIELDS,
+    STATE_SIZE,
+};
 use arena_core::ArenaError as CoreError;
 use numpy::{
-    PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods,
+    PyArray1, PyArray2, PyArray3, PyArrayDescrMethods, PyArrayMethods, PyReadonlyArray2,
+    PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
+use pyo3::types::{PyBool, PyFloat, PyTuple};
 
 use crate::errors::{to_py, IntoPyResult};
 
@@ -62,6 +66,18 @@ fn read_f64_3d(obj: &Bound<'_, PyAny>, name: &str, shape: [usize; 3]) -> PyResul
     Ok(view.as_array().iter().copied().collect())
 }
 
+/// Copy a float64 array of exactly `shape` out of Python (any memory layout).
+fn read_f64_2d(obj: &Bound<'_, PyAny>, name: &str, shape: [usize; 2]) -> PyResult<Vec<f64>> {
+    let arr = obj.cast::<PyArray2<f64>>().map_err(|_| {
+        invalid(format!(
+            "{name} must be a numpy float64 array of shape {shape:?}"
+        ))
+    })?;
+    check_shape(name, arr.shape(), &shape)?;
+    let view = arr.try_readonly().map_err(|e| invalid(e.to_string()))?;
+    Ok(view.as_array().iter().copied().collect())
+}
+
 /// A numpy bool array of shape (num_envs,) as a Vec.
 fn read_mask(obj: &Bound<'_, PyAny>, num_envs: usize) -> PyResult<Vec<bool>> {
     let mask = obj.cast::<PyArray1<bool>>().map_err(|_| {
@@ -77,6 +93,56 @@ fn read_mask(obj: &Bound<'_, PyAny>, num_envs: usize) -> PyResult<Vec<bool>> {
         .iter()
         .copied()
         .collect())
+}
+
+/// An integer index (a Python int or numpy integer; bools and floats such as 0.7 are
+/// refused, never truncated).
+fn index_arg(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<i64> {
+    if obj.is_instance_of::<PyBool>() || obj.is_instance_of::<PyFloat>() {
+        return Err(invalid(format!("{name} must be an integer, got {obj}")));
+    }
+    if let Ok(a) = obj.cast::<numpy::PyUntypedArray>() {
+        let kind = a.dtype().kind();
+        if kind != b'i' && kind != b'u' {
+            return Err(invalid(format!("{name} must be an integer, got {obj}")));
+        }
+    }
+    obj.extract::<i64>()
+        .map_err(|_| invalid(format!("{name} must be an integer, got {obj}")))
+}
+
+/// Integer ids from a 1-D numpy integer array or a sequence of Python ints (bools and
+/// floats refused), checked to hold `n` of them.
+fn read_ids(obj: &Bound<'_, PyAny>, name: &str, n: usize) -> PyResult<Vec<i64>> {
+    let ids: Vec<i64> = if let Ok(a) = obj.cast::<numpy::PyUntypedArray>() {
+        let kind = a.dtype().kind();
+        if kind != b'i' && kind != b'u' {
+            return Err(invalid(format!(
+                "{name} must hold integers, got a numpy {} array",
+                a.dtype()
+            )));
+        }
+        obj.call_method1("astype", ("int64",))?
+            .extract::<Vec<i64>>()
+            .map_err(|_| invalid(format!("{name} must be a 1-D integer array")))?
+    } else {
+        let mut out = Vec::new();
+        for (i, item) in obj
+            .try_iter()
+            .map_err(|_| invalid(format!("{name} must be a sequence of int")))?
+            .enumerate()
+        {
+            out.push(index_arg(&item?, &format!("{name}[{i}]"))?);
+        }
+        out
+    };
+    if ids.len() != n {
+        return Err(invalid(format!(
+            "{name} must have {n} entries, got {}",
+            ids.len()
+        )));
+    }
+    Ok(ids)
 }
 
 /// Borrow `obj` as a writable C-contiguous array of element type T and the given shape.
@@ -194,10 +260,66 @@ impl Simulator {
     }
 
     fn set_tracks(&mut self, track_ids: &Bound<'_, PyAny>) -> PyResult<()> {
-        let ids: Vec<i64> = track_ids
-            .extract()
-            .map_err(|_| invalid("track_ids must be a sequence of int"))?;
+        let ids = read_ids(track_ids, "track_ids", self.inner.num_envs())?;
         self.inner.set_tracks(&ids).py()
+    }
+
+    /// Configure `reset_drawn` from a JSON object (see `arena_core::sim::StartSpec`).
+    fn set_start_spec(&mut self, spec_json: &str) -> PyResult<()> {
+        let spec: StartSpec =
+            serde_json::from_str(spec_json).map_err(|e| invalid(format!("start spec: {e}")))?;
+        self.inner.set_start_spec(spec).py()
+    }
+
+    /// Reset the envs where `env_mask` is True with natively drawn tracks, poses, speeds
+    /// and lidar randomisation (each env from its own stream), except what `track_ids`
+    /// (E,), `poses` (E, V, 3) or `speeds` (E, V) fix; writes what each reset env got into
+    /// `out_track_ids` (E,) int64, `out_poses` (E, V, 3) float64, `out_speeds` (E, V) float64.
+    #[pyo3(signature = (env_mask, out_track_ids, out_poses, out_speeds, track_ids = None, poses = None, speeds = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn reset_drawn(
+        &mut self,
+        py: Python<'_>,
+        env_mask: &Bound<'_, PyAny>,
+        out_track_ids: &Bound<'_, PyAny>,
+        out_poses: &Bound<'_, PyAny>,
+        out_speeds: &Bound<'_, PyAny>,
+        track_ids: Option<&Bound<'_, PyAny>>,
+        poses: Option<&Bound<'_, PyAny>>,
+        speeds: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
+        let mask = read_mask(env_mask, e)?;
+        let given_tracks = match track_ids {
+            Some(t) if !t.is_none() => Some(read_ids(t, "track_ids", e)?),
+            _ => None,
+        };
+        let given_poses = match poses {
+            Some(p) if !p.is_none() => Some(read_f64_3d(p, "poses", [e, v, 3])?),
+            _ => None,
+        };
+        let given_speeds = match speeds {
+            Some(s) if !s.is_none() => Some(read_f64_2d(s, "speeds", [e, v])?),
+            _ => None,
+        };
+        let mut ot = out_array!(out_track_ids, i64, PyArray1, "out_track_ids", [e], "int64");
+        let mut op = out_array!(out_poses, f64, PyArray3, "out_poses", [e, v, 3], "float64");
+        let mut os = out_array!(out_speeds, f64, PyArray2, "out_speeds", [e, v], "float64");
+        let out = ResetOut {
+            tracks: ot.as_slice_mut().map_err(|e| invalid(e.to_string()))?,
+            poses: op.as_slice_mut().map_err(|e| invalid(e.to_string()))?,
+            speeds: os.as_slice_mut().map_err(|e| invalid(e.to_string()))?,
+        };
+        let inner = &mut self.inner;
+        py.detach(move || {
+            let given = ResetGiven {
+                tracks: given_tracks.as_deref(),
+                poses: given_poses.as_deref(),
+                speeds: given_speeds.as_deref(),
+            };
+            inner.reset_drawn(&mask, given, out)
+        })
+        .py()
     }
 
     fn reset(
@@ -222,19 +344,7 @@ impl Simulator {
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let mask = read_mask(env_mask, e)?;
-        let arr = speeds.cast::<PyArray2<f64>>().map_err(|_| {
-            invalid(format!(
-                "speeds must be a numpy float64 array of shape [{e}, {v}]"
-            ))
-        })?;
-        check_shape("speeds", arr.shape(), &[e, v])?;
-        let speeds: Vec<f64> = arr
-            .try_readonly()
-            .map_err(|e| invalid(e.to_string()))?
-            .as_array()
-            .iter()
-            .copied()
-            .collect();
+        let speeds = read_f64_2d(speeds, "speeds", [e, v])?;
         self.inner.set_speeds(&mask, &speeds).py()
     }
 
@@ -250,36 +360,47 @@ impl Simulator {
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let acts = read_f64_3d(actions, "actions", [e, v, 2])?;
-        self.run(py, Some((acts, substeps)), scans, state, events)
+        self.run(py, Ok((acts, substeps)), scans, state, events)
     }
 
+    /// Write state, events and (unless `scans` is None) scans without stepping: of every
+    /// env, or only of those where `env_mask` is True (the other rows are left alone).
+    #[pyo3(signature = (scans, state, events, env_mask = None))]
     fn observe(
         &mut self,
         py: Python<'_>,
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
+        env_mask: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        self.run(py, None, scans, state, events)
+        let mask = match env_mask {
+            Some(m) if !m.is_none() => Some(read_mask(m, self.inner.num_envs())?),
+            _ => None,
+        };
+        self.run(py, Err(mask), scans, state, events)
     }
 
     /// Pose (x, y, heading) on track `track_id`'s centreline at arc length `s` (wrapped).
-    fn centreline_pose(&self, track_id: usize, s: f64) -> PyResult<(f64, f64, f64)> {
-        let p = self.inner.track(track_id).py()?.centreline.pose_at(s);
+    fn centreline_pose(&self, track_id: &Bound<'_, PyAny>, s: f64) -> PyResult<(f64, f64, f64)> {
+        if !s.is_finite() {
+            return Err(invalid(format!("s must be finite, got {s}")));
+        }
+        let p = self.track_arg(track_id)?.centreline.pose_at(s);
         Ok((p[0], p[1], p[2]))
     }
 
-    fn centreline_length(&self, track_id: usize) -> PyResult<f64> {
-        Ok(self.inner.track(track_id).py()?.centreline.length())
+    fn centreline_length(&self, track_id: &Bound<'_, PyAny>) -> PyResult<f64> {
+        Ok(self.track_arg(track_id)?.centreline.length())
     }
 
     /// The (closed) centreline points of a track, (M, 2) float64.
     fn centreline<'py>(
         &self,
         py: Python<'py>,
-        track_id: usize,
+        track_id: &Bound<'_, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let c = &self.inner.track(track_id).py()?.centreline;
+        let c = &self.track_arg(track_id)?.centreline;
         let n = c.num_segments();
         let rows: Vec<Vec<f64>> = (0..n).map(|i| c.point(i).to_vec()).collect();
         PyArray2::from_vec2(py, &rows).map_err(|e| invalid(e.to_string()))
@@ -287,8 +408,12 @@ impl Simulator {
 
     /// The collision wall mesh of a track as the physics engine holds it (shared by all
     /// envs on that track): (vertices (V, 3) float32, triangles (T, 3) uint32).
-    fn wall_mesh<'py>(&self, py: Python<'py>, track_id: usize) -> PyResult<MeshArrays<'py>> {
-        let (v, t) = self.inner.track(track_id).py()?.wall_mesh();
+    fn wall_mesh<'py>(
+        &self,
+        py: Python<'py>,
+        track_id: &Bound<'_, PyAny>,
+    ) -> PyResult<MeshArrays<'py>> {
+        let (v, t) = self.track_arg(track_id)?.wall_mesh();
         let v: Vec<Vec<f32>> = v.iter().map(|p| p.to_vec()).collect();
         let t: Vec<Vec<u32>> = t.iter().map(|p| p.to_vec()).collect();
         Ok((
@@ -310,10 +435,22 @@ impl Simulator {
 }
 
 impl Simulator {
+    /// The track named by a `track_id` argument (an integer in range).
+    fn track_arg(&self, obj: &Bound<'_, PyAny>) -> PyResult<&Arc<Track>> {
+        let id = index_arg(obj, "track_id")?;
+        let n = self.inner.tracks().len();
+        if !(0..n as i64).contains(&id) {
+            return Err(invalid(format!(
+                "track_id {id} out of range (have {n} tracks)"
+            )));
+        }
+        self.inner.track(id as usize).py()
+    }
+
     fn run(
         &mut self,
         py: Python<'_>,
-        step: Option<(Vec<f64>, usize)>,
+        step: Result<(Vec<f64>, usize), Option<Vec<bool>>>,
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
@@ -345,8 +482,8 @@ impl Simulator {
         };
         let inner = &mut self.inner;
         py.detach(move || match step {
-            Some((acts, substeps)) => inner.step(&acts, substeps, sc, st, ev),
-            None => inner.observe(sc, st, ev),
+            Ok((acts, substeps)) => inner.step(&acts, substeps, sc, st, ev),
+            Err(mask) => inner.observe_masked(mask.as_deref(), sc, st, ev),
         })
         .py()
     }

@@ -1,6 +1,7 @@
 """Observation assembly for the batch engine: raw or normalised frames (see
-:class:`~roboracer_arena.envs.env_config.ObservationConfig`), observation randomisation
-(lidar noise and dropout), frame stacking and the previous action.
+:class:`~roboracer_arena.envs.env_config.ObservationConfig`), frame stacking and the
+previous action. Observation randomisation (lidar noise and dropout) is drawn natively
+with the scan, from each env's own stream (see :mod:`.batch`).
 
 A *frame* is computed once per env step (and at reset), so repeated reads of the same
 step's observation (``obs`` and ``final_obs``) agree, noise included.
@@ -39,12 +40,6 @@ class ObservationAssembler:
         self._scale = {"vx": veh.max_speed, "vy": veh.max_speed, "speed": veh.max_speed,
                        "yaw_rate": 2 * math.pi, "steer": veh.max_steer}
         self._max_steer, self._lo_speed, self._hi_speed = veh.max_steer, veh.min_speed, veh.max_speed
-        rnd = config.randomisation
-        self._randomise = rnd.active
-        self._dropout = rnd.lidar_dropout
-        self._noise_range = rnd.lidar_noise_std
-        self.noise_std = np.zeros(E, np.float64)
-        self.rngs: list[np.random.Generator | None] = [None] * E
         K = len(self.columns)
         stack = (self.k,) if self.k > 1 else ()
         self.buf: dict[str, np.ndarray] = {}
@@ -82,13 +77,6 @@ class ObservationAssembler:
         return np.array([np.inf if c in ("x", "y") else 1.0 for c in self.columns])
 
     # ------------------------------------------------------------------ per episode / per step
-    def new_episode(self, env: int, rng: np.random.Generator) -> None:
-        """Draw this episode's randomisation for env ``env`` from its RNG."""
-        self.rngs[env] = rng
-        if self._randomise:
-            lo, hi = self._noise_range
-            self.noise_std[env] = float(rng.uniform(lo, hi)) if hi > lo else lo
-
     def refresh(self, batch: Any, envs: Any, fill: bool = False) -> None:
         """Compute the current frame of ``envs`` from the batch buffers; push it into the
         history (``fill``: the whole history, as at reset)."""
@@ -111,12 +99,10 @@ class ObservationAssembler:
         cfg = self.cfg
         out: dict[str, np.ndarray] = {}
         if cfg.scan:
-            scan = np.array(batch.scans[envs], dtype=np.float32)
-            if self._randomise:
-                self._randomise_scan(scan, envs)
-            np.clip(scan, 0.0, self.range_max, out=scan)
-            if cfg.normalise:
-                np.minimum(scan * self._scan_scale, 1.0, out=scan)
+            scan = batch.scans[envs]  # the simulator clamps to [range_min, range_max]
+            if cfg.normalise:  # a new array: batch.scans stays in metres
+                scan = scan * self._scan_scale
+                np.minimum(scan, 1.0, out=scan)
             out["scan"] = scan
         if self.fields:
             out["odometry"] = self._odometry(batch.state[envs], batch.start_pose[envs])
@@ -124,17 +110,6 @@ class ObservationAssembler:
             act = batch.from_ackermann(batch.actions[envs])
             out["previous_action"] = np.zeros_like(act) if reset else act
         return out
-
-    def _randomise_scan(self, scan: np.ndarray, envs: Any) -> None:
-        ids = np.arange(len(self.rngs))[envs]
-        for j, e in enumerate(np.atleast_1d(ids)):
-            rng = self.rngs[e]
-            if rng is None:
-                continue
-            if self.noise_std[e] > 0:
-                scan[j] += rng.normal(0.0, self.noise_std[e], scan[j].shape).astype(np.float32)
-            if self._dropout > 0:
-                scan[j][rng.random(scan[j].shape) < self._dropout] = self.range_max
 
     def _odometry(self, state: np.ndarray, start: np.ndarray) -> np.ndarray:
         """(e, V, K) odometry columns from state (e, V, S) and start poses (e, V, 3)."""

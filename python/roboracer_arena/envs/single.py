@@ -16,7 +16,9 @@ Spaces (``V`` = vehicles per env; the vehicle axis is dropped when ``V == 1``):
 ``reset(options=...)``: ``"track_id"`` (or ``"track_ids"``) picks a track of the list,
 otherwise each reset draws one with the env's RNG (weighted for a track pool);
 ``"poses"`` ((V, 3) or (3,) x, y, yaw in the map frame) sets the start poses instead of
-the configured start. ``reset(seed=s)`` also reseeds the simulator (lidar noise).
+the configured start. ``reset(seed=s)`` reseeds the simulator, whose per-env streams draw
+the track, start poses and speeds and the lidar noise; the same seed gives the same
+episodes.
 
 Several vehicles (``vehicles_per_env = V > 1``): the reward is the sum over vehicles and
 ``terminated`` says any vehicle ended; per-vehicle rewards are ``info["vehicle_rewards"]``
@@ -68,6 +70,8 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         self._squeeze = self.config.vehicles_per_env == 1
         self._state_info = [f for f in STATE_INFO if f in self._batch.field_index]
         self._spec: Any = None
+        self._seeded = False
+        self._one = np.ones(1, bool)
 
     @property  # type: ignore[override]
     def spec(self) -> Any:
@@ -90,10 +94,13 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
     # ------------------------------------------------------------ gymnasium API
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
+        if seed is None and not self._seeded:  # unseeded: a fresh random stream, as gymnasium does
+            seed = int(self.np_random.integers(2**63))
         if seed is not None:
             self._batch.rebuild(seed)
+            self._seeded = True
         track_ids, poses, speeds = reset_options(options, 1, self.vehicles_per_env, len(self.tracks), single=True)
-        self._batch.reset(np.ones(1, bool), [self.np_random], track_ids, poses, speeds)
+        self._batch.reset(self._one, track_ids, poses, speeds)
         return self._obs(), self._info()
 
     def step(self, action: Any):
