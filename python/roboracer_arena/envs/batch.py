@@ -88,6 +88,10 @@ class SimBatch:
         self._info_cols = np.array([self.field_index[f] for f in self._info_names], dtype=np.intp)
         self._range_max = float(lid.range_max)
         self.obs = ObservationAssembler(config, self.field_index, E, V, B)
+        if self.obs.shares_scan:  # the simulator writes the observation's scans directly
+            self.scans = self.obs.buf["scan"]
+        self._row = self.state[0, 0]  # view: env 0, vehicle 0 (step_one)
+        self._vx_col = self.field_index["vx"]
         # The scanner runs at its own rate: under a faster control loop the observation
         # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control
         # scans on 2 of every 5 steps). Scan ticks count on one clock for the whole batch.
@@ -245,6 +249,48 @@ class SimBatch:
             return reward, terminated, self._no_env, contact
         truncated = self.elapsed >= self.max_steps
         return reward, terminated, truncated & ~terminated, contact
+
+    def step_one(self) -> tuple[float, bool, bool]:
+        """:meth:`step` for one env of one vehicle in Python scalars (the single env's
+        per-step path: no temporary arrays). Same arithmetic and the same updates of the
+        batch buffers as :meth:`step` (tests compare the two bit for bit); the observation
+        is refreshed with :meth:`ObservationAssembler.refresh_one`. Returns (reward,
+        terminated, truncated)."""
+        self.sim.step(self.actions, self.substeps, self.scans if self._scan_due() else None,
+                      self.state, self.events)
+        row = self._row.tolist()
+        s = row[self._s_col]
+        ds = s - self.prev_s.item(0)
+        if self._wrap:
+            half, length = self._half_len.item(0), self._len.item(0)
+            ds = (ds + half) % length - half
+        progress = self.progress.item(0) + ds
+        self.prev_s[0, 0] = s
+        self.progress[0, 0] = progress
+        elapsed = self.elapsed.item(0) + 1
+        self.elapsed[0] = elapsed
+        r = self.config.reward
+        reward = ds * r.progress
+        if r.time_penalty:
+            reward -= r.time_penalty * self.config.control_dt
+        ev = self.events.item(0)
+        end = False
+        if ev & (CONTACT_WALL | CONTACT_VEHICLE):
+            reward -= r.collision_penalty
+            end = self.config.collision_ends_episode
+        best = max(self.best_progress.item(0), progress)
+        self.best_progress[0, 0] = best
+        if ds < -BACKWARDS_EPS and best - progress > self.config.wrong_way_distance:
+            self.wrong_way[0, 0] = 1 if row[self._vx_col] >= 0.0 else -1
+            reward -= r.wrong_way_penalty
+            end = end or self.config.wrong_way_ends_episode
+        elif self.wrong_way.item(0):
+            self.wrong_way[0, 0] = 0
+        self.vehicle_rewards[0, 0] = reward
+        self.vehicle_terminated[0, 0] = end
+        self.obs.refresh_one(self, row)
+        truncated = self.max_steps is not None and elapsed >= self.max_steps and not end
+        return reward, bool(end), truncated
 
     def _update_wrong_way(self, ds: np.ndarray) -> np.ndarray | None:
         """Update ``wrong_way`` (E, V): nonzero while a vehicle moves backwards along the

@@ -29,6 +29,7 @@ class ObservationAssembler:
         self.k = cfg.frame_stack
         self.fields = tuple(cfg.odometry)
         self.cols = np.array([field_index[f] for f in self.fields], dtype=np.intp)
+        self.cols_list = [int(c) for c in self.cols]
         self._xy = (field_index["x"], field_index["y"], field_index["yaw"])
         #: Names of the columns of obs["odometry"] (yaw becomes yaw_sin, yaw_cos when normalised).
         self.columns: tuple[str, ...] = tuple(
@@ -49,6 +50,11 @@ class ObservationAssembler:
             self.buf["odometry"] = np.zeros((E, V, *stack, K), np.float32)
         if cfg.previous_action:
             self.buf["previous_action"] = np.zeros((E, V, *stack, 2), np.float32)
+        #: Raw scans without history: the batch lets the simulator write into buf["scan"].
+        self.shares_scan = cfg.scan and self.k == 1 and not cfg.normalise
+        #: Frames the single env's scalar path handles (one frame, raw, no previous action).
+        self.simple = self.k == 1 and not cfg.normalise and not cfg.previous_action
+        self._views = {k: v[0, 0] for k, v in self.buf.items()}
 
     # ------------------------------------------------------------------ spaces
     def space(self, lead: tuple[int, ...], action_space: spaces.Box) -> spaces.Dict:
@@ -81,6 +87,8 @@ class ObservationAssembler:
         """Compute the current frame of ``envs`` from the batch buffers; push it into the
         history (``fill``: the whole history, as at reset)."""
         frame = self._frame(batch, envs, reset=fill)
+        if self.shares_scan:
+            frame.pop("scan", None)  # already in place
         for key, value in frame.items():
             buf = self.buf[key]
             if self.k == 1:
@@ -90,6 +98,20 @@ class ObservationAssembler:
             else:
                 buf[envs, :, :-1] = buf[envs, :, 1:]
                 buf[envs, :, -1] = value
+
+    def refresh_one(self, batch: Any, row: list[float]) -> None:
+        """:meth:`refresh` of env 0, vehicle 0 from its state row (``row``, a list);
+        the scalar path of the single env (falls back to :meth:`refresh` unless
+        :attr:`simple`)."""
+        if not self.simple:
+            self.refresh(batch, slice(None))
+            return
+        if self.fields:  # (the scan is already in place: see shares_scan)
+            self._views["odometry"][:] = [row[c] for c in self.cols_list]
+
+    def observation_one(self) -> dict[str, np.ndarray]:
+        """Fresh copies of env 0, vehicle 0's observation (what the single env returns)."""
+        return {k: v.copy() for k, v in self._views.items()}
 
     def observation(self, envs: Any) -> dict[str, np.ndarray]:
         """Fresh copies of the observation of ``envs``, shapes (e, V, ...)."""

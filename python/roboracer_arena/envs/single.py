@@ -68,7 +68,8 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         self._render_size = render_size
         self._view: Any = None
         self._squeeze = self.config.vehicles_per_env == 1
-        self._state_info = [f for f in STATE_INFO if f in self._batch.field_index]
+        self._state_info = [(f, self._batch.field_index[f]) for f in STATE_INFO if f in self._batch.field_index]
+        self._names = [t.name for t in self.tracks]
         self._spec: Any = None
         self._seeded = False
         self._one = np.ones(1, bool)
@@ -104,8 +105,12 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         return self._obs(), self._info()
 
     def step(self, action: Any):
-        self._batch.set_actions(action)
-        reward, terminated, truncated, _ = self._batch.step()
+        b = self._batch
+        b.set_actions(action)
+        if self._squeeze:  # one vehicle: the scalar path
+            reward, terminated, truncated = b.step_one()
+            return b.obs.observation_one(), reward, terminated, truncated, self._info()
+        reward, terminated, truncated, _ = b.step()
         return self._obs(), float(reward[0]), bool(terminated[0]), bool(truncated[0]), self._info()
 
     def render(self) -> np.ndarray | None:
@@ -121,28 +126,30 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
 
     # ------------------------------------------------------------ helpers (drivers, tools)
     def _obs(self) -> dict[str, np.ndarray]:
+        if self._squeeze:
+            return self._batch.obs.observation_one()
         obs = self._batch.observation(0)
         return {k: v[0] for k, v in obs.items()} if self._squeeze else obs
 
     def _info(self) -> dict[str, Any]:
         b = self._batch
-        tid = int(b.track_ids[0])
+        tid = b.track_ids.item(0)
         if not self._squeeze:
             info = b.info(0)
             info.update(track_id=tid, track=self.tracks[tid].name)
             return info
-        ev, st, f = int(b.events[0, 0]), b.state[0, 0], b.field_index
+        ev, row = b.events.item(0), b._row.tolist()
         info = {
             "track_id": tid,
-            "track": self.tracks[tid].name,
-            "progress": float(b.progress[0, 0]),
+            "track": self._names[tid],
+            "progress": b.progress.item(0),
             "contact_wall": bool(ev & CONTACT_WALL),
             "contact_vehicle": bool(ev & CONTACT_VEHICLE),
             "lap_completed": bool(ev & LAP_COMPLETED),
-            "wrong_way": int(b.wrong_way[0, 0]),
+            "wrong_way": b.wrong_way.item(0),
         }
-        for name in self._state_info:
-            info[name] = float(st[f[name]])
+        for name, col in self._state_info:
+            info[name] = row[col]
         return info
 
     @property
