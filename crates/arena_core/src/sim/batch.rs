@@ -29,6 +29,9 @@ use super::vehicle::VehicleModel;
 use super::world::{World, STATE_SIZE};
 use crate::error::{ArenaError, Result};
 
+/// One world with its reset outputs: track id, poses, speeds.
+type ResetRow<'a> = (((&'a mut World, &'a mut i64), &'a mut [f64]), &'a mut [f64]);
+
 /// One world with its slices of the state, events and (optional) scan buffers.
 type WorldOutputs<'a> = (
     ((&'a mut World, &'a mut [f64]), &'a mut [u8]),
@@ -244,10 +247,7 @@ impl Simulator {
             self.check_speeds(mask, sp)?;
         }
         let (tracks, model) = (&self.tracks, &self.model);
-        let one = |(i, (((w, t), p), sp)): (
-            usize,
-            (((&mut World, &mut i64), &mut [f64]), &mut [f64]),
-        )| {
+        let one = |(i, (((w, t), p), sp)): (usize, ResetRow<'_>)| {
             if !mask[i] {
                 return;
             }

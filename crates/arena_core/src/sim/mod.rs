@@ -24,6 +24,8 @@ pub mod world;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_resets;
 
 pub use batch::{ResetGiven, ResetOut, Simulator, MAX_ABS_YAW, POSE_MARGIN};
 pub use params::{LidarParams, PhysicsParams, SimParams, VehicleParams};

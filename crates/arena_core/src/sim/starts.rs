@@ -68,8 +68,8 @@ impl StartSpec {
             ("noise_std low", self.noise_std[0]),
         ];
         for (name, v) in nonneg {
-            if !(v.is_finite() && (0.0..=1e6).contains(&v)) {
-                return bad(&format!("{name} must be finite and in [0, 1e6], got {v}"));
+            if !(v.is_finite() && (0.0..=1e4).contains(&v)) {
+                return bad(&format!("{name} must be finite and in [0, 1e4], got {v}"));
             }
         }
         if !(self.noise_std[1].is_finite() && self.noise_std[1] >= self.noise_std[0]) {

@@ -410,6 +410,46 @@ mod tests {
     }
 
     #[test]
+    fn culled_sweep_equals_the_grid_walk_on_a_large_map() {
+        // A 200 m x 90 m stadium (blocks far beyond range and behind walls get culled)
+        // with a field of small obstacles, scanned from poses around the lap.
+        let (mut walls, centre) = stadium_track(120.0, 40.0, 3.0);
+        for i in 0..40 {
+            let (x, y) = (-60.0 + 3.0 * i as f64, -40.0 + 0.4 * (i % 3) as f64);
+            walls.push(vec![[x, y], [x + 0.3, y + 0.2], [x, y + 0.4]]);
+        }
+        let grid = SegmentGrid::new(&walls);
+        let n = 1081;
+        let fov = 4.712389;
+        let inc = fov / (n - 1) as f64;
+        let mut checked = 0;
+        for (i, c) in centre.iter().enumerate().step_by(centre.len() / 23) {
+            let yaw = i as f64 * 0.7;
+            let (ox, oy) = (c[0] + 0.3, c[1] - 0.2);
+            let theta0 = yaw - fov / 2.0;
+            let dirs: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let a = theta0 + k as f64 * inc;
+                    [a.cos(), a.sin()]
+                })
+                .collect();
+            let mut ranges = vec![f64::INFINITY; n];
+            sweep(&grid, ox, oy, theta0, inc, &dirs, 30.0, &mut ranges);
+            for k in 0..n {
+                let walk = grid.cast(ox, oy, dirs[k][0], dirs[k][1], 30.0);
+                let swept = if ranges[k] <= 30.0 {
+                    ranges[k]
+                } else {
+                    f64::INFINITY
+                };
+                assert_eq!(walk.to_bits(), swept.to_bits(), "pose {i} beam {k}");
+                checked += walk.is_finite() as usize;
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
+    }
+
+    #[test]
     fn fast_atan2_is_within_2e5() {
         for i in 0..10_000 {
             let a = i as f64 / 10_000.0 * TAU - PI;
