@@ -21,7 +21,8 @@ import numpy as np
 #: Cached grid start arc length per (track, slots, spacing).
 _GRID_CACHE: "weakref.WeakKeyDictionary[Any, dict[tuple[int, float], float]]" = weakref.WeakKeyDictionary()
 
-#: Metres kept between the car's side and a wall when start noise moves it sideways.
+#: Metres kept between the car's side and a wall when start noise moves it sideways (the
+#: simulator's reset draws cap the lateral start noise with it, see ``envs.batch``).
 SIDE_MARGIN = 0.1
 
 
@@ -82,17 +83,3 @@ def grid_start_s(track: Any, slots: int = 1, spacing: float = 1.0) -> float:
         best = int(np.argmax(slot_clear))
     per_track[key] = s = float(cand[best])
     return s
-
-
-def perturb_pose(track: Any, pose: tuple[float, float, float], rng: np.random.Generator, lateral: float,
-                 heading: float, half_width: float) -> tuple[float, float, float]:
-    """``pose`` moved sideways by U(-lateral, lateral) (capped so the car's side stays
-    ``SIDE_MARGIN`` off the nearest wall) and turned by U(-heading, heading)."""
-    x, y, yaw = pose
-    if lateral > 0:
-        room = max(0.0, float(track.clearance([[x, y]])[0]) - half_width - SIDE_MARGIN)
-        off = float(rng.uniform(-1.0, 1.0)) * min(lateral, room)
-        x, y = x - off * math.sin(yaw), y + off * math.cos(yaw)
-    if heading > 0:
-        yaw = yaw + float(rng.uniform(-heading, heading))
-    return x, y, yaw
