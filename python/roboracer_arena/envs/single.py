@@ -25,6 +25,15 @@ Several vehicles (``vehicles_per_env = V > 1``): the reward is the sum over vehi
 (V,) and per-vehicle ends ``info["vehicle_terminated"]`` (V,). :mod:`.multi_agent` wraps
 this as a PettingZoo-style ParallelEnv.
 
+Per-step layout (one vehicle): ``obs`` is a dict of fresh float32 arrays, ``scan``
+(B,) in metres (raw config; the simulator writes it straight into the observation buffer)
+and ``odometry`` (K,) in :attr:`odometry_index` order; ``info`` is a flat dict of Python
+scalars: ``track_id``, ``track``, ``progress``, ``contact_wall``, ``contact_vehicle``,
+``lap_completed``, ``wrong_way``, ``laps``, ``lap_time``, ``last_lap_time``,
+``progress_s``. The step reads the state row once as Python floats
+(:meth:`SimBatch.step_one`), so the Python around the native step is a few microseconds:
+no per-step validation, no temporary arrays beyond the two returned copies.
+
 Render modes: ``rgb_array``; ``gymnasium.make(..., render_mode="human")`` wraps it in
 gymnasium's ``HumanRendering`` (needs pygame and a display).
 """
