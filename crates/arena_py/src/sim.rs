@@ -10,8 +10,8 @@ use arena_core::sim::{
 };
 use arena_core::ArenaError as CoreError;
 use numpy::{
-    PyArray1, PyArray2, PyArray3, PyArrayDescrMethods, PyArrayMethods, PyReadonlyArray2,
-    PyUntypedArrayMethods,
+    PyArray1, PyArray2, PyArray3, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods,
+    PyReadonlyArray2, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyFloat, PyTuple};
@@ -55,20 +55,12 @@ fn check_shape(name: &str, got: &[usize], want: &[usize]) -> PyResult<()> {
 }
 
 /// Copy a float64 array of exactly `shape` out of Python (any memory layout).
-fn read_f64_3d(obj: &Bound<'_, PyAny>, name: &str, shape: [usize; 3]) -> PyResult<Vec<f64>> {
-    let arr = obj.cast::<PyArray3<f64>>().map_err(|_| {
-        invalid(format!(
-            "{name} must be a numpy float64 array of shape {shape:?}"
-        ))
-    })?;
-    check_shape(name, arr.shape(), &shape)?;
-    let view = arr.try_readonly().map_err(|e| invalid(e.to_string()))?;
-    Ok(view.as_array().iter().copied().collect())
-}
-
-/// Copy a float64 array of exactly `shape` out of Python (any memory layout).
-fn read_f64_2d(obj: &Bound<'_, PyAny>, name: &str, shape: [usize; 2]) -> PyResult<Vec<f64>> {
-    let arr = obj.cast::<PyArray2<f64>>().map_err(|_| {
+fn read_f64<const N: usize>(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    shape: [usize; N],
+) -> PyResult<Vec<f64>> {
+    let arr = obj.cast::<PyArrayDyn<f64>>().map_err(|_| {
         invalid(format!(
             "{name} must be a numpy float64 array of shape {shape:?}"
         ))
@@ -295,11 +287,11 @@ impl Simulator {
             _ => None,
         };
         let given_poses = match poses {
-            Some(p) if !p.is_none() => Some(read_f64_3d(p, "poses", [e, v, 3])?),
+            Some(p) if !p.is_none() => Some(read_f64(p, "poses", [e, v, 3])?),
             _ => None,
         };
         let given_speeds = match speeds {
-            Some(s) if !s.is_none() => Some(read_f64_2d(s, "speeds", [e, v])?),
+            Some(s) if !s.is_none() => Some(read_f64(s, "speeds", [e, v])?),
             _ => None,
         };
         let mut ot = out_array!(out_track_ids, i64, PyArray1, "out_track_ids", [e], "int64");
@@ -330,7 +322,7 @@ impl Simulator {
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let mask = read_mask(env_mask, e)?;
-        let poses = read_f64_3d(poses, "poses", [e, v, 3])?;
+        let poses = read_f64(poses, "poses", [e, v, 3])?;
         let inner = &mut self.inner;
         py.detach(move || inner.reset(&mask, &poses)).py()
     }
@@ -344,7 +336,7 @@ impl Simulator {
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let mask = read_mask(env_mask, e)?;
-        let speeds = read_f64_2d(speeds, "speeds", [e, v])?;
+        let speeds = read_f64(speeds, "speeds", [e, v])?;
         self.inner.set_speeds(&mask, &speeds).py()
     }
 
@@ -359,7 +351,7 @@ impl Simulator {
         events: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
-        let acts = read_f64_3d(actions, "actions", [e, v, 2])?;
+        let acts = read_f64(actions, "actions", [e, v, 2])?;
         self.run(py, Ok((acts, substeps)), scans, state, events)
     }
 

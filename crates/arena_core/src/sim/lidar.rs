@@ -65,29 +65,7 @@ impl SegmentGrid {
         let (x0, y0) = (lo[0] - cell, lo[1] - cell);
         let nx = (w / cell).ceil() as usize + 2;
         let ny = (h / cell).ceil() as usize + 2;
-        let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); nx * ny];
-        for (k, s) in segs.iter().enumerate() {
-            let (ax, ay, bx, by) = (s[0], s[1], s[0] + s[2], s[1] + s[3]);
-            let ix0 = ((ax.min(bx) - x0) / cell).floor() as usize;
-            let ix1 = ((ax.max(bx) - x0) / cell).floor() as usize;
-            let iy0 = ((ay.min(by) - y0) / cell).floor() as usize;
-            let iy1 = ((ay.max(by) - y0) / cell).floor() as usize;
-            for iy in iy0..=iy1.min(ny - 1) {
-                for ix in ix0..=ix1.min(nx - 1) {
-                    let (cx0, cy0) = (x0 + ix as f64 * cell, y0 + iy as f64 * cell);
-                    if segment_touches_box(s, cx0, cy0, cx0 + cell, cy0 + cell) {
-                        buckets[iy * nx + ix].push(k as u32);
-                    }
-                }
-            }
-        }
-        let mut start = Vec::with_capacity(nx * ny + 1);
-        let mut items = Vec::new();
-        start.push(0);
-        for b in buckets {
-            items.extend(b);
-            start.push(items.len() as u32);
-        }
+        let (start, items) = bucket_segments(&segs, [x0, y0], cell, [nx, ny]);
         let cell_segs = items.iter().map(|&k| segs[k as usize]).collect();
         let blocks = BlockIndex::new(&segs, lo, hi);
         SegmentGrid {
@@ -276,8 +254,41 @@ pub(crate) fn ray_segment(ox: f64, oy: f64, dx: f64, dy: f64, s: &[f64; 4]) -> f
     }
 }
 
+/// Segments bucketed in the square cells (side `cell`, `n[0]` × `n[1]` from `origin`)
+/// they touch, as CSR: cell `c` holds `items[start[c]..start[c + 1]]` (segment indices).
+pub(crate) fn bucket_segments(
+    segs: &[[f64; 4]],
+    origin: [f64; 2],
+    cell: f64,
+    n: [usize; 2],
+) -> (Vec<u32>, Vec<u32>) {
+    let [nx, ny] = n;
+    let index =
+        |v: f64, v0: f64, n: usize| (((v - v0) / cell).floor().max(0.0) as usize).min(n - 1);
+    let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); nx * ny];
+    for (k, s) in segs.iter().enumerate() {
+        let (ax, ay, bx, by) = (s[0], s[1], s[0] + s[2], s[1] + s[3]);
+        for iy in index(ay.min(by), origin[1], ny)..=index(ay.max(by), origin[1], ny) {
+            for ix in index(ax.min(bx), origin[0], nx)..=index(ax.max(bx), origin[0], nx) {
+                let (cx, cy) = (origin[0] + ix as f64 * cell, origin[1] + iy as f64 * cell);
+                if segment_touches_box(s, cx, cy, cx + cell, cy + cell) {
+                    buckets[iy * nx + ix].push(k as u32);
+                }
+            }
+        }
+    }
+    let mut start = Vec::with_capacity(nx * ny + 1);
+    let mut items = Vec::new();
+    start.push(0);
+    for b in buckets {
+        items.extend(b);
+        start.push(items.len() as u32);
+    }
+    (start, items)
+}
+
 /// Conservative segment–box overlap (bounding boxes plus separating line of the segment).
-pub(crate) fn segment_touches_box(s: &[f64; 4], x0: f64, y0: f64, x1: f64, y1: f64) -> bool {
+fn segment_touches_box(s: &[f64; 4], x0: f64, y0: f64, x1: f64, y1: f64) -> bool {
     let eps = 1e-9;
     let (ax, ay, ex, ey) = (s[0], s[1], s[2], s[3]);
     let side = |x: f64, y: f64| ex * (y - ay) - ey * (x - ax);

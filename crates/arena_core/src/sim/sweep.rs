@@ -15,7 +15,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use super::lidar::{segment_touches_box, SegmentGrid};
+use super::lidar::{bucket_segments, SegmentGrid};
 
 /// Side of a culling block (m): coarse enough that the blocks within a 30 m range are a
 /// few dozen, fine enough that a block hidden behind a near wall is skipped. Measured on
@@ -47,27 +47,7 @@ impl BlockIndex {
         let (x0, y0) = (lo[0], lo[1]);
         let nx = (w / size).floor() as usize + 1;
         let ny = (h / size).floor() as usize + 1;
-        let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); nx * ny];
-        let cell =
-            |v: f64, v0: f64, n: usize| (((v - v0) / size).floor().max(0.0) as usize).min(n - 1);
-        for (k, s) in segs.iter().enumerate() {
-            let (ax, ay, bx, by) = (s[0], s[1], s[0] + s[2], s[1] + s[3]);
-            for iy in cell(ay.min(by), y0, ny)..=cell(ay.max(by), y0, ny) {
-                for ix in cell(ax.min(bx), x0, nx)..=cell(ax.max(bx), x0, nx) {
-                    let (cx, cy) = (x0 + ix as f64 * size, y0 + iy as f64 * size);
-                    if segment_touches_box(s, cx, cy, cx + size, cy + size) {
-                        buckets[iy * nx + ix].push(k as u32);
-                    }
-                }
-            }
-        }
-        let mut start = Vec::with_capacity(nx * ny + 1);
-        let mut items = Vec::new();
-        start.push(0);
-        for b in buckets {
-            items.extend(b);
-            start.push(items.len() as u32);
-        }
+        let (start, items) = bucket_segments(segs, [x0, y0], size, [nx, ny]);
         BlockIndex {
             x0,
             y0,
@@ -373,6 +353,44 @@ mod tests {
     use super::*;
     use crate::sim::shapes::stadium_track;
 
+    /// Sweep one scan of `n` beams over `fov` from `(ox, oy)` heading `yaw` and check
+    /// every beam against the per-beam grid walk, bit for bit; returns the number of hits.
+    fn check_against_walk(
+        grid: &SegmentGrid,
+        ox: f64,
+        oy: f64,
+        yaw: f64,
+        fov: f64,
+        n: usize,
+    ) -> usize {
+        let inc = fov / (n - 1) as f64;
+        let theta0 = yaw - fov / 2.0;
+        let dirs: Vec<[f64; 2]> = (0..n)
+            .map(|k| {
+                let a = theta0 + k as f64 * inc;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        let mut ranges = vec![f64::INFINITY; n];
+        sweep(grid, ox, oy, theta0, inc, &dirs, 30.0, &mut ranges);
+        let mut hits = 0;
+        for k in 0..n {
+            let walk = grid.cast(ox, oy, dirs[k][0], dirs[k][1], 30.0);
+            let swept = if ranges[k] <= 30.0 {
+                ranges[k]
+            } else {
+                f64::INFINITY
+            };
+            assert_eq!(
+                walk.to_bits(),
+                swept.to_bits(),
+                "({ox}, {oy}) beam {k}: {walk} vs {swept}"
+            );
+            hits += walk.is_finite() as usize;
+        }
+        hits
+    }
+
     #[test]
     fn sweep_equals_the_grid_walk_bit_for_bit() {
         let (mut walls, _) = stadium_track(18.0, 9.0, 2.0);
@@ -383,29 +401,7 @@ mod tests {
             (-12.0, 3.0, 2.0, TAU, 720),
             (5.0, 9.2, -1.0, 1.0, 3),
         ] {
-            let inc = fov / (n - 1) as f64;
-            let theta0 = yaw - fov / 2.0;
-            let dirs: Vec<[f64; 2]> = (0..n)
-                .map(|k| {
-                    let a = theta0 + k as f64 * inc;
-                    [a.cos(), a.sin()]
-                })
-                .collect();
-            let mut ranges = vec![f64::INFINITY; n];
-            sweep(&grid, ox, oy, theta0, inc, &dirs, 30.0, &mut ranges);
-            for k in 0..n {
-                let walk = grid.cast(ox, oy, dirs[k][0], dirs[k][1], 30.0);
-                let swept = if ranges[k] <= 30.0 {
-                    ranges[k]
-                } else {
-                    f64::INFINITY
-                };
-                assert_eq!(
-                    walk.to_bits(),
-                    swept.to_bits(),
-                    "beam {k}: {walk} vs {swept}"
-                );
-            }
+            check_against_walk(&grid, ox, oy, yaw, fov, n);
         }
     }
 
@@ -419,34 +415,18 @@ mod tests {
             walls.push(vec![[x, y], [x + 0.3, y + 0.2], [x, y + 0.4]]);
         }
         let grid = SegmentGrid::new(&walls);
-        let n = 1081;
-        let fov = 4.712389;
-        let inc = fov / (n - 1) as f64;
-        let mut checked = 0;
+        let mut hits = 0;
         for (i, c) in centre.iter().enumerate().step_by(centre.len() / 23) {
-            let yaw = i as f64 * 0.7;
-            let (ox, oy) = (c[0] + 0.3, c[1] - 0.2);
-            let theta0 = yaw - fov / 2.0;
-            let dirs: Vec<[f64; 2]> = (0..n)
-                .map(|k| {
-                    let a = theta0 + k as f64 * inc;
-                    [a.cos(), a.sin()]
-                })
-                .collect();
-            let mut ranges = vec![f64::INFINITY; n];
-            sweep(&grid, ox, oy, theta0, inc, &dirs, 30.0, &mut ranges);
-            for k in 0..n {
-                let walk = grid.cast(ox, oy, dirs[k][0], dirs[k][1], 30.0);
-                let swept = if ranges[k] <= 30.0 {
-                    ranges[k]
-                } else {
-                    f64::INFINITY
-                };
-                assert_eq!(walk.to_bits(), swept.to_bits(), "pose {i} beam {k}");
-                checked += walk.is_finite() as usize;
-            }
+            hits += check_against_walk(
+                &grid,
+                c[0] + 0.3,
+                c[1] - 0.2,
+                i as f64 * 0.7,
+                4.712389,
+                1081,
+            );
         }
-        assert!(checked > 10_000, "{checked}");
+        assert!(hits > 10_000, "{hits}");
     }
 
     #[test]
