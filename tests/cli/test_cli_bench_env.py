@@ -20,3 +20,4 @@ def test_bench_env_smoke(sources, tmp_path, capsys):
     assert all(set(r["breakdown_us_per_call"]) == {"physics", "scan", "python"} for r in res["rows"])
     assert all(r["breakdown_us_per_call"]["physics"] > 0 for r in res["rows"])
     assert res["recorded_lap_steps"] > 1000  # a full lap at 100 Hz
+    assert res["scan_over_lap"]["poses"] > 50 and res["scan_over_lap"]["median_us"] > 0

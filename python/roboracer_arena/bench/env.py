@@ -15,7 +15,8 @@ next-step autoreset, the single env resets on ``terminated``). An *env-step* is 
 The per-step breakdown replays the same actions on a bare ``_core.Simulator`` (same
 config, same resets on collision): ``physics`` is its step without the scan, ``scan``
 the extra time of the step with the scan, and ``python`` what the env's ``step()`` costs
-beyond that (action sanitising, reward, observation, info, wrappers).
+beyond that (action sanitising, reward, observation, info, wrappers). A last line times
+one 1081-beam scan alone, median over centreline poses around the lap.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from ..fileio import atomic_write_text
 F1TENTH_GYM = (5264.0, 5476.0)  # env-steps/s, constant action, Spielberg, 1080 beams, 0.01 s (issue 14)
 #: Targets (issue 14): single env µs per step; vector env env-steps/s per workload.
 TARGET_SINGLE_US = 35.0
+TARGET_SCAN_US = 15.0  # one 1081-beam scan, median over a lap
 TARGET_VECTOR = {"constant": 65_000.0, "random": 52_000.0}
 DEFAULT_MAP = Path("f1tenth-racetracks") / "Spielberg" / "Spielberg_map.yaml"
 WORKLOADS = ("constant", "lap", "random")
@@ -178,6 +180,35 @@ def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seco
     return dt / calls * 1e6
 
 
+def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: int = 30) -> dict[str, float]:
+    """One scan's cost (µs) at centreline poses every ``every_m`` around the lap: per pose
+    the median of ``observe`` with the scan minus without it (one env, one car)."""
+    from .._core import Simulator
+    from ..envs.env_config import EnvConfig
+    from ..envs.start import centreline_pose
+
+    cfg = EnvConfig.build(None, **_env_kwargs(beams))
+    sim = Simulator([track.native()], 1, 1, cfg.sim.to_json(), 0)
+    scans = np.zeros((1, 1, sim.num_beams), np.float32)
+    state, events, mask = np.zeros((1, 1, len(sim.state_fields))), np.zeros((1, 1), np.uint8), np.ones(1, bool)
+
+    def median_us(sc: np.ndarray | None) -> float:
+        t = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            sim.observe(sc, state, events)
+            t.append(time.perf_counter() - t0)
+        return float(np.median(t)) * 1e6
+
+    per = []
+    for s in np.arange(0.0, track.length, every_m):
+        sim.reset(mask, np.array(centreline_pose(track, s)).reshape(1, 1, 3))
+        per.append(median_us(scans) - median_us(None))
+    a = np.array(per)
+    return {"beams": beams, "poses": len(a), "median_us": round(float(np.median(a)), 2),
+            "p90_us": round(float(np.percentile(a, 90)), 2), "max_us": round(float(a.max()), 2)}
+
+
 def run(map_path: Path | None = None, num_envs: list[int] | None = None, seconds: float = 3.0,
         beams: int = 1080, workloads: list[str] | None = None) -> dict[str, Any]:
     """Measure and print the table; returns the results."""
@@ -202,10 +233,14 @@ def run(map_path: Path | None = None, num_envs: list[int] | None = None, seconds
             row["breakdown_us_per_call"] = {"physics": round(physics, 2), "scan": round(max(core - physics, 0.0), 2),
                                             "python": round(max(per_env - core, 0.0), 2)}
             rows.append(row)
+    scan = scan_over_lap(track)
     load = _load()
     _print_table(track.name, beams, rows, threads=os.cpu_count() or 1, loads=(load_before, load))
+    print(f"one {scan['beams']}-beam scan at {scan['poses']} centreline poses around the lap: median "
+          f"{scan['median_us']:.1f} µs, p90 {scan['p90_us']:.1f}, max {scan['max_us']:.1f}  "
+          f"target ≤{TARGET_SCAN_US:.0f} µs {'ok' if scan['median_us'] <= TARGET_SCAN_US else 'MISS'}")
     return {"map": track.name, "beams": beams, "physics_dt": 0.01, "threads": os.cpu_count(),
-            "load_average_1min": [load_before, load], "recorded_lap_steps": len(lap),
+            "load_average_1min": [load_before, load], "recorded_lap_steps": len(lap), "scan_over_lap": scan,
             "f1tenth_gym_env_steps_per_s": list(F1TENTH_GYM), "rows": rows}
 
 
