@@ -18,6 +18,6 @@ def test_bench_env_smoke(sources, tmp_path, capsys):
         (w, n) for w in ("constant", "lap", "random") for n in (1, 2)]
     assert all(r["env_steps_per_s"] > 0 and r["steps"] > 0 for r in res["rows"])
     assert all(set(r["breakdown_us_per_call"]) == {"physics", "scan", "python"} for r in res["rows"])
-    assert all(r["breakdown_us_per_call"]["physics"] > 0 for r in res["rows"])
+    assert all(r["breakdown_us_per_call"]["physics"] > 0 and r["python_us_per_step"] > 0 for r in res["rows"])
     assert res["recorded_lap_steps"] > 1000  # a full lap at 100 Hz
     assert res["scan_over_lap"]["poses"] > 50 and res["scan_over_lap"]["median_us"] > 0

@@ -13,6 +13,7 @@ episodes (noise included) do not depend on when the other envs reset.
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -92,10 +93,17 @@ class SimBatch:
             self.scans = self.obs.buf["scan"]
         self._row = self.state[0, 0]  # view: env 0, vehicle 0 (step_one)
         self._vx_col = self.field_index["vx"]
+        self._flat = SimpleNamespace(prev_s=self.prev_s.reshape(-1), progress=self.progress.reshape(-1),
+                                     elapsed=self.elapsed.reshape(-1), best_progress=self.best_progress.reshape(-1),
+                                     wrong_way=self.wrong_way.reshape(-1), half_len=self._half_len.reshape(-1),
+                                     length=self._len.reshape(-1))
+        self._reward = config.reward
+        self._wrong_way_distance = config.wrong_way_distance
         # The scanner runs at its own rate: under a faster control loop the observation
         # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control
         # scans on 2 of every 5 steps). Scan ticks count on one clock for the whole batch.
         self._scan_every_step = lid.rate_hz * config.control_dt >= 1.0 - 1e-9
+        self._every_step_scans = self.scans if config.observation.scan else None
         self._scan_ticks_per_step = lid.rate_hz * config.control_dt
         self._scan_clock = 0.0
         self.max_steps = config.max_episode_steps
@@ -253,44 +261,43 @@ class SimBatch:
     def step_one(self) -> tuple[float, bool, bool]:
         """:meth:`step` for one env of one vehicle in Python scalars (the single env's
         per-step path: no temporary arrays). Same arithmetic and the same updates of the
-        batch buffers as :meth:`step` (tests compare the two bit for bit); the observation
-        is refreshed with :meth:`ObservationAssembler.refresh_one`. Returns (reward,
-        terminated, truncated)."""
-        self.sim.step(self.actions, self.substeps, self.scans if self._scan_due() else None,
-                      self.state, self.events)
+        progress, wrong-way and episode buffers as :meth:`step` (tests compare the two bit
+        for bit; ``vehicle_rewards`` / ``vehicle_terminated``, which only several vehicles
+        report, are left alone); the observation is refreshed with
+        :meth:`ObservationAssembler.refresh_one`. Returns (reward, terminated, truncated)."""
+        scans = self._every_step_scans if self._scan_every_step else (self.scans if self._scan_due() else None)
+        self.sim.step(self.actions, self.substeps, scans, self.state, self.events)
         row = self._row.tolist()
+        f = self._flat  # 1-D views of this env's scalars (cheaper to index)
         s = row[self._s_col]
-        ds = s - self.prev_s.item(0)
+        ds = s - f.prev_s.item(0)
         if self._wrap:
-            half, length = self._half_len.item(0), self._len.item(0)
+            half, length = f.half_len.item(0), f.length.item(0)
             ds = (ds + half) % length - half
-        progress = self.progress.item(0) + ds
-        self.prev_s[0, 0] = s
-        self.progress[0, 0] = progress
-        elapsed = self.elapsed.item(0) + 1
-        self.elapsed[0] = elapsed
-        r = self.config.reward
+        progress = f.progress.item(0) + ds
+        f.prev_s[0] = s
+        f.progress[0] = progress
+        elapsed = f.elapsed.item(0) + 1
+        f.elapsed[0] = elapsed
+        r = self._reward
         reward = ds * r.progress
         if r.time_penalty:
             reward -= r.time_penalty * self.config.control_dt
-        ev = self.events.item(0)
         end = False
-        if ev & (CONTACT_WALL | CONTACT_VEHICLE):
+        if self.events.item(0) & (CONTACT_WALL | CONTACT_VEHICLE):
             reward -= r.collision_penalty
             end = self.config.collision_ends_episode
-        best = max(self.best_progress.item(0), progress)
-        self.best_progress[0, 0] = best
-        if ds < -BACKWARDS_EPS and best - progress > self.config.wrong_way_distance:
-            self.wrong_way[0, 0] = 1 if row[self._vx_col] >= 0.0 else -1
+        best = f.best_progress.item(0)
+        if progress > best:
+            f.best_progress[0] = best = progress
+        if ds < -BACKWARDS_EPS and best - progress > self._wrong_way_distance:
+            f.wrong_way[0] = 1 if row[self._vx_col] >= 0.0 else -1
             reward -= r.wrong_way_penalty
             end = end or self.config.wrong_way_ends_episode
-        elif self.wrong_way.item(0):
-            self.wrong_way[0, 0] = 0
-        self.vehicle_rewards[0, 0] = reward
-        self.vehicle_terminated[0, 0] = end
+        elif f.wrong_way.item(0):
+            f.wrong_way[0] = 0
         self.obs.refresh_one(self, row)
-        truncated = self.max_steps is not None and elapsed >= self.max_steps and not end
-        return reward, bool(end), truncated
+        return reward, end, self.max_steps is not None and elapsed >= self.max_steps and not end
 
     def _update_wrong_way(self, ds: np.ndarray) -> np.ndarray | None:
         """Update ``wrong_way`` (E, V): nonzero while a vehicle moves backwards along the

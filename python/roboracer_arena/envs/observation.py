@@ -30,6 +30,11 @@ class ObservationAssembler:
         self.fields = tuple(cfg.odometry)
         self.cols = np.array([field_index[f] for f in self.fields], dtype=np.intp)
         self.cols_list = [int(c) for c in self.cols]
+        # Odometry columns that are one contiguous run of state columns (the default x .. steer)
+        # are copied as one slice (the single env's scalar path).
+        k = len(self.cols_list)
+        run = k > 0 and self.cols_list == list(range(self.cols_list[0], self.cols_list[0] + k))
+        self._col_slice = slice(self.cols_list[0], self.cols_list[0] + k) if run else None
         self._xy = (field_index["x"], field_index["y"], field_index["yaw"])
         #: Names of the columns of obs["odometry"] (yaw becomes yaw_sin, yaw_cos when normalised).
         self.columns: tuple[str, ...] = tuple(
@@ -55,6 +60,7 @@ class ObservationAssembler:
         #: Frames the single env's scalar path handles (one frame, raw, no previous action).
         self.simple = self.k == 1 and not cfg.normalise and not cfg.previous_action
         self._views = {k: v[0, 0] for k, v in self.buf.items()}
+        self._view_items = list(self._views.items())
 
     # ------------------------------------------------------------------ spaces
     def space(self, lead: tuple[int, ...], action_space: spaces.Box) -> spaces.Dict:
@@ -100,18 +106,19 @@ class ObservationAssembler:
                 buf[envs, :, -1] = value
 
     def refresh_one(self, batch: Any, row: list[float]) -> None:
-        """:meth:`refresh` of env 0, vehicle 0 from its state row (``row``, a list);
-        the scalar path of the single env (falls back to :meth:`refresh` unless
-        :attr:`simple`)."""
+        """:meth:`refresh` of env 0, vehicle 0 from its state row (``row``: the same values
+        as a list); the scalar path of the single env (falls back to :meth:`refresh` unless
+        :attr:`simple`). The scan is already in place (see :attr:`shares_scan`)."""
         if not self.simple:
             self.refresh(batch, slice(None))
-            return
-        if self.fields:  # (the scan is already in place: see shares_scan)
+        elif self._col_slice is not None:
+            self._views["odometry"][:] = batch.state[0, 0, self._col_slice]
+        elif self.fields:
             self._views["odometry"][:] = [row[c] for c in self.cols_list]
 
     def observation_one(self) -> dict[str, np.ndarray]:
         """Fresh copies of env 0, vehicle 0's observation (what the single env returns)."""
-        return {k: v.copy() for k, v in self._views.items()}
+        return {k: v.copy() for k, v in self._view_items}
 
     def observation(self, envs: Any) -> dict[str, np.ndarray]:
         """Fresh copies of the observation of ``envs``, shapes (e, V, ...)."""
