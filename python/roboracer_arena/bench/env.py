@@ -16,8 +16,10 @@ The per-step breakdown: ``physics`` and ``scan`` replay the same actions on a ba
 ``_core.Simulator`` (same config, same resets on collision): its step without the scan,
 and the extra time of the step with the scan. ``python`` is the time of the env's
 ``step()`` calls spent outside the native simulator's calls (action sanitising, reward,
-observation, info, gymnasium's wrappers, the autoresets' Python side), measured in the
-env run itself by timing those calls (the timer's own ~0.3 µs per call counts as Python). A last line times
+observation, info, gymnasium's wrappers, the vector env's autoresets' Python side),
+measured in the env run itself by timing those calls (the timers' own ~0.3 µs per call
+count as Python). The single env's resets (``env.reset()`` on termination) are in the
+throughput but not in the per-step breakdown. A last line times
 one 1081-beam scan alone, median over centreline poses around the lap.
 """
 
@@ -139,7 +141,7 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
 
     kwargs = _env_kwargs(beams)
     counts = {"resets": 0}
-    core = {"seconds": 0.0}
+    core = {"seconds": 0.0, "step": 0.0}
 
     def timer(env: Any) -> _CoreTimer:
         """The env's simulator behind a timer (again after a reseed rebuilt it)."""
@@ -157,11 +159,12 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
 
         def step(i: int) -> None:
             t = timer(env)
-            before = t.seconds
+            before, t0 = t.seconds, time.perf_counter()
             _, _, term, trunc, _ = env.step(single[i % T])
+            core["step"] += time.perf_counter() - t0
             core["seconds"] += t.seconds - before
             if term or trunc or (restart and (i + 1) % restart == 0):
-                env.reset(seed=0)
+                env.reset()  # (no reseed: that would rebuild the simulator; the grid start has no noise)
                 counts["resets"] += 1
     else:
         env = gym.make_vec("RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track,
@@ -171,12 +174,13 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
 
         def step(i: int) -> None:
             t = timer(env)
-            before = t.seconds
+            before, t0 = t.seconds, time.perf_counter()
             _, _, term, trunc, _ = env.step(acts[i % T])
+            core["step"] += time.perf_counter() - t0
             core["seconds"] += t.seconds - before
             counts["resets"] += int(np.count_nonzero(term | trunc))
             if restart and (i + 1) % restart == 0:
-                env.reset(seed=0)
+                env.reset()
 
     calls, dt, cpu = _timed(step, seconds, 64 if n == 1 else 4)
     env.close()
@@ -184,7 +188,7 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
     return {"workload": kind, "num_envs": n, "steps": steps, "resets": counts["resets"], "seconds": round(dt, 3),
             "cpu_seconds": round(cpu, 3), "env_steps_per_s": round(steps / dt, 1),
             "us_per_step": round(dt / calls * 1e6, 2),
-            "python_us_per_step": round((dt - core["seconds"]) / calls * 1e6, 2)}
+            "python_us_per_step": round((core["step"] - core["seconds"]) / calls * 1e6, 2)}
 
 
 def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float,
