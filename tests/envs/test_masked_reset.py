@@ -126,3 +126,18 @@ def test_simulator_refuses_fractional_and_bool_track_ids(oval):
         sim.reset_drawn(mask, np.zeros(2, np.int64), np.zeros((2, 1, 3)), np.zeros((2, 1)))
     with pytest.raises(InvalidArgumentError, match="start spec"):
         sim.set_start_spec('{"random_s": true}')
+
+
+def test_simulator_integer_arguments_are_checked(oval):
+    native = [oval.native()]
+    for kwargs, name in (({"seed": -1}, "seed"), ({"seed": 2**64}, "seed"), ({"seed": 1.5}, "seed"),
+                         ({"num_envs": -1}, "num_envs"), ({"num_envs": 1.5}, "num_envs"),
+                         ({"vehicles_per_env": True}, "vehicles_per_env")):
+        args = {"num_envs": 1, "vehicles_per_env": 1, "config_json": "{}", **kwargs}
+        with pytest.raises(InvalidArgumentError, match=name):
+            _core.Simulator(native, **args)
+    sim = _core.Simulator(native, np.int64(1), 1, "{}", 2**64 - 1)
+    state, events = np.zeros((1, 1, len(sim.state_fields))), np.zeros((1, 1), np.uint8)
+    for bad in (-1, 2.5, 10**6):
+        with pytest.raises(InvalidArgumentError, match="substeps"):
+            sim.step(np.zeros((1, 1, 2)), bad, None, state, events)

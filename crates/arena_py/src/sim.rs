@@ -103,6 +103,23 @@ fn index_arg(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<i64> {
         .map_err(|_| invalid(format!("{name} must be an integer, got {obj}")))
 }
 
+/// A non-negative integer argument at most `max` (a Python or numpy integer; bools,
+/// floats and negative or larger values refused with a message naming `name`).
+fn uint_arg(obj: &Bound<'_, PyAny>, name: &str, max: u64) -> PyResult<u64> {
+    let bad = || {
+        invalid(format!(
+            "{name} must be an integer in [0, {max}], got {obj}"
+        ))
+    };
+    if obj.is_instance_of::<PyBool>() || obj.is_instance_of::<PyFloat>() {
+        return Err(bad());
+    }
+    match obj.extract::<u64>() {
+        Ok(v) if v <= max => Ok(v),
+        _ => Err(bad()),
+    }
+}
+
 /// Integer ids from a 1-D numpy integer array or a sequence of Python ints (bools and
 /// floats refused), checked to hold `n` of them.
 fn read_ids(obj: &Bound<'_, PyAny>, name: &str, n: usize) -> PyResult<Vec<i64>> {
@@ -166,15 +183,23 @@ pub struct Simulator {
 #[pymethods]
 impl Simulator {
     #[new]
-    #[pyo3(signature = (tracks, num_envs, vehicles_per_env, config_json = "{}", seed = 0))]
+    #[pyo3(signature = (tracks, num_envs, vehicles_per_env, config_json = "{}", seed = None))]
     fn new(
         py: Python<'_>,
         tracks: &Bound<'_, PyAny>,
-        num_envs: usize,
-        vehicles_per_env: usize,
+        num_envs: &Bound<'_, PyAny>,
+        vehicles_per_env: &Bound<'_, PyAny>,
         config_json: &str,
-        seed: u64,
+        seed: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
+        // (The core bounds the counts; these only refuse what is not a non-negative int.)
+        let num_envs = uint_arg(num_envs, "num_envs", u32::MAX as u64)? as usize;
+        let vehicles_per_env =
+            uint_arg(vehicles_per_env, "vehicles_per_env", u32::MAX as u64)? as usize;
+        let seed = match seed {
+            Some(s) if !s.is_none() => uint_arg(s, "seed", u64::MAX)?,
+            _ => 0,
+        };
         let params = SimParams::from_json(config_json).py()?;
         let mut raw = Vec::new();
         for (i, item) in tracks.try_iter()?.enumerate() {
@@ -345,13 +370,14 @@ impl Simulator {
         &mut self,
         py: Python<'_>,
         actions: &Bound<'_, PyAny>,
-        substeps: usize,
+        substeps: &Bound<'_, PyAny>,
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let acts = read_f64(actions, "actions", [e, v, 2])?;
+        let substeps = uint_arg(substeps, "substeps", 100_000)? as usize;
         self.run(py, Ok((acts, substeps)), scans, state, events)
     }
 
