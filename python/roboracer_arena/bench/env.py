@@ -143,12 +143,17 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
     counts = {"resets": 0}
     core = {"seconds": 0.0, "step": 0.0}
 
-    def timer(env: Any) -> _CoreTimer:
-        """The env's simulator behind a timer (again after a reseed rebuilt it)."""
+    def timed_step(env: Any, action: np.ndarray) -> tuple[Any, Any]:
+        """``env.step(action)`` with its time and its simulator calls' time added up;
+        returns (terminated, truncated)."""
         b = env.unwrapped._batch
-        if not isinstance(b.sim, _CoreTimer):
+        if not isinstance(b.sim, _CoreTimer):  # (again after a reseed rebuilt the simulator)
             b.sim = _CoreTimer(b.sim)
-        return b.sim
+        before, t0 = b.sim.seconds, time.perf_counter()
+        _, _, term, trunc, _ = env.step(action)
+        core["step"] += time.perf_counter() - t0
+        core["seconds"] += b.sim.seconds - before
+        return term, trunc
     restart = len(acts) if kind == "lap" else 0
     if n == 1:
         kwargs.pop("time_limit_s")  # under gymnasium.make the limit is max_episode_steps (-1: none)
@@ -158,11 +163,7 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
         T = len(single)
 
         def step(i: int) -> None:
-            t = timer(env)
-            before, t0 = t.seconds, time.perf_counter()
-            _, _, term, trunc, _ = env.step(single[i % T])
-            core["step"] += time.perf_counter() - t0
-            core["seconds"] += t.seconds - before
+            term, trunc = timed_step(env, single[i % T])
             if term or trunc or (restart and (i + 1) % restart == 0):
                 env.reset()  # (no reseed: that would rebuild the simulator; the grid start has no noise)
                 counts["resets"] += 1
@@ -173,11 +174,7 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
         T = len(acts)
 
         def step(i: int) -> None:
-            t = timer(env)
-            before, t0 = t.seconds, time.perf_counter()
-            _, _, term, trunc, _ = env.step(acts[i % T])
-            core["step"] += time.perf_counter() - t0
-            core["seconds"] += t.seconds - before
+            term, trunc = timed_step(env, acts[i % T])
             counts["resets"] += int(np.count_nonzero(term | trunc))
             if restart and (i + 1) % restart == 0:
                 env.reset()
