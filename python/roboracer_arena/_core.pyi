@@ -140,7 +140,14 @@ class Simulator:
 
     Actions ``[steering (rad), speed (m/s)]``: NaN/inf become 0; finite values are clipped
     to ±max_steer and [min_speed, max_speed]. Results are bit-identical for the same seed
-    whatever num_envs and thread count.
+    whatever num_envs and thread count. Every env has its own streams (lidar noise per
+    vehicle, reset draws per env), seeded from (seed, env index): masked resets and
+    observes never move another env's stream.
+
+    Inputs are checked before anything changes (``InvalidArgumentError`` naming the
+    argument): shapes; track ids integers in range (bools and floats such as 0.7 refused);
+    poses finite, within 100 m of the tracks' bounding box and |yaw| <= 1e4; speeds finite
+    within [min_speed, max_speed]. Rows of envs outside ``env_mask`` are ignored.
     """
 
     def __init__(
@@ -170,6 +177,29 @@ class Simulator:
         """(world steps through the rapier pipeline, contact-free shortcut steps), summed over envs."""
     def set_tracks(self, track_ids: npt.ArrayLike) -> None:
         """Track of each env, shape (num_envs,); reset the env afterwards."""
+    def set_start_spec(self, spec_json: str) -> None:
+        """Configure ``reset_drawn``: a JSON object with ``random_s`` (bool), ``s0`` (first
+        grid slot arc length per track), ``track_weights`` (per track, or []),
+        ``grid_spacing``, ``grid_offset``, ``lateral_noise``, ``heading_noise``,
+        ``side_clearance`` (m kept between the wall and the car's centre by the lateral
+        noise), ``speed_noise`` (m/s), ``noise_std`` ([low, high] m, per-episode extra lidar
+        noise) and ``dropout`` (probability a beam reads range_max)."""
+    def reset_drawn(
+        self,
+        env_mask: npt.NDArray[np.bool_],
+        out_track_ids: npt.NDArray[np.int64],
+        out_poses: npt.NDArray[np.float64],
+        out_speeds: npt.NDArray[np.float64],
+        track_ids: npt.ArrayLike | None = None,
+        poses: npt.NDArray[np.float64] | None = None,
+        speeds: npt.NDArray[np.float64] | None = None,
+    ) -> None:
+        """Reset the envs where ``env_mask`` is True, each drawing from its own stream its
+        track (weighted), start poses (random or grid slot, staggered grid behind, lateral
+        and heading noise), rolling-start speeds and lidar randomisation, except what
+        ``track_ids`` (E,), ``poses`` (E, V, 3) or ``speeds`` (E, V) fix. Writes what each
+        reset env got into ``out_track_ids`` (E,), ``out_poses`` (E, V, 3), ``out_speeds``
+        (E, V) (other rows untouched). Needs ``set_start_spec``."""
     def reset(self, env_mask: npt.NDArray[np.bool_], poses: npt.NDArray[np.float64]) -> None:
         """Put the vehicles of envs where ``env_mask`` is True at rest at ``poses`` (E, V, 3)."""
     def set_speeds(self, env_mask: npt.NDArray[np.bool_], speeds: npt.NDArray[np.float64]) -> None:
@@ -188,9 +218,12 @@ class Simulator:
         scans: npt.NDArray[np.float32] | None,
         state: npt.NDArray[np.float64],
         events: npt.NDArray[np.uint8],
+        env_mask: npt.NDArray[np.bool_] | None = None,
     ) -> None:
-        """Write the outputs without stepping."""
-    def centreline_pose(self, track_id: int, s: float) -> tuple[float, float, float]: ...
+        """Write the outputs without stepping: of every env, or only of the envs where
+        ``env_mask`` is True (other rows untouched, their noise streams not advanced)."""
+    def centreline_pose(self, track_id: int, s: float) -> tuple[float, float, float]:
+        """Pose (x, y, heading) on the centreline at arc length ``s`` (finite; wrapped)."""
     def centreline_length(self, track_id: int) -> float: ...
     def centreline(self, track_id: int) -> npt.NDArray[np.float64]: ...
     def wall_mesh(self, track_id: int) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]:

@@ -4,13 +4,17 @@
 
 use std::sync::Arc;
 
-use arena_core::sim::{SimParams, Simulator as CoreSim, Track, STATE_FIELDS, STATE_SIZE};
+use arena_core::sim::{
+    ResetGiven, ResetOut, SimParams, Simulator as CoreSim, StartSpec, Track, STATE_FIELDS,
+    STATE_SIZE,
+};
 use arena_core::ArenaError as CoreError;
 use numpy::{
-    PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods,
+    PyArray1, PyArray2, PyArray3, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods,
+    PyReadonlyArray2, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
+use pyo3::types::{PyBool, PyFloat, PyTuple};
 
 use crate::boundary;
 use crate::errors::to_py;
@@ -52,8 +56,12 @@ fn check_shape(name: &str, got: &[usize], want: &[usize]) -> PyResult<()> {
 }
 
 /// Copy a float64 array of exactly `shape` out of Python (any memory layout).
-fn read_f64_3d(obj: &Bound<'_, PyAny>, name: &str, shape: [usize; 3]) -> PyResult<Vec<f64>> {
-    let arr = obj.cast::<PyArray3<f64>>().map_err(|_| {
+fn read_f64<const N: usize>(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    shape: [usize; N],
+) -> PyResult<Vec<f64>> {
+    let arr = obj.cast::<PyArrayDyn<f64>>().map_err(|_| {
         invalid(format!(
             "{name} must be a numpy float64 array of shape {shape:?}"
         ))
@@ -78,6 +86,73 @@ fn read_mask(obj: &Bound<'_, PyAny>, num_envs: usize) -> PyResult<Vec<bool>> {
         .iter()
         .copied()
         .collect())
+}
+
+/// An integer index (a Python int or numpy integer; bools and floats such as 0.7 are
+/// refused, never truncated).
+fn index_arg(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<i64> {
+    if obj.is_instance_of::<PyBool>() || obj.is_instance_of::<PyFloat>() {
+        return Err(invalid(format!("{name} must be an integer, got {obj}")));
+    }
+    if let Ok(a) = obj.cast::<numpy::PyUntypedArray>() {
+        let kind = a.dtype().kind();
+        if kind != b'i' && kind != b'u' {
+            return Err(invalid(format!("{name} must be an integer, got {obj}")));
+        }
+    }
+    obj.extract::<i64>()
+        .map_err(|_| invalid(format!("{name} must be an integer, got {obj}")))
+}
+
+/// A non-negative integer argument at most `max` (a Python or numpy integer; bools,
+/// floats and negative or larger values refused with a message naming `name`).
+fn uint_arg(obj: &Bound<'_, PyAny>, name: &str, max: u64) -> PyResult<u64> {
+    let bad = || {
+        invalid(format!(
+            "{name} must be an integer in [0, {max}], got {obj}"
+        ))
+    };
+    if obj.is_instance_of::<PyBool>() || obj.is_instance_of::<PyFloat>() {
+        return Err(bad());
+    }
+    match obj.extract::<u64>() {
+        Ok(v) if v <= max => Ok(v),
+        _ => Err(bad()),
+    }
+}
+
+/// Integer ids from a 1-D numpy integer array or a sequence of Python ints (bools and
+/// floats refused), checked to hold `n` of them.
+fn read_ids(obj: &Bound<'_, PyAny>, name: &str, n: usize) -> PyResult<Vec<i64>> {
+    let ids: Vec<i64> = if let Ok(a) = obj.cast::<numpy::PyUntypedArray>() {
+        let kind = a.dtype().kind();
+        if kind != b'i' && kind != b'u' {
+            return Err(invalid(format!(
+                "{name} must hold integers, got a numpy {} array",
+                a.dtype()
+            )));
+        }
+        obj.call_method1("astype", ("int64",))?
+            .extract::<Vec<i64>>()
+            .map_err(|_| invalid(format!("{name} must be a 1-D integer array")))?
+    } else {
+        let mut out = Vec::new();
+        for (i, item) in obj
+            .try_iter()
+            .map_err(|_| invalid(format!("{name} must be a sequence of int")))?
+            .enumerate()
+        {
+            out.push(index_arg(&item?, &format!("{name}[{i}]"))?);
+        }
+        out
+    };
+    if ids.len() != n {
+        return Err(invalid(format!(
+            "{name} must have {n} entries, got {}",
+            ids.len()
+        )));
+    }
+    Ok(ids)
 }
 
 /// Borrow `obj` as a writable C-contiguous array of element type T and the given shape.
@@ -109,15 +184,28 @@ pub struct Simulator {
 #[pymethods]
 impl Simulator {
     #[new]
-    #[pyo3(signature = (tracks, num_envs, vehicles_per_env, config_json = "{}", seed = 0))]
+    #[pyo3(signature = (tracks, num_envs, vehicles_per_env, config_json = "{}", seed = None, env_index_offset = None))]
     fn new(
         py: Python<'_>,
         tracks: &Bound<'_, PyAny>,
-        num_envs: usize,
-        vehicles_per_env: usize,
+        num_envs: &Bound<'_, PyAny>,
+        vehicles_per_env: &Bound<'_, PyAny>,
         config_json: &str,
-        seed: u64,
+        seed: Option<&Bound<'_, PyAny>>,
+        env_index_offset: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
+        let env_offset = match env_index_offset {
+            Some(o) if !o.is_none() => uint_arg(o, "env_index_offset", u32::MAX as u64)? as usize,
+            _ => 0,
+        };
+        // (The core bounds the counts; these only refuse what is not a non-negative int.)
+        let num_envs = uint_arg(num_envs, "num_envs", u32::MAX as u64)? as usize;
+        let vehicles_per_env =
+            uint_arg(vehicles_per_env, "vehicles_per_env", u32::MAX as u64)? as usize;
+        let seed = match seed {
+            Some(s) if !s.is_none() => uint_arg(s, "seed", u64::MAX)?,
+            _ => 0,
+        };
         let params = boundary::call(py, "Simulator", || SimParams::from_json(config_json))?;
         let mut raw = Vec::new();
         for (i, item) in tracks.try_iter()?.enumerate() {
@@ -142,7 +230,7 @@ impl Simulator {
                         .map_err(|e| CoreError::invalid(format!("tracks[{i}]: {e}")))
                 })
                 .collect();
-            CoreSim::new(built?, num_envs, vehicles_per_env, params, seed)
+            CoreSim::with_env_offset(built?, num_envs, vehicles_per_env, params, seed, env_offset)
         })?;
         Ok(Simulator { inner })
     }
@@ -193,11 +281,67 @@ impl Simulator {
     }
 
     fn set_tracks(&mut self, py: Python<'_>, track_ids: &Bound<'_, PyAny>) -> PyResult<()> {
-        let ids: Vec<i64> = track_ids
-            .extract()
-            .map_err(|_| invalid("track_ids must be a sequence of int"))?;
+        let ids = read_ids(track_ids, "track_ids", self.inner.num_envs())?;
         let inner = &mut self.inner;
         boundary::call(py, "set_tracks", move || inner.set_tracks(&ids))
+    }
+
+    /// Configure `reset_drawn` from a JSON object (see `arena_core::sim::StartSpec`).
+    fn set_start_spec(&mut self, py: Python<'_>, spec_json: &str) -> PyResult<()> {
+        let spec: StartSpec =
+            serde_json::from_str(spec_json).map_err(|e| invalid(format!("start spec: {e}")))?;
+        let inner = &mut self.inner;
+        boundary::call(py, "set_start_spec", move || inner.set_start_spec(spec))
+    }
+
+    /// Reset the envs where `env_mask` is True with natively drawn tracks, poses, speeds
+    /// and lidar randomisation (each env from its own stream), except what `track_ids`
+    /// (E,), `poses` (E, V, 3) or `speeds` (E, V) fix; writes what each reset env got into
+    /// `out_track_ids` (E,) int64, `out_poses` (E, V, 3) float64, `out_speeds` (E, V) float64.
+    #[pyo3(signature = (env_mask, out_track_ids, out_poses, out_speeds, track_ids = None, poses = None, speeds = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn reset_drawn(
+        &mut self,
+        py: Python<'_>,
+        env_mask: &Bound<'_, PyAny>,
+        out_track_ids: &Bound<'_, PyAny>,
+        out_poses: &Bound<'_, PyAny>,
+        out_speeds: &Bound<'_, PyAny>,
+        track_ids: Option<&Bound<'_, PyAny>>,
+        poses: Option<&Bound<'_, PyAny>>,
+        speeds: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
+        let mask = read_mask(env_mask, e)?;
+        let given_tracks = match track_ids {
+            Some(t) if !t.is_none() => Some(read_ids(t, "track_ids", e)?),
+            _ => None,
+        };
+        let given_poses = match poses {
+            Some(p) if !p.is_none() => Some(read_f64(p, "poses", [e, v, 3])?),
+            _ => None,
+        };
+        let given_speeds = match speeds {
+            Some(s) if !s.is_none() => Some(read_f64(s, "speeds", [e, v])?),
+            _ => None,
+        };
+        let mut ot = out_array!(out_track_ids, i64, PyArray1, "out_track_ids", [e], "int64");
+        let mut op = out_array!(out_poses, f64, PyArray3, "out_poses", [e, v, 3], "float64");
+        let mut os = out_array!(out_speeds, f64, PyArray2, "out_speeds", [e, v], "float64");
+        let out = ResetOut {
+            tracks: ot.as_slice_mut().map_err(|e| invalid(e.to_string()))?,
+            poses: op.as_slice_mut().map_err(|e| invalid(e.to_string()))?,
+            speeds: os.as_slice_mut().map_err(|e| invalid(e.to_string()))?,
+        };
+        let inner = &mut self.inner;
+        boundary::call(py, "reset_drawn", move || {
+            let given = ResetGiven {
+                tracks: given_tracks.as_deref(),
+                poses: given_poses.as_deref(),
+                speeds: given_speeds.as_deref(),
+            };
+            inner.reset_drawn(&mask, given, out)
+        })
     }
 
     fn reset(
@@ -208,7 +352,7 @@ impl Simulator {
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let mask = read_mask(env_mask, e)?;
-        let poses = read_f64_3d(poses, "poses", [e, v, 3])?;
+        let poses = read_f64(poses, "poses", [e, v, 3])?;
         let inner = &mut self.inner;
         boundary::call(py, "reset", move || inner.reset(&mask, &poses))
     }
@@ -223,19 +367,7 @@ impl Simulator {
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let mask = read_mask(env_mask, e)?;
-        let arr = speeds.cast::<PyArray2<f64>>().map_err(|_| {
-            invalid(format!(
-                "speeds must be a numpy float64 array of shape [{e}, {v}]"
-            ))
-        })?;
-        check_shape("speeds", arr.shape(), &[e, v])?;
-        let speeds: Vec<f64> = arr
-            .try_readonly()
-            .map_err(|e| invalid(e.to_string()))?
-            .as_array()
-            .iter()
-            .copied()
-            .collect();
+        let speeds = read_f64(speeds, "speeds", [e, v])?;
         let inner = &mut self.inner;
         boundary::call(py, "set_speeds", move || inner.set_speeds(&mask, &speeds))
     }
@@ -245,70 +377,82 @@ impl Simulator {
         &mut self,
         py: Python<'_>,
         actions: &Bound<'_, PyAny>,
-        substeps: usize,
+        substeps: &Bound<'_, PyAny>,
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
-        let acts = read_f64_3d(actions, "actions", [e, v, 2])?;
-        self.run(py, Some((acts, substeps)), scans, state, events)
+        let acts = read_f64(actions, "actions", [e, v, 2])?;
+        let substeps = uint_arg(substeps, "substeps", 100_000)? as usize;
+        self.run(py, Ok((acts, substeps)), scans, state, events)
     }
 
+    /// Write state, events and (unless `scans` is None) scans without stepping: of every
+    /// env, or only of those where `env_mask` is True (the other rows are left alone).
+    #[pyo3(signature = (scans, state, events, env_mask = None))]
     fn observe(
         &mut self,
         py: Python<'_>,
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
+        env_mask: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        self.run(py, None, scans, state, events)
+        let mask = match env_mask {
+            Some(m) if !m.is_none() => Some(read_mask(m, self.inner.num_envs())?),
+            _ => None,
+        };
+        self.run(py, Err(mask), scans, state, events)
     }
 
     /// Pose (x, y, heading) on track `track_id`'s centreline at arc length `s` (wrapped).
     fn centreline_pose(
         &self,
         py: Python<'_>,
-        track_id: usize,
+        track_id: &Bound<'_, PyAny>,
         s: f64,
     ) -> PyResult<(f64, f64, f64)> {
-        let inner = &self.inner;
-        let p = boundary::call(py, "centreline_pose", move || {
-            Ok(inner.track(track_id)?.centreline.pose_at(s))
-        })?;
+        if !s.is_finite() {
+            return Err(invalid(format!("s must be finite, got {s}")));
+        }
+        let track = self.track_arg(track_id)?;
+        let p = boundary::call_ok(py, "centreline_pose", move || track.centreline.pose_at(s))?;
         Ok((p[0], p[1], p[2]))
     }
 
-    fn centreline_length(&self, py: Python<'_>, track_id: usize) -> PyResult<f64> {
-        let inner = &self.inner;
-        boundary::call(py, "centreline_length", move || {
-            Ok(inner.track(track_id)?.centreline.length())
-        })
+    fn centreline_length(&self, py: Python<'_>, track_id: &Bound<'_, PyAny>) -> PyResult<f64> {
+        let track = self.track_arg(track_id)?;
+        boundary::call_ok(py, "centreline_length", move || track.centreline.length())
     }
 
     /// The (closed) centreline points of a track, (M, 2) float64.
     fn centreline<'py>(
         &self,
         py: Python<'py>,
-        track_id: usize,
+        track_id: &Bound<'_, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let inner = &self.inner;
-        let rows: Vec<Vec<f64>> = boundary::call(py, "centreline", move || {
-            let c = &inner.track(track_id)?.centreline;
-            Ok((0..c.num_segments()).map(|i| c.point(i).to_vec()).collect())
+        let c = &self.track_arg(track_id)?.centreline;
+        let rows: Vec<Vec<f64>> = boundary::call_ok(py, "centreline", move || {
+            (0..c.num_segments()).map(|i| c.point(i).to_vec()).collect()
         })?;
         PyArray2::from_vec2(py, &rows).map_err(|e| invalid(e.to_string()))
     }
 
     /// The collision wall mesh of a track as the physics engine holds it (shared by all
     /// envs on that track): (vertices (V, 3) float32, triangles (T, 3) uint32).
-    fn wall_mesh<'py>(&self, py: Python<'py>, track_id: usize) -> PyResult<MeshArrays<'py>> {
-        let inner = &self.inner;
-        let (v, t) = boundary::call(py, "wall_mesh", move || {
-            Ok(inner.track(track_id)?.wall_mesh())
+    fn wall_mesh<'py>(
+        &self,
+        py: Python<'py>,
+        track_id: &Bound<'_, PyAny>,
+    ) -> PyResult<MeshArrays<'py>> {
+        let track = self.track_arg(track_id)?;
+        let (v, t) = boundary::call_ok(py, "wall_mesh", move || {
+            let (v, t) = track.wall_mesh();
+            let v: Vec<Vec<f32>> = v.iter().map(|p| p.to_vec()).collect();
+            let t: Vec<Vec<u32>> = t.iter().map(|p| p.to_vec()).collect();
+            (v, t)
         })?;
-        let v: Vec<Vec<f32>> = v.iter().map(|p| p.to_vec()).collect();
-        let t: Vec<Vec<u32>> = t.iter().map(|p| p.to_vec()).collect();
         Ok((
             PyArray2::from_vec2(py, &v).map_err(|e| invalid(e.to_string()))?,
             PyArray2::from_vec2(py, &t).map_err(|e| invalid(e.to_string()))?,
@@ -328,10 +472,22 @@ impl Simulator {
 }
 
 impl Simulator {
+    /// The track named by a `track_id` argument (an integer in range).
+    fn track_arg(&self, obj: &Bound<'_, PyAny>) -> PyResult<&Arc<Track>> {
+        let id = index_arg(obj, "track_id")?;
+        let n = self.inner.tracks().len();
+        if !(0..n as i64).contains(&id) {
+            return Err(invalid(format!(
+                "track_id {id} out of range (have {n} tracks)"
+            )));
+        }
+        self.inner.track(id as usize).map_err(to_py)
+    }
+
     fn run(
         &mut self,
         py: Python<'_>,
-        step: Option<(Vec<f64>, usize)>,
+        step: Result<(Vec<f64>, usize), Option<Vec<bool>>>,
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
@@ -363,8 +519,8 @@ impl Simulator {
         };
         let inner = &mut self.inner;
         boundary::call(py, "step", move || match step {
-            Some((acts, substeps)) => inner.step(&acts, substeps, sc, st, ev),
-            None => inner.observe(sc, st, ev),
+            Ok((acts, substeps)) => inner.step(&acts, substeps, sc, st, ev),
+            Err(mask) => inner.observe_masked(mask.as_deref(), sc, st, ev),
         })
     }
 }

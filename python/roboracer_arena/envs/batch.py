@@ -1,12 +1,19 @@
 """The batch engine behind both gymnasium envs: one native ``_core.Simulator`` holding
-``E`` environments of ``V`` vehicles, preallocated buffers, action sanitising, reset
-poses, track sampling, reward and observation assembly. The single env is this with
-``E = 1``; the vector env adds autoreset on top.
+``E`` environments of ``V`` vehicles, preallocated buffers, action sanitising, reward and
+observation assembly. The single env is this with ``E = 1``; the vector env adds
+autoreset on top.
+
+Resets are native and masked: the simulator draws each reset env's track, start poses,
+rolling-start speeds and lidar randomisation from that env's own stream (seeded from
+(seed, env index)), places its cars and re-observes only the reset envs, writing into
+this batch's preallocated buffers. No Python loop runs per env or per car, and an env's
+episodes (noise included) do not depend on when the other envs reset.
 """
 
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -15,7 +22,7 @@ from gymnasium import spaces
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
 from ..track import Track
-from .start import grid_poses, grid_start_s, perturb_pose
+from .start import SIDE_MARGIN, grid_start_s
 
 CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
 #: Simulator state columns copied into ``info`` when present.
@@ -28,7 +35,7 @@ class SimBatch:
     """``E`` environments × ``V`` vehicles on one native simulator (see module docstring)."""
 
     def __init__(self, tracks: list[Track], num_envs: int, config: EnvConfig, seed: int,
-                 track_probs: np.ndarray | None = None) -> None:
+                 track_probs: np.ndarray | None = None, env_index_offset: int = 0) -> None:
         from .._core import Simulator
 
         self._Simulator = Simulator
@@ -39,7 +46,9 @@ class SimBatch:
         self.vehicles = V = config.vehicles_per_env
         self._natives = [t.native() for t in tracks]
         self.seed = int(seed)
-        self.sim = Simulator(self._natives, E, V, config.sim.to_json(), self.seed)
+        self.env_index_offset = int(env_index_offset)  # env e draws from the streams of env offset + e
+        self._start_json = self._start_spec(tracks, probs=track_probs)
+        self.sim = self._new_sim(self.seed)
         self.num_beams = B = int(self.sim.num_beams)
         self.fields = tuple(self.sim.state_fields)
         self.field_index = {f: i for i, f in enumerate(self.fields)}
@@ -81,10 +90,21 @@ class SimBatch:
         self._info_cols = np.array([self.field_index[f] for f in self._info_names], dtype=np.intp)
         self._range_max = float(lid.range_max)
         self.obs = ObservationAssembler(config, self.field_index, E, V, B)
+        if self.obs.shares_scan:  # the simulator writes the observation's scans directly
+            self.scans = self.obs.buf["scan"]
+        self._row = self.state[0, 0]  # view: env 0, vehicle 0 (step_one)
+        self._vx_col = self.field_index["vx"]
+        self._flat = SimpleNamespace(prev_s=self.prev_s.reshape(-1), progress=self.progress.reshape(-1),
+                                     elapsed=self.elapsed.reshape(-1), best_progress=self.best_progress.reshape(-1),
+                                     wrong_way=self.wrong_way.reshape(-1), half_len=self._half_len.reshape(-1),
+                                     length=self._len.reshape(-1))
+        self._reward = config.reward
+        self._wrong_way_distance = config.wrong_way_distance
         # The scanner runs at its own rate: under a faster control loop the observation
         # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control
         # scans on 2 of every 5 steps). Scan ticks count on one clock for the whole batch.
         self._scan_every_step = lid.rate_hz * config.control_dt >= 1.0 - 1e-9
+        self._every_step_scans = self.scans if config.observation.scan else None
         self._scan_ticks_per_step = lid.rate_hz * config.control_dt
         self._scan_clock = 0.0
         self.max_steps = config.max_episode_steps
@@ -137,39 +157,50 @@ class SimBatch:
         return c.astype(np.float32)
 
     # ------------------------------------------------------------------ reset
-    def reset(self, mask: np.ndarray, rngs: list[np.random.Generator], track_ids: np.ndarray | None = None,
-              poses: np.ndarray | None = None, speeds: np.ndarray | None = None) -> None:
-        """Reset the environments where ``mask`` is True, then observe every environment.
-
-        ``track_ids`` ((E,) ints, or None): the track of each reset env, else drawn from
-        its RNG (with the pool's weights). ``poses`` ((E, V, 3) x, y, yaw, or None): the
-        start poses of each reset env, else the configured start (``reset_poses`` plus
-        start noise) drawn from its RNG. ``speeds`` ((E, V) m/s, or None): rolling-start
-        forward speeds, else drawn from [0, start_speed_noise] (at rest when 0)."""
+    def _start_spec(self, tracks: list[Track], probs: np.ndarray | None) -> str:
+        """The simulator's reset draws (``_core.Simulator.set_start_spec``) as JSON."""
         cfg, V = self.config, self.vehicles
-        all_poses = np.zeros((self.num_envs, V, 3), np.float64)
-        idx = np.flatnonzero(mask)
-        for e in idx:
-            rng = rngs[e]
-            tid = int(track_ids[e]) if track_ids is not None else self._draw_track(rng)
-            self.track_ids[e] = tid
-            length = self.lengths[tid]
-            self._len[e], self._half_len[e] = length, length / 2
-            all_poses[e] = poses[e] if poses is not None else self._start_poses(tid, rng)
-            if speeds is not None:
-                self.start_speed[e] = speeds[e]
-            elif cfg.start_speed_noise > 0:
-                self.start_speed[e] = rng.uniform(0.0, cfg.start_speed_noise, V)
-            else:
-                self.start_speed[e] = 0.0
-            self.obs.new_episode(e, rng)
-        self.start_pose[idx] = all_poses[idx]
-        self.sim.set_tracks(self.track_ids)
+        if cfg.reset_poses == "grid":
+            s0 = [grid_start_s(t, V, cfg.grid_spacing) for t in tracks]
+        else:
+            s0 = [0.0] * len(tracks)
+        rnd = cfg.randomisation
+        spec = {
+            "random_s": cfg.reset_poses == "random", "s0": s0,
+            "track_weights": [] if probs is None else [float(p) for p in probs],
+            "grid_spacing": cfg.grid_spacing, "grid_offset": cfg.grid_offset,
+            "lateral_noise": cfg.start_lateral_noise, "heading_noise": cfg.start_heading_noise,
+            "side_clearance": cfg.sim.vehicle.chassis_width / 2 + SIDE_MARGIN,
+            "speed_noise": cfg.start_speed_noise,
+            "noise_std": [float(x) for x in rnd.lidar_noise_std], "dropout": float(rnd.lidar_dropout),
+        }
+        import json
+
+        return json.dumps(spec)
+
+    def _new_sim(self, seed: int) -> Any:
+        sim = self._Simulator(self._natives, self.num_envs, self.vehicles, self.config.sim.to_json(), seed,
+                              env_index_offset=self.env_index_offset)
+        sim.set_start_spec(self._start_json)
+        return sim
+
+    def reset(self, mask: np.ndarray, track_ids: np.ndarray | None = None, poses: np.ndarray | None = None,
+              speeds: np.ndarray | None = None) -> None:
+        """Reset the environments where ``mask`` is True and observe them (only them).
+
+        ``track_ids`` ((E,) ints, or None): the track of each reset env, else drawn (with
+        the pool's weights). ``poses`` ((E, V, 3) x, y, yaw, or None): the start poses of
+        each reset env, else the configured start (``reset_poses`` plus start noise).
+        ``speeds`` ((E, V) m/s, or None): rolling-start forward speeds, else drawn from
+        [0, start_speed_noise] (at rest when 0). The draws come from each env's own stream
+        in the simulator (see the module docstring)."""
         mask = np.asarray(mask, dtype=bool)
-        self.sim.reset(mask, all_poses)
-        if self.start_speed[idx].any():
-            self.sim.set_speeds(mask, self.start_speed)
-        self.observe()
+        self.sim.reset_drawn(mask, self.track_ids, self.start_pose, self.start_speed, track_ids, poses, speeds)
+        idx = np.flatnonzero(mask)
+        length = self.lengths[self.track_ids[idx]]
+        self._len[idx, 0] = length
+        self._half_len[idx, 0] = length / 2
+        self.sim.observe(self.scans if self.config.observation.scan else None, self.state, self.events, mask)
         self.prev_s[idx] = self.state[idx, :, self._s_col]
         self.progress[idx] = 0.0
         self.best_progress[idx] = 0.0
@@ -177,31 +208,6 @@ class SimBatch:
         self.vehicle_terminated[idx] = False
         self.elapsed[idx] = 0
         self.obs.refresh(self, idx, fill=True)
-
-    def _draw_track(self, rng: np.random.Generator) -> int:
-        n = len(self.tracks)
-        if n == 1:
-            return 0
-        if self.track_probs is None:
-            return int(rng.integers(n))
-        return int(rng.choice(n, p=self.track_probs))
-
-    def _start_poses(self, tid: int, rng: np.random.Generator) -> np.ndarray:
-        """Start poses (V, 3) of one env on track ``tid``: the first slot at a random point
-        of the centreline, the grid start or s = 0, further vehicles in a staggered grid
-        behind it; then lateral and heading noise."""
-        cfg, V = self.config, self.vehicles
-        track, length = self.tracks[tid], self.lengths[tid]
-        if cfg.reset_poses == "random":
-            s0 = float(rng.uniform(0.0, length))
-        elif cfg.reset_poses == "grid":
-            s0 = grid_start_s(track, V, cfg.grid_spacing)
-        else:
-            s0 = 0.0
-        half_width = cfg.sim.vehicle.chassis_width / 2
-        grid = grid_poses(track, V, cfg.grid_spacing, cfg.grid_offset, s0)
-        noise = (cfg.start_lateral_noise, cfg.start_heading_noise, half_width)
-        return np.array([perturb_pose(track, tuple(p), rng, *noise) for p in grid])
 
     def _scan_due(self) -> bool:
         """Whether the scanner produces a new scan at the end of this step."""
@@ -212,9 +218,6 @@ class SimBatch:
         before = self._scan_clock
         self._scan_clock += self._scan_ticks_per_step
         return math.floor(self._scan_clock + 1e-9) > math.floor(before + 1e-9)
-
-    def observe(self) -> None:
-        self.sim.observe(self.scans if self.config.observation.scan else None, self.state, self.events)
 
     # ------------------------------------------------------------------ step
     def step(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -256,6 +259,47 @@ class SimBatch:
             return reward, terminated, self._no_env, contact
         truncated = self.elapsed >= self.max_steps
         return reward, terminated, truncated & ~terminated, contact
+
+    def step_one(self) -> tuple[float, bool, bool]:
+        """:meth:`step` for one env of one vehicle in Python scalars (the single env's
+        per-step path: no temporary arrays). Same arithmetic and the same updates of the
+        progress, wrong-way and episode buffers as :meth:`step` (tests compare the two bit
+        for bit; ``vehicle_rewards`` / ``vehicle_terminated``, which only several vehicles
+        report, are left alone); the observation is refreshed with
+        :meth:`ObservationAssembler.refresh_one`. Returns (reward, terminated, truncated)."""
+        scans = self._every_step_scans if self._scan_every_step else (self.scans if self._scan_due() else None)
+        self.sim.step(self.actions, self.substeps, scans, self.state, self.events)
+        row = self._row.tolist()
+        f = self._flat  # 1-D views of this env's scalars (cheaper to index)
+        s = row[self._s_col]
+        ds = s - f.prev_s.item(0)
+        if self._wrap:
+            half, length = f.half_len.item(0), f.length.item(0)
+            ds = (ds + half) % length - half
+        progress = f.progress.item(0) + ds
+        f.prev_s[0] = s
+        f.progress[0] = progress
+        elapsed = f.elapsed.item(0) + 1
+        f.elapsed[0] = elapsed
+        r = self._reward
+        reward = ds * r.progress
+        if r.time_penalty:
+            reward -= r.time_penalty * self.config.control_dt
+        end = False
+        if self.events.item(0) & (CONTACT_WALL | CONTACT_VEHICLE):
+            reward -= r.collision_penalty
+            end = self.config.collision_ends_episode
+        best = f.best_progress.item(0)
+        if progress > best:
+            f.best_progress[0] = best = progress
+        if ds < -BACKWARDS_EPS and best - progress > self._wrong_way_distance:
+            f.wrong_way[0] = 1 if row[self._vx_col] >= 0.0 else -1
+            reward -= r.wrong_way_penalty
+            end = end or self.config.wrong_way_ends_episode
+        elif f.wrong_way.item(0):
+            f.wrong_way[0] = 0
+        self.obs.refresh_one(self, row)
+        return reward, end, self.max_steps is not None and elapsed >= self.max_steps and not end
 
     def _update_wrong_way(self, ds: np.ndarray) -> np.ndarray | None:
         """Update ``wrong_way`` (E, V): nonzero while a vehicle moves backwards along the
@@ -307,7 +351,7 @@ class SimBatch:
         """Recreate the native simulator with ``seed`` (same tracks, counts and config), so
         its per-vehicle noise streams restart: the same seed gives the same episode."""
         self.seed = int(seed)
-        self.sim = self._Simulator(self._natives, self.num_envs, self.vehicles, self.config.sim.to_json(), self.seed)
+        self.sim = self._new_sim(self.seed)
 
 
 class EnvHelpers:

@@ -1,6 +1,7 @@
 """Observation assembly for the batch engine: raw or normalised frames (see
-:class:`~roboracer_arena.envs.env_config.ObservationConfig`), observation randomisation
-(lidar noise and dropout), frame stacking and the previous action.
+:class:`~roboracer_arena.envs.env_config.ObservationConfig`), frame stacking and the
+previous action. Observation randomisation (lidar noise and dropout) is drawn natively
+with the scan, from each env's own stream (see :mod:`.batch`).
 
 A *frame* is computed once per env step (and at reset), so repeated reads of the same
 step's observation (``obs`` and ``final_obs``) agree, noise included.
@@ -28,6 +29,12 @@ class ObservationAssembler:
         self.k = cfg.frame_stack
         self.fields = tuple(cfg.odometry)
         self.cols = np.array([field_index[f] for f in self.fields], dtype=np.intp)
+        self.cols_list = [int(c) for c in self.cols]
+        # Odometry columns that are one contiguous run of state columns (the default x .. steer)
+        # are copied as one slice (the single env's scalar path).
+        k = len(self.cols_list)
+        run = k > 0 and self.cols_list == list(range(self.cols_list[0], self.cols_list[0] + k))
+        self._col_slice = slice(self.cols_list[0], self.cols_list[0] + k) if run else None
         self._xy = (field_index["x"], field_index["y"], field_index["yaw"])
         #: Names of the columns of obs["odometry"] (yaw becomes yaw_sin, yaw_cos when normalised).
         self.columns: tuple[str, ...] = tuple(
@@ -39,12 +46,6 @@ class ObservationAssembler:
         self._scale = {"vx": veh.max_speed, "vy": veh.max_speed, "speed": veh.max_speed,
                        "yaw_rate": 2 * math.pi, "steer": veh.max_steer}
         self._max_steer, self._lo_speed, self._hi_speed = veh.max_steer, veh.min_speed, veh.max_speed
-        rnd = config.randomisation
-        self._randomise = rnd.active
-        self._dropout = rnd.lidar_dropout
-        self._noise_range = rnd.lidar_noise_std
-        self.noise_std = np.zeros(E, np.float64)
-        self.rngs: list[np.random.Generator | None] = [None] * E
         K = len(self.columns)
         stack = (self.k,) if self.k > 1 else ()
         self.buf: dict[str, np.ndarray] = {}
@@ -54,6 +55,12 @@ class ObservationAssembler:
             self.buf["odometry"] = np.zeros((E, V, *stack, K), np.float32)
         if cfg.previous_action:
             self.buf["previous_action"] = np.zeros((E, V, *stack, 2), np.float32)
+        #: Raw scans without history: the batch lets the simulator write into buf["scan"].
+        self.shares_scan = cfg.scan and self.k == 1 and not cfg.normalise
+        #: Frames the single env's scalar path handles (one frame, raw, no previous action).
+        self.simple = self.k == 1 and not cfg.normalise and not cfg.previous_action
+        self._views = {k: v[0, 0] for k, v in self.buf.items()}
+        self._view_items = list(self._views.items())
 
     # ------------------------------------------------------------------ spaces
     def space(self, lead: tuple[int, ...], action_space: spaces.Box) -> spaces.Dict:
@@ -82,17 +89,12 @@ class ObservationAssembler:
         return np.array([np.inf if c in ("x", "y") else 1.0 for c in self.columns])
 
     # ------------------------------------------------------------------ per episode / per step
-    def new_episode(self, env: int, rng: np.random.Generator) -> None:
-        """Draw this episode's randomisation for env ``env`` from its RNG."""
-        self.rngs[env] = rng
-        if self._randomise:
-            lo, hi = self._noise_range
-            self.noise_std[env] = float(rng.uniform(lo, hi)) if hi > lo else lo
-
     def refresh(self, batch: Any, envs: Any, fill: bool = False) -> None:
         """Compute the current frame of ``envs`` from the batch buffers; push it into the
         history (``fill``: the whole history, as at reset)."""
         frame = self._frame(batch, envs, reset=fill)
+        if self.shares_scan:
+            frame.pop("scan", None)  # already in place
         for key, value in frame.items():
             buf = self.buf[key]
             if self.k == 1:
@@ -103,6 +105,21 @@ class ObservationAssembler:
                 buf[envs, :, :-1] = buf[envs, :, 1:]
                 buf[envs, :, -1] = value
 
+    def refresh_one(self, batch: Any, row: list[float]) -> None:
+        """:meth:`refresh` of env 0, vehicle 0 from its state row (``row``: the same values
+        as a list); the scalar path of the single env (falls back to :meth:`refresh` unless
+        :attr:`simple`). The scan is already in place (see :attr:`shares_scan`)."""
+        if not self.simple:
+            self.refresh(batch, slice(None))
+        elif self._col_slice is not None:
+            self._views["odometry"][:] = batch.state[0, 0, self._col_slice]
+        elif self.fields:
+            self._views["odometry"][:] = [row[c] for c in self.cols_list]
+
+    def observation_one(self) -> dict[str, np.ndarray]:
+        """Fresh copies of env 0, vehicle 0's observation (what the single env returns)."""
+        return {k: v.copy() for k, v in self._view_items}
+
     def observation(self, envs: Any) -> dict[str, np.ndarray]:
         """Fresh copies of the observation of ``envs``, shapes (e, V, ...)."""
         return {k: v[envs].copy() for k, v in self.buf.items()}
@@ -111,12 +128,10 @@ class ObservationAssembler:
         cfg = self.cfg
         out: dict[str, np.ndarray] = {}
         if cfg.scan:
-            scan = np.array(batch.scans[envs], dtype=np.float32)
-            if self._randomise:
-                self._randomise_scan(scan, envs)
-            np.clip(scan, 0.0, self.range_max, out=scan)
-            if cfg.normalise:
-                np.minimum(scan * self._scan_scale, 1.0, out=scan)
+            scan = batch.scans[envs]  # the simulator clamps to [range_min, range_max]
+            if cfg.normalise:  # a new array: batch.scans stays in metres
+                scan = scan * self._scan_scale
+                np.minimum(scan, 1.0, out=scan)
             out["scan"] = scan
         if self.fields:
             out["odometry"] = self._odometry(batch.state[envs], batch.start_pose[envs])
@@ -124,17 +139,6 @@ class ObservationAssembler:
             act = batch.from_ackermann(batch.actions[envs])
             out["previous_action"] = np.zeros_like(act) if reset else act
         return out
-
-    def _randomise_scan(self, scan: np.ndarray, envs: Any) -> None:
-        ids = np.arange(len(self.rngs))[envs]
-        for j, e in enumerate(np.atleast_1d(ids)):
-            rng = self.rngs[e]
-            if rng is None:
-                continue
-            if self.noise_std[e] > 0:
-                scan[j] += rng.normal(0.0, self.noise_std[e], scan[j].shape).astype(np.float32)
-            if self._dropout > 0:
-                scan[j][rng.random(scan[j].shape) < self._dropout] = self.range_max
 
     def _odometry(self, state: np.ndarray, start: np.ndarray) -> np.ndarray:
         """(e, V, K) odometry columns from state (e, V, S) and start poses (e, V, 3)."""

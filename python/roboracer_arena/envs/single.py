@@ -16,12 +16,23 @@ Spaces (``V`` = vehicles per env; the vehicle axis is dropped when ``V == 1``):
 ``reset(options=...)``: ``"track_id"`` (or ``"track_ids"``) picks a track of the list,
 otherwise each reset draws one with the env's RNG (weighted for a track pool);
 ``"poses"`` ((V, 3) or (3,) x, y, yaw in the map frame) sets the start poses instead of
-the configured start. ``reset(seed=s)`` also reseeds the simulator (lidar noise).
+the configured start. ``reset(seed=s)`` reseeds the simulator, whose per-env streams draw
+the track, start poses and speeds and the lidar noise; the same seed gives the same
+episodes.
 
 Several vehicles (``vehicles_per_env = V > 1``): the reward is the sum over vehicles and
 ``terminated`` says any vehicle ended; per-vehicle rewards are ``info["vehicle_rewards"]``
 (V,) and per-vehicle ends ``info["vehicle_terminated"]`` (V,). :mod:`.multi_agent` wraps
 this as a PettingZoo-style ParallelEnv.
+
+Per-step layout (one vehicle): ``obs`` is a dict of fresh float32 arrays, ``scan``
+(B,) in metres (raw config; the simulator writes it straight into the observation buffer)
+and ``odometry`` (K,) in :attr:`odometry_index` order; ``info`` is a flat dict of Python
+scalars: ``track_id``, ``track``, ``progress``, ``contact_wall``, ``contact_vehicle``,
+``lap_completed``, ``wrong_way``, ``laps``, ``lap_time``, ``last_lap_time``,
+``progress_s``. The step reads the state row once as Python floats
+(:meth:`SimBatch.step_one`), so the Python around the native step is a few microseconds:
+no per-step validation, no temporary arrays beyond the two returned copies.
 
 Render modes: ``rgb_array``; ``gymnasium.make(..., render_mode="human")`` wraps it in
 gymnasium's ``HumanRendering`` (needs pygame and a display).
@@ -66,8 +77,11 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         self._render_size = render_size
         self._view: Any = None
         self._squeeze = self.config.vehicles_per_env == 1
-        self._state_info = [f for f in STATE_INFO if f in self._batch.field_index]
+        self._state_info = [(f, self._batch.field_index[f]) for f in STATE_INFO if f in self._batch.field_index]
+        self._names = [t.name for t in self.tracks]
         self._spec: Any = None
+        self._seeded = False
+        self._one = np.ones(1, bool)
 
     @property  # type: ignore[override]
     def spec(self) -> Any:
@@ -90,15 +104,22 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
     # ------------------------------------------------------------ gymnasium API
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
+        if seed is None and not self._seeded:  # unseeded: a fresh random stream, as gymnasium does
+            seed = int(self.np_random.integers(2**63))
         if seed is not None:
             self._batch.rebuild(seed)
+            self._seeded = True
         track_ids, poses, speeds = reset_options(options, 1, self.vehicles_per_env, len(self.tracks), single=True)
-        self._batch.reset(np.ones(1, bool), [self.np_random], track_ids, poses, speeds)
+        self._batch.reset(self._one, track_ids, poses, speeds)
         return self._obs(), self._info()
 
     def step(self, action: Any):
-        self._batch.set_actions(action)
-        reward, terminated, truncated, _ = self._batch.step()
+        b = self._batch
+        b.set_actions(action)
+        if self._squeeze:  # one vehicle: the scalar path
+            reward, terminated, truncated = b.step_one()
+            return b.obs.observation_one(), reward, terminated, truncated, self._info()
+        reward, terminated, truncated, _ = b.step()
         return self._obs(), float(reward[0]), bool(terminated[0]), bool(truncated[0]), self._info()
 
     def render(self) -> np.ndarray | None:
@@ -116,28 +137,30 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
 
     # ------------------------------------------------------------ helpers (drivers, tools)
     def _obs(self) -> dict[str, np.ndarray]:
+        if self._squeeze:
+            return self._batch.obs.observation_one()
         obs = self._batch.observation(0)
         return {k: v[0] for k, v in obs.items()} if self._squeeze else obs
 
     def _info(self) -> dict[str, Any]:
         b = self._batch
-        tid = int(b.track_ids[0])
+        tid = b.track_ids.item(0)
         if not self._squeeze:
             info = b.info(0)
             info.update(track_id=tid, track=self.tracks[tid].name)
             return info
-        ev, st, f = int(b.events[0, 0]), b.state[0, 0], b.field_index
+        ev, row = b.events.item(0), b._row.tolist()
         info = {
             "track_id": tid,
-            "track": self.tracks[tid].name,
-            "progress": float(b.progress[0, 0]),
+            "track": self._names[tid],
+            "progress": b.progress.item(0),
             "contact_wall": bool(ev & CONTACT_WALL),
             "contact_vehicle": bool(ev & CONTACT_VEHICLE),
             "lap_completed": bool(ev & LAP_COMPLETED),
-            "wrong_way": int(b.wrong_way[0, 0]),
+            "wrong_way": b.wrong_way.item(0),
         }
-        for name in self._state_info:
-            info[name] = float(st[f[name]])
+        for name, col in self._state_info:
+            info[name] = row[col]
         return info
 
     @property

@@ -21,7 +21,8 @@ import numpy as np
 #: Cached grid start arc length per (track, slots, spacing).
 _GRID_CACHE: "weakref.WeakKeyDictionary[Any, dict[tuple[int, float], float]]" = weakref.WeakKeyDictionary()
 
-#: Metres kept between the car's side and a wall when start noise moves it sideways.
+#: Metres kept between the car's side and a wall when start noise moves it sideways (the
+#: simulator's reset draws cap the lateral start noise with it, see ``envs.batch``).
 SIDE_MARGIN = 0.1
 
 
@@ -85,7 +86,8 @@ def grid_start_s(track: Any, slots: int = 1, spacing: float = 1.0) -> float:
 
 
 def grid_poses(track: Any, slots: int, spacing: float, offset: float, s0: float | None = None) -> np.ndarray:
-    """Poses (slots, 3) of a staggered grid: the first slot at arc length ``s0`` (default:
+    """Poses (slots, 3) of a staggered grid (the layout the simulator's native reset uses;
+    previews draw it, and a test holds the two together): the first slot at arc length ``s0`` (default:
     :func:`grid_start_s`), each further one ``spacing`` behind the one before and, with
     more than one slot, ``offset`` left and right of the centreline in turn."""
     length = track.length
@@ -97,17 +99,3 @@ def grid_poses(track: Any, slots: int, spacing: float, offset: float, s0: float 
         lat = 0.0 if slots == 1 else (offset if k % 2 == 0 else -offset)
         out[k] = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
     return out
-
-
-def perturb_pose(track: Any, pose: tuple[float, float, float], rng: np.random.Generator, lateral: float,
-                 heading: float, half_width: float) -> tuple[float, float, float]:
-    """``pose`` moved sideways by U(-lateral, lateral) (capped so the car's side stays
-    ``SIDE_MARGIN`` off the nearest wall) and turned by U(-heading, heading)."""
-    x, y, yaw = pose
-    if lateral > 0:
-        room = max(0.0, float(track.clearance([[x, y]])[0]) - half_width - SIDE_MARGIN)
-        off = float(rng.uniform(-1.0, 1.0)) * min(lateral, room)
-        x, y = x - off * math.sin(yaw), y + off * math.cos(yaw)
-    if heading > 0:
-        yaw = yaw + float(rng.uniform(-heading, heading))
-    return x, y, yaw

@@ -22,17 +22,16 @@ Autoreset mode (``metadata["autoreset_mode"]``), chosen with ``autoreset_mode=``
 and ``"poses"`` ((E, V, 3) or (E, 3)); see :mod:`.reset_options`. The episode limit is the
 one of :mod:`.episode_limit`; ``spec.max_episode_steps`` reports it.
 
-A reset environment is re-observed with the others (one extra scan pass on steps that
-contain a reset; the simulator has no masked observe). With lidar noise (``noise_std >
-0``) that extra pass also draws from the other environments' noise streams, so
-bit-identical results across ``num_envs`` hold for noise-free lidar (the default).
+Only the reset environments are re-observed (a masked native reset and observe), so an
+autoreset costs the envs it resets, and no other environment's noise stream moves.
 
-Seeding: ``reset(seed=s)`` gives environment ``i`` the RNG ``default_rng([s, i])`` for its
-track and start-pose draws and reseeds the simulator with ``s``, so environment ``i``
-sees the same episode whatever ``num_envs`` is. ``env_index_offset=k`` numbers the
-environments ``k, k+1, ...`` for that purpose: a batch that is a slice of a larger one
-(e.g. one actor of :class:`~roboracer_arena.distributed.RayVectorEnv`) sees the episodes
-of that slice.
+Seeding: ``reset(seed=s)`` reseeds the simulator with ``s``; environment ``i`` draws its
+tracks, start poses, speeds and lidar noise from its own native streams seeded from
+``(s, i)``, so environment ``i`` sees the same episodes, bit for bit and lidar noise
+included, whatever ``num_envs``, the thread count or the other environments' resets. ``env_index_offset=k``
+numbers the environments ``k, k+1, ...`` for those streams: a batch that is a slice of a
+larger one (e.g. one actor of :class:`~roboracer_arena.distributed.RayVectorEnv`) sees
+exactly the episodes of that slice.
 """
 
 from __future__ import annotations
@@ -80,7 +79,8 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self.config = vector_config(EnvConfig.build(config, **overrides), max_episode_steps, explicit)
         self.tracks, probs = resolve_track_pool(track, corridor_params, reverse=self.config.reverse)
         self.num_envs = int(num_envs)
-        self._batch = SimBatch(self.tracks, self.num_envs, self.config, seed=0, track_probs=probs)
+        self._batch = SimBatch(self.tracks, self.num_envs, self.config, seed=0, track_probs=probs,
+                               env_index_offset=self._env_offset)
         self.single_observation_space, self.single_action_space = self._batch.single_spaces()
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
@@ -94,7 +94,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self._render_size = render_size
         self._view: Any = None
         self._squeeze = self.config.vehicles_per_env == 1
-        self._rngs: list[np.random.Generator] = []
+        self._seeded = False
         self._all = np.ones(self.num_envs, bool)
         self._spec: Any = None
 
@@ -114,18 +114,18 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
     def reset(self, *, seed: int | list[int] | None = None, options: dict[str, Any] | None = None):
         if isinstance(seed, (list, tuple)):
             raise ValueError("pass one integer seed; environment i is seeded with (seed, i)")
-        if seed is None and not self._rngs:
+        if seed is None and not self._seeded:
             seed = int(np.random.SeedSequence().entropy % (2**63))
         if seed is not None:
             self._np_random_seed = int(seed)
             self._np_random = np.random.default_rng(seed)
-            self._rngs = [np.random.default_rng([int(seed), self._env_offset + i]) for i in range(self.num_envs)]
+            self._seeded = True
             self._batch.rebuild(int(seed))
         mask = self._all
         if options and options.get("reset_mask") is not None:
             mask = np.asarray(options["reset_mask"], dtype=bool).reshape(self.num_envs)
         track_ids, poses, speeds = reset_options(options, self.num_envs, self.vehicles_per_env, len(self.tracks), single=False)
-        self._batch.reset(mask, self._rngs, track_ids, poses, speeds)
+        self._batch.reset(mask, track_ids, poses, speeds)
         self._autoreset &= ~mask
         return self._obs(), self._info()
 
@@ -137,7 +137,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         if self.autoreset_mode == AutoresetMode.NEXT_STEP:
             pending = self._autoreset
             if pending.any():  # episodes that ended last step start now; their action was moot
-                b.reset(pending, self._rngs)
+                b.reset(pending)
                 reward[pending] = 0.0
                 terminated[pending] = False
                 truncated[pending] = False
@@ -151,7 +151,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
                 for j, e in enumerate(idx):
                     final_obs[e] = {k: v[j] for k, v in last.items()}
                 final_info = self._masked(self._info(), done)
-                b.reset(done, self._rngs)
+                b.reset(done)
                 infos = {"final_obs": final_obs, "_final_obs": done.copy(), "final_info": final_info,
                          "_final_info": done.copy()}
         infos.update(self._info())

@@ -7,6 +7,15 @@
 //!
 //! Bad actions: NaN or ±inf become 0 (straight / stop); finite values are clipped to
 //! ±max_steer and [min_speed, max_speed]. Nothing an action can hold raises or panics.
+//!
+//! Every other input is checked at the door (before anything changes): lengths against
+//! the batch's shape, track ids in range, poses finite and within [`POSE_MARGIN`] of the
+//! tracks' bounding box with |yaw| <= [`MAX_ABS_YAW`], speeds finite and within the
+//! vehicle's range. A bad input is an `InvalidArgument` error naming it; nothing panics.
+//!
+//! Masks: `reset*` and `observe_masked` touch only the worlds whose mask is true (and
+//! their rows of the output buffers), so a partial reset costs what it resets and never
+//! advances another env's noise stream.
 
 use std::sync::Arc;
 
@@ -14,16 +23,45 @@ use rayon::prelude::*;
 
 use super::lidar::Scanner;
 use super::params::SimParams;
+use super::starts::{draw_start, draw_track, StartSpec};
 use super::track::Track;
 use super::vehicle::VehicleModel;
 use super::world::{World, STATE_SIZE};
 use crate::error::{ArenaError, Result};
+
+/// One world with its reset outputs: track id, poses, speeds.
+type ResetRow<'a> = (((&'a mut World, &'a mut i64), &'a mut [f64]), &'a mut [f64]);
 
 /// One world with its slices of the state, events and (optional) scan buffers.
 type WorldOutputs<'a> = (
     ((&'a mut World, &'a mut [f64]), &'a mut [u8]),
     Option<&'a mut [f32]>,
 );
+
+/// Reset poses may lie at most this far (m) outside the bounding box of the tracks' walls.
+pub const POSE_MARGIN: f64 = 100.0;
+/// Largest |yaw| (rad) a reset pose may have.
+pub const MAX_ABS_YAW: f64 = 1.0e4;
+
+/// Values a caller fixes for a [`Simulator::reset_drawn`] (None: drawn), each the full
+/// batch shape (rows of envs that are not reset are ignored).
+#[derive(Default, Clone, Copy)]
+pub struct ResetGiven<'a> {
+    /// E track ids.
+    pub tracks: Option<&'a [i64]>,
+    /// E × V × 3 poses (x, y, yaw).
+    pub poses: Option<&'a [f64]>,
+    /// E × V forward speeds (m/s).
+    pub speeds: Option<&'a [f64]>,
+}
+
+/// Where [`Simulator::reset_drawn`] writes what each reset env got (rows of the envs not
+/// reset are left alone): E track ids, E × V × 3 poses, E × V speeds.
+pub struct ResetOut<'a> {
+    pub tracks: &'a mut [i64],
+    pub poses: &'a mut [f64],
+    pub speeds: &'a mut [f64],
+}
 
 pub struct Simulator {
     params: SimParams,
@@ -32,6 +70,9 @@ pub struct Simulator {
     tracks: Vec<Arc<Track>>,
     worlds: Vec<World>,
     vehicles_per_env: usize,
+    /// Bounding box of all tracks' walls grown by [`POSE_MARGIN`]: ([x lo, y lo], [x hi, y hi]).
+    pose_box: ([f64; 2], [f64; 2]),
+    starts: Option<StartSpec>,
 }
 
 impl Simulator {
@@ -43,6 +84,20 @@ impl Simulator {
         vehicles_per_env: usize,
         params: SimParams,
         seed: u64,
+    ) -> Result<Self> {
+        Self::with_env_offset(tracks, num_envs, vehicles_per_env, params, seed, 0)
+    }
+
+    /// [`Simulator::new`] for a batch that is the slice `env_offset..env_offset + num_envs`
+    /// of a larger one (e.g. one Ray actor's share): env `e` draws from the streams of
+    /// env `env_offset + e`, so the slice sees exactly the larger batch's episodes.
+    pub fn with_env_offset(
+        tracks: Vec<Arc<Track>>,
+        num_envs: usize,
+        vehicles_per_env: usize,
+        params: SimParams,
+        seed: u64,
+        env_offset: usize,
     ) -> Result<Self> {
         params.validate()?;
         if tracks.is_empty() {
@@ -70,10 +125,18 @@ impl Simulator {
                     &model,
                     &params.physics,
                     seed,
-                    e,
+                    env_offset + e,
                 )
             })
             .collect();
+        let mut pose_box = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for t in &tracks {
+            let (lo, hi) = t.grid.bounds();
+            for k in 0..2 {
+                pose_box.0[k] = pose_box.0[k].min(lo[k] - POSE_MARGIN);
+                pose_box.1[k] = pose_box.1[k].max(hi[k] + POSE_MARGIN);
+            }
+        }
         Ok(Simulator {
             params,
             model,
@@ -81,6 +144,8 @@ impl Simulator {
             tracks,
             worlds,
             vehicles_per_env,
+            pose_box,
+            starts: None,
         })
     }
 
@@ -122,15 +187,7 @@ impl Simulator {
 
     /// Choose the track of every environment (length num_envs). Reset afterwards.
     pub fn set_tracks(&mut self, ids: &[i64]) -> Result<()> {
-        self.check_len("track_ids", ids.len(), self.num_envs())?;
-        for &id in ids {
-            if id < 0 || id as usize >= self.tracks.len() {
-                return Err(ArenaError::invalid(format!(
-                    "track id {id} out of range (have {})",
-                    self.tracks.len()
-                )));
-            }
-        }
+        self.check_tracks(&vec![true; self.num_envs()], ids)?;
         for (w, &id) in self.worlds.iter_mut().zip(ids) {
             w.set_track(self.tracks[id as usize].clone(), id as usize);
         }
@@ -142,17 +199,7 @@ impl Simulator {
     pub fn reset(&mut self, mask: &[bool], poses: &[f64]) -> Result<()> {
         let v = self.vehicles_per_env;
         self.check_len("env_mask", mask.len(), self.num_envs())?;
-        self.check_len("poses", poses.len(), self.num_envs() * v * 3)?;
-        for (e, &m) in mask.iter().enumerate() {
-            if m && poses[e * v * 3..(e + 1) * v * 3]
-                .iter()
-                .any(|x| !x.is_finite())
-            {
-                return Err(ArenaError::invalid(format!(
-                    "reset pose of env {e} is not finite"
-                )));
-            }
-        }
+        self.check_poses(mask, poses)?;
         let model = &self.model;
         let run = |((w, &m), p): ((&mut World, &bool), &[f64])| {
             if m {
@@ -177,24 +224,94 @@ impl Simulator {
         Ok(())
     }
 
+    /// Configure how [`Simulator::reset_drawn`] draws (checked against the tracks).
+    pub fn set_start_spec(&mut self, spec: StartSpec) -> Result<()> {
+        spec.validate(self.tracks.len())?;
+        self.starts = Some(spec);
+        Ok(())
+    }
+
+    /// Reset each env whose mask is true, drawing from its own reset stream (see
+    /// [`super::starts`]) its track, start poses, speeds and lidar randomisation, except
+    /// what `given` fixes (the draws are made all the same, so the stream advances alike).
+    /// Writes what each reset env got into `out`. Needs [`Simulator::set_start_spec`].
+    pub fn reset_drawn(
+        &mut self,
+        mask: &[bool],
+        given: ResetGiven<'_>,
+        out: ResetOut<'_>,
+    ) -> Result<()> {
+        let (e, v) = (self.num_envs(), self.vehicles_per_env);
+        let Some(spec) = self.starts.as_ref() else {
+            return Err(ArenaError::invalid(
+                "reset_drawn needs a start spec (set_start_spec) first",
+            ));
+        };
+        self.check_len("env_mask", mask.len(), e)?;
+        self.check_len("track_ids", out.tracks.len(), e)?;
+        self.check_len("poses", out.poses.len(), e * v * 3)?;
+        self.check_len("speeds", out.speeds.len(), e * v)?;
+        if let Some(t) = given.tracks {
+            self.check_tracks(mask, t)?;
+        }
+        if let Some(p) = given.poses {
+            self.check_poses(mask, p)?;
+        }
+        if let Some(sp) = given.speeds {
+            self.check_speeds(mask, sp)?;
+        }
+        let (tracks, model) = (&self.tracks, &self.model);
+        let one = |(i, (((w, t), p), sp)): (usize, ResetRow<'_>)| {
+            if !mask[i] {
+                return;
+            }
+            let fixed = given.tracks.map(|g| g[i] as usize);
+            let rng = w.reset_rng();
+            let tid = draw_track(spec, fixed, tracks.len(), rng);
+            let noise = draw_start(spec, &tracks[tid], tid, rng, p, sp);
+            if let Some(g) = given.poses {
+                p.copy_from_slice(&g[i * v * 3..(i + 1) * v * 3]);
+            }
+            if let Some(g) = given.speeds {
+                sp.copy_from_slice(&g[i * v..(i + 1) * v]);
+            }
+            *t = tid as i64;
+            w.set_track(tracks[tid].clone(), tid);
+            w.set_scan_noise(noise);
+            for k in 0..v {
+                w.reset_vehicle(k, [p[3 * k], p[3 * k + 1], p[3 * k + 2]], model);
+                if sp[k] != 0.0 {
+                    w.set_forward_speed(k, sp[k]);
+                }
+            }
+        };
+        if e == 1 {
+            self.worlds
+                .iter_mut()
+                .zip(out.tracks.iter_mut())
+                .zip(out.poses.chunks_mut(v * 3))
+                .zip(out.speeds.chunks_mut(v))
+                .enumerate()
+                .for_each(one);
+        } else {
+            self.worlds
+                .par_iter_mut()
+                .zip(out.tracks.par_iter_mut())
+                .zip(out.poses.par_chunks_mut(v * 3))
+                .zip(out.speeds.par_chunks_mut(v))
+                .enumerate()
+                .for_each(one);
+        }
+        Ok(())
+    }
+
     /// Give every vehicle of each env whose mask is true a forward speed (`speeds`:
     /// num_envs × vehicles, m/s) after [`Simulator::reset`]: a rolling start. Speeds must
     /// be finite and within the vehicle's [min_speed, max_speed].
     pub fn set_speeds(&mut self, mask: &[bool], speeds: &[f64]) -> Result<()> {
         let v = self.vehicles_per_env;
         self.check_len("env_mask", mask.len(), self.num_envs())?;
-        self.check_len("speeds", speeds.len(), self.num_envs() * v)?;
-        let (lo, hi) = (self.params.vehicle.min_speed, self.params.vehicle.max_speed);
-        for (e, &m) in mask.iter().enumerate() {
-            if let Some(&s) = speeds[e * v..(e + 1) * v]
-                .iter()
-                .find(|s| m && !(s.is_finite() && (lo..=hi).contains(*s)))
-            {
-                return Err(ArenaError::invalid(format!(
-                    "start speed {s} of env {e} is not finite or outside [{lo}, {hi}] m/s"
-                )));
-            }
-        }
+        self.check_speeds(mask, speeds)?;
         for ((w, &m), s) in self.worlds.iter_mut().zip(mask).zip(speeds.chunks(v)) {
             if m {
                 for (k, &speed) in s.iter().enumerate() {
@@ -247,17 +364,34 @@ impl Simulator {
         self.observe(scans, state, events)
     }
 
-    /// Write the outputs without stepping.
+    /// Write the outputs of every env without stepping.
     pub fn observe(
         &mut self,
         scans: Option<&mut [f32]>,
         state: &mut [f64],
         events: &mut [u8],
     ) -> Result<()> {
+        self.observe_masked(None, scans, state, events)
+    }
+
+    /// Write the outputs (state, events and, if given, scans) of the envs whose mask is
+    /// true (all when None) without stepping; the other envs' rows are left alone and
+    /// their noise streams untouched.
+    pub fn observe_masked(
+        &mut self,
+        mask: Option<&[bool]>,
+        scans: Option<&mut [f32]>,
+        state: &mut [f64],
+        events: &mut [u8],
+    ) -> Result<()> {
         let v = self.vehicles_per_env;
+        if let Some(m) = mask {
+            self.check_len("env_mask", m.len(), self.num_envs())?;
+        }
         self.check_outputs(scans.as_deref().map(|s| s.len()), state.len(), events.len())?;
         let (model, scanner) = (&self.model, &self.scanner);
         let b = scanner.num_beams();
+        let wanted = |i: usize| mask.is_none_or(|m| m[i]);
         let one = |(((w, st), ev), sc): WorldOutputs<'_>| {
             w.write_state(st, ev);
             if let Some(sc) = sc {
@@ -265,21 +399,99 @@ impl Simulator {
             }
         };
         if self.worlds.len() == 1 {
-            one((((&mut self.worlds[0], state), events), scans));
+            if wanted(0) {
+                one((((&mut self.worlds[0], state), events), scans));
+            }
             return Ok(());
         }
         let worlds = self
             .worlds
             .par_iter_mut()
             .zip(state.par_chunks_mut(v * STATE_SIZE))
-            .zip(events.par_chunks_mut(v));
+            .zip(events.par_chunks_mut(v))
+            .enumerate();
         match scans {
             Some(scans) => worlds
                 .zip(scans.par_chunks_mut(v * b))
-                .for_each(|(a, sc)| one((a, Some(sc)))),
-            None => worlds.for_each(|a| one((a, None))),
+                .for_each(|((i, a), sc)| {
+                    if wanted(i) {
+                        one((a, Some(sc)))
+                    }
+                }),
+            None => worlds.for_each(|(i, a)| {
+                if wanted(i) {
+                    one((a, None))
+                }
+            }),
         }
         Ok(())
+    }
+
+    /// Track ids of the masked envs (length num_envs) are in range.
+    fn check_tracks(&self, mask: &[bool], ids: &[i64]) -> Result<()> {
+        self.check_len("track_ids", ids.len(), self.num_envs())?;
+        let n = self.tracks.len();
+        match ids
+            .iter()
+            .zip(mask)
+            .position(|(&id, &m)| m && !(0..n as i64).contains(&id))
+        {
+            Some(e) => Err(ArenaError::invalid(format!(
+                "track_ids[{e}] = {} out of range (have {n} tracks)",
+                ids[e]
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// Poses (num_envs × vehicles × 3) of the masked envs are finite, within
+    /// [`POSE_MARGIN`] of the tracks' bounding box and |yaw| <= [`MAX_ABS_YAW`].
+    fn check_poses(&self, mask: &[bool], poses: &[f64]) -> Result<()> {
+        let v = self.vehicles_per_env;
+        self.check_len("poses", poses.len(), self.num_envs() * v * 3)?;
+        let (lo, hi) = self.pose_box;
+        for (i, p) in poses.chunks_exact(3).enumerate() {
+            if !mask[i / v] {
+                continue;
+            }
+            let (e, k) = (i / v, i % v);
+            if p.iter().any(|x| !x.is_finite()) {
+                return Err(ArenaError::invalid(format!(
+                    "poses[{e}][{k}] = ({}, {}, {}) is not finite",
+                    p[0], p[1], p[2]
+                )));
+            }
+            let inside = (lo[0]..=hi[0]).contains(&p[0]) && (lo[1]..=hi[1]).contains(&p[1]);
+            if !inside || p[2].abs() > MAX_ABS_YAW {
+                return Err(ArenaError::invalid(format!(
+                    "poses[{e}][{k}] = ({}, {}, {}) is out of range: x must be in \
+                     [{:.1}, {:.1}], y in [{:.1}, {:.1}] (the tracks' extent plus \
+                     {POSE_MARGIN} m) and |yaw| <= {MAX_ABS_YAW}",
+                    p[0], p[1], p[2], lo[0], hi[0], lo[1], hi[1]
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Speeds (num_envs × vehicles) of the masked envs are finite and within the
+    /// vehicle's [min_speed, max_speed].
+    fn check_speeds(&self, mask: &[bool], speeds: &[f64]) -> Result<()> {
+        let v = self.vehicles_per_env;
+        self.check_len("speeds", speeds.len(), self.num_envs() * v)?;
+        let (lo, hi) = (self.params.vehicle.min_speed, self.params.vehicle.max_speed);
+        match speeds
+            .iter()
+            .enumerate()
+            .find(|(i, s)| mask[i / v] && !(s.is_finite() && (lo..=hi).contains(*s)))
+        {
+            Some((i, s)) => Err(ArenaError::invalid(format!(
+                "speeds[{}][{}] = {s} is not finite or outside [{lo}, {hi}] m/s",
+                i / v,
+                i % v
+            ))),
+            None => Ok(()),
+        }
     }
 
     fn check_len(&self, name: &str, got: usize, want: usize) -> Result<()> {

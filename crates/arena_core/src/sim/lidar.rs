@@ -1,6 +1,7 @@
-//! Planar lidar by exact 2D ray casting: rays against the wall segments (through a
-//! uniform grid walked with a DDA, so a ray only tests the segments of the cells it
-//! crosses) and against other vehicles' chassis rectangles. Exact up to f64 rounding:
+//! Planar lidar by exact 2D ray casting: rays against the wall segments (by the angular
+//! sweep of [`super::sweep`] over the segments the scanner can see; the per-beam walk
+//! through a uniform grid with a DDA, [`SegmentGrid::cast`], gives the same bits) and
+//! against other vehicles' chassis rectangles. Exact up to f64 rounding:
 //! no rasterisation, so thin walls can never be slipped through (the weakness of ray
 //! marching on a distance field).
 
@@ -8,17 +9,15 @@ use rand_chacha::rand_core::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::params::LidarParams;
-use super::sweep::sweep;
+use super::sweep::{sweep, BlockIndex};
 
 /// Wall segments bucketed in a uniform grid.
 #[derive(Debug, Clone)]
 pub struct SegmentGrid {
     /// (ax, ay, bx - ax, by - ay) per segment.
     segs: Vec<[f64; 4]>,
-    /// Polyline vertices and each segment's (start, end) vertex: the sweep computes one
-    /// angle per vertex instead of two per segment.
-    verts: Vec<[f64; 2]>,
-    seg_verts: Vec<[u32; 2]>,
+    /// Coarse blocks for the sweep's culling by range and occlusion.
+    blocks: BlockIndex,
     x0: f64,
     y0: f64,
     cell: f64,
@@ -35,17 +34,12 @@ impl SegmentGrid {
     /// Grid over the edges of closed polylines (each closes back to its first point).
     pub fn new(walls: &[Vec<[f64; 2]>]) -> Self {
         let mut segs = Vec::new();
-        let mut verts: Vec<[f64; 2]> = Vec::new();
-        let mut seg_verts: Vec<[u32; 2]> = Vec::new();
         for w in walls {
             let n = w.len();
             let m = if n == 2 { 1 } else { n };
-            let base = verts.len() as u32;
-            verts.extend_from_slice(w);
             for i in 0..m {
                 let (a, b) = (w[i], w[(i + 1) % n]);
                 segs.push([a[0], a[1], b[0] - a[0], b[1] - a[1]]);
-                seg_verts.push([base + i as u32, base + ((i + 1) % n) as u32]);
             }
         }
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -71,34 +65,12 @@ impl SegmentGrid {
         let (x0, y0) = (lo[0] - cell, lo[1] - cell);
         let nx = (w / cell).ceil() as usize + 2;
         let ny = (h / cell).ceil() as usize + 2;
-        let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); nx * ny];
-        for (k, s) in segs.iter().enumerate() {
-            let (ax, ay, bx, by) = (s[0], s[1], s[0] + s[2], s[1] + s[3]);
-            let ix0 = ((ax.min(bx) - x0) / cell).floor() as usize;
-            let ix1 = ((ax.max(bx) - x0) / cell).floor() as usize;
-            let iy0 = ((ay.min(by) - y0) / cell).floor() as usize;
-            let iy1 = ((ay.max(by) - y0) / cell).floor() as usize;
-            for iy in iy0..=iy1.min(ny - 1) {
-                for ix in ix0..=ix1.min(nx - 1) {
-                    let (cx0, cy0) = (x0 + ix as f64 * cell, y0 + iy as f64 * cell);
-                    if segment_touches_box(s, cx0, cy0, cx0 + cell, cy0 + cell) {
-                        buckets[iy * nx + ix].push(k as u32);
-                    }
-                }
-            }
-        }
-        let mut start = Vec::with_capacity(nx * ny + 1);
-        let mut items = Vec::new();
-        start.push(0);
-        for b in buckets {
-            items.extend(b);
-            start.push(items.len() as u32);
-        }
+        let (start, items) = bucket_segments(&segs, [x0, y0], cell, [nx, ny]);
         let cell_segs = items.iter().map(|&k| segs[k as usize]).collect();
+        let blocks = BlockIndex::new(&segs, lo, hi);
         SegmentGrid {
             segs,
-            verts,
-            seg_verts,
+            blocks,
             x0,
             y0,
             cell,
@@ -119,22 +91,55 @@ impl SegmentGrid {
         &self.segs
     }
 
-    /// Polyline vertices, and the (start, end) vertex of every segment.
-    pub fn vertices(&self) -> (&[[f64; 2]], &[[u32; 2]]) {
-        (&self.verts, &self.seg_verts)
+    /// Bounding box of the segments: ([x lo, y lo], [x hi, y hi]).
+    pub fn bounds(&self) -> ([f64; 2], [f64; 2]) {
+        (
+            [self.x0 + self.cell, self.y0 + self.cell],
+            [
+                self.x0 + (self.nx - 1) as f64 * self.cell,
+                self.y0 + (self.ny - 1) as f64 * self.cell,
+            ],
+        )
+    }
+
+    /// The coarse culling blocks of the sweep.
+    pub fn blocks(&self) -> &BlockIndex {
+        &self.blocks
     }
 
     /// True when no wall segment comes within `r` of `(x, y)`.
     pub fn clear_of(&self, x: f64, y: f64, r: f64) -> bool {
+        self.nearest_within(x, y, r) >= r
+    }
+
+    /// Distance from `(x, y)` to the nearest wall segment (infinity without walls):
+    /// searched in growing boxes of cells, so it costs what the neighbourhood holds.
+    pub fn clearance(&self, x: f64, y: f64) -> f64 {
+        let extent = (self.nx.max(self.ny) as f64 + 2.0) * self.cell;
+        let far = (x - self.x0).abs().max((y - self.y0).abs()) + extent;
+        let mut r = self.cell;
+        loop {
+            let d = self.nearest_within(x, y, r);
+            if d <= r || r >= far {
+                return d;
+            }
+            r *= 2.0;
+        }
+    }
+
+    /// The smallest distance from `(x, y)` to the segments of the cells overlapping the
+    /// box of half side `r` around it: exact when it is at most `r` (every segment
+    /// within `r` is in those cells); a larger value only bounds the true distance.
+    fn nearest_within(&self, x: f64, y: f64, r: f64) -> f64 {
         let inv = 1.0 / self.cell;
         let ix0 = ((x - r - self.x0) * inv).floor().max(0.0) as usize;
         let iy0 = ((y - r - self.y0) * inv).floor().max(0.0) as usize;
         let ix1 = (((x + r - self.x0) * inv).floor() as isize).min(self.nx as isize - 1);
         let iy1 = (((y + r - self.y0) * inv).floor() as isize).min(self.ny as isize - 1);
-        if ix1 < 0 || iy1 < 0 {
-            return true;
+        let mut best = f64::INFINITY;
+        if ix1 < 0 || iy1 < 0 || !(x.is_finite() && y.is_finite()) {
+            return best;
         }
-        let r2 = r * r;
         for iy in iy0..=iy1 as usize {
             for ix in ix0..=ix1 as usize {
                 let c = iy * self.nx + ix;
@@ -148,13 +153,11 @@ impl SegmentGrid {
                         0.0
                     };
                     let (dx, dy) = (wx - t * s[2], wy - t * s[3]);
-                    if dx * dx + dy * dy < r2 {
-                        return false;
-                    }
+                    best = best.min(dx * dx + dy * dy);
                 }
             }
         }
-        true
+        best.sqrt()
     }
 
     /// Distance along the unit direction `(dx, dy)` from `(ox, oy)` to the first wall,
@@ -251,6 +254,39 @@ pub(crate) fn ray_segment(ox: f64, oy: f64, dx: f64, dy: f64, s: &[f64; 4]) -> f
     }
 }
 
+/// Segments bucketed in the square cells (side `cell`, `n[0]` × `n[1]` from `origin`)
+/// they touch, as CSR: cell `c` holds `items[start[c]..start[c + 1]]` (segment indices).
+pub(crate) fn bucket_segments(
+    segs: &[[f64; 4]],
+    origin: [f64; 2],
+    cell: f64,
+    n: [usize; 2],
+) -> (Vec<u32>, Vec<u32>) {
+    let [nx, ny] = n;
+    let index =
+        |v: f64, v0: f64, n: usize| (((v - v0) / cell).floor().max(0.0) as usize).min(n - 1);
+    let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); nx * ny];
+    for (k, s) in segs.iter().enumerate() {
+        let (ax, ay, bx, by) = (s[0], s[1], s[0] + s[2], s[1] + s[3]);
+        for iy in index(ay.min(by), origin[1], ny)..=index(ay.max(by), origin[1], ny) {
+            for ix in index(ax.min(bx), origin[0], nx)..=index(ax.max(bx), origin[0], nx) {
+                let (cx, cy) = (origin[0] + ix as f64 * cell, origin[1] + iy as f64 * cell);
+                if segment_touches_box(s, cx, cy, cx + cell, cy + cell) {
+                    buckets[iy * nx + ix].push(k as u32);
+                }
+            }
+        }
+    }
+    let mut start = Vec::with_capacity(nx * ny + 1);
+    let mut items = Vec::new();
+    start.push(0);
+    for b in buckets {
+        items.extend(b);
+        start.push(items.len() as u32);
+    }
+    (start, items)
+}
+
 /// Conservative segment–box overlap (bounding boxes plus separating line of the segment).
 fn segment_touches_box(s: &[f64; 4], x0: f64, y0: f64, x1: f64, y1: f64) -> bool {
     let eps = 1e-9;
@@ -316,9 +352,14 @@ pub struct Scanner {
     params: LidarParams,
 }
 
-/// Scans use the angular sweep (walk each segment once) when the track has at most this
-/// many segments per beam, else the per-beam grid walk. Both give identical ranges.
-const SWEEP_MAX_SEGMENTS_PER_BEAM: usize = 4;
+/// Per-episode observation noise of one world's lidar (domain randomisation), drawn from
+/// the world's own stream: extra range noise std (m, on top of `LidarParams::noise_std`)
+/// and the probability that a beam reads `range_max` (a lost return).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ScanNoise {
+    pub extra_std: f64,
+    pub dropout: f64,
+}
 
 impl Scanner {
     pub fn new(params: &LidarParams) -> Self {
@@ -344,12 +385,14 @@ impl Scanner {
     }
 
     /// One scan from a vehicle at pose `(x, y, yaw)` (CoM); the sensor sits `mount_x`
-    /// ahead of it. `others` are the other vehicles' footprints. Writes `out[num_beams]`.
+    /// ahead of it. `others` are the other vehicles' footprints; noise and dropout draws
+    /// come from `rng` (the vehicle's own stream). Writes `out[num_beams]`.
     pub fn scan(
         &self,
         pose: [f64; 3],
         grid: &SegmentGrid,
         others: &[Footprint],
+        noise: ScanNoise,
         rng: &mut ChaCha8Rng,
         out: &mut [f32],
     ) {
@@ -360,35 +403,23 @@ impl Scanner {
         );
         let rmax = self.params.range_max;
         let n = self.cos.len();
-        if grid.num_segments() <= SWEEP_MAX_SEGMENTS_PER_BEAM * n {
-            let dirs: Vec<[f64; 2]> = (0..n)
-                .map(|k| {
-                    let (c, s) = (self.cos[k], self.sin[k]);
-                    [c * cy - s * sy, c * sy + s * cy]
-                })
-                .collect();
-            let mut ranges = vec![f64::INFINITY; n];
-            let theta0 = pose[2] + self.angle0;
-            sweep(grid, ox, oy, theta0, self.inc, &dirs, rmax, &mut ranges);
-            for (k, o) in out.iter_mut().enumerate().take(n) {
-                let mut t = ranges[k];
-                for f in others {
-                    t = t.min(f.cast(ox, oy, dirs[k][0], dirs[k][1]));
-                }
-                *o = t.min(rmax) as f32;
-            }
-        } else {
-            for (k, o) in out.iter_mut().enumerate().take(n) {
+        let dirs: Vec<[f64; 2]> = (0..n)
+            .map(|k| {
                 let (c, s) = (self.cos[k], self.sin[k]);
-                let (dx, dy) = (c * cy - s * sy, c * sy + s * cy);
-                let mut t = grid.cast(ox, oy, dx, dy, rmax);
-                for f in others {
-                    t = t.min(f.cast(ox, oy, dx, dy));
-                }
-                *o = t.min(rmax) as f32;
+                [c * cy - s * sy, c * sy + s * cy]
+            })
+            .collect();
+        let mut ranges = vec![f64::INFINITY; n];
+        let theta0 = pose[2] + self.angle0;
+        sweep(grid, ox, oy, theta0, self.inc, &dirs, rmax, &mut ranges);
+        for (k, o) in out.iter_mut().enumerate().take(n) {
+            let mut t = ranges[k];
+            for f in others {
+                t = t.min(f.cast(ox, oy, dirs[k][0], dirs[k][1]));
             }
+            *o = t.min(rmax) as f32;
         }
-        let sd = self.params.noise_std;
+        let sd = self.params.noise_std.hypot(noise.extra_std);
         if sd > 0.0 {
             let mut k = 0;
             while k < out.len() {
@@ -404,13 +435,25 @@ impl Scanner {
         for o in out.iter_mut() {
             *o = o.clamp(lo, hi);
         }
+        if noise.dropout > 0.0 {
+            for o in out.iter_mut() {
+                if unit(rng) < noise.dropout {
+                    *o = hi;
+                }
+            }
+        }
     }
+}
+
+/// A uniform draw in [0, 1).
+fn unit(rng: &mut ChaCha8Rng) -> f64 {
+    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
 /// Two independent standard normal draws (Box–Muller).
 fn gaussian_pair(rng: &mut ChaCha8Rng) -> (f64, f64) {
     let u1 = ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
-    let u2 = (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let u2 = unit(rng);
     let r = (-2.0 * u1.ln()).sqrt();
     let a = std::f64::consts::TAU * u2;
     (r * a.cos(), r * a.sin())
@@ -454,7 +497,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(0);
         let mut out = vec![0.0f32; sc.num_beams()];
         let pose = [0.7, -1.3, 0.4];
-        sc.scan(pose, &grid, &[], &mut rng, &mut out);
+        sc.scan(pose, &grid, &[], ScanNoise::default(), &mut rng, &mut out);
         let (ox, oy) = (
             pose[0] + params.mount_x * pose[2].cos(),
             pose[1] + params.mount_x * pose[2].sin(),
@@ -490,6 +533,7 @@ mod tests {
             [0.0, 0.0, 1.0],
             &grid,
             &[],
+            ScanNoise::default(),
             &mut ChaCha8Rng::seed_from_u64(1),
             &mut out,
         );
@@ -533,6 +577,7 @@ mod tests {
             [0.0, 0.0, 0.0],
             &grid,
             &[],
+            ScanNoise::default(),
             &mut ChaCha8Rng::seed_from_u64(7),
             &mut a,
         );
@@ -540,6 +585,7 @@ mod tests {
             [0.0, 0.0, 0.0],
             &grid,
             &[],
+            ScanNoise::default(),
             &mut ChaCha8Rng::seed_from_u64(7),
             &mut b,
         );

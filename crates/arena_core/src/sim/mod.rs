@@ -6,6 +6,7 @@
 //! * [`vehicle`]: chassis, suspension, tyres, Ackermann steering, speed controller
 //! * [`lidar`]: exact ray casting against wall segments and other vehicles
 //! * [`sweep`]: the same scan by angular sweep over segments (chosen for small tracks)
+//! * [`starts`]: reset draws (track, start poses, speeds, lidar randomisation) per env
 //! * [`progress`]: arc length along the centreline and lap counting
 //! * [`world`]: one rapier world per environment
 //! * [`batch`]: N worlds stepped with rayon, deterministic for any N and thread count
@@ -15,6 +16,7 @@ pub mod lidar;
 pub mod params;
 pub mod progress;
 pub mod shapes;
+pub mod starts;
 pub mod sweep;
 pub mod track;
 pub mod vehicle;
@@ -22,8 +24,11 @@ pub mod world;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_resets;
 
-pub use batch::Simulator;
+pub use batch::{ResetGiven, ResetOut, Simulator, MAX_ABS_YAW, POSE_MARGIN};
 pub use params::{LidarParams, PhysicsParams, SimParams, VehicleParams};
+pub use starts::StartSpec;
 pub use track::{Centreline, Track};
 pub use world::{EVENT_FAULT, EVENT_LAP, EVENT_VEHICLE, EVENT_WALL, STATE_FIELDS, STATE_SIZE};

@@ -7,7 +7,7 @@ use rand_chacha::rand_core::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rapier3d::prelude::*;
 
-use super::lidar::{Footprint, Scanner};
+use super::lidar::{Footprint, ScanNoise, Scanner};
 use super::params::PhysicsParams;
 use super::progress::Progress;
 use super::track::Track;
@@ -77,6 +77,11 @@ pub struct World {
     gravity: f64,
     shortcut: bool,
     scratch: Vec<[f64; 3]>,
+    /// This env's own stream for reset draws (start pose, track, speed, noise level), so
+    /// that resetting env e never consumes another env's draws.
+    reset_rng: ChaCha8Rng,
+    /// This episode's lidar randomisation (drawn at reset from `reset_rng`).
+    noise: ScanNoise,
     /// World steps through the rapier pipeline, and contact-free shortcut steps.
     counts: [u64; 2],
 }
@@ -144,12 +149,28 @@ impl World {
             gravity: physics.gravity,
             shortcut: physics.shortcut_free_steps,
             scratch: Vec::with_capacity(vehicles),
+            reset_rng: {
+                let mut r = ChaCha8Rng::seed_from_u64(vehicle_seed(seed, env, usize::MAX));
+                r.set_stream(u64::MAX);
+                r
+            },
+            noise: ScanNoise::default(),
             counts: [0, 0],
         }
     }
 
     pub fn track_id(&self) -> usize {
         self.track_id
+    }
+
+    /// This env's reset stream (see the field).
+    pub fn reset_rng(&mut self) -> &mut ChaCha8Rng {
+        &mut self.reset_rng
+    }
+
+    /// Set this episode's lidar randomisation.
+    pub fn set_scan_noise(&mut self, noise: ScanNoise) {
+        self.noise = noise;
     }
 
     pub fn track(&self) -> &Arc<Track> {
@@ -442,6 +463,7 @@ impl World {
                 poses[v],
                 &self.track.grid,
                 &others,
+                self.noise,
                 &mut car.rng,
                 &mut scans[v * n..(v + 1) * n],
             );
