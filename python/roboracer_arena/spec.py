@@ -35,28 +35,28 @@ class TrackSpec(NumbersAreNumbers):
     )
     lap_length_m: float = Field(
         60.0,
-        gt=0,
-        le=10_000,
+        ge=1,
+        le=2_000,
         description="Centreline lap length (m). 60 m is a typical RoboRacer competition lap in a sports hall.",
     )
     corridor_width_m: float = Field(
         1.5,
-        gt=0,
-        le=100,
+        ge=0.2,
+        le=20,
         description=(
             "Free corridor width between walls (m). 1.5 m lets two 0.3 m-wide cars pass, as on"
             " most RoboRacer tracks, and gives the paper's pitch p = 2.15 m with the default walls."
         ),
     )
-    hall_x_m: float = Field(20.0, gt=0, le=5_000, description="Hall length (m). A 20 m x 15 m hall is the paper's reference venue.")
-    hall_y_m: float = Field(15.0, gt=0, le=5_000, description="Hall width (m). A 20 m x 15 m hall is the paper's reference venue.")
+    hall_x_m: float = Field(20.0, ge=1, le=1_000, description="Hall length (m). A 20 m x 15 m hall is the paper's reference venue.")
+    hall_y_m: float = Field(15.0, ge=1, le=1_000, description="Hall width (m). A 20 m x 15 m hall is the paper's reference venue.")
     direction: Direction = Field(
         "counterclockwise",
         description="Driving direction seen from above; counter-clockwise is the mathematical positive sense and the convention of F1TENTH maps.",
     )
-    hairpins: int = Field(0, ge=0, le=100, description="Number of hairpins (~180 deg turns). 0: none unless requested.")
-    chicanes: int = Field(0, ge=0, le=100, description="Number of chicanes (opposite-sense turn pairs). 0: none unless requested.")
-    sweepers: int = Field(0, ge=0, le=100, description="Number of sweepers (long, large-radius turns). 0: none unless requested.")
+    hairpins: int = Field(0, ge=0, le=50, description="Number of hairpins (~180 deg turns). 0: none unless requested.")
+    chicanes: int = Field(0, ge=0, le=50, description="Number of chicanes (opposite-sense turn pairs). 0: none unless requested.")
+    sweepers: int = Field(0, ge=0, le=50, description="Number of sweepers (long, large-radius turns). 0: none unless requested.")
     feature_order: list[FeatureName] = Field(
         default_factory=list,
         description="Order of named features along the lap; empty (any order) unless the request orders them.",
@@ -64,13 +64,13 @@ class TrackSpec(NumbersAreNumbers):
     min_radius_m: float = Field(
         0.0,
         ge=0,
-        le=1_000,
+        le=100,
         description="Requested minimum centreline radius (m); 0 means unstated, the constructor then uses max(0.9 m, 0.75 w).",
     )
     longest_straight_m: float = Field(
         0.0,
         ge=0,
-        le=10_000,
+        le=1_000,
         description="Required longest straight (m); 0 means unstated (no requirement).",
     )
 

@@ -48,4 +48,5 @@ def test_json_schema_export_has_the_twelve_fields():
     assert len(schema["properties"]) == 12
     assert schema["additionalProperties"] is False
     assert set(schema["properties"]["direction"]["enum"]) == {"clockwise", "counterclockwise"}
-    assert schema["properties"]["lap_length_m"]["exclusiveMinimum"] == 0
+    lap = schema["properties"]["lap_length_m"]
+    assert (lap["minimum"], lap["maximum"]) == (1, 2000)  # the one range, shared with the parser

@@ -9,7 +9,7 @@ import pytest
 from fake_ollama import Reply
 
 from roboracer_arena.cli import EXIT_BAD_INPUT, EXIT_OK, main
-from roboracer_arena.errors import RequestParseError
+from roboracer_arena.errors import MalformedOutputError, RequestParseError
 from roboracer_arena.parse import parse_request
 from roboracer_arena.parse.result import FIELDS
 from roboracer_arena.spec import TrackSpec
@@ -102,8 +102,8 @@ def test_ollama_answer_explaining_every_number_passes(fake_ollama):
 
 
 def test_ollama_value_out_of_range_is_refused(fake_ollama):
-    fake_ollama.reply = Reply(content=TrackSpec(lap_length_m=1e9).model_dump_json())
-    with pytest.raises(RequestParseError, match="lap_length_m.*1 to 2000 m"):
+    fake_ollama.reply = Reply(content=json.dumps({**TrackSpec().model_dump(), "lap_length_m": 1e9}))
+    with pytest.raises(MalformedOutputError, match="lap_length_m.*2000"):  # the schema's own range
         parse_request("a lap of 1e9 m", backend="ollama", ollama_host=fake_ollama.url)
 
 

@@ -1,9 +1,8 @@
 """What a request may state: the input-length cap and each field's plausible range.
 
-The ranges are the parser's, not the TrackSpec schema's: the schema only says "positive",
-while a request for a 1:10 RoboRacer track indoors that states a 1e308 m lap or 10 000
-hairpins is a typo or hostile input, refused with the field and its range named rather
-than handed on to the generator.
+The ranges are the TrackSpec schema's (one owner): a request for a 1:10 RoboRacer track
+indoors that states a 1e308 m lap or 10 000 hairpins is a typo or hostile input, refused
+with the field and its range named rather than handed on to the generator.
 """
 
 from __future__ import annotations
@@ -11,6 +10,7 @@ from __future__ import annotations
 import math
 
 from ..errors import RequestParseError
+from ..spec import TrackSpec
 from .result import Span
 
 #: Longest request accepted, in characters. A request is a sentence or a paragraph (the
@@ -18,18 +18,21 @@ from .result import Span
 #: work and any error message bounded.
 MAX_REQUEST_CHARS = 10_000
 
-#: field -> (lowest, highest) value a request may state, inclusive.
-FIELD_RANGES: dict[str, tuple[float, float]] = {
-    "lap_length_m": (1.0, 2000.0),
-    "corridor_width_m": (0.2, 20.0),
-    "hall_x_m": (1.0, 1000.0),
-    "hall_y_m": (1.0, 1000.0),
-    "min_radius_m": (0.0, 100.0),
-    "longest_straight_m": (0.0, 1000.0),
-    "hairpins": (0, 50),
-    "chicanes": (0, 50),
-    "sweepers": (0, 50),
-}
+def _field_ranges() -> dict[str, tuple[float, float]]:
+    """(lowest, highest) of every numeric TrackSpec field, from the schema itself."""
+    out = {}
+    for name, info in TrackSpec.model_fields.items():
+        if info.annotation not in (int, float):
+            continue
+        lo = next((getattr(m, k) for m in info.metadata for k in ("ge", "gt") if getattr(m, k, None) is not None), 0)
+        hi = next(getattr(m, "le") for m in info.metadata if getattr(m, "le", None) is not None)
+        out[name] = (lo, hi)
+    return out
+
+
+#: field -> (lowest, highest) value a request may state: the TrackSpec schema's own ranges
+#: (one owner; a spec file is held to the same).
+FIELD_RANGES: dict[str, tuple[float, float]] = _field_ranges()
 
 
 def check_length(text: object, max_chars: int | None = MAX_REQUEST_CHARS) -> None:
