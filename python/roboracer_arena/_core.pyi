@@ -233,3 +233,6 @@ def stadium_track(
     straight: float = 6.0, radius: float = 3.0, width: float = 2.0
 ) -> tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]:
     """Analytic stadium track ``(walls [outer, inner], centreline)`` for tests and benchmarks."""
+
+def _boundary_self_test() -> None:
+    """Panics inside the boundary on purpose (tests): raises InternalError."""

@@ -77,3 +77,17 @@ where
 {
     call(py, what, move || Ok(f()))
 }
+
+/// Panics inside [`call`] on purpose, so a test can prove that a core panic reaches
+/// Python as `InternalError` (never `PanicException`) and leaves the process running.
+#[pyfunction]
+fn _boundary_self_test(py: Python<'_>) -> PyResult<()> {
+    call(py, "_boundary_self_test", || -> arena_core::Result<()> {
+        panic!("deliberate panic for the boundary self-test")
+    })
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(_boundary_self_test, m)?)?;
+    Ok(())
+}

@@ -19,6 +19,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     boundary::install_panic_hook();
     errors::register(m)?;
+    boundary::register(m)?;
     grid::register(m)?;
     generate::register(m)?;
     maps::register(m)?;
