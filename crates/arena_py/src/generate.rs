@@ -276,6 +276,7 @@ fn validate_map<'py>(
     config_json: &str,
 ) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
     let (spec, cfg) = parse(spec_json, config_json)?;
+    validate::check_frame(resolution, [origin.0, origin.1, origin.2]).py()?;
     let grid = crate::maps::grid_from_py(&data, resolution, origin);
     let report = py.detach(move || validate::validate_map(&grid, &spec, &cfg));
     Ok((to_json(&report), line_to_py(py, &report.centreline)))

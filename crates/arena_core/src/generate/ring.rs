@@ -268,57 +268,71 @@ pub fn ring_candidate(
         let b = b_hi - (b_hi - b_lo) * t * t;
         (k_ab - b, b)
     } else {
-        // Too long for the hall's rectangle: push plain notches into the long side A
-        // (their far end keeps the pitch from side 2); the depth, or B, follows from L
-        // for each notch count, and one count that fits is drawn.
-        if uy - d.pitch < PLAIN_WIDTHS[0] * e {
-            return Err("ring: hall too narrow for a notch");
-        }
+        // Too long for the hall's rectangle: deepen the inward notches (inward hairpins,
+        // and `n` plain notches pushed into the long side A), all to one depth that
+        // keeps the pitch from the opposite side. For each `n` the depth, or B, follows
+        // from L; one `n` that fits is drawn.
         let width = PLAIN_WIDTHS[(rng.next_u32() as usize) % PLAIN_WIDTHS.len()] * e;
         let mut fits: Vec<(Layout, f64, f64)> = Vec::new();
-        for n in 1..=MAX_PLAIN_NOTCHES {
+        for n in 0..=MAX_PLAIN_NOTCHES {
             let mut l = lay.clone();
             for _ in 0..n {
                 let side = &mut l.sides[0];
                 let at = (rng.next_u32() as usize) % (side.len() + 1);
-                let notch = Insert::Notch {
+                side.insert(
+                    at,
+                    Insert::Notch {
+                        inward: true,
+                        width,
+                        depth: 0.0,
+                    },
+                );
+            }
+            let mut deep = 0usize;
+            for ins in l.sides.iter_mut().flatten() {
+                if let Insert::Notch {
                     inward: true,
-                    width,
-                    depth: 0.0,
-                };
-                side.insert(at, notch);
+                    depth,
+                    ..
+                } = ins
+                {
+                    *depth = 0.0;
+                    deep += 1;
+                }
+            }
+            if deep == 0 {
+                continue;
             }
             let (a_lo, b_lo) = floors(&l);
             if a_lo > ux || uy < b_lo {
                 break; // more notches only need more room
             }
-            // L = len(0, 0) + 2A + 2B + 2n·depth. With A near the hall's length: at full
-            // height B the depth makes up the rest; if that is too shallow for a plain
-            // notch, the notch takes its least depth and B shrinks instead.
-            let nf = n as f64;
+            // L = len(0, 0) + 2A + 2B + 2·deep·depth. With A near the hall's length: at
+            // full height B the depth makes up the rest; if that is too shallow, the
+            // notches take their least depth and B shrinks instead.
+            let du_lo = if n > 0 { PLAIN_WIDTHS[0] * e } else { e };
+            let nf = deep as f64;
             let a = ux - (ux - a_lo) * 0.15 * t;
             let rest = spec.lap_length_m - length_for(&l, a, 0.0);
             let (mut b, mut du) = (uy, (rest - 2.0 * uy) / (2.0 * nf));
-            if du < PLAIN_WIDTHS[0] * e {
-                du = PLAIN_WIDTHS[0] * e;
+            if du < du_lo {
+                du = du_lo;
                 b = (rest - 2.0 * nf * du) / 2.0;
             }
-            if a < a_lo || b < b_lo || b > uy + 1e-9 || du > b - d.pitch {
+            if a < a_lo || b < b_lo || b > uy + 1e-9 || du > a.min(b) - d.pitch {
                 continue;
             }
-            {
-                for ins in l.sides[0].iter_mut() {
-                    if let Insert::Notch {
-                        width: w, depth, ..
-                    } = ins
-                    {
-                        if *w == width && *depth == 0.0 {
-                            *depth = du;
-                        }
-                    }
+            for ins in l.sides.iter_mut().flatten() {
+                if let Insert::Notch {
+                    inward: true,
+                    depth,
+                    ..
+                } = ins
+                {
+                    *depth = du;
                 }
-                fits.push((l, a, b));
             }
+            fits.push((l, a, b));
         }
         if fits.is_empty() {
             return Err("ring: no notch count fits the lap");

@@ -121,6 +121,13 @@ impl ConstructorConfig {
                 )));
             }
         }
+        let (lo, hi) = crate::track::validate::RESOLUTION_RANGE;
+        if !(lo..=hi).contains(&c.resolution_m) {
+            return Err(ArenaError::invalid(format!(
+                "constructor config resolution_m: must be within [{lo}, {hi}] m (got {})",
+                c.resolution_m
+            )));
+        }
         for (name, v) in [
             ("clearance_m", c.clearance_m),
             ("hall_margin_m", c.hall_margin_m),
