@@ -54,6 +54,9 @@ pub enum Outcome {
     },
 }
 
+/// Seed offset of the ring constructor's candidate streams (distinct from the lattice's).
+const RING_STREAM: u64 = 0x5249_4E47;
+
 /// Most lattice perimeters considered (the largest ones, which fit halls best).
 const MAX_PERIMETER_OPTIONS: u64 = 64;
 /// Largest lattice box side (cells): growth costs grow with the box area.
@@ -112,8 +115,8 @@ pub fn construct(
     budget: &Budget,
 ) -> Result<Candidate, &'static str> {
     let d = derive(spec, cfg);
-    let mut rng = candidate_rng(seed, k);
     let (line, pitch) = if k % 3 == 1 {
+        let mut rng = candidate_rng(seed ^ RING_STREAM, k / 3);
         // Without a requested order the ring places the features in a drawn order.
         let mut order = boundary_order(spec);
         if order.is_empty() {
@@ -121,7 +124,9 @@ pub fn construct(
         }
         ring_candidate(spec, cfg, &d, &order, &mut rng)?
     } else {
-        lattice_line(spec, cfg, &d, &mut rng, k, budget)?
+        // The j-th lattice candidate draws stream j whatever the interleaving.
+        let j = k - (k + 2) / 3;
+        lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, budget)?
     };
     finish(line, pitch, spec, cfg, &d)
 }
