@@ -125,7 +125,7 @@ pub fn construct(
         ring_candidate(spec, cfg, &d, &order, &mut rng)?
     } else {
         // The j-th lattice candidate draws stream j whatever the interleaving.
-        let j = k - (k + 2) / 3;
+        let j = k - k.div_ceil(3);
         lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, budget)?
     };
     finish(line, pitch, spec, cfg, &d)
