@@ -269,7 +269,8 @@ fn finish(
     })
 }
 
-fn extent(p: &[[f64; 2]]) -> [f64; 2] {
+/// Bounding-box size (x, y) of a point set.
+pub(crate) fn extent(p: &[[f64; 2]]) -> [f64; 2] {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for q in p {
         for k in 0..2 {

@@ -17,6 +17,7 @@
 //! sides absorb the chicane steps, and `A` follows from `L` in closed form once `B` is
 //! drawn, because every corner's saving is known (see `rounding`).
 
+use super::construct::extent;
 use super::rounding::{round_polygon, savings};
 use super::spec::{ConstructorConfig, Derived, Spec};
 use crate::track::features::FeatureKind;
@@ -390,15 +391,4 @@ pub fn ring_candidate(
     }
     let line = round_polygon(&verts, &is_sweeper, rc, 0.02).ok_or("fillets overlap")?;
     Ok((line, e))
-}
-
-fn extent(p: &[[f64; 2]]) -> [f64; 2] {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for q in p {
-        for k in 0..2 {
-            lo[k] = lo[k].min(q[k]);
-            hi[k] = hi[k].max(q[k]);
-        }
-    }
-    [hi[0] - lo[0], hi[1] - lo[1]]
 }
