@@ -28,7 +28,7 @@ def check_timeout(timeout: object, what: str = "timeout") -> float | None:
     if timeout is None:
         return None
     if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not math.isfinite(timeout) or timeout <= 0:
-        raise InvalidArgumentError(f"{what} must be a finite number of seconds > 0 (or None for no limit), got {timeout!r}")
+        raise InvalidArgumentError(f"{what} must be a finite number of seconds > 0, got {timeout!r}")
     return float(timeout)
 
 
