@@ -12,10 +12,13 @@
 //! * chicane: a one-edge step (`L, R` inwards or `R, L` outwards) of height `e`;
 //! * sweeper: a corner of the rectangle cut by the rounding's 45° chamfer.
 //!
-//! Features keep at least two feature edges of straight between them and the corners,
-//! as the lattice's two-edge rule does. The loop closes by construction: the top and left
-//! sides absorb the chicane steps, and `A` follows from `L` in closed form once `B` is
-//! drawn, because every corner's saving is known (see `rounding`).
+//! Features keep 1.7–2 feature edges of run between them and the corners (the lattice
+//! keeps two), so the detector does not merge neighbouring turns. The loop closes by
+//! construction: the top and left sides absorb the chicane steps, and `A` follows from
+//! `L` in closed form once `B` is drawn, because every corner's saving is known (see
+//! `rounding`). A lap longer than the hall's rectangle gets plain notches (wide U's with
+//! four ordinary corners) in its long side, and inward hairpins are deepened, to one
+//! depth that `L` fixes.
 
 use super::construct::extent;
 use super::rounding::{round_polygon, savings};
