@@ -14,15 +14,19 @@ Every constructor gets the same specifications and seeds. How trials are counted
 
 Constructors:
 
-* ``lattice`` — Algorithm 1 as shipped (``generate_track``): at most 800 lattice candidates,
-  each rasterised and validated, the first valid map returned. Built ⇒ passed the raster
+* ``lattice`` — Algorithm 1 as shipped (``generate_track``): at most 800 candidates (the
+  lattice's, with every third from the ring constructor), each rasterised and validated, the
+  first valid map returned. Built ⇒ passed the raster
   validator inside the loop, so valid/built re-checks the written file.
-* ``lattice-raw`` — the paper's protocol for this table: the lattice constructor alone,
+* ``lattice-raw`` — the paper's protocol for this table: the constructor (lattice + ring) alone,
   emitting the first candidate that passes its *own analytic* checks (hall fit,
   self-clearance, curvature feature counts on the analytic curve), with no raster
   validation in the loop. Its valid/built says how well the constructor predicts the
   raster validator.
 * ``de`` / ``random`` — the scipy baselines of :mod:`roboracer_arena.generate.baselines`.
+
+``--sweep`` runs a different benchmark: Algorithm 1's acceptance on the stratified sweep of
+admissible specs (:mod:`roboracer_arena.bench.constructor_sweep`).
 """
 
 from __future__ import annotations
