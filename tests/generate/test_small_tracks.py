@@ -42,3 +42,15 @@ def test_shipped_sweep_file_is_the_defined_sweep():
     assert len(shipped) >= 300, SWEEP_FILE
     assert [s.model_dump() for s in shipped] == [s.model_dump() for s in sweep_specs()]
     assert all(screen(s)["passed"] for s in shipped[::17])
+
+
+def test_sweep_runner_counts_and_writes_remeasurable_maps(tmp_path):
+    from roboracer_arena.bench.constructor_sweep import run_sweep
+    from independent_measure import problems
+
+    specs = [ISSUE_CASE.model_copy(update={"name": "issue-case"}), TrackSpec(name="paper-200m", lap_length_m=200.0)]
+    result = run_sweep(specs, maps=tmp_path, progress=False)
+    assert result["specs"] == 2 and result["accepted"] == 1
+    assert [m["spec"] for m in result["misses"]] == ["paper-200m"] and result["misses"][0]["outcome"] == "rejected"
+    assert result["by_hall"] == {"12x9": "1/1", "20x15": "0/1"}
+    assert problems(ISSUE_CASE, tmp_path / "issue-case" / "map.yaml") == []
