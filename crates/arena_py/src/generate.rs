@@ -106,14 +106,20 @@ fn derived_geometry(spec_json: &str, config_json: &str) -> PyResult<String> {
 /// run on the main thread, so the core runs on a worker while this thread polls).
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
+/// Grace (s) past the deadline before the binding stops waiting for a worker that is
+/// inside one long candidate (rasterising or validating a very large map).
+const DEADLINE_GRACE_S: f64 = 1.0;
+
 /// Run `work` on a worker thread with a [`Budget`] of `timeout` seconds, polling Python
-/// signals meanwhile: on KeyboardInterrupt the cancellation flag is set, the worker
-/// stops between candidates, and the signal's exception is raised.
+/// signals meanwhile. On KeyboardInterrupt the cancellation flag is set and the signal's
+/// exception is raised at once; once the deadline (plus a short grace) has passed,
+/// `Ok(None)` is returned at once. Either way the worker is left to stop at its next
+/// check, its result discarded, so one long candidate cannot hold the caller.
 fn run_budgeted<T: Send + 'static>(
     py: Python<'_>,
     timeout: Option<f64>,
     work: impl FnOnce(&Budget) -> T + Send + 'static,
-) -> PyResult<T> {
+) -> PyResult<Option<T>> {
     if let Some(t) = timeout {
         if !(t.is_finite() && t > 0.0) {
             return Err(crate::errors::InvalidArgumentError::new_err(format!(
@@ -123,6 +129,7 @@ fn run_budgeted<T: Send + 'static>(
     }
     let flag = Arc::new(AtomicBool::new(false));
     let budget = Budget::new(timeout, Some(flag.clone()));
+    let hard_stop = Budget::new(timeout.map(|t| t + DEADLINE_GRACE_S), None);
     // The worker's result slot: None while running, Some(Err) if the worker panicked.
     type Slot<T> = Option<std::thread::Result<T>>;
     let slot: Arc<(Mutex<Slot<T>>, Condvar)> = Arc::new((Mutex::new(None), Condvar::new()));
@@ -153,7 +160,7 @@ fn run_budgeted<T: Send + 'static>(
     };
     loop {
         match wait(Some(SIGNAL_POLL)) {
-            Some(Ok(v)) => return Ok(v),
+            Some(Ok(v)) => return Ok(Some(v)),
             Some(Err(_)) => {
                 return Err(crate::errors::ArenaError::new_err(
                     "internal error in the generator (a bug; please report it with the spec)",
@@ -162,12 +169,25 @@ fn run_budgeted<T: Send + 'static>(
             None => {
                 if let Err(e) = py.check_signals() {
                     flag.store(true, Ordering::Relaxed);
-                    let _ = wait(None);
                     return Err(e);
+                }
+                if hard_stop.stopped().is_some() {
+                    flag.store(true, Ordering::Relaxed);
+                    return Ok(None);
                 }
             }
         }
     }
+}
+
+/// Failure info when the deadline passed inside one candidate (its count is unknown).
+fn abandoned_info() -> String {
+    serde_json::json!({
+        "tried": 0,
+        "reasons": {"time budget ran out inside one candidate (rasterising or validating)": 1},
+        "stopped": "timeout",
+    })
+    .to_string()
 }
 
 fn stop_name(s: Option<Stop>) -> Option<&'static str> {
@@ -198,11 +218,13 @@ fn generate_lattice<'py>(
     Option<Bound<'py, PyArray2<f64>>>,
 )> {
     let (spec, cfg) = parse(spec_json, config_json)?;
-    let out = run_budgeted(py, timeout, move |b| {
+    let Some(out) = run_budgeted(py, timeout, move |b| {
         construct::generate(&spec, &cfg, seed, b)
     })?
-    .py()?;
-    Ok(match out {
+    else {
+        return Ok(("failed", abandoned_info(), None, None));
+    };
+    Ok(match out.py()? {
         Outcome::Accepted {
             grid,
             candidate,
@@ -249,9 +271,12 @@ fn construct_lattice<'py>(
     timeout: Option<f64>,
 ) -> PyResult<(String, Option<Bound<'py, PyArray2<f64>>>)> {
     let (spec, cfg) = parse(spec_json, config_json)?;
-    let out = run_budgeted(py, timeout, move |b| {
+    let Some(out) = run_budgeted(py, timeout, move |b| {
         construct::first_candidate(&spec, &cfg, seed, b)
-    })?;
+    })?
+    else {
+        return Ok((abandoned_info(), None));
+    };
     Ok(match out {
         Ok((c, tried)) => (
             serde_json::json!({"tried": tried, "pitch_m": c.pitch_m}).to_string(),
