@@ -74,8 +74,10 @@ def generate_track(
 
     ``timeout`` bounds the lattice search in wall-clock seconds (default 60; None = no
     limit): when it runs out the result is a :class:`GenerationFailure` with
-    ``stopped="timeout"``. Ctrl-C stops the search between candidates and raises
-    KeyboardInterrupt. A hall whose raster would exceed the generator's cell budget
+    ``stopped="timeout"``; the call returns at most about a second after the budget even
+    when one candidate (a very large map) is still being rasterised, which then stops in the
+    background at its next check. Ctrl-C raises KeyboardInterrupt at once the same way. The
+    DE and random baselines are not bounded by ``timeout``. A hall whose raster would exceed the generator's cell budget
     raises :class:`~roboracer_arena.errors.SpecError`.
     """
     if constructor not in CONSTRUCTORS:
