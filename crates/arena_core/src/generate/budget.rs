@@ -8,9 +8,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// Largest raster (cells) a generated map may need: hall area / Δ². 4·10⁸ cells at the
-/// default Δ = 0.05 m is a 1 km × 1 km hall (a few hundred MB at one byte per cell).
-pub const MAX_RASTER_CELLS: f64 = 4.0e8;
+/// Largest raster (cells) a generated map may need: hall area / Δ². 4·10⁷ cells at the
+/// default Δ = 0.05 m is a 316 m × 316 m hall; the validator's distance transform and
+/// labels take ~15 bytes per cell, so this keeps one candidate under ~0.6 GB.
+pub const MAX_RASTER_CELLS: f64 = 4.0e7;
 
 /// Why a generation stopped before its candidate cap.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

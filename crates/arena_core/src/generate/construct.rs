@@ -521,8 +521,8 @@ mod tests {
             Err(crate::ArenaError::Spec(_))
         ));
         assert!(perimeter_options(&s, &derive(&s, &cfg)).len() <= MAX_PERIMETER_OPTIONS as usize);
-        // A 2 km lap in a 900 m hall stops on its deadline.
-        let s = small(2000.0, 1.5, 900.0, 900.0, 0, 0, 0);
+        // A 2 km lap in a 100 m hall stops on its deadline.
+        let s = small(2000.0, 1.5, 100.0, 100.0, 0, 0, 0);
         let t = std::time::Instant::now();
         let out = generate(&s, &cfg, 0, &Budget::new(Some(0.5), None)).unwrap();
         assert!(t.elapsed().as_secs_f64() < 5.0);
