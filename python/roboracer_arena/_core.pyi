@@ -39,17 +39,20 @@ def derived_geometry(spec_json: str, config_json: str) -> str:
     """Derived geometry as JSON: r_min, pitch, l_max, s_min, corner_radius."""
 
 def generate_lattice(
-    spec_json: str, config_json: str, seed: int
+    spec_json: str, config_json: str, seed: int, timeout: float | None = None
 ) -> tuple[
     str,
     str,
     tuple[npt.NDArray[np.uint8], tuple[float, float, float]] | None,
     npt.NDArray[np.float64] | None,
 ]:
-    """Algorithm 1 (lattice): (kind "accepted"|"rejected"|"failed", info_json, map | None, centreline | None)."""
+    """Algorithm 1 (lattice + ring): (kind "accepted"|"rejected"|"failed", info_json, map | None, centreline | None).
+
+    ``timeout`` seconds (None = unbounded) bounds the loop (info ``stopped: "timeout"``);
+    Ctrl-C stops it between candidates and raises KeyboardInterrupt."""
 
 def construct_lattice(
-    spec_json: str, config_json: str, seed: int
+    spec_json: str, config_json: str, seed: int, timeout: float | None = None
 ) -> tuple[str, npt.NDArray[np.float64] | None]:
     """Lattice constructor without raster validation in the loop: (info_json, centreline | None)."""
 

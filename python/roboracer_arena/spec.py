@@ -74,6 +74,16 @@ class TrackSpec(NumbersAreNumbers):
         description="Required longest straight (m); 0 means unstated (no requirement).",
     )
 
+    @field_validator(
+        "lap_length_m", "corridor_width_m", "hall_x_m", "hall_y_m", "hairpins", "chicanes", "sweepers", "min_radius_m", "longest_straight_m", mode="before"
+    )
+    @classmethod
+    def _no_bool_numbers(cls, v: object) -> object:
+        # pydantic's lax mode would read true as 1 (a 1 m lap); a bool is never a quantity.
+        if isinstance(v, bool):
+            raise ValueError("must be a finite number (metres or a count), not a boolean")
+        return v
+
     @field_validator("name")
     @classmethod
     def _name_is_printable(cls, v: str) -> str:

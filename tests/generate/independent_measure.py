@@ -66,3 +66,38 @@ def measure(yaml_path: Path) -> Measurement:
         extent_m=((c1 - c0 + 1) * res, (r1 - r0 + 1) * res),
         resolution=res,
     )
+
+
+def problems(spec, yaml_path: Path) -> list[str]:
+    """What the independent re-measurement of a written map finds wrong with it (empty:
+    independently valid) against its TrackSpec."""
+    from roboracer_arena.constructor_config import ConstructorConfig
+
+    cfg = ConstructorConfig()
+    m = measure(yaml_path)
+    w, out = spec.corridor_width_m, []
+    if m.free_components != 1:
+        out.append(f"{m.free_components} free components, not one corridor")
+    if m.infields != 1:
+        out.append(f"{m.infields} enclosed infields, not one")
+    if abs(m.width_m - w) > 0.05 * w + m.resolution:
+        out.append(f"width {m.width_m:.3f} m vs {w} m")
+    # No merged passes: nowhere is the corridor much wider than requested.
+    if m.max_width_m > w + 2 * m.resolution:
+        out.append(f"widest spot {m.max_width_m:.3f} m vs {w} m")
+    if abs(m.lap_length_m - spec.lap_length_m) > 0.04 * spec.lap_length_m:
+        out.append(f"lap {m.lap_length_m:.2f} m vs {spec.lap_length_m} m")
+    ux, uy = spec.hall_x_m - 2 * cfg.hall_margin_m, spec.hall_y_m - 2 * cfg.hall_margin_m
+    ex, ey = m.extent_m
+    r = m.resolution
+    if not ((ex <= ux + r and ey <= uy + r) or (ey <= ux + r and ex <= uy + r)):
+        out.append(f"extent {ex:.2f} x {ey:.2f} m outside the {ux} x {uy} m hall")
+    return out
+
+
+def assert_independently_valid(acc, outdir: Path) -> None:
+    """Write an Acceptance's outputs to ``outdir`` and re-measure them independently."""
+    from roboracer_arena.generate import write_outputs
+
+    found = problems(acc.spec, write_outputs(acc, outdir)["map_yaml"])
+    assert not found, found

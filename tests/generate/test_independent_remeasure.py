@@ -3,33 +3,16 @@
 validator)."""
 
 import json
-from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from roboracer_arena import TrackSpec
-from roboracer_arena.constructor_config import ConstructorConfig
-from roboracer_arena.generate import Acceptance, GenerationFailure, generate_track, screen, write_outputs
+from roboracer_arena.generate import Acceptance, GenerationFailure, generate_track, screen
 from roboracer_arena.paths import bench_data
-from independent_measure import measure
+from independent_measure import assert_independently_valid
 
-
-
-def assert_independently_valid(acc: Acceptance, outdir: Path) -> None:
-    spec, cfg = acc.spec, ConstructorConfig()
-    m = measure(write_outputs(acc, outdir)["map_yaml"])
-    assert m.free_components == 1, "one connected corridor"
-    assert m.infields == 1, "one enclosed infield"
-    w = spec.corridor_width_m
-    assert abs(m.width_m - w) <= 0.05 * w + m.resolution, f"width {m.width_m} vs {w}"
-    # No merged passes: nowhere is the corridor much wider than requested.
-    assert m.max_width_m <= w + 2 * m.resolution, f"widest spot {m.max_width_m} vs {w}"
-    assert abs(m.lap_length_m - spec.lap_length_m) <= 0.04 * spec.lap_length_m, f"lap {m.lap_length_m} vs {spec.lap_length_m}"
-    ux, uy = spec.hall_x_m - 2 * cfg.hall_margin_m, spec.hall_y_m - 2 * cfg.hall_margin_m
-    ex, ey = m.extent_m
-    assert (ex <= ux + m.resolution and ey <= uy + m.resolution) or (ey <= ux + m.resolution and ex <= uy + m.resolution)
 
 
 def _bench_specs() -> list[TrackSpec]:

@@ -14,15 +14,19 @@ Every constructor gets the same specifications and seeds. How trials are counted
 
 Constructors:
 
-* ``lattice`` — Algorithm 1 as shipped (``generate_track``): at most 800 lattice candidates,
-  each rasterised and validated, the first valid map returned. Built ⇒ passed the raster
+* ``lattice`` — Algorithm 1 as shipped (``generate_track``): at most 800 candidates (the
+  lattice's, with every third from the ring constructor), each rasterised and validated, the
+  first valid map returned. Built ⇒ passed the raster
   validator inside the loop, so valid/built re-checks the written file.
-* ``lattice-raw`` — the paper's protocol for this table: the lattice constructor alone,
+* ``lattice-raw`` — the paper's protocol for this table: the constructor (lattice + ring) alone,
   emitting the first candidate that passes its *own analytic* checks (hall fit,
   self-clearance, curvature feature counts on the analytic curve), with no raster
   validation in the loop. Its valid/built says how well the constructor predicts the
   raster validator.
 * ``de`` / ``random`` — the scipy baselines of :mod:`roboracer_arena.generate.baselines`.
+
+``--sweep`` runs a different benchmark: Algorithm 1's acceptance on the stratified sweep of
+admissible specs (:mod:`roboracer_arena.bench.constructor_sweep`).
 """
 
 from __future__ import annotations
@@ -195,10 +199,24 @@ def register(kinds) -> None:
     p.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], metavar="S", help="seeds (default 0 1 2)")
     p.add_argument("--constructors", nargs="+", choices=CONSTRUCTOR_CHOICES, default=list(CONSTRUCTOR_CHOICES), metavar="C", help=f"subset of {', '.join(CONSTRUCTOR_CHOICES)} (default all)")
     p.add_argument("--json", type=Path, metavar="FILE", help="write the summary and every trial to FILE")
+    p.add_argument("--sweep", action="store_true", help="instead: Algorithm 1's acceptance on the stratified sweep of admissible specs (bench/data/sweep_specs.jsonl)")
+    p.add_argument("--maps", type=Path, metavar="DIR", help="with --sweep: write every accepted map under DIR")
+    p.add_argument("--jobs", type=int, default=1, metavar="N", help="with --sweep: worker processes (default 1)")
     p.set_defaults(func=_cli)
 
 
 def _cli(args: argparse.Namespace) -> int:
+    if args.sweep:
+        from .constructor_sweep import load_sweep_file, print_sweep, run_sweep
+
+        if args.jobs < 1:
+            raise SpecError(f"--jobs must be ≥ 1, got {args.jobs}")
+        result = run_sweep(load_sweep_file(), args.maps, args.jobs)
+        print_sweep(result)
+        if args.json:
+            atomic_write_text(args.json, json.dumps(result, indent=2) + "\n")
+            print(f"wrote {args.json}")
+        return 0
     if any(s < 0 for s in args.seeds):
         raise SpecError(f"--seeds must be ≥ 0, got {args.seeds}")
     specs = load_specs(args.specs or default_specs_path())

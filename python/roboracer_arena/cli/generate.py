@@ -1,19 +1,25 @@
 """``roboracer-arena generate``: a TrackSpec (``--spec FILE``) or a natural-language
 REQUEST (parsed first, see ``roboracer-arena parse``) to a validated map, a proven
-rejection (exit 3) or a generation failure (exit 4).
+rejection (exit 3) or a generation failure (exit 4, also when ``--timeout`` runs out).
 
-Example: roboracer-arena generate "a 60 m lap with two hairpins in a 20 by 15 m hall" -o out/t1"""
+OUTDIR appears whole or not at all, and replaces an earlier generate output there (so no
+stale stage is left when ``--build`` is not given); an OUTDIR that is a file or holds
+other files is refused (exit 2). ``--build`` also builds the USD stage, ``--drive``
+drives the reference car one lap on the map (exit 5 if it does not finish).
+
+Example: roboracer-arena generate "a 60 m lap with two hairpins in a 20 by 15 m hall" -o out/t1 --build --drive"""
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
 from pathlib import Path
 
-from . import EXIT_GENERATION_FAILURE, EXIT_OK, EXIT_REJECTED
+from . import EXIT_GENERATION_FAILURE, EXIT_LAP_FAILED, EXIT_OK, EXIT_REJECTED
 from ._common import add_json_flag, print_json
 from .parse import add_backend_args, parse_from_args, print_result
-from ..errors import InvalidArgumentError, MapIOError
+from ..errors import InvalidArgumentError
 from ..spec import TrackSpec
 
 
@@ -30,9 +36,23 @@ def register(sub) -> None:
     p.add_argument("-o", "--out", type=Path, default=Path("out/generated"), metavar="OUTDIR", help="output directory")
     p.add_argument("--constructor", choices=["lattice", "de", "random"], default="lattice")
     p.add_argument("--build", action="store_true", help="also build the USD environment through the builder")
+    p.add_argument("--drive", action="store_true", help="then drive the reference car one lap on the map (exit 5 if it fails)")
     add_backend_args(p)
+    _share_timeout(p)
     add_json_flag(p)
     p.set_defaults(func=run)
+
+
+_MODEL_TIMEOUT_DEFAULT = "_model_timeout_default"
+
+
+def _share_timeout(p: argparse.ArgumentParser) -> None:
+    """``--timeout SECONDS`` (from the parser options) bounds the track search too."""
+    action = next(a for a in p._actions if a.dest == "timeout")
+    p.set_defaults(**{_MODEL_TIMEOUT_DEFAULT: action.default})
+    action.default = None
+    action.metavar = "SECONDS"
+    action.help = f"time budget of the track search (default 60 s; exit 4 when it runs out) and of an Ollama model call (default {p.get_default(_MODEL_TIMEOUT_DEFAULT):g} s)"
 
 
 def _spec_from_args(args: argparse.Namespace):
@@ -42,55 +62,90 @@ def _spec_from_args(args: argparse.Namespace):
     if args.spec is not None:
         return TrackSpec.from_file(args.spec), None
     if args.request:
-        parsed = parse_from_args(args, args.request)
+        model_timeout = getattr(args, _MODEL_TIMEOUT_DEFAULT) if args.timeout is None else args.timeout
+        parsed = parse_from_args(argparse.Namespace(**{**vars(args), "timeout": model_timeout}), args.request)
         return parsed.spec, parsed
     raise InvalidArgumentError("give a natural-language REQUEST or a TrackSpec with --spec SPEC.json")
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..generate import Acceptance, Rejection, generate_track, write_outputs
+    from ..generate import Acceptance, Rejection, generate_track
+    from ..generate.pipeline import DEFAULT_TIMEOUT_S, check_timeout
 
-    if args.seed < 0:
-        raise InvalidArgumentError(f"--seed must be ≥ 0, got {args.seed}")
-    if args.out.exists() and not args.out.is_dir():
-        raise MapIOError(f"{args.out}: exists and is not a directory; -o names the output folder")
+    if args.seed < 0 or args.seed >= 2**64:
+        raise InvalidArgumentError(f"--seed must be in [0, 2**64), got {args.seed}")
+    timeout = check_timeout(DEFAULT_TIMEOUT_S if args.timeout is None else args.timeout, "--timeout")
+    _check_outdir(args.out)
     spec, parsed = _spec_from_args(args)
     if parsed is not None and not args.json:
         print_result(parsed, file=sys.stderr)
-    outcome = generate_track(spec, seed=args.seed, constructor=args.constructor)
+    outcome = generate_track(spec, seed=args.seed, constructor=args.constructor, timeout=timeout)
     summary: dict = {"outcome": outcome.kind, "name": spec.name, "seconds": round(outcome.seconds, 4)}
     if parsed is not None:
         summary["parse"] = parsed.to_dict()
     if isinstance(outcome, Acceptance):
-        paths = write_outputs(outcome, args.out)
-        summary.update(
-            candidates_tried=outcome.candidates_tried,
-            files={k: str(v) for k, v in paths.items()},
-            checks=outcome.report["checks"],
-            features=outcome.report["features"],
-        )
-        if args.build:
-            try:
-                from ..builder import build_environment  # type: ignore[import-not-found]
-                from ..maps import load_map  # type: ignore[import-not-found]
-            except ImportError as e:
-                raise InvalidArgumentError(f"--build needs the USD builder, which this installation lacks ({e}); the map was written to {args.out}") from e
-            usd = args.out / "track.usda"
-            build_environment(load_map(paths["map_yaml"]), usd)
-            summary["files"]["usd"] = str(usd)
+        summary.update(candidates_tried=outcome.candidates_tried, files=_write_folder(outcome, args),
+                       checks=outcome.report["checks"], features=outcome.report["features"])
         code = EXIT_OK
+        if args.drive:
+            code = _drive(Path(summary["files"]["map_yaml"]), args, summary)
     elif isinstance(outcome, Rejection):
         summary.update(violations=outcome.violations, screen=outcome.screen)
         code = EXIT_REJECTED
     else:
-        summary.update(candidates_tried=outcome.candidates_tried, reasons=outcome.reasons)
+        summary.update(candidates_tried=outcome.candidates_tried, reasons=outcome.reasons, stopped=outcome.stopped)
         code = EXIT_GENERATION_FAILURE
     if args.json:
         print_json(summary)
     else:
-        print(outcome.summary(), file=sys.stdout if code == EXIT_OK else sys.stderr)
-        if code == EXIT_OK:
+        print(outcome.summary(), file=sys.stderr if code in (EXIT_REJECTED, EXIT_GENERATION_FAILURE) else sys.stdout)
+        if isinstance(outcome, Acceptance):
             for c in outcome.report["checks"]:
                 print(f"  {'ok ' if c['passed'] else 'BAD'} {c['name']:<17} {c['measured']:<34} {c['bound']}")
             print(f"wrote {args.out}/")
+            if "drive" in summary:
+                d = summary["drive"]
+                verdict = "completed" if d["completed"] else ("COLLIDED" if d["collided"] else "did not finish")
+                print(f"drove 1 lap: {verdict}" + (f" in {d['lap_times'][0]:.2f} s" if d["lap_times"] else ""))
     return code
+
+
+def _check_outdir(out: Path) -> None:
+    """Refuse a bad -o before any work (the same rule :func:`output_folder` applies)."""
+    if out.exists() and not out.is_dir():
+        raise InvalidArgumentError(f"-o {out}: exists and is not a directory; give a new or an earlier generate output directory")
+
+
+def _write_folder(acc, args: argparse.Namespace) -> dict[str, str]:
+    """Every output (and the stage with --build) into a temporary folder that then
+    replaces OUTDIR whole; returns the final paths."""
+    from ..generate import write_outputs
+    from ..generate.outputs import output_folder
+
+    final = Path(args.out)
+    with output_folder(final) as tmp:
+        paths = write_outputs(acc, tmp)
+        if args.build:
+            _build_stage(paths["map_yaml"], tmp, final, args)
+            paths["usd"] = tmp / "track.usda"
+    return {k: str(final / v.name) for k, v in paths.items()}
+
+
+def _build_stage(map_yaml: Path, tmp: Path, final: Path, args: argparse.Namespace) -> None:
+    try:
+        from ..builder import build_environment  # type: ignore[import-not-found]
+        from ..maps import load_map  # type: ignore[import-not-found]
+    except ImportError as e:
+        raise InvalidArgumentError(f"--build needs the USD builder, which this installation lacks ({e})") from e
+    occ = load_map(map_yaml)
+    # The stage records where its source map lives: the final folder, not the temporary one.
+    occ = dataclasses.replace(occ, path=final / map_yaml.name)
+    build_environment(occ, tmp / "track.usda")
+
+
+def _drive(map_yaml: Path, args: argparse.Namespace, summary: dict) -> int:
+    from ..drivers import drive_laps
+
+    res = drive_laps(str(map_yaml), 1, progress=False)
+    summary["drive"] = res.to_dict()
+    return EXIT_OK if res.completed else EXIT_LAP_FAILED

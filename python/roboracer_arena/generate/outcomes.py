@@ -71,11 +71,13 @@ class GenerationFailure:
     reasons: dict[str, int] = field(default_factory=dict)
     seconds: float = 0.0
     built_invalid_report: dict[str, Any] | None = None
+    stopped: str | None = None  # "timeout" when the time budget cut the search short
     kind: str = "failed"
 
     def summary(self) -> str:
         top = ", ".join(f"{k}: {v}" for k, v in sorted(self.reasons.items(), key=lambda kv: -kv[1])[:5])
-        return f"generation failure after {self.candidates_tried} candidate(s) ({top})"
+        why = " (time budget exhausted)" if self.stopped == "timeout" else ""
+        return f"generation failure after {self.candidates_tried} candidate(s){why} ({top})"
 
 
 Outcome = Acceptance | Rejection | GenerationFailure

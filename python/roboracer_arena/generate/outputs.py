@@ -1,16 +1,30 @@
 """Writing an accepted track: ROS map (PNG + YAML), centreline CSV (x, y, w_right,
-w_left), the spec JSON and the validation report JSON, each written atomically."""
+w_left), the spec JSON and the validation report JSON, each written atomically.
+
+:func:`output_folder` makes a whole folder of outputs appear at once: everything is
+written into a fresh hidden sibling directory, which then replaces the target by rename.
+A folder left by an earlier ``generate`` (it holds ``report.json``) is replaced whole,
+so no stale file (e.g. an old stage when ``--build`` is not given) survives; a folder
+holding anything else is refused, never overwritten."""
 
 from __future__ import annotations
 
+import contextlib
 import io
 import json
+import os
+import shutil
+import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 
+from ..errors import InvalidArgumentError
 from ..fileio import atomic_write_text
 from .outcomes import Acceptance
+
+REPORT_NAME = "report.json"
 
 
 def centreline_csv(line: np.ndarray, width_m: float) -> str:
@@ -49,3 +63,55 @@ def write_outputs(acc: Acceptance, outdir: str | Path, stem: str = "map") -> dic
     }
     atomic_write_text(paths["report_json"], json.dumps(report, indent=2) + "\n")
     return paths
+
+
+def _is_generate_folder(d: Path) -> bool:
+    """Empty, or holds the report an earlier ``generate`` wrote."""
+    names = os.listdir(d)
+    if not names:
+        return True
+    try:
+        report = json.loads((d / REPORT_NAME).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return isinstance(report, dict) and "constructor" in report and "checks" in report
+
+
+@contextlib.contextmanager
+def output_folder(outdir: str | Path) -> Iterator[Path]:
+    """Yield a temporary folder beside ``outdir``; on success it replaces ``outdir``.
+
+    Raises :class:`~roboracer_arena.errors.InvalidArgumentError` (before any work) when
+    ``outdir`` is an existing file, or a folder that an earlier ``generate`` did not
+    write. On any error the temporary folder is removed and ``outdir`` is untouched.
+    """
+    out = Path(outdir)
+    if out.exists() or out.is_symlink():
+        if not out.is_dir() or out.is_symlink():
+            raise InvalidArgumentError(f"-o {out}: exists and is not a directory; give a new or an earlier generate output directory")
+        if not _is_generate_folder(out):
+            raise InvalidArgumentError(f"-o {out}: directory holds files generate did not write; give a new, empty or earlier generate output directory")
+    parent = out.absolute().parent
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".tmp", dir=parent))
+        mask = os.umask(0o22)
+        os.umask(mask)
+        os.chmod(tmp, 0o777 & ~mask)  # mkdtemp makes 0700; the folder is a normal output
+    except OSError as e:
+        raise InvalidArgumentError(f"-o {out}: cannot create the output directory: {e.strerror or e}") from e
+    old: Path | None = None
+    try:
+        yield tmp
+        if out.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".old", dir=parent))
+            os.replace(out, old / "previous")
+        os.replace(tmp, out)
+    except BaseException:
+        if old is not None and not out.exists():
+            os.replace(old / "previous", out)  # put the earlier folder back
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    finally:
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)

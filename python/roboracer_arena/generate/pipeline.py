@@ -5,6 +5,7 @@ every acceptance passed the raster validator."""
 from __future__ import annotations
 
 import json
+import math
 import time
 from typing import Any, Literal
 
@@ -19,6 +20,17 @@ from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
 
 Constructor = Literal["lattice", "de", "random"]
 CONSTRUCTORS: tuple[str, ...] = ("lattice", "de", "random")
+DEFAULT_TIMEOUT_S = 60.0
+"""Default wall-clock budget of :func:`generate_track` (seconds)."""
+
+
+def check_timeout(timeout: object, what: str = "timeout") -> float | None:
+    """``timeout`` as seconds (None = unbounded); refuses bools, NaN, inf and ≤ 0."""
+    if timeout is None:
+        return None
+    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not math.isfinite(timeout) or timeout <= 0:
+        raise InvalidArgumentError(f"{what} must be a finite number of seconds > 0, got {timeout!r}")
+    return float(timeout)
 
 
 def _jsons(spec: TrackSpec, config: ConstructorConfig) -> tuple[str, str]:
@@ -53,29 +65,39 @@ def generate_track(
     seed: int = 0,
     constructor: Constructor = "lattice",
     config: ConstructorConfig | None = None,
+    timeout: float | None = DEFAULT_TIMEOUT_S,
 ) -> Outcome:
     """Turn a spec into a validated map, a proven rejection or a generation failure.
 
     ``constructor`` is ``"lattice"`` (the paper's method, Rust), or one of the baselines
     ``"de"`` / ``"random"`` (scipy; their output is validated the same way, and an invalid
     one becomes a :class:`GenerationFailure`, never an acceptance).
+
+    ``timeout`` bounds the lattice search in wall-clock seconds (default 60; None = no
+    limit): when it runs out the result is a :class:`GenerationFailure` with
+    ``stopped="timeout"``; the call returns at most about a second after the budget even
+    when one candidate (a very large map) is still being rasterised, which then stops in the
+    background at its next check. Ctrl-C raises KeyboardInterrupt at once the same way. The
+    DE and random baselines are not bounded by ``timeout``. A hall whose raster would exceed the generator's cell budget
+    raises :class:`~roboracer_arena.errors.SpecError`.
     """
     if constructor not in CONSTRUCTORS:
         raise InvalidArgumentError(f"constructor must be one of {', '.join(CONSTRUCTORS)}; got {constructor!r}")
-    if not isinstance(seed, int) or seed < 0:
-        raise InvalidArgumentError(f"seed must be a non-negative integer, got {seed!r}")
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**64:
+        raise InvalidArgumentError(f"seed must be an integer in [0, 2**64), got {seed!r}")
+    timeout = check_timeout(timeout)
     config = config or ConstructorConfig()
     t0 = time.perf_counter()
     sr = screen(spec, config)
     if not sr["passed"]:
         return Rejection(spec, list(sr["violations"]), sr, time.perf_counter() - t0)
     if constructor == "lattice":
-        kind, info, grid, line = _core.generate_lattice(*_jsons(spec, config), seed)
+        kind, info, grid, line = _core.generate_lattice(*_jsons(spec, config), seed, timeout)
         info = json.loads(info)
         if kind == "accepted":
             data, origin = grid
             return Acceptance(spec, OccupancyMap(data, config.resolution_m, origin), line, info["report"], constructor, seed, info["tried"], time.perf_counter() - t0)
-        return GenerationFailure(spec, constructor, seed, info["tried"], dict(info["reasons"]), time.perf_counter() - t0)
+        return GenerationFailure(spec, constructor, seed, info["tried"], dict(info["reasons"]), time.perf_counter() - t0, stopped=info.get("stopped"))
     from .baselines import construct_baseline
 
     line = construct_baseline(spec, config, seed, constructor)

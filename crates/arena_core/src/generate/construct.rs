@@ -2,9 +2,15 @@
 //! each rasterised and validated; the first valid map is returned.
 //!
 //! Candidate `k` of seed `σ` draws from its own ChaCha8 stream seeded with `(σ, k)`, so a
-//! candidate does not depend on how many came before it.
+//! candidate does not depend on how many came before it. Every third candidate
+//! (`k ≡ 1 mod 3`) comes from the ring constructor (`ring`), the rest from the lattice:
+//! small halls, where the lattice's one-pitch loop cannot fit, get the rounded rectangle
+//! of free side lengths early, and large ones keep most of the budget for the lattice.
+//! The loop stops early when its [`Budget`] (deadline, cancellation flag) runs out.
 
+use super::budget::{check_limits, Budget, Stop};
 use super::lattice::{grow, Target};
+use super::ring::ring_candidate;
 use super::rounding::{pitch_for_length, rounded_centreline};
 use super::screen::{screen, ScreenResult};
 use super::spec::{derive, ConstructorConfig, Derived, Spec};
@@ -43,46 +49,129 @@ pub enum Outcome {
     Failed {
         tried: u32,
         reasons: BTreeMap<String, u32>,
+        /// Set when the budget stopped the loop before the candidate cap.
+        stopped: Option<Stop>,
     },
 }
 
-/// Even perimeters (in lattice edges) whose pitch can land in `PITCH_RANGE`.
+/// Seed offset of the ring constructor's candidate streams (distinct from the lattice's).
+const RING_STREAM: u64 = 0x5249_4E47;
+
+/// Most lattice perimeters considered (the largest ones, which fit halls best).
+const MAX_PERIMETER_OPTIONS: u64 = 64;
+/// Largest lattice box side (cells): growth costs grow with the box area.
+const MAX_BOX_CELLS: i32 = 64;
+
+/// Even perimeters (in lattice edges) whose pitch can land in `PITCH_RANGE`, largest
+/// first. The range follows in closed form from `s_lo = L/E ≤ 1.4 s_min` and
+/// `s_hi = (L + E·o)/E ≥ s_min`, so no loop bound comes from the input unchecked.
 fn perimeter_options(spec: &Spec, d: &Derived) -> Vec<u32> {
     let l = spec.lap_length_m;
     let (o, _) = super::rounding::savings(d.corner_radius);
-    let mut v = Vec::new();
-    let mut e = 4u32;
-    while (e as f64) * d.s_min * PITCH_RANGE.0 <= l + e as f64 * o {
-        // s ranges from L/E (no corners saved) up to (L + E·o)/E (a corner at every edge).
-        let (s_lo, s_hi) = (l / e as f64, (l + e as f64 * o) / e as f64);
-        if s_hi >= d.s_min * PITCH_RANGE.0 && s_lo <= d.s_min * PITCH_RANGE.1 {
-            v.push(e);
-        }
-        e += 2;
+    let lo = (l / (d.s_min * PITCH_RANGE.1)).ceil().max(4.0);
+    let hi_den = d.s_min * PITCH_RANGE.0 - o;
+    let hi = if hi_den > 0.0 {
+        (l / hi_den).floor()
+    } else {
+        f64::INFINITY
+    };
+    if !(lo.is_finite() && lo <= hi && lo < u32::MAX as f64) {
+        return vec![];
     }
+    let hi = hi.min(u32::MAX as f64 - 2.0) as u64;
+    let lo = (lo as u64).div_ceil(2) * 2;
+    let mut v: Vec<u32> = (0..MAX_PERIMETER_OPTIONS)
+        .map(|i| hi - hi % 2 - 2 * i)
+        .take_while(|&e| e >= lo && e >= 4)
+        .map(|e| e as u32)
+        .collect();
+    v.reverse();
     v
 }
 
-/// Construct candidate `k` (lattice growth + rounding + analytic pre-checks).
+fn candidate_rng(seed: u64, k: u32) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(
+        seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ (k as u64).wrapping_mul(0xD1B5_4A32_D192_ED03),
+    )
+}
+
+/// The requested feature order as the counter-clockwise boundary reads it: a clockwise
+/// lap reads the boundary backwards, which reverses the order.
+fn boundary_order(spec: &Spec) -> Vec<FeatureKind> {
+    let mut order = spec.feature_order.clone();
+    if spec.clockwise() {
+        order.reverse();
+    }
+    order
+}
+
+/// Construct candidate `k`: the ring constructor for `k ≡ 1 (mod 3)`, else lattice
+/// growth + rounding; then the shared hall fit, direction and analytic pre-checks.
 pub fn construct(
     spec: &Spec,
     cfg: &ConstructorConfig,
     seed: u64,
     k: u32,
+    budget: &Budget,
 ) -> Result<Candidate, &'static str> {
     let d = derive(spec, cfg);
-    let options = perimeter_options(spec, &d);
+    let (line, pitch) = if k % 3 == 1 {
+        let mut rng = candidate_rng(seed ^ RING_STREAM, k / 3);
+        // Without a requested order the ring places the features in a drawn order.
+        let mut order = boundary_order(spec);
+        if order.is_empty() {
+            order = shuffled_features(spec, &mut rng);
+        }
+        ring_candidate(spec, cfg, &d, &order, &mut rng)?
+    } else {
+        // The j-th lattice candidate draws stream j whatever the interleaving.
+        let j = k - k.div_ceil(3);
+        lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, budget)?
+    };
+    finish(line, pitch, spec, cfg, &d)
+}
+
+/// The requested features in a random order (for the ring, which places them in order).
+fn shuffled_features(spec: &Spec, rng: &mut ChaCha8Rng) -> Vec<FeatureKind> {
+    let mut v: Vec<FeatureKind> = [
+        (FeatureKind::Hairpin, spec.hairpins),
+        (FeatureKind::Chicane, spec.chicanes),
+        (FeatureKind::Sweeper, spec.sweepers),
+    ]
+    .iter()
+    .flat_map(|&(k, n)| std::iter::repeat_n(k, n.min(64) as usize))
+    .collect();
+    for i in (1..v.len()).rev() {
+        let j = (rand_chacha::rand_core::Rng::next_u32(rng) as usize) % (i + 1);
+        v.swap(i, j);
+    }
+    v
+}
+
+/// Lattice growth + rounding: a counter-clockwise centreline and its pitch.
+fn lattice_line(
+    spec: &Spec,
+    cfg: &ConstructorConfig,
+    d: &Derived,
+    rng: &mut ChaCha8Rng,
+    k: u32,
+    budget: &Budget,
+) -> Result<(Vec<[f64; 2]>, f64), &'static str> {
+    let options = perimeter_options(spec, d);
     if options.is_empty() {
         return Err("no lattice perimeter fits the lap length");
     }
-    let mut rng = ChaCha8Rng::seed_from_u64(
-        seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ (k as u64).wrapping_mul(0xD1B5_4A32_D192_ED03),
-    );
     // Larger perimeters (smaller pitch) fit halls better; cycle through all of them.
     let perimeter = options[options.len() - 1 - (k as usize % options.len())];
     let s_est = spec.lap_length_m / perimeter as f64 * 1.05;
     let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
-    let box_dim = |b: f64| (((b - 2.0 * cfg.hall_margin_m - wall) / s_est).floor() as i32).max(0);
+    // A box wider than half the perimeter cannot help; capping it bounds growth.
+    let cap = (perimeter / 2 + 1).min(MAX_BOX_CELLS as u32) as f64;
+    let box_dim = |b: f64| {
+        ((b - 2.0 * cfg.hall_margin_m - wall) / s_est)
+            .floor()
+            .clamp(0.0, cap) as i32
+    };
     let (cols, rows) = (
         box_dim(spec.hall_x_m.max(spec.hall_y_m)),
         box_dim(spec.hall_x_m.min(spec.hall_y_m)),
@@ -92,31 +181,27 @@ pub fn construct(
     }
     let rc = d.corner_radius;
     let min_run = if spec.longest_straight_m > 0.0 {
-        ((spec.longest_straight_m + 2.0 * rc) / s_est).ceil() as u32
+        ((spec.longest_straight_m + 2.0 * rc) / s_est)
+            .ceil()
+            .min(u32::MAX as f64) as u32
     } else {
         0
     };
-    // The boundary is traced counter-clockwise; a clockwise lap reads it backwards,
-    // which reverses the feature order.
-    let mut order = spec.feature_order.clone();
-    if spec.clockwise() {
-        order.reverse();
-    }
     let target = Target {
         perimeter,
         hairpins: spec.hairpins,
         chicanes: spec.chicanes,
         sweepers: spec.sweepers,
         min_run,
-        order,
+        order: boundary_order(spec),
     };
     let (_, b) =
-        grow(cols, rows, &target, &mut rng).ok_or("lattice growth did not reach the target")?;
+        grow(cols, rows, &target, rng, budget).ok_or("lattice growth did not reach the target")?;
     // Pick the sweeper corners among the eligible ones.
     let mut slots = b.sweeper_slots.clone();
     let mut is_sweeper = vec![false; b.corners.len()];
     for _ in 0..spec.sweepers {
-        let i = (rand_chacha::rand_core::Rng::next_u32(&mut rng) as usize) % slots.len();
+        let i = (rand_chacha::rand_core::Rng::next_u32(rng) as usize) % slots.len();
         is_sweeper[slots.swap_remove(i)] = true;
     }
     let s = pitch_for_length(
@@ -129,9 +214,21 @@ pub fn construct(
     if s < d.s_min * PITCH_RANGE.0 - 1e-9 || s > d.s_min * PITCH_RANGE.1 {
         return Err("pitch outside range");
     }
-    let mut line =
-        rounded_centreline(&b.corners, &is_sweeper, s, rc, 0.02).ok_or("fillets overlap")?;
-    // Hall fit in the original or the 90°-rotated orientation (x along hall_x).
+    let line = rounded_centreline(&b.corners, &is_sweeper, s, rc, 0.02).ok_or("fillets overlap")?;
+    Ok((line, s))
+}
+
+/// Hall fit (original or 90°-rotated), driving direction and the analytic checks every
+/// candidate passes before it is rasterised.
+fn finish(
+    mut line: Vec<[f64; 2]>,
+    pitch: f64,
+    spec: &Spec,
+    cfg: &ConstructorConfig,
+    d: &Derived,
+) -> Result<Candidate, &'static str> {
+    let rc = d.corner_radius;
+    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
     let ext = extent(&line);
     let (ux, uy) = (
         spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall,
@@ -168,11 +265,12 @@ pub fn construct(
     }
     Ok(Candidate {
         centreline: line,
-        pitch_m: s,
+        pitch_m: pitch,
     })
 }
 
-fn extent(p: &[[f64; 2]]) -> [f64; 2] {
+/// Bounding-box size (x, y) of a point set.
+pub(crate) fn extent(p: &[[f64; 2]]) -> [f64; 2] {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for q in p {
         for k in 0..2 {
@@ -198,18 +296,26 @@ pub fn rasterise_candidate(
     )
 }
 
-/// The lattice constructor on its own, as the paper's constructor comparison runs it:
-/// the first candidate (k < `max_candidates`) that passes the constructor's own analytic
-/// checks, *without* the raster validator in the loop. `Err` carries the number of
-/// candidates tried and why each failed. Algorithm 1 proper is [`generate`].
+/// The constructor on its own, as the paper's constructor comparison runs it: the first
+/// candidate (k < `max_candidates`) that passes the constructor's own analytic checks,
+/// *without* the raster validator in the loop. `Err` carries the number of candidates
+/// tried and why each failed. Algorithm 1 proper is [`generate`].
 pub fn first_candidate(
     spec: &Spec,
     cfg: &ConstructorConfig,
     seed: u64,
+    budget: &Budget,
 ) -> Result<(Candidate, u32), (u32, BTreeMap<String, u32>)> {
     let mut reasons: BTreeMap<String, u32> = BTreeMap::new();
+    if let Err(e) = check_limits(spec, cfg) {
+        reasons.insert(e.to_string(), 1);
+        return Err((0, reasons));
+    }
     for k in 0..cfg.max_candidates {
-        match construct(spec, cfg, seed, k) {
+        if budget.stopped().is_some() {
+            return Err((k, reasons));
+        }
+        match construct(spec, cfg, seed, k, budget) {
             Ok(c) => return Ok((c, k + 1)),
             Err(why) => *reasons.entry(why.to_string()).or_default() += 1,
         }
@@ -217,15 +323,30 @@ pub fn first_candidate(
     Err((cfg.max_candidates, reasons))
 }
 
-/// Algorithm 1 with the lattice constructor.
-pub fn generate(spec: &Spec, cfg: &ConstructorConfig, seed: u64) -> Outcome {
+/// Algorithm 1: screen, then at most `max_candidates` candidates, each rasterised and
+/// judged by the raster validator alone. `Err` only for a spec beyond the generator's
+/// size limits ([`check_limits`]).
+pub fn generate(
+    spec: &Spec,
+    cfg: &ConstructorConfig,
+    seed: u64,
+    budget: &Budget,
+) -> crate::Result<Outcome> {
+    check_limits(spec, cfg)?;
     let sr = screen(spec, cfg);
     if !sr.passed {
-        return Outcome::Rejected(sr);
+        return Ok(Outcome::Rejected(sr));
     }
     let mut reasons: BTreeMap<String, u32> = BTreeMap::new();
     for k in 0..cfg.max_candidates {
-        let c = match construct(spec, cfg, seed, k) {
+        if let Some(stop) = budget.stopped() {
+            return Ok(Outcome::Failed {
+                tried: k,
+                reasons,
+                stopped: Some(stop),
+            });
+        }
+        let c = match construct(spec, cfg, seed, k, budget) {
             Ok(c) => c,
             Err(why) => {
                 *reasons.entry(why.to_string()).or_default() += 1;
@@ -241,28 +362,33 @@ pub fn generate(spec: &Spec, cfg: &ConstructorConfig, seed: u64) -> Outcome {
         };
         let report = validate_map(&grid, spec, cfg);
         if report.valid {
-            return Outcome::Accepted {
+            return Ok(Outcome::Accepted {
                 grid,
                 candidate: c,
                 report: Box::new(report),
                 candidate_index: k,
                 tried: k + 1,
-            };
+            });
         }
         let failed: Vec<String> = report.failed().iter().map(|c| c.name.clone()).collect();
         *reasons
             .entry(format!("raster {}", failed.join("+")))
             .or_default() += 1;
     }
-    Outcome::Failed {
+    Ok(Outcome::Failed {
         tried: cfg.max_candidates,
         reasons,
-    }
+        stopped: None,
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn gen(s: &Spec, seed: u64) -> Outcome {
+        generate(s, &ConstructorConfig::default(), seed, &Budget::default()).expect("within limits")
+    }
 
     fn spec(l: f64, h: u32, c: u32, sw: u32) -> Spec {
         Spec {
@@ -284,7 +410,7 @@ mod tests {
     #[test]
     fn paper_example_three_hairpins_one_chicane_is_accepted() {
         let s = spec(60.0, 3, 1, 0);
-        match generate(&s, &ConstructorConfig::default(), 0) {
+        match gen(&s, 0) {
             Outcome::Accepted { report, .. } => assert!(report.valid),
             other => panic!("{other:?}"),
         }
@@ -293,7 +419,7 @@ mod tests {
     #[test]
     fn generation_is_deterministic_per_seed() {
         let s = spec(50.0, 1, 0, 1);
-        let run = |seed| match generate(&s, &ConstructorConfig::default(), seed) {
+        let run = |seed| match gen(&s, seed) {
             Outcome::Accepted {
                 grid,
                 candidate_index,
@@ -310,14 +436,14 @@ mod tests {
         let mut s = spec(40.0, 12, 0, 0);
         s.min_radius_m = 0.1;
         assert!(screen(&s, &ConstructorConfig::default()).passed);
-        match generate(&s, &ConstructorConfig::default(), 0) {
-            Outcome::Failed { tried, reasons } => {
+        match gen(&s, 0) {
+            Outcome::Failed { tried, reasons, .. } => {
                 assert_eq!(tried, 800);
                 assert_eq!(reasons.values().sum::<u32>(), 800);
             }
             other => panic!("{other:?}"),
         }
-        assert!(first_candidate(&s, &ConstructorConfig::default(), 0).is_err());
+        assert!(first_candidate(&s, &ConstructorConfig::default(), 0, &Budget::default()).is_err());
     }
 
     #[test]
@@ -325,8 +451,8 @@ mod tests {
         let mut s = spec(50.0, 1, 1, 0);
         for (dir, sign) in [("counterclockwise", 1.0), ("clockwise", -1.0)] {
             s.direction = dir.into();
-            let (c, _) =
-                first_candidate(&s, &ConstructorConfig::default(), 3).expect("a candidate");
+            let (c, _) = first_candidate(&s, &ConstructorConfig::default(), 3, &Budget::default())
+                .expect("a candidate");
             assert_eq!(
                 crate::geometry::signed_area(&c.centreline).signum(),
                 sign,
@@ -338,62 +464,70 @@ mod tests {
     #[test]
     fn screen_rejection_comes_first() {
         assert!(matches!(
-            generate(&spec(200.0, 0, 0, 0), &ConstructorConfig::default(), 0),
+            gen(&spec(200.0, 0, 0, 0), 0),
             Outcome::Rejected(_)
         ));
     }
-}
-#[cfg(test)]
-mod debug_tests {
-    use super::*;
+
+    fn small(l: f64, w: f64, bx: f64, by: f64, h: u32, c: u32, sw: u32) -> Spec {
+        let mut s = spec(l, h, c, sw);
+        s.corridor_width_m = w;
+        s.hall_x_m = bx;
+        s.hall_y_m = by;
+        s
+    }
+
     #[test]
-    #[ignore]
-    fn debug_print() {
-        let s = Spec {
-            name: "t".into(),
-            lap_length_m: 40.0,
-            corridor_width_m: 1.2,
-            hall_x_m: 12.0,
-            hall_y_m: 10.0,
-            direction: "counterclockwise".into(),
-            hairpins: 2,
-            chicanes: 0,
-            sweepers: 0,
-            feature_order: vec![],
-            min_radius_m: 0.0,
-            longest_straight_m: 0.0,
-        };
-        let cfg = ConstructorConfig::default();
-        let d = derive(&s, &cfg);
-        println!("{d:?} options {:?}", perimeter_options(&s, &d));
-        let mut shown = 0;
-        for k in 0..800 {
-            if let Ok(c) = construct(&s, &cfg, 0, k) {
-                let g = rasterise_candidate(&c, &s, &cfg).unwrap();
-                let r = validate_map(&g, &s, &cfg);
-                if r.valid {
-                    continue;
-                }
-                let a = analyse_closed_curve(&c.centreline, d.corner_radius);
-                let rl = analyse_closed_curve(&r.centreline, d.corner_radius);
-                println!("k {k} pitch {:.3} failed {:?}", c.pitch_m, r.failed());
-                for turns in [&a.turns, &rl.turns] {
-                    for t in turns {
-                        print!(
-                            " [{:.1}° r{:.2} @{:.1}-{:.1}]",
-                            t.angle_rad.to_degrees(),
-                            t.peak_radius_m,
-                            t.start_m,
-                            t.end_m
-                        );
-                    }
-                    println!();
-                }
-                shown += 1;
-                if shown > 4 {
-                    break;
-                }
+    fn short_lap_narrow_corridor_small_hall_one_sweeper_is_accepted() {
+        // The case: every lattice perimeter misses this hall; the ring fits it.
+        let s = small(30.0, 1.0, 12.0, 9.0, 0, 0, 1);
+        for seed in [0, 1, 2, 7] {
+            match gen(&s, seed) {
+                Outcome::Accepted { report, .. } => assert!(report.valid),
+                other => panic!("seed {seed}: {other:?}"),
             }
+        }
+    }
+
+    #[test]
+    fn ring_candidates_close_and_keep_the_lap_length() {
+        let s = small(36.0, 1.2, 14.0, 10.0, 1, 1, 1);
+        let cfg = ConstructorConfig::default();
+        let mut ok = 0;
+        let mut why = BTreeMap::new();
+        for k in (1..300).step_by(3) {
+            let r = construct(&s, &cfg, 5, k, &Budget::default());
+            if let Err(e) = &r {
+                *why.entry(*e).or_insert(0) += 1;
+            }
+            if let Ok(c) = r {
+                let l = crate::geometry::polyline_length(&c.centreline, true);
+                assert!((l - 36.0).abs() < 0.05, "k {k}: {l}");
+                ok += 1;
+            }
+        }
+        assert!(
+            ok > 0,
+            "no ring candidate passed the analytic checks: {why:?}"
+        );
+    }
+
+    #[test]
+    fn huge_specs_are_refused_or_bounded() {
+        let cfg = ConstructorConfig::default();
+        let s = small(1e12, 1.5, 1e12, 1e12, 0, 0, 0);
+        assert!(matches!(
+            generate(&s, &cfg, 0, &Budget::default()),
+            Err(crate::ArenaError::Spec(_))
+        ));
+        assert!(perimeter_options(&s, &derive(&s, &cfg)).len() <= MAX_PERIMETER_OPTIONS as usize);
+        // A 2 km lap in a 100 m hall stops on its deadline.
+        let s = small(2000.0, 1.5, 100.0, 100.0, 0, 0, 0);
+        let t = std::time::Instant::now();
+        let out = generate(&s, &cfg, 0, &Budget::new(Some(0.5), None)).unwrap();
+        assert!(t.elapsed().as_secs_f64() < 5.0);
+        if let Outcome::Failed { stopped, .. } = out {
+            assert_eq!(stopped, Some(Stop::Timeout));
         }
     }
 }

@@ -2,8 +2,10 @@
 //! (Eqs. 1–2), the lattice constructor (growth, rounding) and the bounded generate loop
 //! (Algorithm 1).
 
+pub mod budget;
 pub mod construct;
 pub mod lattice;
+pub mod ring;
 pub mod rounding;
 pub mod screen;
 pub mod spec;

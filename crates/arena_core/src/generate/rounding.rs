@@ -51,21 +51,30 @@ pub fn rounded_centreline(
     rc: f64,
     step: f64,
 ) -> Option<Vec<[f64; 2]>> {
-    let m = corners.len();
+    let pts: Vec<[f64; 2]> = corners
+        .iter()
+        .map(|c| [c.at.0 as f64 * s, c.at.1 as f64 * s])
+        .collect();
+    round_polygon(&pts, is_sweeper, rc, step)
+}
+
+/// Round a rectilinear polygon (metres): ordinary vertices get radius `rc`, a sweeper
+/// vertex is cut by the 45° chamfer and its two vertices get `SWEEPER_RADIUS · rc`.
+/// `None` if some fillets would overlap on an edge.
+pub fn round_polygon(
+    pts: &[[f64; 2]],
+    is_sweeper: &[bool],
+    rc: f64,
+    step: f64,
+) -> Option<Vec<[f64; 2]>> {
+    let m = pts.len();
     let mut verts: Vec<Vertex> = Vec::with_capacity(m + 4);
     for i in 0..m {
-        let p = [corners[i].at.0 as f64 * s, corners[i].at.1 as f64 * s];
+        let p = pts[i];
         if is_sweeper[i] {
-            let prev = corners[(i + m - 1) % m].at;
-            let next = corners[(i + 1) % m].at;
             let a = SWEEPER_CHAMFER * rc;
-            let unit = |from: (i32, i32), to: (i32, i32)| {
-                let (dx, dy) = ((to.0 - from.0) as f64, (to.1 - from.1) as f64);
-                let l = dx.hypot(dy);
-                [dx / l, dy / l]
-            };
-            let din = unit(prev, corners[i].at);
-            let dout = unit(corners[i].at, next);
+            let din = norm(sub(p, pts[(i + m - 1) % m]));
+            let dout = norm(sub(pts[(i + 1) % m], p));
             let r = SWEEPER_RADIUS * rc;
             verts.push(Vertex {
                 p: [p[0] - din[0] * a, p[1] - din[1] * a],
@@ -115,6 +124,10 @@ pub fn rounded_centreline(
         let _ = dout;
     }
     Some(out)
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
 }
 
 fn norm(v: [f64; 2]) -> [f64; 2] {

@@ -121,9 +121,10 @@ impl ConstructorConfig {
                 )));
             }
         }
-        if c.resolution_m > 1.0 || !(1..=800).contains(&c.max_candidates) {
+        let (lo, _) = crate::track::validate::RESOLUTION_RANGE;
+        if !(lo..=1.0).contains(&c.resolution_m) || !(1..=800).contains(&c.max_candidates) {
             return Err(ArenaError::config(format!(
-                "constructor config: resolution_m must be ≤ 1 m (got {}) and max_candidates in 1..=800 (got {})",
+                "constructor config: resolution_m must be in [{lo}, 1] m (got {}) and max_candidates in 1..=800 (got {})",
                 c.resolution_m, c.max_candidates
             )));
         }

@@ -78,6 +78,34 @@ fn check(name: &str, measured: String, bound: String, passed: bool) -> Check {
     }
 }
 
+/// Resolution range (m per cell) the validator measures at, and the largest origin
+/// coordinate (m): beyond them the arithmetic of the measurement loses meaning.
+pub const RESOLUTION_RANGE: (f64, f64) = (1e-4, 10.0);
+pub const MAX_ORIGIN_M: f64 = 1e7;
+
+/// Refuse a map frame the validator cannot measure: a resolution outside
+/// [`RESOLUTION_RANGE`] or an origin beyond ±[`MAX_ORIGIN_M`] or not finite.
+pub fn check_frame(resolution: f64, origin: [f64; 3]) -> crate::Result<()> {
+    let (lo, hi) = RESOLUTION_RANGE;
+    if !(resolution.is_finite() && (lo..=hi).contains(&resolution)) {
+        return Err(crate::ArenaError::invalid(format!(
+            "resolution: must be within [{lo}, {hi}] m per cell (got {resolution})"
+        )));
+    }
+    for (name, v, bound) in [
+        ("origin x", origin[0], MAX_ORIGIN_M),
+        ("origin y", origin[1], MAX_ORIGIN_M),
+        ("origin yaw", origin[2], 1e3),
+    ] {
+        if !(v.is_finite() && v.abs() <= bound) {
+            return Err(crate::ArenaError::invalid(format!(
+                "{name}: must be a finite number within ±{bound:e} (got {v})"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Validate a map against a spec. Never panics on odd maps: a map without a closed
 /// corridor yields a report whose topology check fails.
 pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> ValidationReport {
@@ -247,6 +275,7 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::generate::budget::Budget;
     use crate::generate::construct::{generate, Outcome};
 
     fn spec() -> Spec {
@@ -269,7 +298,8 @@ mod tests {
     #[test]
     fn measurements_are_the_numbers_the_checks_judge() {
         let (s, cfg) = (spec(), ConstructorConfig::default());
-        let Outcome::Accepted { report, .. } = generate(&s, &cfg, 0) else {
+        let Ok(Outcome::Accepted { report, .. }) = generate(&s, &cfg, 0, &Budget::new(None, None))
+        else {
             panic!("the 40 m spec should be accepted");
         };
         let m = report.measurements.expect("a valid map is measured");

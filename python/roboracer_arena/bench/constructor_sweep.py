@@ -1,0 +1,150 @@
+"""``roboracer-arena bench constructors --sweep``: acceptance of Algorithm 1 on a
+stratified sweep of admissible specs (issue 15: "the generator finds small tracks").
+
+The sweep is a full grid over five strata, filtered by the admissibility screen
+(Eqs. 1–2) and thinned evenly to about 360 specs; the grid and the thinning are fixed,
+so :func:`sweep_specs` always returns the same list, and the shipped
+``bench/data/sweep_specs.jsonl`` is that list (a test checks they agree):
+
+* lap length 20, 30, 45, 60, 80, 110 m;
+* corridor width 0.8, 1.0, 1.2, 1.5, 2.0 m;
+* hall 8 × 6, 12 × 9, 16 × 12, 20 × 15, 30 × 20 m;
+* features (hairpins, chicanes, sweepers) from none up to (3, 1, 0) and (2, 1, 1);
+* direction alternating; seed = index mod 3.
+
+Each spec runs once through ``generate_track`` (lattice + ring, 800-candidate cap,
+default time budget). With ``--maps DIR`` every accepted map is written there (one
+folder per spec, the ``generate`` outputs) for an independent re-measurement, e.g.
+``python tests/generate/remeasure_dir.py DIR``.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import statistics
+import sys
+import time
+from collections import Counter
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+from typing import Any
+
+from tqdm import tqdm
+
+from ..generate import Acceptance, generate_track, screen, write_outputs
+from ..spec import TrackSpec
+
+LAPS = (20.0, 30.0, 45.0, 60.0, 80.0, 110.0)
+WIDTHS = (0.8, 1.0, 1.2, 1.5, 2.0)
+HALLS = ((8.0, 6.0), (12.0, 9.0), (16.0, 12.0), (20.0, 15.0), (30.0, 20.0))
+FEATURES = ((0, 0, 0), (0, 0, 1), (1, 0, 0), (0, 1, 0), (1, 1, 0), (1, 1, 1), (2, 1, 1), (3, 1, 0))
+TARGET_COUNT = 360
+SWEEP_FILE = "sweep_specs.jsonl"
+
+
+def sweep_specs() -> list[TrackSpec]:
+    """The admissible grid specs, thinned evenly to about ``TARGET_COUNT``."""
+    grid = []
+    for i, (lap, w, (hx, hy), (h, c, s)) in enumerate(itertools.product(LAPS, WIDTHS, HALLS, FEATURES)):
+        spec = TrackSpec(
+            name=f"sweep-L{lap:g}-w{w:g}-{hx:g}x{hy:g}-h{h}c{c}s{s}",
+            lap_length_m=lap,
+            corridor_width_m=w,
+            hall_x_m=hx,
+            hall_y_m=hy,
+            hairpins=h,
+            chicanes=c,
+            sweepers=s,
+            direction="clockwise" if i % 2 else "counterclockwise",
+        )
+        if screen(spec)["passed"]:
+            grid.append(spec)
+    step = max(1.0, len(grid) / TARGET_COUNT)
+    return [grid[int(k * step)] for k in range(min(TARGET_COUNT, len(grid)))]
+
+
+def _trial(job: tuple[int, str, str | None]) -> dict[str, Any]:
+    i, spec_json, maps = job
+    spec = TrackSpec.model_validate_json(spec_json)
+    seed = i % 3
+    t0 = time.perf_counter()
+    out = generate_track(spec, seed=seed)
+    row: dict[str, Any] = {
+        "spec": spec.name,
+        "seed": seed,
+        "lap_length_m": spec.lap_length_m,
+        "corridor_width_m": spec.corridor_width_m,
+        "hall": f"{spec.hall_x_m:g}x{spec.hall_y_m:g}",
+        "features": f"h{spec.hairpins}c{spec.chicanes}s{spec.sweepers}",
+        "outcome": out.kind,
+        "candidates": getattr(out, "candidates_tried", 0),
+        "seconds": time.perf_counter() - t0,
+    }
+    if isinstance(out, Acceptance):
+        if maps:
+            write_outputs(out, Path(maps) / spec.name)
+    else:
+        reasons = getattr(out, "reasons", {}) or {}
+        row["top_reasons"] = dict(sorted(reasons.items(), key=lambda kv: -kv[1])[:3])
+    return row
+
+
+def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, progress: bool = True) -> dict[str, Any]:
+    """One ``generate_track`` per spec; rows, acceptance rate and the misses by stratum."""
+    work = [(i, s.model_dump_json(), str(maps) if maps else None) for i, s in enumerate(specs)]
+    bar = tqdm(total=len(work), desc="sweep specs", unit="spec", file=sys.stderr, disable=not progress)
+    rows: list[dict[str, Any]] = []
+    if jobs > 1:
+        with ProcessPoolExecutor(jobs) as pool:
+            for r in pool.map(_trial, work, chunksize=4):
+                rows.append(r)
+                bar.update()
+    else:
+        for w in work:
+            rows.append(_trial(w))
+            bar.update()
+    bar.close()
+    accepted = [r for r in rows if r["outcome"] == "accepted"]
+    misses = [r for r in rows if r["outcome"] != "accepted"]
+
+    def by(key: str) -> dict[str, str]:
+        tot = Counter(str(r[key]) for r in rows)
+        ok = Counter(str(r[key]) for r in accepted)
+        return {k: f"{ok[k]}/{tot[k]}" for k in sorted(tot, key=lambda x: (len(x), x))}
+
+    secs = [r["seconds"] for r in rows]
+    return {
+        "specs": len(rows),
+        "accepted": len(accepted),
+        "acceptance": len(accepted) / len(rows) if rows else float("nan"),
+        "seconds_median": statistics.median(secs) if secs else float("nan"),
+        "seconds_max": max(secs) if secs else float("nan"),
+        "candidates_median_accepted": statistics.median(r["candidates"] for r in accepted) if accepted else 0,
+        "by_lap": by("lap_length_m"),
+        "by_width": by("corridor_width_m"),
+        "by_hall": by("hall"),
+        "by_features": by("features"),
+        "misses": [{k: r[k] for k in ("spec", "seed", "outcome", "candidates", "top_reasons") if k in r} for r in misses],
+        "rows": rows,
+    }
+
+
+def print_sweep(result: dict[str, Any]) -> None:
+    print(
+        f"sweep: {result['accepted']}/{result['specs']} admissible specs accepted "
+        f"({100 * result['acceptance']:.1f} %), median {result['seconds_median']:.3f} s/spec, "
+        f"max {result['seconds_max']:.2f} s, median candidates to acceptance {result['candidates_median_accepted']:g}"
+    )
+    for key in ("by_lap", "by_width", "by_hall", "by_features"):
+        print(f"  {key[3:]:<9} " + "  ".join(f"{k}: {v}" for k, v in result[key].items()))
+    for m in result["misses"]:
+        print(f"  miss {m['spec']} seed {m['seed']}: {m['outcome']} after {m['candidates']} ({json.dumps(m.get('top_reasons', {}))})")
+
+
+def load_sweep_file() -> list[TrackSpec]:
+    """The shipped sweep (``bench/data/sweep_specs.jsonl``)."""
+    from ..paths import bench_data
+
+    lines = bench_data(SWEEP_FILE).read_text(encoding="utf-8").splitlines()
+    return [TrackSpec.model_validate_json(x) for x in lines if x.strip()]
