@@ -238,6 +238,42 @@ impl Simulator {
         self.inner.set_speeds(&mask, &speeds).py()
     }
 
+    /// Per-episode vehicle parameters (domain randomisation) for the envs where
+    /// `env_mask` is True: friction, mass (kg), steering and throttle lags (s), each a
+    /// float64 array of shape (E,). They hold until set again.
+    fn set_vehicle_params(
+        &mut self,
+        env_mask: &Bound<'_, PyAny>,
+        friction: &Bound<'_, PyAny>,
+        mass: &Bound<'_, PyAny>,
+        steer_lag: &Bound<'_, PyAny>,
+        throttle_lag: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        let e = self.inner.num_envs();
+        let mask = read_mask(env_mask, e)?;
+        let read = |obj: &Bound<'_, PyAny>, name: &str| -> PyResult<Vec<f64>> {
+            let arr = obj.cast::<PyArray1<f64>>().map_err(|_| {
+                invalid(format!(
+                    "{name} must be a numpy float64 array of shape ({e},)"
+                ))
+            })?;
+            check_shape(name, arr.shape(), &[e])?;
+            Ok(arr
+                .try_readonly()
+                .map_err(|err| invalid(err.to_string()))?
+                .as_array()
+                .iter()
+                .copied()
+                .collect())
+        };
+        let (f, m) = (read(friction, "friction")?, read(mass, "mass")?);
+        let (s, t) = (
+            read(steer_lag, "steer_lag")?,
+            read(throttle_lag, "throttle_lag")?,
+        );
+        self.inner.set_vehicle_params(&mask, &f, &m, &s, &t).py()
+    }
+
     #[pyo3(signature = (actions, substeps, scans, state, events))]
     fn step(
         &mut self,

@@ -21,6 +21,8 @@ pub mod vehicle;
 pub mod world;
 
 #[cfg(test)]
+mod fidelity_tests;
+#[cfg(test)]
 mod tests;
 
 pub use batch::Simulator;

@@ -1,0 +1,193 @@
+//! Vehicle fidelity tests in a walled hall, against physics rather than our own output:
+//! the friction limit (mu g), stability over the accepted time steps, and a head-on wall
+//! hit that must not spin the car.
+
+use std::sync::Arc;
+
+use super::params::SimParams;
+use super::shapes::square_room;
+use super::track::Track;
+use super::vehicle::VehicleModel;
+use super::world::{World, EVENT_WALL, STATE_SIZE};
+
+/// A world with one car in a square hall of half-side `half` (walls from `walls`).
+fn hall_with(params: &SimParams, walls: Vec<Vec<[f64; 2]>>) -> (World, VehicleModel) {
+    let track =
+        Arc::new(Track::new(&walls, &square_room(1.0), params.physics.wall_height).unwrap());
+    let model = VehicleModel::new(&params.vehicle, &params.physics);
+    let world = World::new(track, 0, 1, &model, &params.physics, 0, 0);
+    (world, model)
+}
+
+fn hall(params: &SimParams, half: f64) -> (World, VehicleModel) {
+    hall_with(params, vec![square_room(half)])
+}
+
+fn state(w: &World) -> ([f64; STATE_SIZE], u8) {
+    let (mut s, mut e) = ([0.0; STATE_SIZE], [0u8]);
+    w.write_state(&mut s, &mut e);
+    (s, e[0])
+}
+
+/// Tilt of the chassis from level (rad).
+fn tilt(w: &World) -> f64 {
+    let (pose, _, _) = w.chassis(0);
+    let up = pose.rotation * rapier3d::prelude::Vector::Z;
+    (up.z as f64).clamp(-1.0, 1.0).acos()
+}
+
+/// Steps per control interval of `period` seconds at the world's dt.
+fn steps(p: &SimParams, period: f64) -> usize {
+    ((period / p.physics.dt).round() as usize).max(1)
+}
+
+/// Sideways speed after pulling the car at rest sideways at its CoM for 2 s with
+/// `ratio` times its weight.
+fn pull(ratio: f64) -> f64 {
+    let mut p = SimParams::default();
+    p.physics.shortcut_free_steps = false; // the shortcut ignores external forces
+    let (mut w, m) = hall(&p, 20.0);
+    w.reset_vehicle(0, [0.0, 0.0, 0.0], &m);
+    w.step(&[(0.0, 0.0)], steps(&p, 0.5), &m); // settle on the springs
+    w.push(0, [0.0, ratio * p.vehicle.mass * p.physics.gravity, 0.0]);
+    w.step(&[(0.0, 0.0)], steps(&p, 2.0), &m);
+    state(&w).0[4].abs()
+}
+
+/// The paper's friction measurement, a lateral pull test: the car holds (tyres creep at
+/// a few cm/s) up to a pull of mu times its weight and slides beyond. With the
+/// suspension force along the tilted chassis the body roll adds a sideways push and the
+/// car slid about 7 % early.
+#[test]
+fn lateral_pull_test_gives_mu() {
+    let mu = SimParams::default().vehicle.tyre_friction;
+    let (below, above) = (pull(0.97 * mu), pull(1.03 * mu));
+    eprintln!("pull 0.97 mu W: {below:.3} m/s, 1.03 mu W: {above:.3} m/s");
+    assert!(below < 0.2, "slides at 0.97 mu W ({below:.3} m/s)");
+    assert!(above > 0.4, "holds at 1.03 mu W ({above:.3} m/s)");
+}
+
+/// Steady yaw rate after 6 s at (steer, speed) with time step `dt`, and the largest
+/// chassis tilt over the last 3 s.
+fn steady_turn(dt: f64, steer: f64, speed: f64) -> (f64, f64) {
+    let mut p = SimParams::default();
+    p.physics.dt = dt;
+    let (mut w, m) = hall(&p, 80.0);
+    w.reset_vehicle(0, [0.0, 0.0, 0.0], &m);
+    let n = steps(&p, 0.05);
+    let mut max_tilt = 0.0f64;
+    for i in 0..120 {
+        w.step(&[(steer, speed)], n, &m);
+        if i >= 60 {
+            max_tilt = max_tilt.max(tilt(&w));
+        }
+    }
+    (state(&w).0[5], max_tilt)
+}
+
+/// Every accepted dt is stable: at the largest one the car neither rocks on a straight
+/// nor turns at a different rate from dt = 5 ms.
+#[test]
+fn largest_accepted_dt_is_stable() {
+    let dt_max = 0.02;
+    let mut p = SimParams::default();
+    p.physics.dt = dt_max;
+    assert!(p.validate().is_ok(), "dt {dt_max} should be accepted");
+    let (_, straight_tilt) = steady_turn(dt_max, 0.0, 5.0);
+    let (_, ref_tilt) = steady_turn(0.005, 0.0, 5.0);
+    eprintln!("straight 5 m/s tilt: dt {dt_max} {straight_tilt:.5}, dt 0.005 {ref_tilt:.5} rad");
+    assert!(
+        straight_tilt < 0.2f64.to_radians(),
+        "the car rocks {:.2} deg on a straight at dt = {dt_max}",
+        straight_tilt.to_degrees()
+    );
+    for (steer, speed) in [(0.3, 1.0), (0.1, 5.0), (0.2, 3.0)] {
+        let (r, _) = steady_turn(dt_max, steer, speed);
+        let (r0, _) = steady_turn(0.005, steer, speed);
+        eprintln!("turn steer {steer} speed {speed}: yaw rate {r:.4} vs {r0:.4} at 5 ms");
+        assert!(
+            (r / r0 - 1.0).abs() < 0.02,
+            "yaw rate {r:.4} at dt {dt_max} vs {r0:.4} at 5 ms (steer {steer}, {speed} m/s)"
+        );
+    }
+}
+
+/// Subdivide a closed polyline so no edge is longer than `step` (like a map's walls).
+fn subdivide(poly: &[[f64; 2]], step: f64) -> Vec<[f64; 2]> {
+    let mut out = Vec::new();
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        let k = ((b[0] - a[0]).hypot(b[1] - a[1]) / step).ceil().max(1.0) as usize;
+        for j in 0..k {
+            let t = j as f64 / k as f64;
+            out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+        }
+    }
+    out
+}
+
+/// Worst |yaw rate| and |sideways speed| from first wall contact through 0.3 s after,
+/// driving head-on at 7 m/s into the wall x = half at lateral position `y`, starting
+/// `lead` metres short of the wall (varies the impact's timing within a step).
+fn head_on(walls: &[Vec<[f64; 2]>], half: f64, y: f64, lead: f64) -> (f64, f64) {
+    let p = SimParams::default();
+    let (mut w, m) = hall_with(&p, walls.to_vec());
+    let front =
+        p.vehicle.chassis_length / 2.0 + (p.vehicle.com_to_front - p.vehicle.com_to_rear) / 2.0;
+    w.reset_vehicle(0, [half - front - lead, y, 0.0], &m);
+    w.set_forward_speed(0, 7.0, &m);
+    let (mut contact_at, mut worst) = (None, (0.0f64, 0.0f64));
+    let dt = p.physics.dt;
+    for i in 0..((0.3 + lead / 7.0 + 0.1) / dt) as usize {
+        w.step(&[(0.0, 7.0)], 1, &m);
+        let (s, ev) = state(&w);
+        if contact_at.is_none() && ev & EVENT_WALL != 0 {
+            contact_at = Some(i);
+        }
+        if let Some(c) = contact_at {
+            if (i - c) as f64 * dt <= 0.3 {
+                worst = (worst.0.max(s[5].abs()), worst.1.max(s[4].abs()));
+            }
+        }
+    }
+    assert!(contact_at.is_some(), "no wall contact at y = {y}");
+    worst
+}
+
+/// A head-on hit at 7 m/s keeps the car straight at every impact position along the
+/// wall (across the triangles' internal diagonals) and every timing within a step.
+///
+/// OPEN (issue 13, defect 3): fails today. The kick happens in the contact step itself
+/// (the solver's impulse through a partial contact manifold where a triangle diagonal
+/// crosses the chassis face), independent of tyres, wall and ground friction. Without
+/// soft CCD and with the internal-edge fix it drops from 115 to 9-25 of 280 cases, but
+/// soft CCD is what stops the car at the wall; kept as the acceptance test for the fix.
+#[test]
+#[ignore = "open defect: head-on wall hits still kick the car into a spin"]
+fn head_on_wall_hit_does_not_spin() {
+    let half = 10.0;
+    let coarse = vec![square_room(half)];
+    let fine = vec![subdivide(&square_room(half), 0.07)];
+    let dt = SimParams::default().physics.dt;
+    let mut fails = Vec::new();
+    for (name, walls) in [("coarse", &coarse), ("fine", &fine)] {
+        for k in 0..35 {
+            let y = -8.5 + 0.5 * k as f64;
+            for q in 0..4 {
+                let lead = 0.3 + 7.0 * dt * q as f64 / 4.0;
+                let (yaw, side) = head_on(walls, half, y, lead);
+                if yaw >= 1.0 || side >= 0.3 {
+                    fails.push(format!(
+                        "{name} y={y:.2} lead={lead:.4}: yaw {yaw:.2} side {side:.2}"
+                    ));
+                }
+            }
+        }
+    }
+    assert!(
+        fails.is_empty(),
+        "{} spins:\n{}",
+        fails.len(),
+        fails.join("\n")
+    );
+}
