@@ -157,11 +157,14 @@ fn head_on(walls: &[Vec<[f64; 2]>], half: f64, y: f64, lead: f64) -> (f64, f64) 
 /// A head-on hit at 7 m/s keeps the car straight at every impact position along the
 /// wall (across the triangles' internal diagonals) and every timing within a step.
 ///
-/// OPEN (issue 13, defect 3): fails today. The kick happens in the contact step itself
-/// (the solver's impulse through a partial contact manifold where a triangle diagonal
-/// crosses the chassis face), independent of tyres, wall and ground friction. Without
-/// soft CCD and with the internal-edge fix it drops from 115 to 9-25 of 280 cases, but
-/// soft CCD is what stops the car at the wall; kept as the acceptance test for the fix.
+/// OPEN (issue 13, defect 3): fails today (115 of 280 cases). The kick happens in the
+/// contact step itself, from a perfectly aligned approach (yaw 0 to the last step), so it
+/// is the contact solver's split of a statically indeterminate face impact, not the
+/// tyres: wall and ground friction, 4-16 solver iterations, rapier's internal-edge fix
+/// and even walls built from cuboids instead of triangles leave 25-170 cases spinning.
+/// Without soft CCD and with the internal-edge fix it drops to 9-25 cases, but soft CCD
+/// is what stops the car at the wall (`car_driven_at_a_wall_stops_at_it`). Kept as the
+/// acceptance test for the fix.
 #[test]
 #[ignore = "open defect: head-on wall hits still kick the car into a spin"]
 fn head_on_wall_hit_does_not_spin() {
