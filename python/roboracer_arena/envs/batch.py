@@ -137,6 +137,19 @@ class SimBatch:
         return c.astype(np.float32)
 
     # ------------------------------------------------------------------ reset
+    def _randomise_vehicles(self, mask: np.ndarray, idx: np.ndarray, rngs: list[np.random.Generator]) -> None:
+        """Draw this episode's tyre friction, mass and actuator lags of each reset env from
+        its RNG (factors on the configured values) and hand them to the simulator."""
+        rnd, veh = self.config.randomisation, self.config.sim.vehicle
+        E = self.num_envs
+        friction, mass = np.full(E, veh.tyre_friction), np.full(E, veh.mass)
+        steer, throttle = np.full(E, veh.steer_time_constant), np.full(E, veh.throttle_time_constant)
+        for e in idx:
+            f, m, lag = (rngs[e].uniform(*r) for r in (rnd.friction_scale, rnd.mass_scale, rnd.lag_scale))
+            friction[e], mass[e] = veh.tyre_friction * f, veh.mass * m
+            steer[e], throttle[e] = veh.steer_time_constant * lag, veh.throttle_time_constant * lag
+        self.sim.set_vehicle_params(mask, friction, mass, steer, throttle)
+
     def reset(self, mask: np.ndarray, rngs: list[np.random.Generator], track_ids: np.ndarray | None = None,
               poses: np.ndarray | None = None, speeds: np.ndarray | None = None) -> None:
         """Reset the environments where ``mask`` is True, then observe every environment.
@@ -163,9 +176,11 @@ class SimBatch:
             else:
                 self.start_speed[e] = 0.0
             self.obs.new_episode(e, rng)
+        mask = np.asarray(mask, dtype=bool)
+        if cfg.randomisation.vehicle_active:
+            self._randomise_vehicles(mask, idx, rngs)
         self.start_pose[idx] = all_poses[idx]
         self.sim.set_tracks(self.track_ids)
-        mask = np.asarray(mask, dtype=bool)
         self.sim.reset(mask, all_poses)
         if self.start_speed[idx].any():
             self.sim.set_speeds(mask, self.start_speed)

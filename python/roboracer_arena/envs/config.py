@@ -96,11 +96,11 @@ class VehicleConfig(BaseModel):
         ),
     )
     wheel_inertia: float = Field(
-        1.0e-3,
+        2.5e-4,
         gt=0,
         description=(
-            "Spin inertia of one wheel (kg m^2) including a quarter of the motor rotor reflected through the "
-            "gear ratio squared (dominant); an estimate."
+            "Spin inertia of one wheel (kg m^2): a 1:10 short-course wheel and tyre (about 0.12 kg at 0.0525 m, "
+            "~0.6 m r^2 = 2e-4) plus a quarter of the motor rotor through the gear ratio squared; an estimate."
         ),
     )
     chassis_length: float = Field(0.55, gt=0, description="Collision box length (m), Traxxas body about 0.55 m.")
@@ -116,15 +116,15 @@ class VehicleConfig(BaseModel):
         30.0, ge=0, description="Damper rate per wheel (N s/m): damping ratio about 0.55 at the default spring."
     )
     speed_kp: float = Field(
-        60.0,
+        100.0,
         gt=0,
         description=(
             "Speed PI proportional gain (motor amps per m/s of wheel-speed error), like the VESC speed PID acting "
-            "on ERPM; 60 A per m/s is about 40 N per m/s at the wheels."
+            "on ERPM; 100 A per m/s is about 66 N per m/s at the wheels (saturates beyond 0.7 m/s of error)."
         ),
     )
     speed_ki: float = Field(
-        20.0, ge=0, description="Speed PI integral gain (motor amps per m of accumulated error), with anti-windup."
+        100.0, ge=0, description="Speed PI integral gain (motor amps per m of accumulated error), with anti-windup."
     )
     throttle_time_constant: float = Field(
         0.02,

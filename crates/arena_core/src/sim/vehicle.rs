@@ -357,7 +357,14 @@ impl VehicleModel {
             // Longitudinal: linear slip stiffness kx (N per m/s of slip speed), wheel spin
             // solved implicitly with it: iw (w' - w) = dt (tq - r kx (r w' - vl)).
             let kx = p.longitudinal_stiffness * n / vl.abs().max(V0);
-            let implicit = (iw * omega + dt * (tq + r * kx * vl)) / (iw + dt * r * r * kx);
+            let mut implicit = (iw * omega + dt * (tq + r * kx * vl)) / (iw + dt * r * r * kx);
+            // A braking torque (against the direction of travel) locks a wheel at most;
+            // it never spins it backwards under a sliding tyre.
+            let braking = tq * vl < 0.0;
+            let locked = braking && implicit * vl < 0.0;
+            if locked {
+                implicit = 0.0;
+            }
             let slip = r * implicit - vl;
             let capx = m_wheel * slip.abs() / dt;
             let fx_lin = kx * slip;
@@ -368,10 +375,15 @@ impl VehicleModel {
                 fx *= s;
                 fy *= s;
             }
-            act.omega[k] = if fx == fx_lin {
+            act.omega[k] = if fx == fx_lin || locked {
                 implicit
             } else {
-                omega + dt * (tq - r * fx) / iw
+                let w = omega + dt * (tq - r * fx) / iw;
+                if braking && w * vl < 0.0 {
+                    0.0
+                } else {
+                    w
+                }
             };
             let ft = fw * fx as f32 + lw * fy as f32;
             force += ft;
