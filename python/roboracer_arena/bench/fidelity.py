@@ -37,7 +37,9 @@ HALL = 150.0
 RECORDED_SPEED = 6.66  # paper: observed maximum (m/s)
 RECORDED_YAW = 5.46  # paper: observed yaw-rate p99 (rad/s)
 SPEEDS = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
-STEERS = [0.05, 0.1, 0.2, 0.3]
+# Multiples of the gym's steering step sv_max * dt = 0.032 rad: its bang-bang steering
+# dithers by one step around any other target.
+STEERS = [0.064, 0.128, 0.192, 0.288]
 
 
 class _Car:

@@ -28,6 +28,9 @@ use super::params::{PhysicsParams, VehicleParams};
 
 /// Speed below which the slip angle and slip ratio use `V0` as reference speed (m/s).
 const V0: f64 = 0.5;
+/// Longest drivetrain sub-step (s): the wheel-speed loop with the wheel's small inertia
+/// is stable well inside it.
+const DRIVE_DT: f64 = 0.005;
 /// Air density (kg/m^3) for the drag force.
 const AIR_DENSITY: f64 = 1.2;
 /// Wheel surface speed (m/s) over which rolling resistance fades in, so a wheel at rest
@@ -82,6 +85,19 @@ impl CarParams {
         }
         Ok(())
     }
+}
+
+/// One wheel's state within a step: load, directions, longitudinal contact speed, the
+/// (capped) lateral force demand and the tyre forces summed over the drivetrain sub-steps.
+#[derive(Debug, Clone, Copy, Default)]
+struct Wheel {
+    n: f64,
+    vl: f64,
+    fy: f64,
+    fw: Vector,
+    lw: Vector,
+    sum_fx: f64,
+    sum_fy: f64,
 }
 
 /// Fraction of the way a first-order lag of time constant `tau` moves in `dt` (exact).
@@ -267,22 +283,8 @@ impl VehicleModel {
         dt: f64,
     ) {
         let p = &self.p;
-        let r = p.wheel_radius;
         let max_d = p.max_steer_rate * dt;
         act.steer += ((cmd.0 - act.steer) * lag_step(car.steer_lag, dt)).clamp(-max_d, max_d);
-
-        // Speed loop on wheel speed, as the VESC measures it (ERPM): PI with the integral
-        // held while the output is saturated in the error's direction (anti-windup).
-        let v_wheel = r * act.omega.iter().sum::<f64>() / 4.0;
-        let err = cmd.1 - v_wheel;
-        let (lo, hi) = self.current_window(v_wheel);
-        let want = p.speed_kp * err + p.speed_ki * act.integral;
-        if (want < hi || err < 0.0) && (want > lo || err > 0.0) {
-            act.integral += err * dt;
-        }
-        act.current += (want.clamp(lo, hi) - act.current) * lag_step(car.throttle_lag, dt);
-        act.current = act.current.clamp(lo, hi);
-        let wheel_torque = self.force_per_amp * act.current * r / 4.0;
 
         let pose = *body.position();
         let com = pose.translation;
@@ -323,41 +325,95 @@ impl VehicleModel {
             contact[k] = h - up * dist as f32;
         }
 
+        // Pass 2: each wheel's heading, contact velocity and lateral force demand.
+        let m_wheel = 0.5 * car.mass / 4.0;
+        let mut wheels = [Wheel::default(); 4];
+        for (k, wh) in wheels.iter_mut().enumerate() {
+            let n = loads[k];
+            let (ca, sa) = (angles[k].cos() as f32, angles[k].sin() as f32);
+            let mut fw = rot * Vector::new(ca, sa, 0.0);
+            fw.z = 0.0;
+            wh.fw = fw.normalize_or_zero();
+            wh.lw = Vector::new(-wh.fw.y, wh.fw.x, 0.0);
+            let vc = v + w.cross(contact[k] - com);
+            let (vl, vt) = (vc.dot(wh.fw) as f64, vc.dot(wh.lw) as f64);
+            let cap = m_wheel * vt.abs() / dt;
+            wh.fy = (-self.stiffness[k] * n * vt.atan2(vl.abs().max(V0))).clamp(-cap, cap);
+            wh.vl = vl;
+            wh.n = n;
+        }
+
+        // Pass 3: the drivetrain (speed loop, motor current, wheel spin) is faster than
+        // the chassis, so it runs in sub-steps of at most DRIVE_DT against the chassis
+        // velocities of this step; the chassis gets the mean tyre forces.
+        let subs = (dt / DRIVE_DT - 1e-9).ceil().max(1.0) as usize;
+        let h = dt / subs as f64;
+        for _ in 0..subs {
+            self.drive_substep(act, car, cmd.1, &mut wheels, h, dt, m_wheel);
+        }
+
         // Aerodynamic drag on the horizontal velocity, at the CoM.
         let vh = Vector::new(v.x, v.y, 0.0);
         let mut force = vh * (-(0.5 * AIR_DENSITY * p.drag_area * vh.length() as f64) as f32);
         let mut torque = Vector::ZERO;
-        let m_wheel = 0.5 * car.mass / 4.0;
-        let mu_x = car.friction * p.longitudinal_friction_ratio;
-        let iw = p.wheel_inertia;
-        for k in 0..4 {
-            let n = loads[k];
-            let omega = act.omega[k];
-            let roll = -p.rolling_resistance * n * r * (omega * r / ROLL_FADE).clamp(-1.0, 1.0);
-            let tq = wheel_torque + roll;
-            if n <= 0.0 {
-                act.omega[k] = omega + dt * tq / iw; // free wheel
+        let inv = 1.0 / subs as f64;
+        for (k, wh) in wheels.iter().enumerate() {
+            if wh.n <= 0.0 {
                 continue;
             }
             // The load acts along the ground normal at the contact point.
-            let fs = Vector::Z * n as f32;
-            force += fs;
-            torque += (contact[k] - com).cross(fs);
+            let ft = Vector::Z * wh.n as f32
+                + wh.fw * (wh.sum_fx * inv) as f32
+                + wh.lw * (wh.sum_fy * inv) as f32;
+            force += ft;
+            torque += (contact[k] - com).cross(ft);
+        }
+        let dtf = dt as f32;
+        body.apply_impulse(force * dtf, true);
+        body.apply_torque_impulse(torque * dtf, true);
+    }
 
-            let (ca, sa) = (angles[k].cos() as f32, angles[k].sin() as f32);
-            let mut fw = rot * Vector::new(ca, sa, 0.0);
-            fw.z = 0.0;
-            let fw = fw.normalize_or_zero();
-            let lw = Vector::new(-fw.y, fw.x, 0.0);
-            let vc = v + w.cross(contact[k] - com);
-            let (vl, vt) = (vc.dot(fw) as f64, vc.dot(lw) as f64);
-            let mut fy = -self.stiffness[k] * n * vt.atan2(vl.abs().max(V0));
-            let cap = m_wheel * vt.abs() / dt;
-            fy = fy.clamp(-cap, cap);
+    /// One drivetrain sub-step of length `h` (the chassis step is `dt`): the PI loop on
+    /// wheel speed, as the VESC measures it (ERPM), with the integral held while the
+    /// output is saturated in the error's direction (anti-windup); the lagged motor
+    /// current within its window; each wheel's spin and tyre forces, accumulated.
+    #[allow(clippy::too_many_arguments)]
+    fn drive_substep(
+        &self,
+        act: &mut Actuators,
+        car: &CarParams,
+        target: f64,
+        wheels: &mut [Wheel; 4],
+        h: f64,
+        dt: f64,
+        m_wheel: f64,
+    ) {
+        let p = &self.p;
+        let r = p.wheel_radius;
+        let v_wheel = r * act.omega.iter().sum::<f64>() / 4.0;
+        let err = target - v_wheel;
+        let (lo, hi) = self.current_window(v_wheel);
+        let want = p.speed_kp * err + p.speed_ki * act.integral;
+        if (want < hi || err < 0.0) && (want > lo || err > 0.0) {
+            act.integral += err * h;
+        }
+        act.current += (want.clamp(lo, hi) - act.current) * lag_step(car.throttle_lag, h);
+        act.current = act.current.clamp(lo, hi);
+        let wheel_torque = self.force_per_amp * act.current * r / 4.0;
+        let mu_x = car.friction * p.longitudinal_friction_ratio;
+        let iw = p.wheel_inertia;
+        for (k, wh) in wheels.iter_mut().enumerate() {
+            let (n, vl, omega) = (wh.n, wh.vl, act.omega[k]);
+            let roll = -p.rolling_resistance * n * r * (omega * r / ROLL_FADE).clamp(-1.0, 1.0);
+            let tq = wheel_torque + roll;
+            if n <= 0.0 {
+                act.omega[k] = omega + h * tq / iw; // free wheel
+                continue;
+            }
             // Longitudinal: linear slip stiffness kx (N per m/s of slip speed), wheel spin
-            // solved implicitly with it: iw (w' - w) = dt (tq - r kx (r w' - vl)).
+            // solved implicitly with it: iw (w' - w) = h (tq - r kx (r w' - vl)).
             let kx = p.longitudinal_stiffness * n / vl.abs().max(V0);
-            let mut implicit = (iw * omega + dt * (tq + r * kx * vl)) / (iw + dt * r * r * kx);
+            let mut implicit = (iw * omega + h * (tq + r * kx * vl)) / (iw + h * r * r * kx);
             // A braking torque (against the direction of travel) locks a wheel at most;
             // it never spins it backwards under a sliding tyre.
             let braking = tq * vl < 0.0;
@@ -368,7 +424,7 @@ impl VehicleModel {
             let slip = r * implicit - vl;
             let capx = m_wheel * slip.abs() / dt;
             let fx_lin = kx * slip;
-            let mut fx = fx_lin.clamp(-capx, capx);
+            let (mut fx, mut fy) = (fx_lin.clamp(-capx, capx), wh.fy);
             let e = (fx / (mu_x * n)).powi(2) + (fy / (car.friction * n)).powi(2);
             if e > 1.0 {
                 let s = 1.0 / e.sqrt();
@@ -378,20 +434,16 @@ impl VehicleModel {
             act.omega[k] = if fx == fx_lin || locked {
                 implicit
             } else {
-                let w = omega + dt * (tq - r * fx) / iw;
+                let w = omega + h * (tq - r * fx) / iw;
                 if braking && w * vl < 0.0 {
                     0.0
                 } else {
                     w
                 }
             };
-            let ft = fw * fx as f32 + lw * fy as f32;
-            force += ft;
-            torque += (contact[k] - com).cross(ft);
+            wh.sum_fx += fx;
+            wh.sum_fy += fy;
         }
-        let dtf = dt as f32;
-        body.apply_impulse(force * dtf, true);
-        body.apply_torque_impulse(torque * dtf, true);
     }
 
     /// The wheel spin rate (rad/s) that rolls without slip at forward speed `v`.
