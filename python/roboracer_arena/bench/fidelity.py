@@ -234,7 +234,7 @@ def print_table(res: dict[str, Any]) -> None:
         ratio = t["yaw_rate"] / t["linear_yaw_rate"]
         sat = " (lin > mu g)" if t["linear_saturated"] else ""
         print(
-            f"{t['v']:4.1f} {t['steer']:6.2f} {t['yaw_rate']:8.3f} {t['linear_yaw_rate']:9.3f} {ratio:9.3f} "
+            f"{t['v']:4.1f} {t['steer']:6.3f} {t['yaw_rate']:8.3f} {t['linear_yaw_rate']:9.3f} {ratio:9.3f} "
             f"{t['lat_acc']:7.2f} {t['lat_acc'] / t['limit_lat_acc']:7.3f} {t['gym_yaw_rate']:7.3f} {t['gym_lat_acc']:7.2f}{sat}"
         )
     e = res["envelope"]
