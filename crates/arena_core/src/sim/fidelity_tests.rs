@@ -188,7 +188,9 @@ fn head_on(walls: &[Vec<[f64; 2]>], half: f64, y: f64, lead: f64) -> (f64, f64) 
 /// contact step itself, from a perfectly aligned approach (yaw 0 to the last step), so it
 /// is the contact solver's split of a statically indeterminate face impact, not the
 /// tyres: wall and ground friction, 4-16 solver iterations, rapier's internal-edge fix
-/// and even walls built from cuboids instead of triangles leave 25-170 cases spinning.
+/// and even walls built from cuboids instead of triangles leave 25-170 cases spinning,
+/// as do no warm-starting, more internal PGS iterations, no contact clustering, a lower
+/// corrective velocity and no friction in the bias pass (118-140 cases).
 /// Without soft CCD and with the internal-edge fix it drops to 9-25 cases, but soft CCD
 /// is what stops the car at the wall (`car_driven_at_a_wall_stops_at_it`). Kept as the
 /// acceptance test for the fix.
