@@ -9,8 +9,9 @@
 //! `-C_a N atan(v_lat / max(|v_long|, v0))` (cornering stiffness per unit load, the
 //! F1TENTH/CommonRoad Traxxas values) and a longitudinal force `C_x N kappa` from the
 //! wheel's slip ratio `kappa = (r omega - v_long) / max(|v_long|, v0)`; both are scaled
-//! together into the friction ellipse `(Fx / mu_x N)^2 + (Fy / mu N)^2 <= 1` and, at
-//! crawling speed, to what stops the slip within one step (no jitter).
+//! together into the friction ellipse `(Fx / mu_x N)^2 + (Fy / mu N)^2 <= 1`; at crawling
+//! speed the lateral force is capped to what stops the slip within one step and the
+//! longitudinal stiffness is softened by the chassis' response within the step (no jitter).
 //!
 //! Each wheel spins (`omega`) under a quarter of the motor torque (open differentials),
 //! the tyre's reaction and rolling resistance; its update is implicit in the slip so it
@@ -410,9 +411,12 @@ impl VehicleModel {
                 act.omega[k] = omega + h * tq / iw; // free wheel
                 continue;
             }
-            // Longitudinal: linear slip stiffness kx (N per m/s of slip speed), wheel spin
-            // solved implicitly with it: iw (w' - w) = h (tq - r kx (r w' - vl)).
-            let kx = p.longitudinal_stiffness * n / vl.abs().max(V0);
+            // Longitudinal: linear slip stiffness (N per m/s of slip speed), softened by the
+            // chassis' own response within its step (implicit in the chassis velocity
+            // too: F = k s' with s' = s - dt F / m gives F = k s / (1 + k dt / m)), and
+            // the wheel spin solved implicitly with it: iw (w' - w) = h (tq - r kx (r w' - vl)).
+            let k0 = p.longitudinal_stiffness * n / vl.abs().max(V0);
+            let kx = k0 / (1.0 + k0 * dt / m_wheel);
             let mut implicit = (iw * omega + h * (tq + r * kx * vl)) / (iw + h * r * r * kx);
             // A braking torque (against the direction of travel) locks a wheel at most;
             // it never spins it backwards under a sliding tyre.
@@ -422,9 +426,8 @@ impl VehicleModel {
                 implicit = 0.0;
             }
             let slip = r * implicit - vl;
-            let capx = m_wheel * slip.abs() / dt;
             let fx_lin = kx * slip;
-            let (mut fx, mut fy) = (fx_lin.clamp(-capx, capx), wh.fy);
+            let (mut fx, mut fy) = (fx_lin, wh.fy);
             let e = (fx / (mu_x * n)).powi(2) + (fy / (car.friction * n)).powi(2);
             if e > 1.0 {
                 let s = 1.0 / e.sqrt();
