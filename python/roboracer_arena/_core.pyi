@@ -207,6 +207,16 @@ class Simulator:
         """Put the vehicles of envs where ``env_mask`` is True at rest at ``poses`` (E, V, 3)."""
     def set_speeds(self, env_mask: npt.NDArray[np.bool_], speeds: npt.NDArray[np.float64]) -> None:
         """Rolling start: forward speeds (E, V) in m/s for envs where ``env_mask`` is True, after ``reset``."""
+    def set_vehicle_params(
+        self,
+        env_mask: npt.NDArray[np.bool_],
+        friction: npt.NDArray[np.float64],
+        mass: npt.NDArray[np.float64],
+        steer_lag: npt.NDArray[np.float64],
+        throttle_lag: npt.NDArray[np.float64],
+    ) -> None:
+        """Per-episode vehicle parameters (E,) each for envs where ``env_mask`` is True: tyre friction,
+        mass (kg), steering and throttle time constants (s). They hold until set again."""
     def step(
         self,
         actions: npt.NDArray[np.float64],

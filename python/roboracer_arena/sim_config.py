@@ -20,10 +20,13 @@ _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
 class VehicleConfig(NumbersAreNumbers):
-    """Rigid chassis on four suspended wheels with Ackermann steering and a VESC-like
-    speed controller. Mass, inertia, geometry, steering limit and tyre friction are the
-    paper's Traxxas 1:10 figures; suspension and controller gains are chosen so the car
-    settles in well under a second and reaches its top speed like the real one."""
+    """Rigid chassis on four suspended wheels with Ackermann steering behind a lagged servo,
+    and a drivetrain: a VESC-like PI speed loop on wheel speed driving a brushless motor
+    (current limits and back-EMF give the torque-speed curve), open differentials, wheels
+    that spin and slip (slip ratio and slip angle share the friction ellipse), rolling
+    resistance and aerodynamic drag. Mass, inertia, geometry, steering limit and tyre
+    friction are the paper's Traxxas 1:10 figures; cornering stiffness and rate limits are
+    the F1TENTH/CommonRoad Traxxas values; each field says where its value comes from."""
 
     model_config = _FROZEN
 
@@ -39,11 +42,29 @@ class VehicleConfig(NumbersAreNumbers):
     max_steer_rate: float = Field(
         3.2, gt=0, description="Steering-rate limit (rad/s): servo slew, the F1TENTH single-track model's sv_max."
     )
+    steer_time_constant: float = Field(
+        0.05,
+        ge=0,
+        description=(
+            "First-order steering servo lag (s), before the rate limit; 0 = none. No published figure for the "
+            "car's servo: 50 ms is an assumption (hobby servos move 60 deg in 0.1-0.2 s), randomise it for transfer."
+        ),
+    )
     max_speed: float = Field(
         7.0, gt=0, description="Largest commanded forward speed (m/s); the paper observed at most 6.66 m/s."
     )
     min_speed: float = Field(-3.0, le=0, description="Most negative commanded speed (m/s), i.e. reverse limit.")
-    tyre_friction: float = Field(0.83, gt=0, description="Tyre-surface friction coefficient mu (paper: about 0.83).")
+    tyre_friction: float = Field(
+        0.83, gt=0, description="Tyre-surface friction coefficient mu, lateral (paper: about 0.83, from a lateral pull test)."
+    )
+    longitudinal_friction_ratio: float = Field(
+        1.0,
+        gt=0,
+        description=(
+            "Longitudinal over lateral friction: the friction ellipse's axis ratio. The paper gives one mu, so 1.0 "
+            "(a friction circle)."
+        ),
+    )
     cornering_stiffness_front: float = Field(
         4.718,
         gt=0,
@@ -53,6 +74,36 @@ class VehicleConfig(NumbersAreNumbers):
         5.4562,
         gt=0,
         description="Rear cornering stiffness per unit normal load (1/rad), the F1TENTH/CommonRoad Traxxas C_Sr.",
+    )
+    longitudinal_stiffness: float = Field(
+        8.0,
+        gt=0,
+        description=(
+            "Longitudinal slip stiffness per unit normal load (force / load per unit slip ratio). No published "
+            "Traxxas figure: 8 lies between the car's cornering stiffness per load (4.7-5.5 /rad) and road tyres' "
+            "10-20 (Pacejka, Tyre and Vehicle Dynamics); peak grip at about 10 % slip."
+        ),
+    )
+    rolling_resistance: float = Field(
+        0.015,
+        ge=0,
+        description="Rolling-resistance coefficient (force per unit load): rubber tyres on a hard floor, 0.01-0.02.",
+    )
+    drag_area: float = Field(
+        0.035,
+        ge=0,
+        description=(
+            "Aerodynamic drag area C_d A (m^2), air density 1.2 kg/m^3: a 0.29 m x 0.15 m bluff body frontal "
+            "area (0.044 m^2) with C_d 0.8."
+        ),
+    )
+    wheel_inertia: float = Field(
+        2.5e-4,
+        gt=0,
+        description=(
+            "Spin inertia of one wheel (kg m^2): a 1:10 short-course wheel and tyre (about 0.12 kg at 0.0525 m, "
+            "~0.6 m r^2 = 2e-4) plus a quarter of the motor rotor through the gear ratio squared; an estimate."
+        ),
     )
     chassis_length: float = Field(0.55, gt=0, description="Collision box length (m), Traxxas body about 0.55 m.")
     chassis_width: float = Field(0.29, gt=0, description="Collision box width (m), Traxxas body about 0.29 m.")
@@ -67,12 +118,49 @@ class VehicleConfig(NumbersAreNumbers):
         30.0, ge=0, description="Damper rate per wheel (N s/m): damping ratio about 0.55 at the default spring."
     )
     speed_kp: float = Field(
-        40.0, gt=0, description="Speed controller gain (N per m/s of speed error), like the VESC's speed PID P term."
+        100.0,
+        gt=0,
+        description=(
+            "Speed PI proportional gain (motor amps per m/s of wheel-speed error), like the VESC speed PID acting "
+            "on ERPM; 100 A per m/s is about 66 N per m/s at the wheels (saturates beyond 0.7 m/s of error)."
+        ),
     )
-    max_drive_force: float = Field(
-        46.5, gt=0, description="Largest total drive force (N): mass times the F1TENTH model's a_max 9.51 m/s^2."
+    speed_ki: float = Field(
+        100.0, ge=0, description="Speed PI integral gain (motor amps per m of accumulated error), with anti-windup."
     )
-    max_brake_force: float = Field(50.0, gt=0, description="Largest total braking force (N).")
+    throttle_time_constant: float = Field(
+        0.02,
+        ge=0,
+        description="First-order lag of the motor current behind the speed loop (s): VESC current loop and command latency; 0 = none.",
+    )
+    motor_kv: float = Field(
+        3500.0, gt=0, description="Motor speed constant (rpm/V): the Traxxas Velineon 3500 brushless motor."
+    )
+    motor_resistance: float = Field(
+        0.02, gt=0, description="Motor winding plus ESC resistance (ohm); an estimate for a 3500 kV 540-size motor."
+    )
+    max_motor_current: float = Field(
+        70.0,
+        gt=0,
+        description=(
+            "VESC motor current limit while driving (A): with the defaults 70 A gives 46 N at the wheels, "
+            "9.5 m/s^2 at 4.885 kg, the F1TENTH single-track model's a_max 9.51 m/s^2."
+        ),
+    )
+    max_brake_current: float = Field(
+        70.0, gt=0, description="VESC motor current limit while braking (A), symmetric with driving by default."
+    )
+    battery_voltage: float = Field(11.1, gt=0, description="Battery voltage (V): the F1TENTH car's 3S LiPo, nominal.")
+    max_duty: float = Field(0.95, gt=0, le=1, description="Largest VESC duty cycle (the VESC default l_max_duty 0.95).")
+    gear_ratio: float = Field(
+        12.68,
+        gt=0,
+        description=(
+            "Motor turns per wheel turn: from the F1TENTH VESC speed_to_erpm_gain 4614 ERPM per m/s with the "
+            "4-pole Velineon (2 pole pairs) and the 0.0525 m wheel: 4614 x 2 pi r / (60 x 2). With 11.1 V x 3500 "
+            "rpm/V this gives a no-load speed of 16.8 m/s."
+        ),
+    )
 
     @model_validator(mode="after")
     def _consistent_geometry(self) -> VehicleConfig:
@@ -120,7 +208,12 @@ class PhysicsConfig(NumbersAreNumbers):
 
     model_config = _FROZEN
 
-    dt: float = Field(0.005, gt=0, le=0.02, description="Physics time step (s).")
+    dt: float = Field(
+        0.005,
+        gt=0,
+        le=0.02,
+        description="Physics time step (s). Steps above 10 ms are split into equal internal steps, so every accepted dt is stable.",
+    )
     gravity: float = Field(9.81, gt=0, description="Gravity (m/s^2).")
     wall_height: float = Field(0.5, gt=0, description="Height of the extruded collision walls (m).")
     wall_friction: float = Field(0.3, ge=0, description="Chassis-wall friction coefficient.")

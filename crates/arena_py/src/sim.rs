@@ -372,6 +372,34 @@ impl Simulator {
         boundary::call(py, "set_speeds", move || inner.set_speeds(&mask, &speeds))
     }
 
+    /// Per-episode vehicle parameters (domain randomisation) for the envs where
+    /// `env_mask` is True: friction, mass (kg), steering and throttle lags (s), each a
+    /// float64 array of shape (E,). They hold until set again.
+    fn set_vehicle_params(
+        &mut self,
+        py: Python<'_>,
+        env_mask: &Bound<'_, PyAny>,
+        friction: &Bound<'_, PyAny>,
+        mass: &Bound<'_, PyAny>,
+        steer_lag: &Bound<'_, PyAny>,
+        throttle_lag: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        let e = self.inner.num_envs();
+        let mask = read_mask(env_mask, e)?;
+        let (f, m) = (
+            read_f64(friction, "friction", [e])?,
+            read_f64(mass, "mass", [e])?,
+        );
+        let (s, t) = (
+            read_f64(steer_lag, "steer_lag", [e])?,
+            read_f64(throttle_lag, "throttle_lag", [e])?,
+        );
+        let inner = &mut self.inner;
+        boundary::call(py, "set_vehicle_params", move || {
+            inner.set_vehicle_params(&mask, &f, &m, &s, &t)
+        })
+    }
+
     #[pyo3(signature = (actions, substeps, scans, state, events))]
     fn step(
         &mut self,

@@ -25,6 +25,8 @@ from ..track import Track
 from .start import SIDE_MARGIN, grid_start_s
 
 CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
+#: Stream index of the per-env vehicle-randomisation RNG (apart from every other draw).
+_VEHICLE_STREAM = 0x7E41
 #: Simulator state columns copied into ``info`` when present.
 STATE_INFO = ("laps", "lap_time", "last_lap_time", "progress_s")
 #: A step that loses more than this (m) of centreline progress counts as moving backwards.
@@ -157,6 +159,19 @@ class SimBatch:
         return c.astype(np.float32)
 
     # ------------------------------------------------------------------ reset
+    def _randomise_vehicles(self, mask: np.ndarray, idx: np.ndarray) -> None:
+        """Draw this episode's tyre friction, mass and actuator lags of each reset env from
+        its stream (factors on the configured values) and hand them to the simulator."""
+        rnd, veh = self.config.randomisation, self.config.sim.vehicle
+        E = self.num_envs
+        friction, mass = np.full(E, veh.tyre_friction), np.full(E, veh.mass)
+        steer, throttle = np.full(E, veh.steer_time_constant), np.full(E, veh.throttle_time_constant)
+        for e in idx:
+            f, m, lag = (self._vehicle_rngs[e].uniform(*r) for r in (rnd.friction_scale, rnd.mass_scale, rnd.lag_scale))
+            friction[e], mass[e] = veh.tyre_friction * f, veh.mass * m
+            steer[e], throttle[e] = veh.steer_time_constant * lag, veh.throttle_time_constant * lag
+        self.sim.set_vehicle_params(mask, friction, mass, steer, throttle)
+
     def _start_spec(self, tracks: list[Track], probs: np.ndarray | None) -> str:
         """The simulator's reset draws (``_core.Simulator.set_start_spec``) as JSON."""
         cfg, V = self.config, self.vehicles
@@ -182,6 +197,10 @@ class SimBatch:
         sim = self._Simulator(self._natives, self.num_envs, self.vehicles, self.config.sim.to_json(), seed,
                               env_index_offset=self.env_index_offset)
         sim.set_start_spec(self._start_json)
+        # Vehicle factors (tyre friction, mass, lags) per episode, from each env's own stream
+        # seeded from (seed, env index): the same episodes whatever num_envs.
+        self._vehicle_rngs = [np.random.default_rng([int(seed), self.env_index_offset + e, _VEHICLE_STREAM])
+                              for e in range(self.num_envs)] if self.config.randomisation.vehicle_active else None
         return sim
 
     def reset(self, mask: np.ndarray, track_ids: np.ndarray | None = None, poses: np.ndarray | None = None,
@@ -197,6 +216,8 @@ class SimBatch:
         mask = np.asarray(mask, dtype=bool)
         self.sim.reset_drawn(mask, self.track_ids, self.start_pose, self.start_speed, track_ids, poses, speeds)
         idx = np.flatnonzero(mask)
+        if self._vehicle_rngs is not None:
+            self._randomise_vehicles(mask, idx)
         length = self.lengths[self.track_ids[idx]]
         self._len[idx, 0] = length
         self._half_len[idx, 0] = length / 2

@@ -89,31 +89,52 @@ class RewardConfig(NumbersAreNumbers):
 
 
 class RandomisationConfig(NumbersAreNumbers):
-    """Per-episode domain randomisation of the observation, drawn from each env's own RNG.
+    """Per-episode domain randomisation, drawn from each env's own RNG (deterministic for a
+    given seed).
 
-    The simulator's scan is exact; each episode draws a range-noise std uniformly from
-    ``lidar_noise_std`` (added to every beam, every step) and each beam of each step reads
-    ``range_max`` (a lost return) with probability ``lidar_dropout``. Vehicle parameters
-    (tyre friction, mass) are not randomised per episode: the native simulator holds one
-    vehicle model for all its worlds (set them for the whole env with ``sim={"vehicle": ...}``).
+    Observation: the simulator's scan is exact; each episode draws a range-noise std
+    uniformly from ``lidar_noise_std`` (added to every beam, every step) and each beam of
+    each step reads ``range_max`` (a lost return) with probability ``lidar_dropout``.
+
+    Vehicle: each episode draws factors uniformly from ``(low, high)`` that scale the
+    configured tyre friction (``friction_scale``), mass and with it the inertia
+    (``mass_scale``), and both actuator time constants, steering servo and motor current
+    (``lag_scale``). (1, 1) leaves the parameter at its configured value.
     """
 
     model_config = _FROZEN
 
     lidar_noise_std: tuple[float, float] = Field((0.0, 0.0), description="(low, high) range-noise std (m).")
     lidar_dropout: float = Field(0.0, ge=0, lt=1, description="Probability a beam reads range_max, per step.")
+    friction_scale: tuple[float, float] = Field((1.0, 1.0), description="(low, high) factor on vehicle.tyre_friction.")
+    mass_scale: tuple[float, float] = Field((1.0, 1.0), description="(low, high) factor on vehicle.mass (and inertia).")
+    lag_scale: tuple[float, float] = Field(
+        (1.0, 1.0), description="(low, high) factor on vehicle.steer_time_constant and throttle_time_constant."
+    )
 
     @model_validator(mode="after")
     def _ranges(self) -> RandomisationConfig:
         lo, hi = self.lidar_noise_std
         if not 0 <= lo <= hi:
             raise ValueError(f"randomisation.lidar_noise_std must be (low, high) with 0 <= low <= high, got {(lo, hi)}")
+        for name in ("friction_scale", "mass_scale", "lag_scale"):
+            lo, hi = getattr(self, name)
+            if not (0 < lo <= hi if name != "lag_scale" else 0 <= lo <= hi):
+                raise ValueError(
+                    f"randomisation.{name} must be (low, high) with {'0 <=' if name == 'lag_scale' else '0 <'} low <= high, "
+                    f"got {(lo, hi)}"
+                )
         return self
 
     @property
     def active(self) -> bool:
         """Whether any observation randomisation is on."""
         return self.lidar_noise_std[1] > 0 or self.lidar_dropout > 0
+
+    @property
+    def vehicle_active(self) -> bool:
+        """Whether any vehicle-parameter randomisation is on."""
+        return any(getattr(self, n) != (1.0, 1.0) for n in ("friction_scale", "mass_scale", "lag_scale"))
 
 
 #: Named observation presets (``EnvConfig(observation="normalise")``).

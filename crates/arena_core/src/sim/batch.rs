@@ -25,7 +25,7 @@ use super::lidar::Scanner;
 use super::params::SimParams;
 use super::starts::{draw_start, draw_track, StartSpec};
 use super::track::Track;
-use super::vehicle::VehicleModel;
+use super::vehicle::{CarParams, VehicleModel};
 use super::world::{World, STATE_SIZE};
 use crate::error::{ArenaError, Result};
 
@@ -281,7 +281,7 @@ impl Simulator {
             for k in 0..v {
                 w.reset_vehicle(k, [p[3 * k], p[3 * k + 1], p[3 * k + 2]], model);
                 if sp[k] != 0.0 {
-                    w.set_forward_speed(k, sp[k]);
+                    w.set_forward_speed(k, sp[k], model);
                 }
             }
         };
@@ -315,7 +315,54 @@ impl Simulator {
         for ((w, &m), s) in self.worlds.iter_mut().zip(mask).zip(speeds.chunks(v)) {
             if m {
                 for (k, &speed) in s.iter().enumerate() {
-                    w.set_forward_speed(k, speed);
+                    w.set_forward_speed(k, speed, &self.model);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Set the per-episode vehicle parameters of every vehicle of each env whose mask is
+    /// true (`friction`, `mass`, `steer_lag`, `throttle_lag`: one value per env) for
+    /// domain randomisation; they hold until set again. Values must be finite, friction
+    /// and mass positive, lags >= 0.
+    pub fn set_vehicle_params(
+        &mut self,
+        mask: &[bool],
+        friction: &[f64],
+        mass: &[f64],
+        steer_lag: &[f64],
+        throttle_lag: &[f64],
+    ) -> Result<()> {
+        let e = self.num_envs();
+        self.check_len("env_mask", mask.len(), e)?;
+        for (name, a) in [
+            ("friction", friction),
+            ("mass", mass),
+            ("steer_lag", steer_lag),
+            ("throttle_lag", throttle_lag),
+        ] {
+            self.check_len(name, a.len(), e)?;
+        }
+        let params: Vec<CarParams> = (0..e)
+            .map(|i| CarParams {
+                friction: friction[i],
+                mass: mass[i],
+                steer_lag: steer_lag[i],
+                throttle_lag: throttle_lag[i],
+            })
+            .collect();
+        for (i, (p, &m)) in params.iter().zip(mask).enumerate() {
+            if m {
+                p.validate().map_err(|msg| {
+                    ArenaError::invalid(format!("vehicle params of env {i}: {msg}"))
+                })?;
+            }
+        }
+        for ((w, &m), p) in self.worlds.iter_mut().zip(mask).zip(&params) {
+            if m {
+                for k in 0..self.vehicles_per_env {
+                    w.set_car_params(k, *p, &self.model);
                 }
             }
         }

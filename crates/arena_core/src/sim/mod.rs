@@ -23,6 +23,8 @@ pub mod vehicle;
 pub mod world;
 
 #[cfg(test)]
+mod fidelity_tests;
+#[cfg(test)]
 mod tests;
 #[cfg(test)]
 mod tests_resets;

@@ -7,6 +7,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{ArenaError, Result};
 
+/// Largest accepted physics time step (s). Steps above [`MAX_INTERNAL_DT`] are split
+/// into equal internal sub-steps, so every accepted dt is as stable as 10 ms.
+pub const MAX_DT: f64 = 0.02;
+/// Largest step the vehicle model integrates in one go (s).
+pub const MAX_INTERNAL_DT: f64 = 0.01;
+
 /// The Traxxas 1:10 RoboRacer vehicle (paper's table) plus model constants.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -22,12 +28,24 @@ pub struct VehicleParams {
     pub max_steer: f64,
     /// Steering-rate limit (rad/s); 3.2 is the F1TENTH single-track model's `sv_max`.
     pub max_steer_rate: f64,
+    /// First-order steering servo time constant (s); 0 = no lag.
+    pub steer_time_constant: f64,
     pub max_speed: f64,
     pub min_speed: f64,
     pub tyre_friction: f64,
+    /// Longitudinal over lateral friction (the friction ellipse's axis ratio).
+    pub longitudinal_friction_ratio: f64,
     /// Cornering stiffness per unit normal load (1/rad), front and rear axles.
     pub cornering_stiffness_front: f64,
     pub cornering_stiffness_rear: f64,
+    /// Longitudinal slip stiffness per unit normal load (per unit slip ratio).
+    pub longitudinal_stiffness: f64,
+    /// Rolling-resistance coefficient (force per unit normal load).
+    pub rolling_resistance: f64,
+    /// Aerodynamic drag area C_d A (m^2), with air density 1.2 kg/m^3.
+    pub drag_area: f64,
+    /// Spin inertia of one wheel including its share of the motor rotor (kg m^2).
+    pub wheel_inertia: f64,
     pub chassis_length: f64,
     pub chassis_width: f64,
     pub chassis_height: f64,
@@ -36,10 +54,21 @@ pub struct VehicleParams {
     pub suspension_travel: f64,
     pub suspension_stiffness: f64,
     pub suspension_damping: f64,
-    /// Speed controller P gain (N per m/s of error).
+    /// Speed PI controller on wheel speed: motor amps per m/s of error, per m of error.
     pub speed_kp: f64,
-    pub max_drive_force: f64,
-    pub max_brake_force: f64,
+    pub speed_ki: f64,
+    /// First-order lag of the motor current behind the controller (s); 0 = none.
+    pub throttle_time_constant: f64,
+    /// Brushless motor: speed constant (rpm/V), winding resistance (ohm), current limits
+    /// (A) for driving and braking; battery voltage (V), largest duty cycle; reduction
+    /// from motor to wheel.
+    pub motor_kv: f64,
+    pub motor_resistance: f64,
+    pub max_motor_current: f64,
+    pub max_brake_current: f64,
+    pub battery_voltage: f64,
+    pub max_duty: f64,
+    pub gear_ratio: f64,
 }
 
 impl Default for VehicleParams {
@@ -55,11 +84,17 @@ impl Default for VehicleParams {
             com_height: 0.063,
             max_steer: 0.524,
             max_steer_rate: 3.2,
+            steer_time_constant: 0.05,
             max_speed: 7.0,
             min_speed: -3.0,
             tyre_friction: 0.83,
+            longitudinal_friction_ratio: 1.0,
             cornering_stiffness_front: 4.718,
             cornering_stiffness_rear: 5.4562,
+            longitudinal_stiffness: 8.0,
+            rolling_resistance: 0.015,
+            drag_area: 0.035,
+            wheel_inertia: 2.5e-4,
             chassis_length: 0.55,
             chassis_width: 0.29,
             chassis_height: 0.10,
@@ -68,9 +103,16 @@ impl Default for VehicleParams {
             suspension_travel: 0.05,
             suspension_stiffness: 600.0,
             suspension_damping: 30.0,
-            speed_kp: 40.0,
-            max_drive_force: 46.5,
-            max_brake_force: 50.0,
+            speed_kp: 100.0,
+            speed_ki: 100.0,
+            throttle_time_constant: 0.02,
+            motor_kv: 3500.0,
+            motor_resistance: 0.02,
+            max_motor_current: 70.0,
+            max_brake_current: 70.0,
+            battery_voltage: 11.1,
+            max_duty: 0.95,
+            gear_ratio: 12.68,
         }
     }
 }
@@ -195,9 +237,20 @@ impl SimParams {
             ("vehicle.suspension_rest_length", v.suspension_rest_length),
             ("vehicle.suspension_travel", v.suspension_travel),
             ("vehicle.suspension_stiffness", v.suspension_stiffness),
+            (
+                "vehicle.longitudinal_friction_ratio",
+                v.longitudinal_friction_ratio,
+            ),
+            ("vehicle.longitudinal_stiffness", v.longitudinal_stiffness),
+            ("vehicle.wheel_inertia", v.wheel_inertia),
             ("vehicle.speed_kp", v.speed_kp),
-            ("vehicle.max_drive_force", v.max_drive_force),
-            ("vehicle.max_brake_force", v.max_brake_force),
+            ("vehicle.motor_kv", v.motor_kv),
+            ("vehicle.motor_resistance", v.motor_resistance),
+            ("vehicle.max_motor_current", v.max_motor_current),
+            ("vehicle.max_brake_current", v.max_brake_current),
+            ("vehicle.battery_voltage", v.battery_voltage),
+            ("vehicle.max_duty", v.max_duty),
+            ("vehicle.gear_ratio", v.gear_ratio),
             ("lidar.fov", self.lidar.fov),
             ("lidar.range_max", self.lidar.range_max),
             ("lidar.rate_hz", self.lidar.rate_hz),
@@ -223,10 +276,20 @@ impl SimParams {
             v.chassis_clearance.is_finite() && v.chassis_clearance >= 0.0,
             "vehicle.chassis_clearance must be >= 0",
         )?;
-        check(
-            v.suspension_damping.is_finite() && v.suspension_damping >= 0.0,
-            "vehicle.suspension_damping must be >= 0",
-        )?;
+        for (name, x) in [
+            ("vehicle.suspension_damping", v.suspension_damping),
+            ("vehicle.steer_time_constant", v.steer_time_constant),
+            ("vehicle.throttle_time_constant", v.throttle_time_constant),
+            ("vehicle.speed_ki", v.speed_ki),
+            ("vehicle.rolling_resistance", v.rolling_resistance),
+            ("vehicle.drag_area", v.drag_area),
+        ] {
+            check(
+                x.is_finite() && x >= 0.0,
+                &format!("{name} must be a finite number >= 0, got {x}"),
+            )?;
+        }
+        check(v.max_duty <= 1.0, "vehicle.max_duty must be at most 1")?;
         let l = &self.lidar;
         check(
             l.num_beams >= 1 && l.num_beams <= 100_000,
@@ -249,7 +312,10 @@ impl SimParams {
             "lidar mount offsets must be finite",
         )?;
         let p = &self.physics;
-        check(p.dt <= 0.02, "physics.dt must be at most 0.02 s")?;
+        check(
+            p.dt <= MAX_DT,
+            &format!("physics.dt must be at most {MAX_DT} s, got {}", p.dt),
+        )?;
         check(
             p.solver_iterations >= 1 && p.solver_iterations <= 16,
             "physics.solver_iterations must be in 1..=16",

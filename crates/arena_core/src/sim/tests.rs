@@ -316,9 +316,10 @@ fn free_step_shortcut_matches_the_full_pipeline() {
     let ((fast, c_fast), (full, c_full)) = (run(true), run(false));
     assert_eq!(c_full, [800, 0]);
     // Most steps of free driving take the shortcut (not those where hard pitch or roll
-    // brings a chassis corner within the contact margin of the ground).
+    // brings a chassis corner within the contact margin of the ground: the launches at
+    // the traction limit and the weave's speed changes here).
     assert!(
-        c_fast[1] > 700 && c_fast[0] + c_fast[1] == 800,
+        c_fast[1] > 650 && c_fast[0] + c_fast[1] == 800,
         "{c_fast:?}"
     );
     // It replays rapier's contact-free integration exactly: bit-identical states.

@@ -3,21 +3,112 @@
 //!
 //! Per wheel and step: a ray from the suspension hard-point along the chassis' down axis
 //! meets the ground plane z = 0 analytically (the ground is flat, so no scene query is
-//! needed); a spring–damper with a bump stop gives the normal load N; the tyre gives a
-//! lateral force `-C N atan(v_lat / max(|v_long|, v0))` (cornering stiffness per unit load,
-//! the F1TENTH/CommonRoad Traxxas values), a longitudinal force from the speed controller
-//! shared by load (the Traxxas is four-wheel drive), both limited to the friction circle
-//! `mu N` and, at crawling speed, to what stops the slip within one step (no jitter).
-//! Steering is Ackermann (inner wheel turns more) with an angle and a rate limit.
-//! The speed controller is a VESC-like P loop on forward speed with separate drive and
-//! brake force limits. Load transfer, roll and pitch emerge from the rigid body.
+//! needed); a spring–damper with a bump stop gives the normal load N, applied along the
+//! ground normal at the contact point (a wheel transmits no sideways push from its own
+//! load however the chassis is tilted). The tyre gives a lateral force
+//! `-C_a N atan(v_lat / max(|v_long|, v0))` (cornering stiffness per unit load, the
+//! F1TENTH/CommonRoad Traxxas values) and a longitudinal force `C_x N kappa` from the
+//! wheel's slip ratio `kappa = (r omega - v_long) / max(|v_long|, v0)`; both are scaled
+//! together into the friction ellipse `(Fx / mu_x N)^2 + (Fy / mu N)^2 <= 1`; at crawling
+//! speed the lateral force is capped to what stops the slip within one step and the
+//! longitudinal stiffness is softened by the chassis' response within the step (no jitter).
+//!
+//! Each wheel spins (`omega`) under a quarter of the motor torque (open differentials),
+//! the tyre's reaction and rolling resistance; its update is implicit in the slip so it
+//! is stable for the tiny wheel inertia. The motor is a brushless DC machine behind a
+//! VESC: a PI loop on wheel speed asks for a current, which lags first-order and is
+//! limited by the current limits and by what the battery voltage can drive against the
+//! back-EMF (the torque–speed curve), so top speed comes from the motor, drag and
+//! rolling resistance. Steering is Ackermann (inner wheel turns more) behind a
+//! first-order servo lag and a rate limit. Load transfer, roll and pitch emerge from
+//! the rigid body.
 
 use rapier3d::prelude::*;
 
 use super::params::{PhysicsParams, VehicleParams};
 
-/// Speed below which the slip angle uses `V0` as reference speed (m/s).
+/// Speed below which the slip angle and slip ratio use `V0` as reference speed (m/s).
 const V0: f64 = 0.5;
+/// Longest drivetrain sub-step (s): the wheel-speed loop with the wheel's small inertia
+/// is stable well inside it.
+const DRIVE_DT: f64 = 0.005;
+/// Air density (kg/m^3) for the drag force.
+const AIR_DENSITY: f64 = 1.2;
+/// Wheel surface speed (m/s) over which rolling resistance fades in, so a wheel at rest
+/// feels none (no chatter around zero).
+const ROLL_FADE: f64 = 0.1;
+
+/// Per-vehicle parameters that domain randomisation may change per episode.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CarParams {
+    /// Tyre–surface friction coefficient mu (lateral; longitudinal is scaled by the
+    /// model's `longitudinal_friction_ratio`).
+    pub friction: f64,
+    /// Total mass (kg); the inertia tensor scales with it.
+    pub mass: f64,
+    /// Steering servo and motor-current time constants (s).
+    pub steer_lag: f64,
+    pub throttle_lag: f64,
+}
+
+impl CarParams {
+    /// The configured (nominal) values.
+    pub fn nominal(p: &VehicleParams) -> Self {
+        CarParams {
+            friction: p.tyre_friction,
+            mass: p.mass,
+            steer_lag: p.steer_time_constant,
+            throttle_lag: p.throttle_time_constant,
+        }
+    }
+
+    /// Check randomised values: the same rules as the configuration's.
+    pub fn validate(&self) -> std::result::Result<(), String> {
+        let pos = |x: f64| x.is_finite() && x > 0.0;
+        let nonneg = |x: f64| x.is_finite() && x >= 0.0;
+        if !pos(self.friction) {
+            return Err(format!(
+                "friction must be a positive finite number, got {}",
+                self.friction
+            ));
+        }
+        if !pos(self.mass) {
+            return Err(format!(
+                "mass must be a positive finite number, got {}",
+                self.mass
+            ));
+        }
+        if !nonneg(self.steer_lag) || !nonneg(self.throttle_lag) {
+            return Err(format!(
+                "lags must be finite and >= 0, got {} and {}",
+                self.steer_lag, self.throttle_lag
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One wheel's state within a step: load, directions, longitudinal contact speed, the
+/// (capped) lateral force demand and the tyre forces summed over the drivetrain sub-steps.
+#[derive(Debug, Clone, Copy, Default)]
+struct Wheel {
+    n: f64,
+    vl: f64,
+    fy: f64,
+    fw: Vector,
+    lw: Vector,
+    sum_fx: f64,
+    sum_fy: f64,
+}
+
+/// Fraction of the way a first-order lag of time constant `tau` moves in `dt` (exact).
+fn lag_step(tau: f64, dt: f64) -> f64 {
+    if tau > 0.0 {
+        1.0 - (-dt / tau).exp()
+    } else {
+        1.0
+    }
+}
 
 /// Constants derived once from the parameters.
 #[derive(Debug, Clone)]
@@ -31,13 +122,22 @@ pub struct VehicleModel {
     pub half_extents: [f64; 3],
     pub box_centre: [f64; 3],
     gravity: f64,
+    /// Wheel-ground force per motor amp (N/A), equal to the back-EMF in volts per m/s
+    /// of wheel surface speed: `60 / (2 pi kv) * gear_ratio / wheel_radius`.
+    force_per_amp: f64,
 }
 
-/// Per-vehicle actuator state.
+/// Per-vehicle actuator and drivetrain state.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Actuators {
-    /// Current steering angle of the virtual centre wheel (rad), rate limited.
+    /// Current steering angle of the virtual centre wheel (rad), lagged and rate limited.
     pub steer: f64,
+    /// Motor current (A) after the throttle lag.
+    pub current: f64,
+    /// Integral of the speed error (m) for the PI loop.
+    pub integral: f64,
+    /// Wheel spin rates (rad/s) of FL, FR, RL, RR.
+    pub omega: [f64; 4],
 }
 
 impl VehicleModel {
@@ -77,13 +177,39 @@ impl VehicleModel {
                 p.chassis_clearance + p.chassis_height / 2.0 - p.com_height,
             ],
             gravity: g,
+            force_per_amp: 60.0 / (2.0 * std::f64::consts::PI * p.motor_kv) * p.gear_ratio
+                / p.wheel_radius,
         }
+    }
+
+    /// Motor current window (A) at wheel surface speed `v_wheel`: the current limits
+    /// (drive when the torque is along the rotation, brake when against it) and what
+    /// duty cycles in [-max_duty, max_duty] can drive against the back-EMF.
+    pub fn current_window(&self, v_wheel: f64) -> (f64, f64) {
+        let p = &self.p;
+        let emf = self.force_per_amp * v_wheel;
+        let v_max = p.max_duty * p.battery_voltage;
+        let (pos, neg) = if v_wheel >= 0.0 {
+            (p.max_motor_current, p.max_brake_current)
+        } else {
+            (p.max_brake_current, p.max_motor_current)
+        };
+        let lo = (-neg).max((-v_max - emf) / p.motor_resistance);
+        let hi = pos.min((v_max - emf) / p.motor_resistance).max(lo);
+        (lo, hi)
+    }
+
+    /// Total wheel-ground force per motor amp (N/A).
+    pub fn force_per_amp(&self) -> f64 {
+        self.force_per_amp
     }
 
     /// Mass properties: the paper's mass and yaw inertia; roll and pitch inertia from the
     /// chassis box, scaled by the same ratio that maps the box's yaw inertia to the paper's.
-    pub fn mass_properties(&self) -> MassProperties {
+    /// With another `mass`, the whole inertia tensor scales with it (same geometry).
+    pub fn mass_properties(&self, mass: f64) -> MassProperties {
         let p = &self.p;
+        let scale = mass / p.mass;
         let (a, b, c) = (p.chassis_length, p.chassis_width, p.chassis_height);
         let box_yaw = p.mass / 12.0 * (a * a + b * b);
         let k = p.yaw_inertia / box_yaw;
@@ -91,8 +217,12 @@ impl VehicleModel {
         let pitch = k * p.mass / 12.0 * (a * a + c * c);
         MassProperties::new(
             Vector::ZERO,
-            p.mass as f32,
-            Vector::new(roll as f32, pitch as f32, p.yaw_inertia as f32),
+            mass as f32,
+            Vector::new(
+                (roll * scale) as f32,
+                (pitch * scale) as f32,
+                (p.yaw_inertia * scale) as f32,
+            ),
         )
     }
 
@@ -103,7 +233,7 @@ impl VehicleModel {
         RigidBodyBuilder::dynamic()
             .soft_ccd_prediction((self.p.max_speed.max(-self.p.min_speed) * dt * 1.5) as f32)
             .pose(self.spawn_pose(pose))
-            .additional_mass_properties(self.mass_properties())
+            .additional_mass_properties(self.mass_properties(self.p.mass))
             .can_sleep(false)
             .ccd_enabled(ccd)
             .build()
@@ -143,12 +273,19 @@ impl VehicleModel {
         (s, v)
     }
 
-    /// Advance the actuators by `dt` toward the (sanitised) command and apply one step's
-    /// wheel impulses to `body`.
-    pub fn apply(&self, body: &mut RigidBody, act: &mut Actuators, cmd: (f64, f64), dt: f64) {
+    /// Advance the actuators and wheels by `dt` toward the (sanitised) command and apply
+    /// one step's wheel and drag impulses to `body`.
+    pub fn apply(
+        &self,
+        body: &mut RigidBody,
+        act: &mut Actuators,
+        car: &CarParams,
+        cmd: (f64, f64),
+        dt: f64,
+    ) {
         let p = &self.p;
         let max_d = p.max_steer_rate * dt;
-        act.steer += (cmd.0 - act.steer).clamp(-max_d, max_d);
+        act.steer += ((cmd.0 - act.steer) * lag_step(car.steer_lag, dt)).clamp(-max_d, max_d);
 
         let pose = *body.position();
         let com = pose.translation;
@@ -156,19 +293,6 @@ impl VehicleModel {
         let v = body.linvel();
         let w = body.angvel();
         let up = rot * Vector::Z;
-        let fwd = rot * Vector::X;
-        let v_long = v.dot(fwd) as f64;
-
-        // Speed controller: P on forward speed, drive/brake limits, and never more than
-        // what reaches the target within this step.
-        let err = cmd.1 - v_long;
-        let limit = if err * v_long >= 0.0 || v_long.abs() < 1e-3 {
-            p.max_drive_force
-        } else {
-            p.max_brake_force
-        };
-        let f_total = (p.speed_kp * err).clamp(-limit, limit);
-        let f_total = f_total.clamp(-p.mass * err.abs() / dt, p.mass * err.abs() / dt);
 
         // Ackermann angles of the left and right front wheels.
         let (l, t) = (p.com_to_front + p.com_to_rear, p.track_width / 2.0);
@@ -180,11 +304,9 @@ impl VehicleModel {
         // Pass 1: suspension loads.
         let mut loads = [0.0f64; 4];
         let mut contact = [Vector::ZERO; 4];
-        let mut hard = [Vector::ZERO; 4];
         let upz = up.z as f64;
         for (k, hp) in self.hardpoints.iter().enumerate() {
             let h = pose.transform_point(Vector::new(hp[0] as f32, hp[1] as f32, hp[2] as f32));
-            hard[k] = h;
             if upz < 0.2 || h.z < 0.0 {
                 continue; // on its side or below ground: no wheel contact
             }
@@ -203,49 +325,133 @@ impl VehicleModel {
             loads[k] = n.max(0.0);
             contact[k] = h - up * dist as f32;
         }
-        let n_sum: f64 = loads.iter().sum();
 
-        let mut force = Vector::ZERO;
-        let mut torque = Vector::ZERO;
-        let m_wheel = 0.5 * p.mass / 4.0;
-        for k in 0..4 {
+        // Pass 2: each wheel's heading, contact velocity and lateral force demand.
+        let m_wheel = 0.5 * car.mass / 4.0;
+        let mut wheels = [Wheel::default(); 4];
+        for (k, wh) in wheels.iter_mut().enumerate() {
             let n = loads[k];
-            if n <= 0.0 {
-                continue;
-            }
-            let fs = up * n as f32;
-            force += fs;
-            torque += (hard[k] - com).cross(fs);
-
             let (ca, sa) = (angles[k].cos() as f32, angles[k].sin() as f32);
             let mut fw = rot * Vector::new(ca, sa, 0.0);
             fw.z = 0.0;
-            let fw = fw.normalize_or_zero();
-            let lw = Vector::new(-fw.y, fw.x, 0.0);
+            wh.fw = fw.normalize_or_zero();
+            wh.lw = Vector::new(-wh.fw.y, wh.fw.x, 0.0);
             let vc = v + w.cross(contact[k] - com);
-            let (vl, vt) = (vc.dot(fw) as f64, vc.dot(lw) as f64);
-            let mut fy = -self.stiffness[k] * n * vt.atan2(vl.abs().max(V0));
+            let (vl, vt) = (vc.dot(wh.fw) as f64, vc.dot(wh.lw) as f64);
             let cap = m_wheel * vt.abs() / dt;
-            fy = fy.clamp(-cap, cap);
-            let mut fx = if n_sum > 0.0 {
-                f_total * n / n_sum
-            } else {
-                0.0
-            };
-            let mu_n = p.tyre_friction * n;
-            let mag = fx.hypot(fy);
-            if mag > mu_n {
-                let s = mu_n / mag;
-                fx *= s;
-                fy *= s;
+            wh.fy = (-self.stiffness[k] * n * vt.atan2(vl.abs().max(V0))).clamp(-cap, cap);
+            wh.vl = vl;
+            wh.n = n;
+        }
+
+        // Pass 3: the drivetrain (speed loop, motor current, wheel spin) is faster than
+        // the chassis, so it runs in sub-steps of at most DRIVE_DT against the chassis
+        // velocities of this step; the chassis gets the mean tyre forces.
+        let subs = (dt / DRIVE_DT - 1e-9).ceil().max(1.0) as usize;
+        let h = dt / subs as f64;
+        for _ in 0..subs {
+            self.drive_substep(act, car, cmd.1, &mut wheels, h, dt, m_wheel);
+        }
+
+        // Aerodynamic drag on the horizontal velocity, at the CoM.
+        let vh = Vector::new(v.x, v.y, 0.0);
+        let mut force = vh * (-(0.5 * AIR_DENSITY * p.drag_area * vh.length() as f64) as f32);
+        let mut torque = Vector::ZERO;
+        let inv = 1.0 / subs as f64;
+        for (k, wh) in wheels.iter().enumerate() {
+            if wh.n <= 0.0 {
+                continue;
             }
-            let ft = fw * fx as f32 + lw * fy as f32;
+            // The load acts along the ground normal at the contact point.
+            let ft = Vector::Z * wh.n as f32
+                + wh.fw * (wh.sum_fx * inv) as f32
+                + wh.lw * (wh.sum_fy * inv) as f32;
             force += ft;
             torque += (contact[k] - com).cross(ft);
         }
         let dtf = dt as f32;
         body.apply_impulse(force * dtf, true);
         body.apply_torque_impulse(torque * dtf, true);
+    }
+
+    /// One drivetrain sub-step of length `h` (the chassis step is `dt`): the PI loop on
+    /// wheel speed, as the VESC measures it (ERPM), with the integral held while the
+    /// output is saturated in the error's direction (anti-windup); the lagged motor
+    /// current within its window; each wheel's spin and tyre forces, accumulated.
+    #[allow(clippy::too_many_arguments)]
+    fn drive_substep(
+        &self,
+        act: &mut Actuators,
+        car: &CarParams,
+        target: f64,
+        wheels: &mut [Wheel; 4],
+        h: f64,
+        dt: f64,
+        m_wheel: f64,
+    ) {
+        let p = &self.p;
+        let r = p.wheel_radius;
+        let v_wheel = r * act.omega.iter().sum::<f64>() / 4.0;
+        let err = target - v_wheel;
+        let (lo, hi) = self.current_window(v_wheel);
+        let want = p.speed_kp * err + p.speed_ki * act.integral;
+        if (want < hi || err < 0.0) && (want > lo || err > 0.0) {
+            act.integral += err * h;
+        }
+        act.current += (want.clamp(lo, hi) - act.current) * lag_step(car.throttle_lag, h);
+        act.current = act.current.clamp(lo, hi);
+        let wheel_torque = self.force_per_amp * act.current * r / 4.0;
+        let mu_x = car.friction * p.longitudinal_friction_ratio;
+        let iw = p.wheel_inertia;
+        for (k, wh) in wheels.iter_mut().enumerate() {
+            let (n, vl, omega) = (wh.n, wh.vl, act.omega[k]);
+            let roll = -p.rolling_resistance * n * r * (omega * r / ROLL_FADE).clamp(-1.0, 1.0);
+            let tq = wheel_torque + roll;
+            if n <= 0.0 {
+                act.omega[k] = omega + h * tq / iw; // free wheel
+                continue;
+            }
+            // Longitudinal: linear slip stiffness (N per m/s of slip speed), softened by the
+            // chassis' own response within its step (implicit in the chassis velocity
+            // too: F = k s' with s' = s - dt F / m gives F = k s / (1 + k dt / m)), and
+            // the wheel spin solved implicitly with it: iw (w' - w) = h (tq - r kx (r w' - vl)).
+            let k0 = p.longitudinal_stiffness * n / vl.abs().max(V0);
+            let kx = k0 / (1.0 + k0 * dt / m_wheel);
+            let mut implicit = (iw * omega + h * (tq + r * kx * vl)) / (iw + h * r * r * kx);
+            // A braking torque (against the direction of travel) locks a wheel at most;
+            // it never spins it backwards under a sliding tyre.
+            let braking = tq * vl < 0.0;
+            let locked = braking && implicit * vl < 0.0;
+            if locked {
+                implicit = 0.0;
+            }
+            let slip = r * implicit - vl;
+            let fx_lin = kx * slip;
+            let (mut fx, mut fy) = (fx_lin, wh.fy);
+            let e = (fx / (mu_x * n)).powi(2) + (fy / (car.friction * n)).powi(2);
+            if e > 1.0 {
+                let s = 1.0 / e.sqrt();
+                fx *= s;
+                fy *= s;
+            }
+            act.omega[k] = if fx == fx_lin || locked {
+                implicit
+            } else {
+                let w = omega + h * (tq - r * fx) / iw;
+                if braking && w * vl < 0.0 {
+                    0.0
+                } else {
+                    w
+                }
+            };
+            wh.sum_fx += fx;
+            wh.sum_fy += fy;
+        }
+    }
+
+    /// The wheel spin rate (rad/s) that rolls without slip at forward speed `v`.
+    pub fn rolling_omega(&self, v: f64) -> f64 {
+        v / self.p.wheel_radius
     }
 
     /// Static load per wheel (N) at rest, for tests.

@@ -8,10 +8,10 @@ use rand_chacha::ChaCha8Rng;
 use rapier3d::prelude::*;
 
 use super::lidar::{Footprint, ScanNoise, Scanner};
-use super::params::PhysicsParams;
+use super::params::{PhysicsParams, MAX_INTERNAL_DT};
 use super::progress::Progress;
 use super::track::Track;
-use super::vehicle::{Actuators, VehicleModel};
+use super::vehicle::{Actuators, CarParams, VehicleModel};
 
 /// Columns of the state array, in order.
 pub const STATE_FIELDS: [&str; 13] = [
@@ -49,6 +49,7 @@ struct Car {
     body: RigidBodyHandle,
     collider: ColliderHandle,
     act: Actuators,
+    params: CarParams,
     cmd: (f64, f64),
     progress: Progress,
     rng: ChaCha8Rng,
@@ -73,7 +74,11 @@ pub struct World {
     cars: Vec<Car>,
     track: Arc<Track>,
     track_id: usize,
+    /// The internal step: `physics.dt / inner`.
     dt: f64,
+    /// Internal steps per configured step (`physics.dt` split so none exceeds
+    /// `MAX_INTERNAL_DT`).
+    inner: usize,
     gravity: f64,
     shortcut: bool,
     scratch: Vec<[f64; 3]>,
@@ -98,9 +103,11 @@ impl World {
         seed: u64,
         env: usize,
     ) -> Self {
+        let inner = (physics.dt / MAX_INTERNAL_DT - 1e-9).ceil().max(1.0) as usize;
+        let dt = physics.dt / inner as f64;
         let mut pw = PhysicsWorld::new();
         pw.gravity = Vector::new(0.0, 0.0, -(physics.gravity as f32));
-        pw.integration_parameters.dt = physics.dt as f32;
+        pw.integration_parameters.dt = dt as f32;
         pw.integration_parameters.num_solver_iterations = physics.solver_iterations;
         // Speculative-contact margin (rapier's default is 2 cm, as large as the chassis'
         // ground clearance, which kept a chassis–ground contact in every step).
@@ -121,8 +128,7 @@ impl World {
         let mut cars = Vec::with_capacity(vehicles);
         for v in 0..vehicles {
             let pose = track.centreline.pose_at(v as f64 * 1.0);
-            let (body, collider) =
-                pw.insert(model.body(pose, physics.ccd, physics.dt), model.collider());
+            let (body, collider) = pw.insert(model.body(pose, physics.ccd, dt), model.collider());
             // Mass properties take effect at the first pipeline step unless computed now;
             // the wheel impulses of that first step need them.
             pw.bodies[body].recompute_mass_properties_from_colliders(&pw.colliders);
@@ -132,6 +138,7 @@ impl World {
                 body,
                 collider,
                 act: Actuators::default(),
+                params: CarParams::nominal(&model.p),
                 cmd: (0.0, 0.0),
                 progress: Progress::reset(&track.centreline, [pose[0], pose[1]]),
                 rng,
@@ -145,7 +152,8 @@ impl World {
             cars,
             track,
             track_id,
-            dt: physics.dt,
+            dt,
+            inner,
             gravity: physics.gravity,
             shortcut: physics.shortcut_free_steps,
             scratch: Vec::with_capacity(vehicles),
@@ -224,14 +232,46 @@ impl World {
         car.last_good = spawn;
     }
 
-    /// Give vehicle `v` a forward speed (m/s) along its heading: a rolling start right
-    /// after [`World::reset_vehicle`]. The speed controller takes over at the next step.
-    pub fn set_forward_speed(&mut self, v: usize, speed: f64) {
-        if let Some(b) = self.pw.bodies.get_mut(self.cars[v].body) {
+    /// Give vehicle `v` a forward speed (m/s) along its heading, its wheels rolling at
+    /// it: a rolling start right after [`World::reset_vehicle`]. The speed controller
+    /// takes over at the next step.
+    pub fn set_forward_speed(&mut self, v: usize, speed: f64, model: &VehicleModel) {
+        let car = &mut self.cars[v];
+        if let Some(b) = self.pw.bodies.get_mut(car.body) {
             let mut fwd = b.position().rotation * Vector::X;
             fwd.z = 0.0;
             b.set_linvel(fwd.normalize_or_zero() * speed as f32, true);
+            car.act.omega = [model.rolling_omega(speed); 4];
         }
+    }
+
+    /// Set vehicle `v`'s per-episode parameters (friction, mass, lags); the chassis'
+    /// mass properties follow the mass. Takes effect at the next step.
+    pub fn set_car_params(&mut self, v: usize, params: CarParams, model: &VehicleModel) {
+        let car = &mut self.cars[v];
+        if params.mass != car.params.mass {
+            if let Some(b) = self.pw.bodies.get_mut(car.body) {
+                b.set_additional_mass_properties(model.mass_properties(params.mass), true);
+                b.recompute_mass_properties_from_colliders(&self.pw.colliders);
+            }
+        }
+        car.params = params;
+    }
+
+    /// Add a constant world-frame force (N) at vehicle `v`'s CoM for the next steps
+    /// (tests: a lateral pull test).
+    #[cfg(test)]
+    pub(crate) fn push(&mut self, v: usize, force: [f64; 3]) {
+        if let Some(b) = self.pw.bodies.get_mut(self.cars[v].body) {
+            b.reset_forces(true);
+            let f = Vector::new(force[0] as f32, force[1] as f32, force[2] as f32);
+            b.add_force(f, true);
+        }
+    }
+
+    /// Vehicle `v`'s current per-episode parameters.
+    pub fn car_params(&self, v: usize) -> CarParams {
+        self.cars[v].params
     }
 
     /// Run `substeps` physics steps with the given (already sanitised) commands, then
@@ -241,10 +281,10 @@ impl World {
             car.cmd = cmd;
             car.events = 0;
         }
-        for _ in 0..substeps {
+        for _ in 0..substeps * self.inner {
             for car in &mut self.cars {
                 if let Some(b) = self.pw.bodies.get_mut(car.body) {
-                    model.apply(b, &mut car.act, car.cmd, self.dt);
+                    model.apply(b, &mut car.act, &car.params, car.cmd, self.dt);
                 }
             }
             if self.shortcut && self.free_of_contacts(model) {
@@ -256,7 +296,7 @@ impl World {
                 self.counts[0] += 1;
             }
         }
-        let elapsed = substeps as f64 * self.dt;
+        let elapsed = (substeps * self.inner) as f64 * self.dt;
         for car in &mut self.cars {
             let Some(b) = self.pw.bodies.get_mut(car.body) else {
                 continue;

@@ -1,0 +1,108 @@
+"""Vehicle fidelity from Python: per-env vehicle parameters in the simulator, episode
+randomisation of friction, mass and lags in the env (seeded), the config's drivetrain
+fields, and the F1TENTH Gym single-track reference against its own linear theory."""
+
+import math
+
+import numpy as np
+import pytest
+from pydantic import ValidationError
+
+from roboracer_arena import _core
+from roboracer_arena.bench import fidelity
+from roboracer_arena.bench.f1tenth_st import GYM_PARAMS, SingleTrack
+from roboracer_arena.sim_config import PhysicsConfig, SimConfig, VehicleConfig
+from roboracer_arena.envs.env_config import RandomisationConfig
+from roboracer_arena.envs.single import RoboRacerEnv
+from roboracer_arena.errors import InvalidArgumentError
+
+
+def _stop_distances(friction: np.ndarray, mass: np.ndarray) -> np.ndarray:
+    """Two envs on a long straight: roll at 5 m/s, then a 0 m/s command for 2 s."""
+    walls = [np.array([[-100.0, -5.0], [100.0, -5.0], [100.0, 5.0], [-100.0, 5.0]])]
+    centre = np.array([[-50.0, 0.0], [50.0, 0.0], [50.0, 1.0], [-50.0, 1.0]])
+    sim = _core.Simulator([(walls, centre)], 2, 1, SimConfig().to_json(), 0)
+    mask = np.ones(2, bool)
+    v = VehicleConfig()
+    sim.set_vehicle_params(mask, friction, mass, np.full(2, v.steer_time_constant), np.full(2, v.throttle_time_constant))
+    sim.reset(mask, np.array([[[-80.0, 0.0, 0.0]], [[-80.0, 0.0, 0.0]]]))
+    sim.set_speeds(mask, np.full((2, 1), 5.0))
+    state = np.zeros((2, 1, len(sim.state_fields)))
+    events = np.zeros((2, 1), np.uint8)
+    for _ in range(40):
+        sim.step(np.zeros((2, 1, 2)), 10, None, state, events)
+    return state[:, 0, sim.state_fields.index("x")] + 80.0
+
+
+def test_per_env_friction_changes_the_stop_and_bad_values_are_refused():
+    d = _stop_distances(np.array([0.83, 0.415]), np.full(2, 4.885))
+    # friction-limited: v^2 / (2 mu g) is 1.54 m and 3.07 m
+    assert 1.5 < d[0] < 1.9 and d[1] > 1.5 * d[0], d
+    sim = _core.Simulator([_core.stadium_track()], 2, 1, "{}", 0)
+    ok = np.ones(2)
+    with pytest.raises(InvalidArgumentError, match="mass"):
+        sim.set_vehicle_params(np.ones(2, bool), ok, np.array([4.0, -1.0]), ok * 0.05, ok * 0.02)
+    with pytest.raises(InvalidArgumentError, match="friction"):
+        sim.set_vehicle_params(np.ones(2, bool), np.ones(3), ok, ok, ok)
+
+
+def test_env_randomises_vehicle_params_per_episode_seeded(oval):
+    """Two envs with the same seed drive identically; another seed (other draws) not."""
+    rnd = {"friction_scale": (0.6, 1.0), "mass_scale": (0.8, 1.2), "lag_scale": (0.5, 2.0)}
+
+    def drive(seed):
+        env = RoboRacerEnv(track=oval, randomisation=rnd, sim={"lidar": {"num_beams": 31}})
+        env.reset(seed=seed)
+        for _ in range(30):
+            env.step(np.array([0.2, 4.0], np.float32))
+        state, f = env.simulator_state
+        return state[0, [f["x"], f["y"], f["vx"]]]
+
+    a, b, c = drive(1), drive(1), drive(2)
+    assert np.array_equal(a, b)
+    assert not np.allclose(a, c)
+    with pytest.raises(ValidationError, match="friction_scale"):
+        RandomisationConfig(friction_scale=(0.0, 1.0))
+    assert not RandomisationConfig().vehicle_active
+
+
+def test_drivetrain_fields_are_validated():
+    with pytest.raises(ValidationError):
+        VehicleConfig(max_duty=1.5)
+    with pytest.raises(ValidationError):
+        VehicleConfig(steer_time_constant=-0.1)
+    with pytest.raises(ValidationError):
+        PhysicsConfig(dt=0.03)
+    assert "F1TENTH" in VehicleConfig.model_fields["max_motor_current"].description
+
+
+def test_gym_single_track_reference_matches_its_linear_theory():
+    """The reference integrator, in its linear range, turns at the rate its own
+    parameters predict: r = v d / (L + K v^2), K = m (lr / Cf - lf / Cr) / L with axle
+    stiffness C = mu C_S m g l / L (CommonRoad's tyre, no load transfer at a = 0)."""
+    p = GYM_PARAMS
+    L = p["lf"] + p["lr"]
+    v, d = 3.0, 0.064  # a multiple of the gym's steering step sv_max dt = 0.032 rad (no dither)
+    cf = p["mu"] * p["C_Sf"] * p["m"] * 9.81 * p["lr"] / L
+    cr = p["mu"] * p["C_Sr"] * p["m"] * 9.81 * p["lf"] / L
+    k = p["m"] * (p["lr"] / cf - p["lf"] / cr) / L
+    r = fidelity.gym_turn(v, d)["yaw_rate"]
+    assert r == pytest.approx(v * d / (L + k * v * v), rel=0.01)
+    car = SingleTrack()
+    for _ in range(300):
+        car.step(0.0, 25.0)
+    assert 7.0 < car.speed < p["v_max"] and math.isfinite(car.yaw_rate)
+
+
+def test_linear_theory_of_our_car_matches_a_gentle_turn():
+    """Our model in the linear range agrees with single-track theory within 3 %."""
+    res = fidelity.steady_turn(2.0, 0.1)
+    assert res["yaw_rate"] == pytest.approx(fidelity.linear_theory(2.0, 0.1), rel=0.03)
+
+
+def test_recorded_yaw_envelope_bound():
+    """Steady, non-sliding yaw rate is at most min(v tan(d_max) / L, mu g / v): the paper's
+    car (L 0.3275 m, d_max 0.524 rad, mu 0.83) peaks at sqrt(mu g tan(d_max) / L)."""
+    e = fidelity.envelope(VehicleConfig())
+    assert e["r_max"] == pytest.approx(math.sqrt(0.83 * 9.81 * math.tan(0.524) / 0.3275), rel=1e-9)
+    assert 3.7 < e["r_max"] < 3.9 and e["mu_needed_for_recorded"] == pytest.approx(1.72, abs=0.01)
