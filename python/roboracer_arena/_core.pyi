@@ -1,7 +1,8 @@
 """Type stubs for the Rust extension ``roboracer_arena._core``."""
 
 import os
-from typing import Sequence, TypedDict
+from collections.abc import Sequence
+from typing import TypedDict
 
 import numpy as np
 import numpy.typing as npt
@@ -16,6 +17,7 @@ class InvalidArgumentError(ArenaError): ...
 class ConfigError(ArenaError): ...
 class SpecError(ArenaError): ...
 class SimulationError(ArenaError): ...
+
 class InternalError(ArenaError):
     """A caught Rust panic: the core failed on an input it should have refused."""
 
@@ -32,6 +34,7 @@ def rasterise_centreline(
     margin: float = 0.5,
 ) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]]:
     """Eq. 3 with per-vertex full widths; returns (data (H, W) uint8, origin (x, y, yaw))."""
+
 def screen(spec_json: str, config_json: str) -> str:
     """Admissibility screen (Eqs. 1–2) as JSON: passed, violations, r_min_m, pitch_m, l_max_m, …"""
 

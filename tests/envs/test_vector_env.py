@@ -5,18 +5,18 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.vector import AutoresetMode
+from synthetic_tracks import stadium
 
 import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
 from roboracer_arena.envs.vector import RoboRacerVectorEnv
-
-from synthetic_tracks import stadium
 
 SMALL = {"sim": {"lidar": {"num_beams": 109}}}
 
 
 def make_vec(n, track, **kw):
-    return gym.make_vec("RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point",
-                        track=track, **{**SMALL, **kw})
+    return gym.make_vec(
+        "RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track, **{**SMALL, **kw}
+    )
 
 
 def test_make_vec_four_envs(oval):
@@ -168,8 +168,17 @@ def test_pure_pursuit_drives_every_env_of_a_vector_env(oval):
     from roboracer_arena.drivers import PurePursuitDriver
 
     tracks = [oval, stadium(4.0, 2.5, name="b")]
-    env = make_vec(4, tracks, reset_poses="random", vehicles_per_env=2, grid_offset=0.0, grid_spacing=1.5,
-                   observation={"normalise": True}, action_mode="normalised", time_limit_s=None)
+    env = make_vec(
+        4,
+        tracks,
+        reset_poses="random",
+        vehicles_per_env=2,
+        grid_offset=0.0,
+        grid_spacing=1.5,
+        observation={"normalise": True},
+        action_mode="normalised",
+        time_limit_s=None,
+    )
     driver = PurePursuitDriver.for_env(env)
     obs, info = env.reset(seed=5)
     total = np.zeros(4)

@@ -21,7 +21,9 @@ def loop_length(xy: np.ndarray) -> float:
     return float(np.hypot(d[:, 0], d[:, 1]).sum())
 
 
-def smooth_resample(xy: np.ndarray, widths: np.ndarray, spacing: float, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
+def smooth_resample(
+    xy: np.ndarray, widths: np.ndarray, spacing: float, tolerance: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Fit a periodic cubic smoothing spline through a closed loop and resample it every
     ``spacing`` metres of arc length. ``tolerance`` is the RMS distance (m) the spline
     may keep from the input vertices (``s = N · tolerance²``). Widths are interpolated

@@ -35,8 +35,9 @@ class RoboRacerParallelEnv(_Base):  # type: ignore[misc,valid-type]
 
     metadata = {"name": "roboracer_arena_parallel_v0", "render_modes": ["rgb_array"], "render_fps": 20}
 
-    def __init__(self, track: Any = None, vehicles_per_env: int = 2, render_mode: str | None = None,
-                 **env_kwargs: Any) -> None:
+    def __init__(
+        self, track: Any = None, vehicles_per_env: int = 2, render_mode: str | None = None, **env_kwargs: Any
+    ) -> None:
         if vehicles_per_env < 2:
             raise ConfigError(f"vehicles_per_env must be >= 2 for a multi-agent env, got {vehicles_per_env}")
         self.env = RoboRacerEnv(track=track, vehicles_per_env=vehicles_per_env, render_mode=render_mode, **env_kwargs)
@@ -48,16 +49,17 @@ class RoboRacerParallelEnv(_Base):  # type: ignore[misc,valid-type]
         from gymnasium import spaces
 
         # Per-agent spaces: the env's with the leading vehicle axis dropped.
-        self._obs_space = spaces.Dict({k: spaces.Box(s.low[0], s.high[0], dtype=s.dtype)
-                                       for k, s in obs_space.spaces.items()})
+        self._obs_space = spaces.Dict(
+            {k: spaces.Box(s.low[0], s.high[0], dtype=s.dtype) for k, s in obs_space.spaces.items()}
+        )
         self._act_space = spaces.Box(act_space.low[0], act_space.high[0], dtype=act_space.dtype)
         self._parked = self.env.from_ackermann(np.zeros((vehicles_per_env, 2)))[0]
 
-    @functools.lru_cache(maxsize=None)
+    @functools.cache
     def observation_space(self, agent: str) -> Any:
         return self._obs_space
 
-    @functools.lru_cache(maxsize=None)
+    @functools.cache
     def action_space(self, agent: str) -> Any:
         return self._act_space
 
@@ -102,6 +104,8 @@ class RoboRacerParallelEnv(_Base):  # type: ignore[misc,valid-type]
         out = {}
         for a in agents or self.agents:
             k = self._index[a]
-            out[a] = {key: (v[k] if isinstance(v, np.ndarray) and v.ndim >= 1 and len(v) == len(self.possible_agents)
-                            else v) for key, v in info.items()}
+            out[a] = {
+                key: (v[k] if isinstance(v, np.ndarray) and v.ndim >= 1 and len(v) == len(self.possible_agents) else v)
+                for key, v in info.items()
+            }
         return out

@@ -132,8 +132,13 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         from ..render.sim_view import hud_lines
 
         b = self._batch
-        return self._view.draw(int(b.track_ids[0]), b.state[0], b.field_index,
-                               b.scans[0] if self.config.observation.scan else None, hud=hud_lines(b, 0))
+        return self._view.draw(
+            int(b.track_ids[0]),
+            b.state[0],
+            b.field_index,
+            b.scans[0] if self.config.observation.scan else None,
+            hud=hud_lines(b, 0),
+        )
 
     # ------------------------------------------------------------ helpers (drivers, tools)
     def _obs(self) -> dict[str, np.ndarray]:

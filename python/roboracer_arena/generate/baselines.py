@@ -153,7 +153,11 @@ def _project(seq: list[str], n_links: int, x: np.ndarray, sense: float, max_stra
     segs = _segments(seq, x, sense, (sense * 2 * math.pi - total) / n_links)
     for _ in range(3):
         th, gap = _endpoint(segs)
-        free = [i for i, (length, k) in enumerate(segs) if k == 0.0 and (length > STRAIGHT_MIN_M + 1e-9 or gap @ [math.cos(th[i]), math.sin(th[i])] < 0)]
+        free = [
+            i
+            for i, (length, k) in enumerate(segs)
+            if k == 0.0 and (length > STRAIGHT_MIN_M + 1e-9 or gap @ [math.cos(th[i]), math.sin(th[i])] < 0)
+        ]
         if np.hypot(*gap) < 1e-6 or len(free) < 2:
             break
         u = np.column_stack([np.cos(th[free]), np.sin(th[free])])

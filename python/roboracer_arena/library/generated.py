@@ -11,8 +11,9 @@ from __future__ import annotations
 import itertools
 import json
 import time
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any
 
 import numpy as np
 
@@ -51,8 +52,17 @@ def sweep() -> Iterator[tuple[str, TrackSpec, int]]:
         lap, width, hx, hy = venue
         h, c, s, direction = feat
         tid = f"gen-l{int(lap):03d}-w{int(round(width * 10)):02d}-h{h}c{c}s{s}-{direction[:3] if direction == 'clockwise' else 'ccw'}-s{seed}"
-        spec = TrackSpec(name=tid, lap_length_m=lap, corridor_width_m=width, hall_x_m=hx, hall_y_m=hy,
-                         hairpins=h, chicanes=c, sweepers=s, direction=direction)  # type: ignore[arg-type]
+        spec = TrackSpec(
+            name=tid,
+            lap_length_m=lap,
+            corridor_width_m=width,
+            hall_x_m=hx,
+            hall_y_m=hy,
+            hairpins=h,
+            chicanes=c,
+            sweepers=s,
+            direction=direction,
+        )  # type: ignore[arg-type]
         yield tid, spec, seed
 
 
@@ -68,8 +78,13 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, by
 
     tid, spec, seed = task
     out = generate_track(spec, seed)
-    rec = {"id": tid, "seed": seed, "outcome": out.kind, "seconds": round(out.seconds, 3),
-           "spec": json.loads(spec.model_dump_json())}
+    rec = {
+        "id": tid,
+        "seed": seed,
+        "outcome": out.kind,
+        "seconds": round(out.seconds, 3),
+        "spec": json.loads(spec.model_dump_json()),
+    }
     files: dict[str, bytes] = {}
     if out.kind == "accepted":
         with tempfile.TemporaryDirectory(prefix="rra-gen-") as tmp:
@@ -105,7 +120,7 @@ def build_generated(
     ex = executor or LocalExecutor(jobs)
     try:
         it = ex.run(generate_files, tasks)
-        for i, (rec, files) in (progress(it, len(tasks)) if progress else it):
+        for i, (rec, files) in progress(it, len(tasks)) if progress else it:
             if files:
                 atomic_write_dir(Path(outdir) / rec["id"], files)
             recs[i] = rec

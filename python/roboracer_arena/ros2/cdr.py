@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import struct
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -71,8 +71,27 @@ class OdometryPacker:
 
     def pack(self, t: float, x: float, y: float, yaw: float, vx: float, vy: float, yaw_rate: float) -> bytes:
         sec, nsec = _sec_nsec(t)
-        return HEADER + self._s.pack(sec, nsec, *self._frame, *self._child, x, y, 0.0, 0.0, 0.0, math.sin(yaw / 2),
-                                     math.cos(yaw / 2), *_ZEROS36, vx, vy, 0.0, 0.0, 0.0, yaw_rate, *_ZEROS36)
+        return HEADER + self._s.pack(
+            sec,
+            nsec,
+            *self._frame,
+            *self._child,
+            x,
+            y,
+            0.0,
+            0.0,
+            0.0,
+            math.sin(yaw / 2),
+            math.cos(yaw / 2),
+            *_ZEROS36,
+            vx,
+            vy,
+            0.0,
+            0.0,
+            0.0,
+            yaw_rate,
+            *_ZEROS36,
+        )
 
 
 class TfPacker:

@@ -96,11 +96,19 @@ class McapEpisodeRecorder(gym.Wrapper):
         tfs = []
         for i, n in enumerate(self._names):
             x, y, yaw = (float(st[i, f[k]]) for k in ("x", "y", "yaw"))
-            rec.write(n.odom, TYPE_OF["odom"], sm.odometry(n, t, x, y, yaw, float(st[i, f["vx"]]),
-                                                           float(st[i, f["vy"]]), float(st[i, f["yaw_rate"]])), t)
+            rec.write(
+                n.odom,
+                TYPE_OF["odom"],
+                sm.odometry(n, t, x, y, yaw, float(st[i, f["vx"]]), float(st[i, f["vy"]]), float(st[i, f["yaw_rate"]])),
+                t,
+            )
             tfs.append(sm.transform(t, "map", n.base_link, x, y, 0.0, yaw))
             if scan and self.env.unwrapped.config.observation.scan:
                 ranges = np.clip(b.scans[0, i], lid.range_min, lid.range_max)
-                rec.write(n.scan, TYPE_OF["scan"], sm.laser_scan(n, t, ranges, lid.fov, lid.range_min, lid.range_max,
-                                                                 1.0 / lid.rate_hz), t)
+                rec.write(
+                    n.scan,
+                    TYPE_OF["scan"],
+                    sm.laser_scan(n, t, ranges, lid.fov, lid.range_min, lid.range_max, 1.0 / lid.rate_hz),
+                    t,
+                )
         rec.write(TF, TYPE_OF[TF], sm.tf_message(tfs), t)

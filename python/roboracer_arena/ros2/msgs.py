@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from functools import lru_cache
+from functools import cache
 from typing import Any
 
 from ._deps import require
@@ -135,7 +135,7 @@ def schema_text(typename: str) -> str:
     return "\n".join(parts) + "\n"
 
 
-@lru_cache(maxsize=None)
+@cache
 def msg_class(typename: str) -> type:
     """The IdlStruct class of ``typename`` (``pkg/msg/Type``), built once."""
     if typename not in DEFINITIONS:
@@ -144,8 +144,18 @@ def msg_class(typename: str) -> type:
     from cyclonedds.idl import IdlMeta, IdlStruct
     from cyclonedds.idl import types as t
 
-    prim = {"bool": bool, "int8": t.int8, "uint8": t.uint8, "int32": t.int32, "uint32": t.uint32,
-            "int64": t.int64, "uint64": t.uint64, "float32": t.float32, "float64": t.float64, "string": str}
+    prim = {
+        "bool": bool,
+        "int8": t.int8,
+        "uint8": t.uint8,
+        "int32": t.int32,
+        "uint32": t.uint32,
+        "int64": t.int64,
+        "uint64": t.uint64,
+        "float32": t.float32,
+        "float64": t.float64,
+        "string": str,
+    }
     name = typename.split("/")[-1]
     ns = IdlMeta.__prepare__(name, (IdlStruct,), typename=dds_type_name(typename))
     for f in parse_fields(typename):
@@ -185,17 +195,28 @@ def serialize(msg: Any) -> bytes:
 
 # Short names for the types the bridge uses.
 _EXPORTS = {
-    "Time": "builtin_interfaces/msg/Time", "Header": "std_msgs/msg/Header", "ColorRGBA": "std_msgs/msg/ColorRGBA",
-    "Point": "geometry_msgs/msg/Point", "Vector3": "geometry_msgs/msg/Vector3",
-    "Quaternion": "geometry_msgs/msg/Quaternion", "Pose": "geometry_msgs/msg/Pose",
+    "Time": "builtin_interfaces/msg/Time",
+    "Header": "std_msgs/msg/Header",
+    "ColorRGBA": "std_msgs/msg/ColorRGBA",
+    "Point": "geometry_msgs/msg/Point",
+    "Vector3": "geometry_msgs/msg/Vector3",
+    "Quaternion": "geometry_msgs/msg/Quaternion",
+    "Pose": "geometry_msgs/msg/Pose",
     "PoseWithCovariance": "geometry_msgs/msg/PoseWithCovariance",
     "PoseWithCovarianceStamped": "geometry_msgs/msg/PoseWithCovarianceStamped",
-    "Twist": "geometry_msgs/msg/Twist", "TwistWithCovariance": "geometry_msgs/msg/TwistWithCovariance",
-    "Transform": "geometry_msgs/msg/Transform", "TransformStamped": "geometry_msgs/msg/TransformStamped",
-    "TFMessage": "tf2_msgs/msg/TFMessage", "Clock": "rosgraph_msgs/msg/Clock", "LaserScan": "sensor_msgs/msg/LaserScan",
-    "Odometry": "nav_msgs/msg/Odometry", "MapMetaData": "nav_msgs/msg/MapMetaData",
-    "OccupancyGrid": "nav_msgs/msg/OccupancyGrid", "AckermannDrive": "ackermann_msgs/msg/AckermannDrive",
-    "AckermannDriveStamped": "ackermann_msgs/msg/AckermannDriveStamped", "Marker": "visualization_msgs/msg/Marker",
+    "Twist": "geometry_msgs/msg/Twist",
+    "TwistWithCovariance": "geometry_msgs/msg/TwistWithCovariance",
+    "Transform": "geometry_msgs/msg/Transform",
+    "TransformStamped": "geometry_msgs/msg/TransformStamped",
+    "TFMessage": "tf2_msgs/msg/TFMessage",
+    "Clock": "rosgraph_msgs/msg/Clock",
+    "LaserScan": "sensor_msgs/msg/LaserScan",
+    "Odometry": "nav_msgs/msg/Odometry",
+    "MapMetaData": "nav_msgs/msg/MapMetaData",
+    "OccupancyGrid": "nav_msgs/msg/OccupancyGrid",
+    "AckermannDrive": "ackermann_msgs/msg/AckermannDrive",
+    "AckermannDriveStamped": "ackermann_msgs/msg/AckermannDriveStamped",
+    "Marker": "visualization_msgs/msg/Marker",
 }
 
 
