@@ -133,7 +133,7 @@ def main() -> None:
                 adv[t] = last = delta + args.gamma * args.gae_lambda * nonterminal * last
             ret = adv + val_buf
         b_obs, b_act = obs_buf.reshape(-1, obs_dim), act_buf.reshape(-1, act_dim)
-        b_logp, b_adv, b_ret, b_val = logp_buf.reshape(-1), adv.reshape(-1), ret.reshape(-1), val_buf.reshape(-1)
+        b_logp, b_adv, b_ret = logp_buf.reshape(-1), adv.reshape(-1), ret.reshape(-1)
         batch = n * T
         mb = batch // args.minibatches
         for _ in range(args.update_epochs):

@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from roboracer_arena import load_map
 from roboracer_arena.errors import InvalidArgumentError, MapFormatError, MapIOError
 from roboracer_arena.maps import FREE, OCCUPIED, UNKNOWN, OccupancyMap, load_map, save_map
 

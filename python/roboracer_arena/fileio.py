@@ -87,7 +87,7 @@ def atomic_paths(paths: Sequence[str | Path]) -> Iterator[list[Path]]:
             made_dirs.extend(reversed(missing))
             temps.append(_temp_beside(t))
         yield list(temps)
-        for tmp, t in zip(temps, targets):
+        for tmp in temps:
             os.chmod(tmp, 0o666 & ~_UMASK)  # mkstemp makes 0600; give the usual permissions
         for tmp, t in zip(temps, targets):
             existed = t.exists()

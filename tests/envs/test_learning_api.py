@@ -206,7 +206,7 @@ def test_wrong_way_flag_penalty_termination_and_laps_count_down(oval):
         **SMALL,
     )
     env.reset(seed=0)
-    for k in range(60):
+    for _ in range(60):
         _, _, term, _, info = env.step(np.array([0.0, -2.0], np.float32))
         if term:
             break

@@ -69,7 +69,7 @@ def test_next_step_autoreset(oval):
     env = make_vec(3, oval, reset_poses="grid", time_limit_s=0.5)  # 10 steps
     env.reset(seed=0)
     go = np.tile([0.0, 2.0], (3, 1)).astype(np.float32)
-    for k in range(10):
+    for _ in range(10):
         obs, rew, term, trunc, info = env.step(go)
     assert trunc.all() and not term.any() and "final_obs" not in info
     x_last = obs["odometry"][0, 0]
@@ -88,7 +88,7 @@ def test_same_step_autoreset_returns_reset_obs_and_final_obs(oval):
     env = make_vec(3, oval, reset_poses="grid", time_limit_s=0.5, autoreset_mode="SameStep")  # 10 steps
     assert env.metadata["autoreset_mode"] == AutoresetMode.SAME_STEP
     env.reset(seed=0)
-    for k in range(10):
+    for _ in range(10):
         obs, rew, term, trunc, info = env.step(np.tile([0.0, 2.0], (3, 1)).astype(np.float32))
     assert trunc.all() and not term.any()
     assert info["_final_obs"].all() and info["final_obs"][0]["odometry"].shape == (7,)

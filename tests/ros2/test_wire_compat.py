@@ -199,7 +199,7 @@ def test_every_byte_the_bridge_sends_is_rosbags_serialisation(tmp_path, typestor
         dds=False,
     )
     bridge.start()
-    for k in range(10):
+    for _ in range(10):
         bridge.drive(0, 0.1, 1.0)
         bridge.drive(1, -0.1, 1.0)
     while bridge.sim_time < 0.5 - 1e-9:

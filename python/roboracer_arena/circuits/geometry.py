@@ -131,7 +131,8 @@ def reduce_widths(
             min_sep = float(d.min())
         need = (d - wall_thickness) / wsum
         bad = need < 1.0
-        for a, b, f in ((i[bad], j[bad], need[bad]), (j[bad], i[bad], need[bad])):
+        f = need[bad]
+        for a in (i[bad], j[bad]):  # both ends of every too-close pair narrow
             np.minimum.at(factor, a, np.clip(f, min_fraction, 1.0))
             unresolved[a[f < min_fraction]] = True
     ease = max(1, int(round(1.0 / spacing)))

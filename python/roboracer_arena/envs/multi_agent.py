@@ -16,7 +16,6 @@ the class derives from ``pettingzoo.ParallelEnv``; without it, it has the same m
 
 from __future__ import annotations
 
-import functools
 from typing import Any
 
 import numpy as np
@@ -55,12 +54,12 @@ class RoboRacerParallelEnv(_Base):  # type: ignore[misc,valid-type]
         self._act_space = spaces.Box(act_space.low[0], act_space.high[0], dtype=act_space.dtype)
         self._parked = self.env.from_ackermann(np.zeros((vehicles_per_env, 2)))[0]
 
-    @functools.cache
     def observation_space(self, agent: str) -> Any:
+        """The same space object for every agent (PettingZoo wants a stable object per agent)."""
         return self._obs_space
 
-    @functools.cache
     def action_space(self, agent: str) -> Any:
+        """The same space object for every agent."""
         return self._act_space
 
     def reset(self, seed: int | None = None, options: dict | None = None) -> tuple[dict, dict]:

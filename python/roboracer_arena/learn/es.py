@@ -115,7 +115,8 @@ def rollout(
     n = env.num_envs
     ret, alive = np.zeros(n), np.ones(n, bool)
     t = 0
-    for t in range(1, steps + 1):
+    for _ in range(steps):
+        t += 1
         obs, rew, term, trunc, _ = env.step(policy.act(thetas, features(obs)))
         ret += rew * alive
         alive &= ~(term | trunc)

@@ -48,7 +48,7 @@ CSV_SPACING = 0.25
 
 def sweep() -> Iterator[tuple[str, TrackSpec, int]]:
     """``(id, spec, seed)`` in sweep order."""
-    for (vi, venue), (fi, feat), seed in itertools.product(enumerate(VENUES), enumerate(FEATURES), SEEDS):
+    for venue, feat, seed in itertools.product(VENUES, FEATURES, SEEDS):
         lap, width, hx, hy = venue
         h, c, s, direction = feat
         tid = f"gen-l{int(lap):03d}-w{int(round(width * 10)):02d}-h{h}c{c}s{s}-{direction[:3] if direction == 'clockwise' else 'ccw'}-s{seed}"

@@ -105,7 +105,7 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
 
 
 def _text_h(d: ImageDraw.ImageDraw, text: str, f) -> int:
-    l, t, r, b = d.textbbox((0, 0), text or " ", font=f)
+    _, _, _, b = d.textbbox((0, 0), text or " ", font=f)
     return b
 
 
