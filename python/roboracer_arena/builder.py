@@ -176,7 +176,7 @@ def build_environment(
         raster_px=(int(w), int(h)),
         raster_mp=w * h / 1e6,
         resolution_m=float(occ.resolution),
-        origin=tuple(float(v) for v in occ.origin),  # type: ignore[arg-type]
+        origin=tuple(float(v) for v in occ.origin),
         timings_s=timings,
         meshes={k: MeshCount(vertices=len(v), triangles=len(t)) for k, (v, t) in geo.meshes.items()},
         walls=len(geo.walls),

@@ -268,6 +268,15 @@ def drive_laps(
     driver = PurePursuitDriver.for_env(env) if params is None else EnvPurePursuit(env, params)
     every = max(1, round(env.config.control_rate_hz / video_fps))
     frames: list[np.ndarray] = []
+
+    def add_frame() -> None:
+        frame = env.render()
+        if frame is None:  # the env was made with render_mode="rgb_array" since a video is wanted
+            from .errors import InternalError
+
+            raise InternalError("drive: the env rendered no frame in rgb_array mode")
+        frames.append(frame)
+
     bar = None
     if progress:
         from tqdm import tqdm
@@ -276,7 +285,7 @@ def drive_laps(
     t0 = time.perf_counter()
     obs, info = env.reset(seed=0, options={"track_id": 0})
     if video:
-        frames.append(env.render())
+        add_frame()
     lap_times: list[float] = []
     steps, contacts, vmax, collided = 0, 0, 0.0, False
     contact_at: list[float] | None = None
@@ -301,7 +310,7 @@ def drive_laps(
         if bar is not None:
             bar.update(round(min(progressed, laps * length), 1) - bar.n)
         if video and steps % every == 0:
-            frames.append(env.render())
+            add_frame()
         if terminated or truncated or len(lap_times) >= laps:
             break
     if bar is not None:
@@ -310,7 +319,7 @@ def drive_laps(
     if video:
         from .render.video import write_video
 
-        frames.append(env.render())
+        add_frame()
         out = str(write_video(frames, video, fps=env.config.control_rate_hz / every))
     env.close()
     return DriveResult(

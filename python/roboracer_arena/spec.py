@@ -111,7 +111,12 @@ class TrackSpec(NumbersAreNumbers):
     @model_validator(mode="after")
     def _order_matches_counts(self) -> TrackSpec:
         if self.feature_order:
-            for feat, count in (("hairpin", self.hairpins), ("chicane", self.chicanes), ("sweeper", self.sweepers)):
+            wanted: tuple[tuple[FeatureName, int], ...] = (
+                ("hairpin", self.hairpins),
+                ("chicane", self.chicanes),
+                ("sweeper", self.sweepers),
+            )
+            for feat, count in wanted:
                 listed = self.feature_order.count(feat)
                 if listed != count:
                     raise ValueError(

@@ -93,14 +93,14 @@ def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConf
         out = generate_track(spec, seed=seed, config=config)
         if isinstance(out, Acceptance):
             return out.map, "", out.candidates_tried
-        reasons = getattr(out, "reasons", {}) or {out.kind: 1}
-        return None, max(reasons, key=reasons.get), getattr(out, "candidates_tried", 0)
+        reasons: dict[str, int] = getattr(out, "reasons", {}) or {out.kind: 1}
+        return None, max(reasons, key=lambda k: reasons[k]), getattr(out, "candidates_tried", 0)
     if constructor == "lattice-raw":
         info, line = _core.construct_lattice(spec.model_dump_json(), config.model_dump_json(), seed)
         tried = json.loads(info)["tried"]
         if line is None:
             reasons = json.loads(info)["reasons"]
-            return None, max(reasons, key=reasons.get), tried
+            return None, max(reasons, key=lambda k: reasons[k]), tried
         return rasterise(line, spec, config), "", tried
     line = construct_baseline(spec, config, seed, constructor)
     if line is None:

@@ -172,6 +172,7 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
         return term, trunc
 
     restart = len(acts) if kind == "lap" else 0
+    env: gym.Env | gym.vector.VectorEnv
     if n == 1:
         kwargs.pop("time_limit_s")  # under gymnasium.make the limit is max_episode_steps (-1: none)
         env = gym.make("RoboRacerArena-v0", track=track, max_episode_steps=-1, **kwargs)
@@ -338,8 +339,8 @@ def _verdict(r: dict[str, Any]) -> str:
     if r["num_envs"] == 1:
         t = TARGET_SINGLE_US
         return f"≤{t:.0f} µs {'ok' if r['us_per_step'] <= t else 'MISS'}" if r["workload"] == "constant" else ""
-    t = TARGET_VECTOR.get(r["workload"])
-    return f"≥{t:,.0f} {'ok' if r['env_steps_per_s'] >= t else 'MISS'}" if t else ""
+    target = TARGET_VECTOR.get(r["workload"])
+    return f"≥{target:,.0f} {'ok' if r['env_steps_per_s'] >= target else 'MISS'}" if target else ""
 
 
 def _print_table(

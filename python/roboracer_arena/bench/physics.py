@@ -95,7 +95,7 @@ def measure(
         calls += 1
         wall_contacts += int(np.count_nonzero(events & 1))
     steps = calls * substeps * envs * per_env
-    pipeline, shortcut = sim.step_counts()
+    pipeline, shortcut_steps = sim.step_counts()
     return {
         "vehicles": envs * per_env,
         "envs": envs,
@@ -106,7 +106,7 @@ def measure(
         "vehicle_steps_per_s": steps / busy,
         "sim_seconds_per_wall_second": calls * substeps * dt / busy,
         "wall_contact_fraction": wall_contacts / max(1, calls * envs * per_env),
-        "rapier_pipeline_fraction": pipeline / max(1, pipeline + shortcut),
+        "rapier_pipeline_fraction": pipeline / max(1, pipeline + shortcut_steps),
         "mean_speed": float(np.mean(np.abs(state[..., sim.state_fields.index("vx")]))),
     }
 
@@ -118,7 +118,7 @@ def measure_scan(seconds: float = 1.0, beams: int = 1081) -> dict[str, Any]:
     scans = np.zeros((1, 1, sim.num_beams), np.float32)
     state = np.zeros((1, 1, len(sim.state_fields)))
     events = np.zeros((1, 1), np.uint8)
-    times = []
+    times: list[float] = []
     start = time.perf_counter()
     while time.perf_counter() - start < seconds or len(times) < 20:
         t0 = time.perf_counter()

@@ -79,11 +79,11 @@ def _run_mode(map_path: Path, rate: str, seconds: float) -> dict[str, Any]:
         "/tf": "tf2_msgs/msg/TFMessage",
         "/clock": "rosgraph_msgs/msg/Clock",
     }
-    readers = {
+    readers: dict[str, DataReader[Any]] = {
         t: DataReader(dp, Topic(dp, dds_topic(t), msgs.msg_class(ty), qos=qos_for(t)), qos=qos_for(t))
         for t, ty in subs.items()
     }
-    drive_w = DataWriter(
+    drive_w: DataWriter[Any] = DataWriter(
         dp, Topic(dp, dds_topic("/drive"), msgs.AckermannDriveStamped, qos=qos_for("/drive")), qos=qos_for("/drive")
     )
     cmd = [
@@ -104,7 +104,8 @@ def _run_mode(map_path: Path, rate: str, seconds: float) -> dict[str, Any]:
     env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     counts = {t: 0 for t in subs}
-    first_clock = last_clock = None
+    first_clock: float | None = None
+    last_clock: float | None = None
     t_first = t_last = 0.0
     path_len, last_xy = 0.0, None
     deadline = time.monotonic() + seconds + 25  # discovery and startup included
@@ -148,7 +149,7 @@ def _run_mode(map_path: Path, rate: str, seconds: float) -> dict[str, Any]:
         except subprocess.TimeoutExpired:
             proc.kill()
             out, err = proc.communicate()
-    if first_clock is None:
+    if first_clock is None or last_clock is None:
         raise RuntimeError(f"bench ros2: no /clock received from the bridge (stderr: {err.strip()[-300:]})")
     wall = max(t_last - t_first, 1e-9)
     bridge = json.loads(out[out.index("{") :]) if "{" in out else {}

@@ -141,8 +141,8 @@ def _write_folder(acc, args: argparse.Namespace) -> dict[str, str]:
 
 def _build_stage(map_yaml: Path, tmp: Path, final: Path, args: argparse.Namespace) -> None:
     try:
-        from ..builder import build_environment  # type: ignore[import-not-found]
-        from ..maps import load_map  # type: ignore[import-not-found]
+        from ..builder import build_environment
+        from ..maps import load_map
     except ImportError as e:
         raise InvalidArgumentError(f"--build needs the USD builder, which this installation lacks ({e})") from e
     occ = load_map(map_yaml)

@@ -19,8 +19,13 @@ from __future__ import annotations
 import argparse
 from dataclasses import asdict
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ._common import add_json_flag, print_json
+
+if TYPE_CHECKING:  # the renderers import heavy optional packages: load them only when used
+    from ..render.preview import PreviewSummary
+    from ..render.still3d import StillSummary
 
 USD_SUFFIXES = {".usd", ".usda", ".usdc"}
 
@@ -63,6 +68,7 @@ def run(args: argparse.Namespace) -> int:
         raise InvalidArgumentError(f"--cars must be between 1 and 64, got {args.cars}")
     check_output(args.out, inputs=[args.source, *_map_image(args.source)])
     is_stage = args.source.suffix.lower() in USD_SUFFIXES
+    summary: StillSummary | PreviewSummary
     if args.three_d:
         if not is_stage:
             raise InvalidArgumentError(f"--3d renders a built stage (.usd, .usda, .usdc), got {args.source}")

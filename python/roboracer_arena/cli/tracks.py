@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import Any
 
 from . import EXIT_BAD_INPUT, EXIT_OK
 from ._common import add_json_flag, print_json
@@ -173,7 +174,8 @@ def _select(cat, args) -> list[dict]:
     if getattr(args, "kind", None):
         entries = [e for e in entries if e["kind"] == args.kind]
     if getattr(args, "limit", None) is not None:
-        out, seen = [], {}
+        out: list[dict[str, Any]] = []
+        seen: dict[str, int] = {}
         for e in entries:  # spread over the kinds: every n-th entry of each kind
             seen[e["kind"]] = seen.get(e["kind"], 0) + 1
         step = {k: max(1, n // args.limit) for k, n in seen.items()}

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from types import SimpleNamespace
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from gymnasium import spaces
@@ -176,7 +176,7 @@ class SimBatch:
         return c.astype(np.float32)
 
     # ------------------------------------------------------------------ reset
-    def _randomise_vehicles(self, mask: np.ndarray, idx: np.ndarray) -> None:
+    def _randomise_vehicles(self, rngs: list[np.random.Generator], mask: np.ndarray, idx: np.ndarray) -> None:
         """Draw this episode's tyre friction, mass and actuator lags of each reset env from
         its stream (factors on the configured values) and hand them to the simulator."""
         rnd, veh = self.config.randomisation, self.config.sim.vehicle
@@ -184,7 +184,7 @@ class SimBatch:
         friction, mass = np.full(E, veh.tyre_friction), np.full(E, veh.mass)
         steer, throttle = np.full(E, veh.steer_time_constant), np.full(E, veh.throttle_time_constant)
         for e in idx:
-            f, m, lag = (self._vehicle_rngs[e].uniform(*r) for r in (rnd.friction_scale, rnd.mass_scale, rnd.lag_scale))
+            f, m, lag = (rngs[e].uniform(*r) for r in (rnd.friction_scale, rnd.mass_scale, rnd.lag_scale))
             friction[e], mass[e] = veh.tyre_friction * f, veh.mass * m
             steer[e], throttle[e] = veh.steer_time_constant * lag, veh.throttle_time_constant * lag
         self.sim.set_vehicle_params(mask, friction, mass, steer, throttle)
@@ -255,7 +255,7 @@ class SimBatch:
         self.sim.reset_drawn(mask, self.track_ids, self.start_pose, self.start_speed, track_ids, poses, speeds)
         idx = np.flatnonzero(mask)
         if self._vehicle_rngs is not None:
-            self._randomise_vehicles(mask, idx)
+            self._randomise_vehicles(self._vehicle_rngs, mask, idx)
         length = self.lengths[self.track_ids[idx]]
         self._len[idx, 0] = length
         self._half_len[idx, 0] = length / 2
@@ -310,7 +310,7 @@ class SimBatch:
                 vr -= r.wrong_way_penalty * wrong
             if self.config.wrong_way_ends_episode:
                 ends |= wrong
-        terminated = ends.any(axis=1)
+        terminated = cast(np.ndarray, ends.any(axis=1))  # an axis is given: an array, not a scalar
         self.obs.refresh(self, slice(None))
         reward = vr[:, 0].copy() if self.vehicles == 1 else vr.sum(axis=1)
         if self.max_steps is None:

@@ -36,7 +36,7 @@ exactly the episodes of that slice.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
@@ -99,7 +99,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self._all = np.ones(self.num_envs, bool)
         self._spec: Any = None
 
-    @property  # type: ignore[override]
+    @property
     def spec(self) -> Any:
         """The EnvSpec, its ``max_episode_steps`` the limit this env applies."""
         return self._spec
@@ -116,7 +116,8 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         if isinstance(seed, (list, tuple)):
             raise ValueError("pass one integer seed; environment i is seeded with (seed, i)")
         if seed is None and not self._seeded:
-            seed = int(np.random.SeedSequence().entropy % (2**63))
+            entropy = cast(int, np.random.SeedSequence().entropy)  # fresh from the OS: always an int
+            seed = int(entropy % (2**63))
         if seed is not None:
             self._np_random_seed = int(seed)
             self._np_random = np.random.default_rng(seed)

@@ -113,7 +113,9 @@ def _segments(seq: list[str], x: np.ndarray, sense: float, turn_shift: float = 0
 
 def _integrate(segs: list[tuple[float, float]]) -> tuple[np.ndarray, np.ndarray]:
     """Points (and their arc length) of the curve starting at 0 heading +x (exact arcs)."""
-    xs, ys, ss = [np.zeros(1)], [np.zeros(1)], [np.zeros(1)]
+    xs: list[np.ndarray] = [np.zeros(1)]
+    ys: list[np.ndarray] = [np.zeros(1)]
+    ss: list[np.ndarray] = [np.zeros(1)]
     x = y = th = s = 0.0
     for length, k in segs:
         n = max(1, int(math.ceil(length / STEP_M)))

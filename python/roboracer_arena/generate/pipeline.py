@@ -13,7 +13,7 @@ import numpy as np
 
 from .. import _core
 from ..constructor_config import ConstructorConfig
-from ..errors import InvalidArgumentError
+from ..errors import InternalError, InvalidArgumentError
 from ..maps import OccupancyMap
 from ..spec import TrackSpec
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
@@ -54,7 +54,7 @@ def validate_map(
     report, line = _core.validate_map(
         np.ascontiguousarray(m.data, np.uint8),
         m.resolution,
-        tuple(m.origin),
+        m.origin,
         *_jsons(spec, config or ConstructorConfig()),
     )
     return json.loads(report), line
@@ -104,6 +104,8 @@ def generate_track(
         kind, info, grid, line = _core.generate_lattice(*_jsons(spec, config), seed, timeout)
         info = json.loads(info)
         if kind == "accepted":
+            if grid is None or line is None:  # the core returns both with every acceptance
+                raise InternalError("generate_lattice accepted without a map and centreline")
             data, origin = grid
             return Acceptance(
                 spec,

@@ -234,7 +234,8 @@ def evaluate_laps(
     dt = env.config.control_dt
     limit = max_time_s if max_time_s is not None else max(t.length for t in tracks) / 0.8
     n = len(tracks)
-    done, clean, lap_time, progress = np.zeros(n, bool), np.zeros(n, bool), [None] * n, np.zeros(n)
+    done, clean, progress = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n)
+    lap_time: list[float | None] = [None] * n
     for _ in range(int(limit / dt)):
         obs, _, term, _, info = env.step(policy.act(theta, features(obs)))
         live = ~done

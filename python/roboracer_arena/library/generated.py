@@ -62,7 +62,7 @@ def sweep() -> Iterator[tuple[str, TrackSpec, int]]:
             chicanes=c,
             sweepers=s,
             direction=direction,
-        )  # type: ignore[arg-type]
+        )
         yield tid, spec, seed
 
 
@@ -74,6 +74,7 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, by
     import tempfile
 
     from ..generate import generate_track, write_outputs
+    from ..generate.outcomes import Acceptance, Rejection
     from ..generate.outputs import centreline_csv
 
     tid, spec, seed = task
@@ -86,7 +87,7 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, by
         "spec": json.loads(spec.model_dump_json()),
     }
     files: dict[str, bytes] = {}
-    if out.kind == "accepted":
+    if isinstance(out, Acceptance):
         with tempfile.TemporaryDirectory(prefix="rra-gen-") as tmp:
             paths = write_outputs(out, tmp, stem="map")
             # The committed centreline is thinned to ~CSV_SPACING m (the map is the reference).
@@ -96,7 +97,7 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, by
             atomic_write_text(paths["centreline_csv"], centreline_csv(line[::every], spec.corridor_width_m))
             files = {p.name: p.read_bytes() for p in paths.values()}
         rec["candidates_tried"] = out.candidates_tried
-    elif out.kind == "rejected":
+    elif isinstance(out, Rejection):
         rec["violations"] = out.violations
     return rec, files
 

@@ -99,7 +99,7 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
         rec.update(usable=False, reason=why)
         return rec
     try:
-        info_json, line, widths = _core.measure_map(iso, float(m.resolution), tuple(m.origin))
+        info_json, line, widths = _core.measure_map(iso, float(m.resolution), m.origin)
     except ArenaError as e:
         rec.update(usable=False, reason=f"no closed corridor: {e}")
         return rec

@@ -230,10 +230,10 @@ def _restated_counts(c: Canon, f: Found, ms: list[Mention]) -> None:
         if m.count == ms[j].count:
             m.kind = "ref"
             continue
-        a, b = ms[j].span, m.span
+        sa, sb = ms[j].span, m.span
         raise RequestParseError(
             f"the request states {FEATURE_NOUN[m.feature]} twice with different counts: "
-            f"{quote(f.text, *a)} (characters {a[0]}-{a[1]}) and {quote(f.text, *b)} (characters {b[0]}-{b[1]}); "
+            f"{quote(f.text, *sa)} (characters {sa[0]}-{sa[1]}) and {quote(f.text, *sb)} (characters {sb[0]}-{sb[1]}); "
             "say 'more' or 'another' to add"
         )
 

@@ -106,7 +106,7 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
 
 def _text_h(d: ImageDraw.ImageDraw, text: str, f) -> int:
     _, _, _, b = d.textbbox((0, 0), text or " ", font=f)
-    return b
+    return int(b)  # Pillow types the box as floats; bitmap and FreeType fonts give ints
 
 
 def _wrap(d: ImageDraw.ImageDraw, text: str, f, width: int) -> list[str]:

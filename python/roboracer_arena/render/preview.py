@@ -145,8 +145,8 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, v
     walls = meshes.get("/World/Track/Walls")
     if walls is not None and len(walls.triangles):
         tri = walls.points[walls.triangles][:, :, :2]
-        for a, b in ((0, 1), (1, 2), (2, 0)):
-            canvas.segments(tri[:, a], tri[:, b], WALL, width_px=2)
+        for i, j in ((0, 1), (1, 2), (2, 0)):
+            canvas.segments(tri[:, i], tri[:, j], WALL, width_px=2)
         drawn.append("walls")
         legend.append(LegendEntry("collision walls (invisible)", WALL, "line"))
     features = _generated_overlay(canvas, src, drawn, legend) if src is not None else []

@@ -112,7 +112,7 @@ def _material_colours(meta: dict[str, Any]) -> dict[str, tuple[float, float, flo
         except (ValueError, TypeError, ConfigError):
             pass  # an older or foreign stage: default colours still show the shapes
     mc = cfg.materials
-    return {"floor": tuple(mc.floor_colour), "duct": tuple(mc.duct_colour), "ring": tuple(mc.ring_colour)}
+    return {"floor": mc.floor_colour, "duct": mc.duct_colour, "ring": mc.ring_colour}
 
 
 def _car_pose(meta: dict[str, Any]) -> tuple[float, float, float] | None:

@@ -172,7 +172,7 @@ class TopDown:
             self.points(np.asarray(xy, dtype=np.float64)[None, :2], colour, radius_px=max(3, size_px // 4))
         face = font(size_px)
         left, top, right, bottom = self.draw.textbbox((0, 0), text, font=face, stroke_width=2)
-        w, h = right - left, bottom - top
+        w, h = int(right - left), int(bottom - top)  # typed float by Pillow, ints in practice
         box = self._free_spot(x, y, w, h)
         if box is None:
             self.dropped_labels.append(text)

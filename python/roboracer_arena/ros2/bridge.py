@@ -236,12 +236,12 @@ class Bridge:
         if "odom" in due:
             cols = [f[k] for k in ("x", "y", "yaw", "vx", "vy", "yaw_rate")]
             rows = st[:, cols].tolist()
-            for packer, n, (x, y, yaw, vx, vy, wz) in zip(self._odom_packers, self.names, rows):
-                self._emit_cdr(n.odom, packer.pack(t, x, y, yaw, vx, vy, wz), TYPE_OF["odom"])
+            for odom_packer, n, (x, y, yaw, vx, vy, wz) in zip(self._odom_packers, self.names, rows):
+                self._emit_cdr(n.odom, odom_packer.pack(t, x, y, yaw, vx, vy, wz), TYPE_OF["odom"])
             self._emit_cdr(TF, self._tf_packer.pack(t, [row[:3] for row in rows]), TYPE_OF[TF])
         if "scan" in due:
-            for i, (packer, n) in enumerate(zip(self._scan_packers, self.names)):
-                self._emit_cdr(n.scan, packer.pack(t, self.scans[0, i]), TYPE_OF["scan"])
+            for i, (scan_packer, n) in enumerate(zip(self._scan_packers, self.names)):
+                self._emit_cdr(n.scan, scan_packer.pack(t, self.scans[0, i]), TYPE_OF["scan"])
 
     # ------------------------------------------------------------------ commands
     def _poll(self) -> None:

@@ -63,7 +63,8 @@ class OdometryPacker:
 
     def __init__(self, names: CarNames) -> None:
         lay = _Layout()
-        lay.prim("i", 4), lay.prim("I", 4)
+        lay.prim("i", 4)
+        lay.prim("I", 4)
         self._frame = lay.string(MAP_FRAME)
         self._child = lay.string(names.base_link)
         lay.prim("d", 8, 7 + 36 + 6 + 36)
@@ -102,7 +103,8 @@ class TfPacker:
         lay.prim("I", 4)
         self._strings = []
         for child in children:
-            lay.prim("i", 4), lay.prim("I", 4)
+            lay.prim("i", 4)
+            lay.prim("I", 4)
             parent_v = lay.string(parent)
             child_v = lay.string(child)
             lay.prim("d", 8, 7)
@@ -123,7 +125,8 @@ class LaserScanPacker:
 
     def __init__(self, names: CarNames, fov: float, range_min: float, range_max: float, scan_time: float) -> None:
         lay = _Layout()
-        lay.prim("i", 4), lay.prim("I", 4)
+        lay.prim("i", 4)
+        lay.prim("I", 4)
         self._frame = lay.string(names.laser)
         lay.prim("f", 4, 7)
         lay.prim("I", 4)  # ranges count; float32 elements follow, aligned (offset is a multiple of 4)

@@ -19,7 +19,7 @@ from __future__ import annotations
 import dataclasses
 import re
 from functools import cache
-from typing import Any
+from typing import Any, cast
 
 from ._deps import require
 
@@ -142,7 +142,11 @@ def msg_class(typename: str) -> type:
         raise KeyError(f"unknown message type {typename!r}")
     require("cyclonedds")
     from cyclonedds.idl import IdlMeta, IdlStruct
-    from cyclonedds.idl import types as t
+    from cyclonedds.idl import types as idl_types
+
+    # The field types are built at runtime (``sequence[base]``, ``array[base, n]`` through
+    # ``__class_getitem__``), which static typing cannot follow: treat the module as dynamic.
+    t: Any = idl_types
 
     prim = {
         "bool": bool,
@@ -157,7 +161,8 @@ def msg_class(typename: str) -> type:
         "string": str,
     }
     name = typename.split("/")[-1]
-    ns = IdlMeta.__prepare__(name, (IdlStruct,), typename=dds_type_name(typename))
+    # __prepare__ is typed as a read-only Mapping but returns the mutable class namespace dict.
+    ns = cast(dict[str, Any], IdlMeta.__prepare__(name, (IdlStruct,), typename=dds_type_name(typename)))
     for f in parse_fields(typename):
         base = prim[f.type] if f.type in prim else msg_class(f.type)
         if f.array is None:
@@ -169,7 +174,7 @@ def msg_class(typename: str) -> type:
         else:
             ns["__annotations__"][f.name] = t.array[base, f.array]
             ns[f.name] = dataclasses.field(default_factory=_array_factory(f.type, base, f.array))
-    cls = IdlMeta(name, (IdlStruct,), ns)
+    cls: type = IdlMeta(name, (IdlStruct,), ns)
     return dataclasses.dataclass(cls)
 
 

@@ -75,7 +75,7 @@ def sim_source(env_or_sim: Any, cars: int | None = None, config: SimConfig | Non
         )
     inner = getattr(env_or_sim, "unwrapped", None)
     batch = getattr(inner, "_batch", None)
-    if batch is not None and hasattr(batch, "sim"):  # a RoboRacerArena-v0 env
+    if inner is not None and batch is not None and hasattr(batch, "sim"):  # a RoboRacerArena-v0 env
         tid = int(batch.track_ids[0])
         track = inner.tracks[tid]
         return SimSource(

@@ -88,7 +88,7 @@ def _check_mesh(where: str, pts: np.ndarray, counts: np.ndarray, idx: np.ndarray
 def _triangulate(counts: np.ndarray, idx: np.ndarray) -> np.ndarray:
     if len(counts) and np.all(counts == 3):
         return idx.reshape(-1, 3)
-    tris = []
+    tris: list[tuple[int, int, int]] = []
     start = 0
     for c in counts:
         face = idx[start : start + c]
