@@ -4,6 +4,7 @@ reduction where non-local sections of the loop would merge after rasterisation."
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -89,7 +90,7 @@ def reduce_widths(
     widths: np.ndarray,
     wall_thickness: float,
     spacing: float,
-    crossings: list[tuple[int, int, np.ndarray]] = (),  # type: ignore[assignment]
+    crossings: Sequence[tuple[int, int, np.ndarray]] = (),
     min_fraction: float = MIN_WIDTH_FRACTION,
 ) -> Narrowing:
     """Narrow the corridor where two non-local sections would merge.

@@ -289,7 +289,9 @@ class Bridge:
         self._reset_pose = (x, y, yaw)
 
     def _apply_reset(self) -> None:
-        x, y, yaw = self._reset_pose  # type: ignore[misc]
+        if self._reset_pose is None:  # (the caller checks; nothing to apply)
+            return
+        x, y, yaw = self._reset_pose
         self._reset_pose = None
         f = self.src.fields
         poses = np.stack([self.state[..., f["x"]], self.state[..., f["y"]], self.state[..., f["yaw"]]], axis=-1)
