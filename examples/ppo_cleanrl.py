@@ -62,8 +62,9 @@ class Agent(nn.Module):
     def __init__(self, obs_dim: int, act_dim: int) -> None:
         super().__init__()
         self.critic = nn.Sequential(layer(obs_dim, 64), nn.Tanh(), layer(64, 64), nn.Tanh(), layer(64, 1, 1.0))
-        self.actor_mean = nn.Sequential(layer(obs_dim, 64), nn.Tanh(), layer(64, 64), nn.Tanh(),
-                                        layer(64, act_dim, 0.01))
+        self.actor_mean = nn.Sequential(
+            layer(obs_dim, 64), nn.Tanh(), layer(64, 64), nn.Tanh(), layer(64, act_dim, 0.01)
+        )
         self.actor_logstd = nn.Parameter(torch.full((1, act_dim), -0.5))
 
     def value(self, x: torch.Tensor) -> torch.Tensor:
@@ -80,9 +81,16 @@ class Agent(nn.Module):
 def main() -> None:
     args = parse_args()
     torch.manual_seed(args.seed)
-    envs = gym.make_vec("RoboRacerArena-v0", num_envs=args.num_envs, vectorization_mode="vector_entry_point",
-                        track=args.track, observation="normalise", action_mode="normalised",
-                        autoreset_mode=AutoresetMode.SAME_STEP, sim={"lidar": {"num_beams": args.num_beams}})
+    envs = gym.make_vec(
+        "RoboRacerArena-v0",
+        num_envs=args.num_envs,
+        vectorization_mode="vector_entry_point",
+        track=args.track,
+        observation="normalise",
+        action_mode="normalised",
+        autoreset_mode=AutoresetMode.SAME_STEP,
+        sim={"lidar": {"num_beams": args.num_beams}},
+    )
     obs_dim = flatten(envs.observation_space.sample()).shape[1]
     act_dim = envs.single_action_space.shape[0]
     agent = Agent(obs_dim, act_dim)
@@ -125,13 +133,13 @@ def main() -> None:
                 adv[t] = last = delta + args.gamma * args.gae_lambda * nonterminal * last
             ret = adv + val_buf
         b_obs, b_act = obs_buf.reshape(-1, obs_dim), act_buf.reshape(-1, act_dim)
-        b_logp, b_adv, b_ret, b_val = logp_buf.reshape(-1), adv.reshape(-1), ret.reshape(-1), val_buf.reshape(-1)
+        b_logp, b_adv, b_ret = logp_buf.reshape(-1), adv.reshape(-1), ret.reshape(-1)
         batch = n * T
         mb = batch // args.minibatches
         for _ in range(args.update_epochs):
             idx = np.random.permutation(batch)
             for s in range(0, batch, mb):
-                i = idx[s:s + mb]
+                i = idx[s : s + mb]
                 _, logp, ent, value = agent.act(b_obs[i], b_act[i])
                 ratio = (logp - b_logp[i]).exp()
                 a = (b_adv[i] - b_adv[i].mean()) / (b_adv[i].std() + 1e-8)
@@ -143,8 +151,11 @@ def main() -> None:
                 nn.utils.clip_grad_norm_(agent.parameters(), args.max_grad_norm)
                 opt.step()
         recent = np.mean(returns[-50:]) if returns else float("nan")
-        print(f"update {update}/{updates}  env-steps {step}  mean return (last 50 episodes) {recent:.2f}  "
-              f"{step / (time.time() - start):,.0f} env-steps/s", flush=True)
+        print(
+            f"update {update}/{updates}  env-steps {step}  mean return (last 50 episodes) {recent:.2f}  "
+            f"{step / (time.time() - start):,.0f} env-steps/s",
+            flush=True,
+        )
     envs.close()
 
 

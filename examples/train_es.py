@@ -37,12 +37,16 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--ray", metavar="ADDRESS", help="roll out in Ray actors: auto, local or HOST:PORT")
     p.add_argument("--ray-actors", type=int, default=2, metavar="N", help="Ray actors (2 x pairs must divide by N)")
     args = p.parse_args(argv)
-    cfg = replace(ESConfig(), generations=args.generations, pairs=args.pairs, episode_steps=args.episode_steps,
-                  seed=args.seed)
+    cfg = replace(
+        ESConfig(), generations=args.generations, pairs=args.pairs, episode_steps=args.episode_steps, seed=args.seed
+    )
 
     def show(row: dict) -> None:
-        print(f"gen {row['generation']:3d}  mean return {row['mean_return']:7.2f}  best {row['max_return']:7.2f}"
-              f"  env-steps {row['env_steps']:8d}  {row['seconds']:6.1f} s", flush=True)
+        print(
+            f"gen {row['generation']:3d}  mean return {row['mean_return']:7.2f}  best {row['max_return']:7.2f}"
+            f"  env-steps {row['env_steps']:8d}  {row['seconds']:6.1f} s",
+            flush=True,
+        )
 
     env = None
     if args.ray:
@@ -60,7 +64,11 @@ def main(argv: list[str] | None = None) -> int:
     if not args.no_lap:
         laps = evaluate_laps(result.theta, args.track, cfg)
         for lap in laps:
-            verdict = f"clean lap in {lap['lap_time']:.2f} s" if lap["clean_lap"] else f"no clean lap ({lap['progress']:.1f} m)"
+            verdict = (
+                f"clean lap in {lap['lap_time']:.2f} s"
+                if lap["clean_lap"]
+                else f"no clean lap ({lap['progress']:.1f} m)"
+            )
             print(f"lap on {lap['track']}: {verdict}")
         out["laps"] = laps
     if args.png:

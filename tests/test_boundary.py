@@ -26,7 +26,8 @@ def test_a_core_panic_is_an_internal_error_not_a_panic_exception():
 
 def test_the_panic_prints_nothing_to_stderr():
     code = "from roboracer_arena import _core\ntry:\n    _core._boundary_self_test()\nexcept Exception as e:\n    print(type(e).__name__)"
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
-                         env={"PATH": "/usr/bin:/bin"})
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, env={"PATH": "/usr/bin:/bin"}
+    )
     assert out.returncode == 0 and out.stdout.strip() == "InternalError"
     assert "panicked" not in out.stderr

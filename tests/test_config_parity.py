@@ -20,10 +20,14 @@ from pydantic import BaseModel, ValidationError
 from roboracer_arena import _core
 from roboracer_arena.build_config import GeometryConfig
 from roboracer_arena.constructor_config import ConstructorConfig
-from roboracer_arena.sim_config import SimConfig
 from roboracer_arena.errors import ArenaError
+from roboracer_arena.sim_config import SimConfig
 
-PAIRS: list[tuple[str, type[BaseModel]]] = [("sim", SimConfig), ("build", GeometryConfig), ("constructor", ConstructorConfig)]
+PAIRS: list[tuple[str, type[BaseModel]]] = [
+    ("sim", SimConfig),
+    ("build", GeometryConfig),
+    ("constructor", ConstructorConfig),
+]
 
 
 def _leaves(model: type[BaseModel], prefix: tuple[str, ...] = ()) -> list[tuple[tuple[str, ...], Any]]:
@@ -83,10 +87,20 @@ def _defaults(model: type[BaseModel]) -> dict:
 @pytest.mark.parametrize("kind,model", PAIRS, ids=[k for k, _ in PAIRS])
 def test_same_fields_and_defaults(kind, model):
     ours, core = _defaults(model), json.loads(_core.config_defaults(kind))
-    flat = lambda d, p=(): {k: v for key, val in d.items() for k, v in (flat(val, (*p, key)).items() if isinstance(val, dict) else [((*p, key), val)])}  # noqa: E731
+    flat = lambda d, p=(): {
+        k: v
+        for key, val in d.items()
+        for k, v in (flat(val, (*p, key)).items() if isinstance(val, dict) else [((*p, key), val)])
+    }
     a, b = flat(ours), flat(core)
-    assert sorted(a) == sorted(b), f"fields only in pydantic: {sorted(set(a) - set(b))}; only in core: {sorted(set(b) - set(a))}"
-    differ = {".".join(k): (a[k], b[k]) for k in a if not (a[k] == b[k] or (isinstance(a[k], float) and math.isclose(a[k], b[k], rel_tol=1e-12)))}
+    assert sorted(a) == sorted(b), (
+        f"fields only in pydantic: {sorted(set(a) - set(b))}; only in core: {sorted(set(b) - set(a))}"
+    )
+    differ = {
+        ".".join(k): (a[k], b[k])
+        for k in a
+        if not (a[k] == b[k] or (isinstance(a[k], float) and math.isclose(a[k], b[k], rel_tol=1e-12)))
+    }
     assert not differ, f"defaults differ (pydantic, core): {differ}"
 
 
@@ -104,7 +118,9 @@ def test_same_limits(kind, model):
             doc = _set(base, path, int(v) if info.annotation is int else v)
             py, core = _py_accepts(model, doc), _core_accepts(kind, doc)
             if py != core:
-                disagree.append(f"{'.'.join(path)}={v!r}: pydantic {'accepts' if py else 'refuses'}, core {'accepts' if core else 'refuses'}")
+                disagree.append(
+                    f"{'.'.join(path)}={v!r}: pydantic {'accepts' if py else 'refuses'}, core {'accepts' if core else 'refuses'}"
+                )
     assert not disagree, "limits drifted:\n" + "\n".join(disagree)
 
 

@@ -12,8 +12,15 @@ def test_version_matches_package():
 
 
 def test_error_hierarchy():
-    for cls in (errors.MapFormatError, errors.MapIOError, errors.CorridorError, errors.SpecError,
-                errors.ConfigError, errors.BackendError, errors.GroundingError):
+    for cls in (
+        errors.MapFormatError,
+        errors.MapIOError,
+        errors.CorridorError,
+        errors.SpecError,
+        errors.ConfigError,
+        errors.BackendError,
+        errors.GroundingError,
+    ):
         assert issubclass(cls, errors.ArenaError)
 
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from roboracer_arena.corridor import DEFAULT_PARAMS, extract_corridor
-from roboracer_arena.errors import ConfigError, CorridorError, InvalidArgumentError, MapFormatError
+from roboracer_arena.errors import ConfigError, CorridorError, MapFormatError
 from roboracer_arena.maps import FREE, OCCUPIED, UNKNOWN, OccupancyMap
 
 RES = 0.05

@@ -9,10 +9,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from roboracer_arena import load_map
 from roboracer_arena.errors import InvalidArgumentError, MapFormatError, MapIOError
-from roboracer_arena.maps import load_map
-from roboracer_arena.maps import FREE, OCCUPIED, UNKNOWN, OccupancyMap, save_map
+from roboracer_arena.maps import FREE, OCCUPIED, UNKNOWN, OccupancyMap, load_map, save_map
 
 # white, black, mid-grey 205, dark grey 60 in a 2 x 2 image
 GREYS = np.array([[255, 0], [205, 60]], dtype=np.uint8)
@@ -90,7 +88,12 @@ def test_one_by_one_map_and_round_trip(tmp_path: Path) -> None:
         np.testing.assert_array_equal(back.data, data)
         assert (back.resolution, back.origin) == (0.05, (-1.25, 3.5, -0.25))
         assert back.meta["image_format"] == fmt
-    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["rt_pgm.pgm", "rt_pgm.yaml", "rt_png.png", "rt_png.yaml"]
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [
+        "rt_pgm.pgm",
+        "rt_pgm.yaml",
+        "rt_png.png",
+        "rt_png.yaml",
+    ]
     with pytest.raises(InvalidArgumentError, match="trinary"):
         save_map(np.full((2, 2), 255, np.uint8), 0.05, (0, 0, 0), tmp_path / "bad.yaml")
     assert not (tmp_path / "bad.yaml").exists()

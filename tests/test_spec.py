@@ -39,5 +39,7 @@ def test_from_file_errors_name_the_file(tmp_path):
         TrackSpec.from_file(p)
     with pytest.raises(SpecError, match="cannot read"):
         TrackSpec.from_file(tmp_path / "missing.json")
-    p.write_text(json.dumps({"hairpins": 3, "chicanes": 1, "feature_order": ["hairpin", "chicane", "hairpin", "hairpin"]}))
+    p.write_text(
+        json.dumps({"hairpins": 3, "chicanes": 1, "feature_order": ["hairpin", "chicane", "hairpin", "hairpin"]})
+    )
     assert TrackSpec.from_file(p).hairpins == 3

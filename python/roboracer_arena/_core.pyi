@@ -1,10 +1,44 @@
 """Type stubs for the Rust extension ``roboracer_arena._core``."""
 
 import os
-from typing import Sequence, TypedDict
+from collections.abc import Sequence
+from typing import TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
+
+# The extension's own ``__all__`` (same order), checked by stubtest.
+__all__ = [
+    "__version__",
+    "ArenaError",
+    "MapIOError",
+    "MapFormatError",
+    "CorridorError",
+    "InvalidArgumentError",
+    "ConfigError",
+    "SpecError",
+    "SimulationError",
+    "InternalError",
+    "_boundary_self_test",
+    "distance_transform",
+    "rasterise_centreline",
+    "screen",
+    "derived_geometry",
+    "generate_lattice",
+    "construct_lattice",
+    "validate_map",
+    "analyse_curve",
+    "load_map",
+    "save_map",
+    "build_geometry",
+    "default_build_params",
+    "config_defaults",
+    "check_config",
+    "measure_map",
+    "Simulator",
+    "stadium_track",
+    "STATE_FIELDS",
+]
 
 __version__: str
 
@@ -16,6 +50,7 @@ class InvalidArgumentError(ArenaError): ...
 class ConfigError(ArenaError): ...
 class SpecError(ArenaError): ...
 class SimulationError(ArenaError): ...
+
 class InternalError(ArenaError):
     """A caught Rust panic: the core failed on an input it should have refused."""
 
@@ -32,6 +67,7 @@ def rasterise_centreline(
     margin: float = 0.5,
 ) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]]:
     """Eq. 3 with per-vertex full widths; returns (data (H, W) uint8, origin (x, y, yaw))."""
+
 def screen(spec_json: str, config_json: str) -> str:
     """Admissibility screen (Eqs. 1–2) as JSON: passed, violations, r_min_m, pitch_m, l_max_m, …"""
 
@@ -127,12 +163,16 @@ def measure_map(
 # --- sim (batched vehicle simulation) -------------------------------------------------
 STATE_FIELDS: tuple[str, ...]
 
+# A pyo3 class: cannot be subclassed, and is constructed by __new__.
+@final
 class Simulator:
     """``num_envs`` independent rapier worlds with ``vehicles_per_env`` cars each.
 
     ``tracks``: list of ``(walls, centreline)``; walls = list of closed (N, 2) float64
     polylines (map-frame metres), centreline = closed (M, 2) float64 polyline.
     ``config_json``: ``SimConfig().to_json()``. Every env starts on track 0.
+    ``seed`` (None = 0) and ``env_index_offset`` (None = 0; the index of env 0 in a larger
+    batch, so that a shard draws the same per-env streams as the whole) are ints >= 0.
 
     State columns (``state_fields``): x, y (CoM), yaw, vx, vy (body frame), yaw_rate,
     steer (actual, rate limited), speed (planar, signed by vx), progress_s (arc length of
@@ -153,14 +193,15 @@ class Simulator:
     within [min_speed, max_speed]. Rows of envs outside ``env_mask`` are ignored.
     """
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         tracks: list[tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]],
         num_envs: int,
         vehicles_per_env: int,
         config_json: str = "{}",
-        seed: int = 0,
-    ) -> None: ...
+        seed: int | None = None,
+        env_index_offset: int | None = None,
+    ) -> Simulator: ...
     @property
     def num_envs(self) -> int: ...
     @property

@@ -22,8 +22,8 @@ from pydantic import ConfigDict, Field, ValidationError, model_validator
 
 from .errors import ArenaError, ConfigError
 from .fileio import read_text
-from .strict import NumbersAreNumbers
 from .spec import format_validation_error
+from .strict import NumbersAreNumbers
 
 Colour = tuple[float, float, float]
 
@@ -105,7 +105,9 @@ class GeometryConfig(NumbersAreNumbers):
     @model_validator(mode="after")
     def _rings_apart(self) -> GeometryConfig:
         if 0 < self.ring_spacing_m < self.ring_width_m:
-            raise ValueError(f"ring_spacing_m must be 0 (no rings) or at least ring_width_m ({self.ring_width_m}), got {self.ring_spacing_m}")
+            raise ValueError(
+                f"ring_spacing_m must be 0 (no rings) or at least ring_width_m ({self.ring_width_m}), got {self.ring_spacing_m}"
+            )
         return self
 
 
@@ -191,7 +193,7 @@ class BuildConfig(NumbersAreNumbers):
         return self.geometry.model_dump()
 
     @classmethod
-    def from_dict(cls, data: object, source: str = "config") -> "BuildConfig":
+    def from_dict(cls, data: object, source: str = "config") -> BuildConfig:
         """Validate a mapping; a bad field raises :class:`ConfigError` naming ``source`` and the field."""
         if not isinstance(data, dict):
             raise ConfigError(f"{source}: a build config must be a table/object, got {type(data).__name__}")
@@ -201,7 +203,7 @@ class BuildConfig(NumbersAreNumbers):
             raise ConfigError(f"{source}: {format_validation_error(e)}") from e
 
     @classmethod
-    def from_file(cls, path: str | Path) -> "BuildConfig":
+    def from_file(cls, path: str | Path) -> BuildConfig:
         """Load from ``.toml`` or ``.json`` (chosen by suffix; other suffixes try JSON then TOML)."""
         p = Path(path)
         try:

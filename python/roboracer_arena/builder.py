@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 from pydantic import BaseModel, Field
@@ -48,10 +49,15 @@ class BuildReport(BaseModel):
     walls: int = Field(description="Number of closed collision-wall polylines.")
     ducts: int = Field(description="Number of duct polylines (the visible ducts).")
     centreline_length_m: float
-    iou: float = Field(description="IoU of the drivable region re-rasterised from the collision walls with the source corridor.")
-    max_wall_deviation_cells: float = Field(description="Worst distance (cells) from a wall vertex to the corridor border.")
+    iou: float = Field(
+        description="IoU of the drivable region re-rasterised from the collision walls with the source corridor."
+    )
+    max_wall_deviation_cells: float = Field(
+        description="Worst distance (cells) from a wall vertex to the corridor border."
+    )
     border_contact_cells: int = Field(
-        0, description="Corridor cells on the map edge; > 0 means the map edge closes the corridor there (it acts as a wall)."
+        0,
+        description="Corridor cells on the map edge; > 0 means the map edge closes the corridor there (it acts as a wall).",
     )
 
     def summary(self) -> str:
@@ -66,8 +72,11 @@ class BuildReport(BaseModel):
             f"  meshes: {counts}\n"
             f"  USD {self.usd_bytes / 1e6:.2f} MB ({self.usd_format}), IoU {self.iou:.4f}, "
             f"worst wall deviation {self.max_wall_deviation_cells:.2f} cells"
-            + (f"\n  note: the corridor meets the map edge on {self.border_contact_cells} cells; the edge acts as a wall there"
-               if self.border_contact_cells else "")
+            + (
+                f"\n  note: the corridor meets the map edge on {self.border_contact_cells} cells; the edge acts as a wall there"
+                if self.border_contact_cells
+                else ""
+            )
         )
 
 
@@ -167,7 +176,7 @@ def build_environment(
         raster_px=(int(w), int(h)),
         raster_mp=w * h / 1e6,
         resolution_m=float(occ.resolution),
-        origin=tuple(float(v) for v in occ.origin),  # type: ignore[arg-type]
+        origin=tuple(float(v) for v in occ.origin),
         timings_s=timings,
         meshes={k: MeshCount(vertices=len(v), triangles=len(t)) for k, (v, t) in geo.meshes.items()},
         walls=len(geo.walls),

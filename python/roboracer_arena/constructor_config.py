@@ -18,10 +18,18 @@ class ConstructorConfig(NumbersAreNumbers):
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
-    wall_thickness_m: float = Field(0.15, gt=0, description="Wall thickness t_w (m): about one air-duct radius (0.33 m ducts).")
-    clearance_m: float = Field(0.35, ge=0, description="Inter-corridor clearance d_c (m) between walls of neighbouring passes; with t_w gives p = 2.15 m at w = 1.5 m.")
+    wall_thickness_m: float = Field(
+        0.15, gt=0, description="Wall thickness t_w (m): about one air-duct radius (0.33 m ducts)."
+    )
+    clearance_m: float = Field(
+        0.35,
+        ge=0,
+        description="Inter-corridor clearance d_c (m) between walls of neighbouring passes; with t_w gives p = 2.15 m at w = 1.5 m.",
+    )
     hall_margin_m: float = Field(0.5, ge=0, description="Hall margin m_h (m) kept clear on every side of the hall.")
-    resolution_m: float = Field(0.05, ge=1e-4, le=1.0, description="Raster resolution Δ (m per cell), the usual RoboRacer SLAM resolution.")
+    resolution_m: float = Field(
+        0.05, ge=1e-4, le=1.0, description="Raster resolution Δ (m per cell), the usual RoboRacer SLAM resolution."
+    )
     map_margin_m: float = Field(0.25, ge=0, description="Unknown border (m) around the outer wall in the written map.")
     max_candidates: int = Field(800, ge=1, le=800, description="Candidate cap of Algorithm 1 (the paper's 800).")
 

@@ -36,9 +36,10 @@ raise :class:`~roboracer_arena.errors.InvalidArgumentError`.
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt

@@ -48,8 +48,9 @@ def _generate(request: str, seed: int, out: Path) -> Path | None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m roboracer_arena.demo", description=__doc__,
-                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = argparse.ArgumentParser(
+        prog="python -m roboracer_arena.demo", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     p.add_argument("--out", type=Path, default=Path("out/demo"), help="output folder (default out/demo)")
     p.add_argument("--request", default=DEFAULT_REQUEST, help="natural-language track request")
     p.add_argument("--seed", type=int, default=0, help="constructor seed (default 0)")
@@ -84,8 +85,10 @@ def main(argv: list[str] | None = None) -> int:
             gif = args.out / "lap.gif"
             res = drive_laps(str(map_yaml), 1, video=gif, progress=True)
             verdict = "completed" if res.completed else ("COLLIDED" if res.collided else "did not finish")
-            print(f"  {verdict}: {res.laps_completed}/1 lap of {res.track_length:.1f} m in {res.sim_time:.2f} s "
-                  f"simulated ({res.wall_time:.2f} s wall), top speed {res.max_speed:.2f} m/s")
+            print(
+                f"  {verdict}: {res.laps_completed}/1 lap of {res.track_length:.1f} m in {res.sim_time:.2f} s "
+                f"simulated ({res.wall_time:.2f} s wall), top speed {res.max_speed:.2f} m/s"
+            )
             print(f"  wrote {gif}")
     except ArenaError as e:
         print(f"demo: error: {e}", file=sys.stderr)

@@ -58,8 +58,11 @@ class TrackDirection:
     source: str = "default"
 
     def to_dict(self) -> dict[str, Any]:
-        return {"direction": self.direction, "start": None if self.start is None else [round(v, 3) for v in self.start],
-                "direction_source": self.source}
+        return {
+            "direction": self.direction,
+            "start": None if self.start is None else [round(v, 3) for v in self.start],
+            "direction_source": self.source,
+        }
 
 
 def check_direction(value: Any, what: str = "direction") -> str:
@@ -179,7 +182,19 @@ def orient_to(line: Any, how: TrackDirection, reverse_it: bool = False) -> np.nd
 
 
 __all__ = [
-    "CLOCKWISE", "COUNTERCLOCKWISE", "DEFAULT_DIRECTION", "DIRECTIONS", "TrackDirection", "centreline_file_for_map",
-    "check_direction", "direction_for_map", "direction_of", "opposite", "orient", "orient_to", "read_centreline_file",
-    "reverse", "signed_area",
+    "CLOCKWISE",
+    "COUNTERCLOCKWISE",
+    "DEFAULT_DIRECTION",
+    "DIRECTIONS",
+    "TrackDirection",
+    "centreline_file_for_map",
+    "check_direction",
+    "direction_for_map",
+    "direction_of",
+    "opposite",
+    "orient",
+    "orient_to",
+    "read_centreline_file",
+    "reverse",
+    "signed_area",
 ]

@@ -85,7 +85,9 @@ class PurePursuitDriver:
             return np.zeros(2)
         rx, ry = x - p.rear_axle_offset * np.cos(yaw), y - p.rear_axle_offset * np.sin(yaw)
         i = self.project(rx, ry)
-        lookahead = float(np.clip(p.lookahead_min + p.lookahead_gain * max(speed, 0.0), p.lookahead_min, p.lookahead_max))
+        lookahead = float(
+            np.clip(p.lookahead_min + p.lookahead_gain * max(speed, 0.0), p.lookahead_min, p.lookahead_max)
+        )
         n = len(self.points)
         tx, ty = self.points[(i + max(1, round(lookahead / self.ds))) % n]
         dx, dy = tx - rx, ty - ry
@@ -155,7 +157,9 @@ class EnvPurePursuit:
         if missing:
             from .errors import ConfigError
 
-            raise ConfigError(f"pure pursuit needs the odometry fields x, y, yaw in the observation (missing {missing})")
+            raise ConfigError(
+                f"pure pursuit needs the odometry fields x, y, yaw in the observation (missing {missing})"
+            )
         self._cols = (f["x"], f["y"], f["yaw"], f.get("speed", f.get("vx")))
 
     def _driver(self, e: int, k: int, track_id: int) -> PurePursuitDriver:
@@ -221,9 +225,19 @@ class DriveResult:
         return {**asdict(self), "completed": self.completed}
 
 
-def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = None, video: Any = None,
-               video_fps: float = 10.0, render_size: int = 500, max_time_s: float | None = None,
-               progress: bool = False, env_wrapper: Any = None, **env_kwargs: Any) -> DriveResult:
+def drive_laps(
+    track: Any,
+    laps: int = 1,
+    *,
+    params: PurePursuitParams | None = None,
+    video: Any = None,
+    video_fps: float = 10.0,
+    render_size: int = 500,
+    max_time_s: float | None = None,
+    progress: bool = False,
+    env_wrapper: Any = None,
+    **env_kwargs: Any,
+) -> DriveResult:
     """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
     list) with :class:`PurePursuitDriver` from the centreline start, stopping at the first
     contact. Optionally writes a GIF/MP4 of the drive. ``env_kwargs`` go to the env;
@@ -240,8 +254,12 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
         from .render.formats import video_format
 
         video_format(video)  # a bad extension fails before the lap is driven
-    env = RoboRacerEnv(track=track, render_mode="rgb_array" if video else None, render_size=render_size,
-                       **{"reset_poses": "grid", "collision_ends_episode": True, "time_limit_s": None, **env_kwargs})
+    env = RoboRacerEnv(
+        track=track,
+        render_mode="rgb_array" if video else None,
+        render_size=render_size,
+        **{"reset_poses": "grid", "collision_ends_episode": True, "time_limit_s": None, **env_kwargs},
+    )
     if env_wrapper is not None:
         env = env_wrapper(env)
     length = env.tracks[0].length
@@ -250,6 +268,15 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
     driver = PurePursuitDriver.for_env(env) if params is None else EnvPurePursuit(env, params)
     every = max(1, round(env.config.control_rate_hz / video_fps))
     frames: list[np.ndarray] = []
+
+    def add_frame() -> None:
+        frame = env.render()
+        if frame is None:  # the env was made with render_mode="rgb_array" since a video is wanted
+            from .errors import InternalError
+
+            raise InternalError("drive: the env rendered no frame in rgb_array mode")
+        frames.append(frame)
+
     bar = None
     if progress:
         from tqdm import tqdm
@@ -258,7 +285,7 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
     t0 = time.perf_counter()
     obs, info = env.reset(seed=0, options={"track_id": 0})
     if video:
-        frames.append(env.render())
+        add_frame()
     lap_times: list[float] = []
     steps, contacts, vmax, collided = 0, 0, 0.0, False
     contact_at: list[float] | None = None
@@ -283,7 +310,7 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
         if bar is not None:
             bar.update(round(min(progressed, laps * length), 1) - bar.n)
         if video and steps % every == 0:
-            frames.append(env.render())
+            add_frame()
         if terminated or truncated or len(lap_times) >= laps:
             break
     if bar is not None:
@@ -292,14 +319,23 @@ def drive_laps(track: Any, laps: int = 1, *, params: PurePursuitParams | None = 
     if video:
         from .render.video import write_video
 
-        frames.append(env.render())
+        add_frame()
         out = str(write_video(frames, video, fps=env.config.control_rate_hz / every))
     env.close()
     return DriveResult(
-        track=env.tracks[0].name, track_length=round(length, 3), laps_requested=laps, laps_completed=len(lap_times),
-        lap_times=[round(b - a, 3) for a, b in zip([0.0, *lap_times[:-1]], lap_times)], collided=collided,
-        contact_steps=contacts, sim_time=round(steps * dt, 3), distance=round(float(np.min(info["progress"])), 3),
-        max_speed=round(vmax, 3), wall_time=round(time.perf_counter() - t0, 3), video=out,
-        contact_at=contact_at, corridor_width_at_contact=width_at_contact,
+        track=env.tracks[0].name,
+        track_length=round(length, 3),
+        laps_requested=laps,
+        laps_completed=len(lap_times),
+        lap_times=[round(b - a, 3) for a, b in zip([0.0, *lap_times[:-1]], lap_times)],
+        collided=collided,
+        contact_steps=contacts,
+        sim_time=round(steps * dt, 3),
+        distance=round(float(np.min(info["progress"])), 3),
+        max_speed=round(vmax, 3),
+        wall_time=round(time.perf_counter() - t0, 3),
+        video=out,
+        contact_at=contact_at,
+        corridor_width_at_contact=width_at_contact,
         vehicle_width=env.config.sim.vehicle.chassis_width,
     )

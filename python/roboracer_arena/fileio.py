@@ -13,9 +13,9 @@ from __future__ import annotations
 import os
 import stat
 import tempfile
+from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
-from typing import Iterable, Iterator, Sequence
 
 from .errors import InvalidArgumentError, MapIOError
 
@@ -87,7 +87,7 @@ def atomic_paths(paths: Sequence[str | Path]) -> Iterator[list[Path]]:
             made_dirs.extend(reversed(missing))
             temps.append(_temp_beside(t))
         yield list(temps)
-        for tmp, t in zip(temps, targets):
+        for tmp in temps:
             os.chmod(tmp, 0o666 & ~_UMASK)  # mkstemp makes 0600; give the usual permissions
         for tmp, t in zip(temps, targets):
             existed = t.exists()
@@ -140,9 +140,12 @@ def require_regular(path: str | Path, what: str) -> os.stat_result:
         raise MapIOError(f"{path}: cannot read {what}: {why}") from None
     if not stat.S_ISREG(st.st_mode):
         kind = (
-            "a directory" if stat.S_ISDIR(st.st_mode)
-            else "a FIFO (named pipe)" if stat.S_ISFIFO(st.st_mode)
-            else "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
+            "a directory"
+            if stat.S_ISDIR(st.st_mode)
+            else "a FIFO (named pipe)"
+            if stat.S_ISFIFO(st.st_mode)
+            else "a device"
+            if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
             else "a socket or other special file"
         )
         raise MapIOError(f"{path}: cannot read {what}: it is {kind}, not a regular file")

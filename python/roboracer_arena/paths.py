@@ -45,8 +45,10 @@ def writable_tracks_dir(explicit: str | os.PathLike[str] | None, flag: str) -> P
         return Path(explicit)
     if os.environ.get(TRACKS_ENV) or checkout_dir() is not None:
         return tracks_dir()
-    raise InvalidArgumentError(f"{flag} DIR is required: the installed track catalog is package data and is not "
-                               f"written into (it would change the installed package)")
+    raise InvalidArgumentError(
+        f"{flag} DIR is required: the installed track catalog is package data and is not "
+        f"written into (it would change the installed package)"
+    )
 
 
 def default_sources_dir() -> Path | None:
@@ -68,8 +70,10 @@ def sources_dir(explicit: str | os.PathLike[str] | None = None, need: str = "thi
     else:
         found = default_sources_dir()
         if found is None:
-            raise MapIOError(f"{need} needs the public track data (the track-sources folder, see its SOURCES.md): "
-                             f"set {SOURCES_ENV} to that folder")
+            raise MapIOError(
+                f"{need} needs the public track data (the track-sources folder, see its SOURCES.md): "
+                f"set {SOURCES_ENV} to that folder"
+            )
         d, how = found, (f"${SOURCES_ENV}" if os.environ.get(SOURCES_ENV) else "the default beside the checkout")
     if not d.is_dir():
         raise MapIOError(f"{d}: track-sources folder not found ({how}); set {SOURCES_ENV} to the track-sources folder")
@@ -81,4 +85,13 @@ def bench_data(name: str) -> Path:
     return PACKAGE_DIR / "bench" / "data" / name
 
 
-__all__ = ["SOURCES_ENV", "TRACKS_ENV", "bench_data", "checkout_dir", "default_sources_dir", "sources_dir", "tracks_dir", "writable_tracks_dir"]
+__all__ = [
+    "SOURCES_ENV",
+    "TRACKS_ENV",
+    "bench_data",
+    "checkout_dir",
+    "default_sources_dir",
+    "sources_dir",
+    "tracks_dir",
+    "writable_tracks_dir",
+]

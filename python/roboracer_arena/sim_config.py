@@ -38,7 +38,9 @@ class VehicleConfig(NumbersAreNumbers):
     com_to_rear: float = Field(0.1522, gt=0, description="CoM to rear axle (m).")
     wheel_radius: float = Field(0.0525, gt=0, description="Wheel radius (m).")
     com_height: float = Field(0.063, gt=0, description="CoM height above the ground at rest (m).")
-    max_steer: float = Field(0.524, gt=0, lt=1.5, description="Maximum steering angle (rad) of the virtual centre wheel.")
+    max_steer: float = Field(
+        0.524, gt=0, lt=1.5, description="Maximum steering angle (rad) of the virtual centre wheel."
+    )
     max_steer_rate: float = Field(
         3.2, gt=0, description="Steering-rate limit (rad/s): servo slew, the F1TENTH single-track model's sv_max."
     )
@@ -55,7 +57,9 @@ class VehicleConfig(NumbersAreNumbers):
     )
     min_speed: float = Field(-3.0, le=0, description="Most negative commanded speed (m/s), i.e. reverse limit.")
     tyre_friction: float = Field(
-        0.83, gt=0, description="Tyre-surface friction coefficient mu, lateral (paper: about 0.83, from a lateral pull test)."
+        0.83,
+        gt=0,
+        description="Tyre-surface friction coefficient mu, lateral (paper: about 0.83, from a lateral pull test).",
     )
     longitudinal_friction_ratio: float = Field(
         1.0,
@@ -108,7 +112,11 @@ class VehicleConfig(NumbersAreNumbers):
     chassis_length: float = Field(0.55, gt=0, description="Collision box length (m), Traxxas body about 0.55 m.")
     chassis_width: float = Field(0.29, gt=0, description="Collision box width (m), Traxxas body about 0.29 m.")
     chassis_height: float = Field(0.10, gt=0, description="Collision box height (m).")
-    chassis_clearance: float = Field(0.03, ge=0, description="Gap between the collision box and the ground at rest (m), about the Traxxas chassis clearance.")
+    chassis_clearance: float = Field(
+        0.03,
+        ge=0,
+        description="Gap between the collision box and the ground at rest (m), about the Traxxas chassis clearance.",
+    )
     suspension_rest_length: float = Field(0.08, gt=0, description="Unloaded suspension length (m).")
     suspension_travel: float = Field(0.05, gt=0, description="Maximum compression before the bump stop (m).")
     suspension_stiffness: float = Field(
@@ -190,9 +198,14 @@ class LidarConfig(NumbersAreNumbers):
     noise_std: float = Field(0.0, ge=0, description="Std of additive Gaussian range noise (m); 0 = exact.")
     mount_x: float = Field(0.12, description="Forward offset of the scanner from the CoM (m).")
     mount_z: float = Field(0.12, description="Scanner height above the ground (m); informational in the 2D scan.")
-    rate_hz: float = Field(40.0, gt=0, description=(
-        "Scan rate (Hz; paper: 39.9 Hz). Under a faster control loop the env holds the latest scan "
-        "until the next is due; at or below the scan rate every step gets a fresh scan."))
+    rate_hz: float = Field(
+        40.0,
+        gt=0,
+        description=(
+            "Scan rate (Hz; paper: 39.9 Hz). Under a faster control loop the env holds the latest scan "
+            "until the next is due; at or below the scan rate every step gets a fresh scan."
+        ),
+    )
 
     @model_validator(mode="after")
     def _range_order(self) -> LidarConfig:

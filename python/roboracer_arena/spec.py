@@ -48,15 +48,23 @@ class TrackSpec(NumbersAreNumbers):
             " most RoboRacer tracks, and gives the paper's pitch p = 2.15 m with the default walls."
         ),
     )
-    hall_x_m: float = Field(20.0, ge=1, le=1_000, description="Hall length (m). A 20 m x 15 m hall is the paper's reference venue.")
-    hall_y_m: float = Field(15.0, ge=1, le=1_000, description="Hall width (m). A 20 m x 15 m hall is the paper's reference venue.")
+    hall_x_m: float = Field(
+        20.0, ge=1, le=1_000, description="Hall length (m). A 20 m x 15 m hall is the paper's reference venue."
+    )
+    hall_y_m: float = Field(
+        15.0, ge=1, le=1_000, description="Hall width (m). A 20 m x 15 m hall is the paper's reference venue."
+    )
     direction: Direction = Field(
         "counterclockwise",
         description="Driving direction seen from above; counter-clockwise is the mathematical positive sense and the convention of F1TENTH maps.",
     )
     hairpins: int = Field(0, ge=0, le=50, description="Number of hairpins (~180 deg turns). 0: none unless requested.")
-    chicanes: int = Field(0, ge=0, le=50, description="Number of chicanes (opposite-sense turn pairs). 0: none unless requested.")
-    sweepers: int = Field(0, ge=0, le=50, description="Number of sweepers (long, large-radius turns). 0: none unless requested.")
+    chicanes: int = Field(
+        0, ge=0, le=50, description="Number of chicanes (opposite-sense turn pairs). 0: none unless requested."
+    )
+    sweepers: int = Field(
+        0, ge=0, le=50, description="Number of sweepers (long, large-radius turns). 0: none unless requested."
+    )
     feature_order: list[FeatureName] = Field(
         default_factory=list,
         description="Order of named features along the lap; empty (any order) unless the request orders them.",
@@ -75,7 +83,16 @@ class TrackSpec(NumbersAreNumbers):
     )
 
     @field_validator(
-        "lap_length_m", "corridor_width_m", "hall_x_m", "hall_y_m", "hairpins", "chicanes", "sweepers", "min_radius_m", "longest_straight_m", mode="before"
+        "lap_length_m",
+        "corridor_width_m",
+        "hall_x_m",
+        "hall_y_m",
+        "hairpins",
+        "chicanes",
+        "sweepers",
+        "min_radius_m",
+        "longest_straight_m",
+        mode="before",
     )
     @classmethod
     def _no_bool_numbers(cls, v: object) -> object:
@@ -92,9 +109,14 @@ class TrackSpec(NumbersAreNumbers):
         return v.strip()
 
     @model_validator(mode="after")
-    def _order_matches_counts(self) -> "TrackSpec":
+    def _order_matches_counts(self) -> TrackSpec:
         if self.feature_order:
-            for feat, count in (("hairpin", self.hairpins), ("chicane", self.chicanes), ("sweeper", self.sweepers)):
+            wanted: tuple[tuple[FeatureName, int], ...] = (
+                ("hairpin", self.hairpins),
+                ("chicane", self.chicanes),
+                ("sweeper", self.sweepers),
+            )
+            for feat, count in wanted:
                 listed = self.feature_order.count(feat)
                 if listed != count:
                     raise ValueError(
@@ -114,7 +136,7 @@ class TrackSpec(NumbersAreNumbers):
         return cls.model_json_schema()
 
     @classmethod
-    def from_file(cls, path: str | Path) -> "TrackSpec":
+    def from_file(cls, path: str | Path) -> TrackSpec:
         """Load a spec from a JSON file; errors name the file and the offending field."""
         p = Path(path)
         try:
@@ -130,7 +152,7 @@ class TrackSpec(NumbersAreNumbers):
         return cls.from_dict(data, source=str(p))
 
     @classmethod
-    def from_dict(cls, data: object, source: str = "spec") -> "TrackSpec":
+    def from_dict(cls, data: object, source: str = "spec") -> TrackSpec:
         """Validate a mapping, raising :class:`SpecError` that names the field."""
         if not isinstance(data, dict):
             raise SpecError(f"{source}: a spec must be a JSON object, got {type(data).__name__}")
@@ -149,4 +171,3 @@ def format_validation_error(e: ValidationError) -> str:
         shown = "" if isinstance(value, dict) else f" (got {value!r})"
         parts.append(f"{loc}: {err['msg']}{shown}")
     return "; ".join(parts)
-

@@ -7,10 +7,11 @@ all use it, and it imports none of them.
 from __future__ import annotations
 
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -59,13 +60,23 @@ class Track:
 
     def reversed(self) -> Track:
         """The same track driven the other way (same start vertex)."""
-        return Track(name=self.name, walls=self.walls, centreline=reverse_line(self.centreline), source=self.source,
-                     source_start=self.source_start)
+        return Track(
+            name=self.name,
+            walls=self.walls,
+            centreline=reverse_line(self.centreline),
+            source=self.source,
+            source_start=self.source_start,
+        )
 
     def oriented(self, how: TrackDirection) -> Track:
         """The same track in ``how.direction``, starting at ``how.start`` when that lies on it."""
-        return Track(name=self.name, walls=self.walls, centreline=orient_to(self.centreline, how), source=self.source,
-                     source_start=self.source_start or how.start is not None)
+        return Track(
+            name=self.name,
+            walls=self.walls,
+            centreline=orient_to(self.centreline, how),
+            source=self.source,
+            source_start=self.source_start or how.start is not None,
+        )
 
     @cached_property
     def loop(self) -> np.ndarray:
@@ -122,8 +133,9 @@ class Track:
         return list(self.walls), self.centreline
 
 
-def track_from_map_path(path: str | os.PathLike[str], corridor_params: Any = None,
-                        direction: TrackDirection | None = None) -> Track:
+def track_from_map_path(
+    path: str | os.PathLike[str], corridor_params: Any = None, direction: TrackDirection | None = None
+) -> Track:
     """The track of a ROS map YAML in its racing direction: ``direction`` if given, else
     the one :func:`~roboracer_arena.direction.direction_for_map` finds beside the map.
     The corridor is extracted once per file version and parameters."""

@@ -11,8 +11,16 @@ from roboracer_arena.errors import ConfigError
 
 @pytest.mark.slow
 def test_tiny_generalisation_run_reports_both_conditions(sources, capsys):
-    res = run(seeds=1, generations=2, pairs=2, episode_steps=20, single="gen-l070-w20-h0c0s0-ccw-s0",
-              held_out=["gym-skirk"], pool={"generated:gen-l040-*": 1.0}, verbose=False)
+    res = run(
+        seeds=1,
+        generations=2,
+        pairs=2,
+        episode_steps=20,
+        single="gen-l070-w20-h0c0s0-ccw-s0",
+        held_out=["gym-skirk"],
+        pool={"generated:gen-l040-*": 1.0},
+        verbose=False,
+    )
     assert set(res["summary"]) == {"single", "pool"}
     for s in res["summary"].values():
         assert 0.0 <= s["clean_lap_rate"] <= 1.0 and set(s["clean_laps_per_track"]) == {"gym-skirk"}
@@ -21,10 +29,24 @@ def test_tiny_generalisation_run_reports_both_conditions(sources, capsys):
 
 
 def test_summary_counts_clean_laps_and_times():
-    runs = [{"condition": "single", "env_steps": 10, "laps": [
-        {"track": "a", "clean_lap": True, "lap_time": 10.0}, {"track": "b", "clean_lap": False, "lap_time": None}]},
-        {"condition": "single", "env_steps": 20, "laps": [
-            {"track": "a", "clean_lap": True, "lap_time": 12.0}, {"track": "b", "clean_lap": True, "lap_time": 20.0}]}]
+    runs = [
+        {
+            "condition": "single",
+            "env_steps": 10,
+            "laps": [
+                {"track": "a", "clean_lap": True, "lap_time": 10.0},
+                {"track": "b", "clean_lap": False, "lap_time": None},
+            ],
+        },
+        {
+            "condition": "single",
+            "env_steps": 20,
+            "laps": [
+                {"track": "a", "clean_lap": True, "lap_time": 12.0},
+                {"track": "b", "clean_lap": True, "lap_time": 20.0},
+            ],
+        },
+    ]
     s = summarise(runs)["single"]
     assert s["clean_lap_rate"] == 0.75 and s["mean_lap_time_s"] == 14.0
     assert s["clean_laps_per_track"] == {"a": 2, "b": 1} and s["mean_env_steps"] == 15

@@ -25,8 +25,13 @@ def ring_raster(size: int = 200, r_in: float = 0.25, r_out: float = 0.42, style:
     return img.astype(np.uint8)
 
 
-def write_map(folder: Path, img: np.ndarray, name: str = "ring", resolution: float = 0.05,
-              origin: tuple[float, float, float] = (-5.0, -5.0, 0.0)) -> Path:
+def write_map(
+    folder: Path,
+    img: np.ndarray,
+    name: str = "ring",
+    resolution: float = 0.05,
+    origin: tuple[float, float, float] = (-5.0, -5.0, 0.0),
+) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     Image.fromarray(img, mode="L").save(folder / f"{name}.png")
     yaml = folder / f"{name}.yaml"

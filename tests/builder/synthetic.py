@@ -42,7 +42,7 @@ def tube(loop: np.ndarray, radius: float, seg: int = 8) -> tuple[np.ndarray, np.
     pts = np.c_[xy.reshape(-1, 2), z.reshape(-1)]
     i, k = np.meshgrid(np.arange(n), np.arange(seg), indexing="ij")
     i2, k2 = (i + 1) % n, (k + 1) % seg
-    v = lambda ii, kk: (ii * seg + kk).ravel()  # noqa: E731
+    v = lambda ii, kk: (ii * seg + kk).ravel()
     tris = np.r_[np.c_[v(i, k), v(i2, k), v(i, k2)], np.c_[v(i2, k), v(i2, k2), v(i, k2)]]
     return pts.astype(np.float32), tris.astype(np.uint32)
 
@@ -60,7 +60,13 @@ def ring_meshes(r_in: float = 3.0, r_out: float = 4.5) -> list[StageMesh]:
     return [
         StageMesh("/World/Track/Floor", fp, ft, "Floor", collider=True, st=fp[:, :2] / 2.0),
         StageMesh("/World/Track/Walls", walls_p, walls_t, "Wall", collider=True, guide=True),
-        StageMesh("/World/Track/Barriers/Ducts", np.r_[d_in, d_out], np.r_[d_in_t, d_out_t + len(d_in)], "Duct", st=np.r_[st, st]),
+        StageMesh(
+            "/World/Track/Barriers/Ducts",
+            np.r_[d_in, d_out],
+            np.r_[d_in_t, d_out_t + len(d_in)],
+            "Duct",
+            st=np.r_[st, st],
+        ),
     ]
 
 

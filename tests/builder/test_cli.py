@@ -53,7 +53,15 @@ def test_bad_map_exits_2_with_one_line(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text("image: nothing.png\nresolution: 0.05\norigin: [0, 0, 0]\n")
     proc = subprocess.run(
-        [sys.executable, "-c", "import sys; from roboracer_arena.cli import main; sys.exit(main())", "build", str(bad), "-o", str(tmp_path / "bad.usdc")],
+        [
+            sys.executable,
+            "-c",
+            "import sys; from roboracer_arena.cli import main; sys.exit(main())",
+            "build",
+            str(bad),
+            "-o",
+            str(tmp_path / "bad.usdc"),
+        ],
         capture_output=True,
         text=True,
     )

@@ -34,7 +34,12 @@ def test_defaults_follow_the_paper():
 
 
 def test_every_field_documents_its_default():
-    for model in (BuildConfig, type(BuildConfig().geometry), type(BuildConfig().materials), type(BuildConfig().physics)):
+    for model in (
+        BuildConfig,
+        type(BuildConfig().geometry),
+        type(BuildConfig().materials),
+        type(BuildConfig().physics),
+    ):
         for name, f in model.model_fields.items():
             if name in {"geometry", "materials", "physics"}:
                 continue

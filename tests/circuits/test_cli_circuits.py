@@ -18,8 +18,21 @@ def test_every_tum_circuit_and_the_uncovered_bacinger_ones_are_listed(sources):
 
 
 def test_cli_builds_monaco_and_flags_suzuka(sources, tmp_path, capsys):
-    rc = main(["circuits", "--sources", str(sources), "-o", str(tmp_path), "--only", "monaco", "suzuka",
-               "--jobs", "2", "--json"])
+    rc = main(
+        [
+            "circuits",
+            "--sources",
+            str(sources),
+            "-o",
+            str(tmp_path),
+            "--only",
+            "monaco",
+            "suzuka",
+            "--jobs",
+            "2",
+            "--json",
+        ]
+    )
     out = json.loads(capsys.readouterr().out)
     assert rc == 0 and out["built"] == 2 and out["one_corridor"] == 2
     by_id = {r["id"]: r for r in out["results"]}

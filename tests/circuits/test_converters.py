@@ -52,9 +52,16 @@ def _geojson_ring(lon0: float, lat0: float, r_m: float, n: int) -> list[list[flo
 
 def test_geojson_reader_projects_and_sets_a_constant_width(tmp_path):
     coords = _geojson_ring(7.42, 43.73, 300.0, 90)
-    doc = {"type": "FeatureCollection", "features": [{"type": "Feature",
-           "properties": {"id": "xx-2000", "Location": "Tiny Town", "Name": "Tiny Ring", "length": 1885},
-           "geometry": {"type": "LineString", "coordinates": coords}}]}
+    doc = {
+        "type": "FeatureCollection",
+        "features": [
+            {
+                "type": "Feature",
+                "properties": {"id": "xx-2000", "Location": "Tiny Town", "Name": "Tiny Ring", "length": 1885},
+                "geometry": {"type": "LineString", "coordinates": coords},
+            }
+        ],
+    }
     f = tmp_path / "xx-2000.geojson"
     f.write_text(json.dumps(doc))
     c = read_geojson(f, width_m=12.0)
@@ -68,7 +75,9 @@ def test_geojson_reader_projects_and_sets_a_constant_width(tmp_path):
 
 def test_geojson_reader_refuses_a_point(tmp_path):
     f = tmp_path / "p.geojson"
-    f.write_text(json.dumps({"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [1, 2]}}))
+    f.write_text(
+        json.dumps({"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [1, 2]}})
+    )
     with pytest.raises(MapFormatError, match="LineString"):
         read_geojson(f)
     f.write_text("{not json")

@@ -30,8 +30,15 @@ def _resampled(gap_mid: float, width: float = 1.0) -> tuple[np.ndarray, np.ndarr
 
 
 def test_resampling_is_uniform_and_keeps_length():
-    ring = np.column_stack([np.cos(np.linspace(0, 2 * np.pi, 50, endpoint=False)),
-                            np.sin(np.linspace(0, 2 * np.pi, 50, endpoint=False))]) * 5
+    ring = (
+        np.column_stack(
+            [
+                np.cos(np.linspace(0, 2 * np.pi, 50, endpoint=False)),
+                np.sin(np.linspace(0, 2 * np.pi, 50, endpoint=False)),
+            ]
+        )
+        * 5
+    )
     xy, w = smooth_resample(ring, np.full(50, 1.0), 0.1, 0.0)
     steps = np.hypot(*np.diff(np.vstack([xy, xy[:1]]), axis=0).T)
     assert steps.std() < 1e-3 and steps.mean() == pytest.approx(0.1, rel=0.01)

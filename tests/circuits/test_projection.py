@@ -16,7 +16,9 @@ def _dms(d: float, m: float, s: float) -> float:
 
 def test_vincenty_matches_the_published_flinders_peak_buninyong_distance():
     # Geoscience Australia's worked example (GRS80; WGS84 differs by < 0.1 mm here).
-    d = geodesic_distance(_dms(144, 25, 29.52440), -_dms(37, 57, 3.72030), _dms(143, 55, 35.38390), -_dms(37, 39, 10.15610))
+    d = geodesic_distance(
+        _dms(144, 25, 29.52440), -_dms(37, 57, 3.72030), _dms(143, 55, 35.38390), -_dms(37, 39, 10.15610)
+    )
     assert d == pytest.approx(54972.271, abs=0.002)
 
 

@@ -8,14 +8,30 @@ from roboracer_arena.cli import main
 def test_bench_env_smoke(sources, tmp_path, capsys):
     out = tmp_path / "env.json"
     berlin = sources / "f1tenth-gym" / "maps" / "berlin.yaml"
-    code = main(["bench", "env", "--map", str(berlin), "--num-envs", "1", "2", "--seconds", "0.2", "--beams", "109",
-                 "--json", str(out)])
+    code = main(
+        [
+            "bench",
+            "env",
+            "--map",
+            str(berlin),
+            "--num-envs",
+            "1",
+            "2",
+            "--seconds",
+            "0.2",
+            "--beams",
+            "109",
+            "--json",
+            str(out),
+        ]
+    )
     assert code == 0
     text = capsys.readouterr().out
     assert "F1TENTH Gym" in text and "physics" in text and "python" in text
     res = json.loads(out.read_text())
     assert [(r["workload"], r["num_envs"]) for r in res["rows"]] == [
-        (w, n) for w in ("constant", "lap", "random") for n in (1, 2)]
+        (w, n) for w in ("constant", "lap", "random") for n in (1, 2)
+    ]
     assert all(r["env_steps_per_s"] > 0 and r["steps"] > 0 for r in res["rows"])
     assert all(set(r["breakdown_us_per_call"]) == {"physics", "scan", "python"} for r in res["rows"])
     assert all(r["breakdown_us_per_call"]["physics"] > 0 and r["python_us_per_step"] > 0 for r in res["rows"])

@@ -13,11 +13,21 @@ from roboracer_arena.envs.single import RoboRacerEnv
 CAUTIOUS = PurePursuitParams(max_speed=2.5, lateral_accel=2.5, lookahead_min=0.5)
 
 
-def drive_one_lap(track: Any, reverse: bool = False, params: PurePursuitParams | None = None) -> tuple[np.ndarray, bool]:
+def drive_one_lap(
+    track: Any, reverse: bool = False, params: PurePursuitParams | None = None
+) -> tuple[np.ndarray, bool]:
     """``(driven (x, y) path over one lap, lap completed without contact)``; no lidar."""
-    env = RoboRacerEnv(track=track, reset_poses="grid", time_limit_s=None, collision_ends_episode=True,
-                       reverse=reverse, observation={"scan": False, "odometry": ("x", "y", "yaw", "speed")})
-    driver = EnvPurePursuit(env, params or PurePursuitParams(max_steer=float(env.max_steer), wheelbase=float(env.wheelbase)))
+    env = RoboRacerEnv(
+        track=track,
+        reset_poses="grid",
+        time_limit_s=None,
+        collision_ends_episode=True,
+        reverse=reverse,
+        observation={"scan": False, "odometry": ("x", "y", "yaw", "speed")},
+    )
+    driver = EnvPurePursuit(
+        env, params or PurePursuitParams(max_steer=float(env.max_steer), wheelbase=float(env.wheelbase))
+    )
     length = env.tracks[0].length
     obs, _ = env.reset(seed=0, options={"track_id": 0})
     path = [env.odometry_raw(obs)[0, :2].copy()]

@@ -4,14 +4,22 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from source_sense import source_sign
 
 from roboracer_arena.direction import (
-    CLOCKWISE, COUNTERCLOCKWISE, TrackDirection, check_direction, direction_for_map, direction_of, orient, orient_to,
-    read_centreline_file, reverse, signed_area,
+    CLOCKWISE,
+    COUNTERCLOCKWISE,
+    TrackDirection,
+    check_direction,
+    direction_for_map,
+    direction_of,
+    orient,
+    orient_to,
+    read_centreline_file,
+    reverse,
+    signed_area,
 )
 from roboracer_arena.errors import InvalidArgumentError, MapFormatError
-
-from source_sense import source_sign
 
 SQUARE_CCW = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
 
@@ -48,8 +56,15 @@ def test_orient_to_ignores_a_start_off_the_track():
     assert direction_of(orient_to(SQUARE_CCW, how, reverse_it=True)) == COUNTERCLOCKWISE
 
 
-@pytest.mark.parametrize("raw,want", [("cw", CLOCKWISE), ("Counter-Clockwise", COUNTERCLOCKWISE),
-                                      ("anticlockwise", COUNTERCLOCKWISE), ("clockwise", CLOCKWISE)])
+@pytest.mark.parametrize(
+    "raw,want",
+    [
+        ("cw", CLOCKWISE),
+        ("Counter-Clockwise", COUNTERCLOCKWISE),
+        ("anticlockwise", COUNTERCLOCKWISE),
+        ("clockwise", CLOCKWISE),
+    ],
+)
 def test_check_direction_spellings(raw, want):
     assert check_direction(raw) == want
 
@@ -76,7 +91,9 @@ def test_recorded_map_takes_the_direction_of_its_source_centreline(sources):
     spa = sources / "f1tenth-racetracks/Spa/Spa_map.yaml"
     how = direction_for_map(spa)
     assert how.source == "Spa_centerline.csv"
-    assert (1 if how.direction == COUNTERCLOCKWISE else -1) == source_sign(sources / "f1tenth-racetracks/Spa/Spa_centerline.csv")
+    assert (1 if how.direction == COUNTERCLOCKWISE else -1) == source_sign(
+        sources / "f1tenth-racetracks/Spa/Spa_centerline.csv"
+    )
     assert how.direction == CLOCKWISE  # Spa-Francorchamps is driven clockwise
     assert how.start == (0.0, 0.0)
 

@@ -8,13 +8,12 @@ from __future__ import annotations
 import json
 
 import pytest
+from drive_path import driven_lap
+from source_sense import shoelace, source_sign
 
 from roboracer_arena.direction import COUNTERCLOCKWISE
 from roboracer_arena.library import load_catalog
 from roboracer_arena.paths import tracks_dir
-
-from drive_path import driven_lap
-from source_sense import shoelace, source_sign
 
 
 def _sign(path) -> int:
@@ -51,11 +50,20 @@ def test_clockwise_generated_track_is_driven_clockwise():
 def test_generated_map_path_outside_the_catalog_keeps_the_requested_direction(tmp_path):
     """A freshly generated clockwise track, driven from its folder (not the catalog)."""
     from roboracer_arena import TrackSpec
-    from roboracer_arena.track import track_from_map_path
     from roboracer_arena.generate import Acceptance, generate_track, write_outputs
+    from roboracer_arena.track import track_from_map_path
 
-    spec = TrackSpec(name="cw", lap_length_m=40.0, corridor_width_m=1.2, hall_x_m=20.0, hall_y_m=15.0,
-                     direction="clockwise", hairpins=1, chicanes=0, sweepers=0)
+    spec = TrackSpec(
+        name="cw",
+        lap_length_m=40.0,
+        corridor_width_m=1.2,
+        hall_x_m=20.0,
+        hall_y_m=15.0,
+        direction="clockwise",
+        hairpins=1,
+        chicanes=0,
+        sweepers=0,
+    )
     out = generate_track(spec, seed=0)
     assert isinstance(out, Acceptance)
     paths = write_outputs(out, tmp_path)
@@ -95,8 +103,17 @@ def test_generated_outcome_and_its_map_plug_in_everywhere(tmp_path):
     from roboracer_arena import TrackSpec, build_environment, extract_corridor, load_map
     from roboracer_arena.generate import generate_track
 
-    spec = TrackSpec(name="cw", lap_length_m=40.0, corridor_width_m=1.2, hall_x_m=20.0, hall_y_m=15.0,
-                     direction="clockwise", hairpins=1, chicanes=0, sweepers=0)
+    spec = TrackSpec(
+        name="cw",
+        lap_length_m=40.0,
+        corridor_width_m=1.2,
+        hall_x_m=20.0,
+        hall_y_m=15.0,
+        direction="clockwise",
+        hairpins=1,
+        chicanes=0,
+        sweepers=0,
+    )
     out = generate_track(spec, seed=0)
     m = out.map
     assert type(m) is type(load_map(m.save(tmp_path / "cw.yaml")))

@@ -4,9 +4,9 @@ and the shared recorded Berlin map."""
 from __future__ import annotations
 
 import pytest
+from synthetic_tracks import stadium
 
 from roboracer_arena.track import Track
-from synthetic_tracks import stadium
 
 
 @pytest.fixture(scope="session")

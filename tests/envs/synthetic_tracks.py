@@ -7,8 +7,9 @@ import numpy as np
 from roboracer_arena.track import Track
 
 
-def stadium(straight: float = 6.0, radius: float = 3.0, half_width: float = 0.8, spacing: float = 0.05,
-            name: str = "stadium") -> Track:
+def stadium(
+    straight: float = 6.0, radius: float = 3.0, half_width: float = 0.8, spacing: float = 0.05, name: str = "stadium"
+) -> Track:
     """A CCW stadium: two straights joined by semicircles; walls offset ±half_width."""
     n_arc = max(8, int(np.pi * radius / spacing))
     n_str = max(2, int(straight / spacing))
@@ -27,5 +28,5 @@ def stadium(straight: float = 6.0, radius: float = 3.0, half_width: float = 0.8,
     d = np.roll(c, -1, axis=0) - np.roll(c, 1, axis=0)
     nrm = np.column_stack([-d[:, 1], d[:, 0]]) / np.linalg.norm(d, axis=1)[:, None]
     inner, outer = c + half_width * nrm, c - half_width * nrm
-    close = lambda p: np.vstack([p, p[:1]])  # noqa: E731
+    close = lambda p: np.vstack([p, p[:1]])
     return Track.from_polylines([close(outer), close(inner)], c, name=name)

@@ -58,8 +58,13 @@ def test_env_driver_needs_the_pose_in_the_observation(oval):
 def test_env_driver_works_with_normalised_observations_and_actions(oval):
     from roboracer_arena.envs.single import RoboRacerEnv
 
-    env = RoboRacerEnv(track=oval, observation={"normalise": True}, action_mode="normalised", reset_poses="grid",
-                       sim={"lidar": {"num_beams": 9}})
+    env = RoboRacerEnv(
+        track=oval,
+        observation={"normalise": True},
+        action_mode="normalised",
+        reset_poses="grid",
+        sim={"lidar": {"num_beams": 9}},
+    )
     driver = PurePursuitDriver.for_env(env)
     obs, _ = env.reset(seed=0)
     for _ in range(100):

@@ -8,22 +8,22 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.vector import AutoresetMode
+from synthetic_tracks import stadium
 
-import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
+import roboracer_arena
 from roboracer_arena.envs.episode_limit import REGISTERED_MAX_EPISODE_STEPS
 from roboracer_arena.envs.single import RoboRacerEnv
 from roboracer_arena.envs.vector import RoboRacerVectorEnv
 from roboracer_arena.errors import ConfigError
-
-from synthetic_tracks import stadium
 
 SMALL = {"sim": {"lidar": {"num_beams": 61}}}
 GO = np.array([0.0, 2.0], np.float32)
 
 
 def vec(n, track, **kw):
-    return gym.make_vec("RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point",
-                        track=track, **{**SMALL, **kw})
+    return gym.make_vec(
+        "RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track, **{**SMALL, **kw}
+    )
 
 
 # ---------------------------------------------------------------- reset options
@@ -148,8 +148,9 @@ def test_normalised_pose_is_in_the_start_frame_with_sin_cos_heading(oval):
 
 
 def test_frame_stack_and_previous_action(oval):
-    env = RoboRacerEnv(track=oval, observation={"frame_stack": 3, "previous_action": True},
-                       action_mode="normalised", **SMALL)
+    env = RoboRacerEnv(
+        track=oval, observation={"frame_stack": 3, "previous_action": True}, action_mode="normalised", **SMALL
+    )
     obs, _ = env.reset(seed=0)
     assert obs["scan"].shape == (3, 61) and obs["odometry"].shape == (3, 7) and obs["previous_action"].shape == (3, 2)
     assert env.observation_space.contains(obs)
@@ -176,9 +177,16 @@ def test_lidar_noise_and_dropout_are_per_episode_and_seeded(oval):
 
 # ---------------------------------------------------------------- racing semantics
 def test_wrong_way_flag_penalty_termination_and_laps_count_down(oval):
-    env = RoboRacerEnv(track=oval, reset_poses="centreline_start", wrong_way_distance=0.5,
-                       reward={"wrong_way_penalty": 1.0}, wrong_way_ends_episode=False, time_limit_s=None,
-                       collision_ends_episode=False, **SMALL)
+    env = RoboRacerEnv(
+        track=oval,
+        reset_poses="centreline_start",
+        wrong_way_distance=0.5,
+        reward={"wrong_way_penalty": 1.0},
+        wrong_way_ends_episode=False,
+        time_limit_s=None,
+        collision_ends_episode=False,
+        **SMALL,
+    )
     env.reset(seed=0)
     flags, laps = [], []
     for _ in range(25):  # reverse: backwards along the track, facing the right way
@@ -188,10 +196,17 @@ def test_wrong_way_flag_penalty_termination_and_laps_count_down(oval):
     assert flags[0] == 0 and flags[-1] == -1 and not term
     assert laps[-1] == -1  # backwards through the start line counts down
     assert r < -1.0 + 1e-9  # penalty on top of the negative progress
-    env = RoboRacerEnv(track=oval, reset_poses="centreline_start", wrong_way_distance=0.5,
-                       wrong_way_ends_episode=True, collision_ends_episode=False, time_limit_s=None, **SMALL)
+    env = RoboRacerEnv(
+        track=oval,
+        reset_poses="centreline_start",
+        wrong_way_distance=0.5,
+        wrong_way_ends_episode=True,
+        collision_ends_episode=False,
+        time_limit_s=None,
+        **SMALL,
+    )
     env.reset(seed=0)
-    for k in range(60):
+    for _ in range(60):
         _, _, term, _, info = env.step(np.array([0.0, -2.0], np.float32))
         if term:
             break

@@ -55,8 +55,11 @@ def test_env_streams_are_bit_exact_with_noise_across_num_envs_and_partial_resets
 
 
 def test_noise_streams_differ_between_envs_and_seeds(oval):
-    a = RoboRacerVectorEnv(num_envs=2, track=oval, **{**NOISY, "reset_poses": "centreline_start",
-                                                      "start_lateral_noise": 0.0, "start_heading_noise": 0.0})
+    a = RoboRacerVectorEnv(
+        num_envs=2,
+        track=oval,
+        **{**NOISY, "reset_poses": "centreline_start", "start_lateral_noise": 0.0, "start_heading_noise": 0.0},
+    )
     o, _ = a.reset(seed=1)
     assert not np.array_equal(o["scan"][0], o["scan"][1])  # same pose, own noise
     o2, _ = a.reset(seed=2)
@@ -66,8 +69,12 @@ def test_noise_streams_differ_between_envs_and_seeds(oval):
 
 
 def test_single_env_scalar_path_equals_the_batched_path(oval):
-    kw = {"sim": {"lidar": {"num_beams": 61}}, "wrong_way_distance": 0.3, "collision_ends_episode": True,
-          "reward": {"time_penalty": 0.5, "wrong_way_penalty": 0.25}}
+    kw = {
+        "sim": {"lidar": {"num_beams": 61}},
+        "wrong_way_distance": 0.3,
+        "collision_ends_episode": True,
+        "reward": {"time_penalty": 0.5, "wrong_way_penalty": 0.25},
+    }
     single = RoboRacerEnv(track=oval, **kw)
     vector = RoboRacerVectorEnv(num_envs=1, track=oval, autoreset_mode="Disabled", **kw)
     so, si = single.reset(seed=5)
@@ -130,9 +137,14 @@ def test_simulator_refuses_fractional_and_bool_track_ids(oval):
 
 def test_simulator_integer_arguments_are_checked(oval):
     native = [oval.native()]
-    for kwargs, name in (({"seed": -1}, "seed"), ({"seed": 2**64}, "seed"), ({"seed": 1.5}, "seed"),
-                         ({"num_envs": -1}, "num_envs"), ({"num_envs": 1.5}, "num_envs"),
-                         ({"vehicles_per_env": True}, "vehicles_per_env")):
+    for kwargs, name in (
+        ({"seed": -1}, "seed"),
+        ({"seed": 2**64}, "seed"),
+        ({"seed": 1.5}, "seed"),
+        ({"num_envs": -1}, "num_envs"),
+        ({"num_envs": 1.5}, "num_envs"),
+        ({"vehicles_per_env": True}, "vehicles_per_env"),
+    ):
         args = {"num_envs": 1, "vehicles_per_env": 1, "config_json": "{}", **kwargs}
         with pytest.raises(InvalidArgumentError, match=name):
             _core.Simulator(native, **args)

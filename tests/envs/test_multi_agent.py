@@ -29,8 +29,12 @@ def test_parallel_env_agents_leave_when_their_car_crashes(oval):
     assert env.observation_space("car_0").contains(obs["car_0"])
     crashed = None
     for _ in range(200):
-        obs, rew, term, trunc, infos = env.step({"car_0": np.array([0.52, 2.0], np.float32),  # into the wall
-                                                 "car_1": np.array([0.0, 0.5], np.float32)})
+        obs, rew, term, trunc, infos = env.step(
+            {
+                "car_0": np.array([0.52, 2.0], np.float32),  # into the wall
+                "car_1": np.array([0.0, 0.5], np.float32),
+            }
+        )
         if term.get("car_0"):
             crashed = rew["car_0"]
             break

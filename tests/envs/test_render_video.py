@@ -9,8 +9,9 @@ from roboracer_arena.render.video import record_episode, write_video
 
 
 def test_render_returns_an_rgb_image_with_the_car(oval):
-    env = RoboRacerEnv(track=oval, render_mode="rgb_array", render_size=300, reset_poses="grid",
-                       sim={"lidar": {"num_beams": 109}})
+    env = RoboRacerEnv(
+        track=oval, render_mode="rgb_array", render_size=300, reset_poses="grid", sim={"lidar": {"num_beams": 109}}
+    )
     env.reset(seed=0)
     img = env.render()
     assert img.dtype == np.uint8 and img.ndim == 3 and img.shape[2] == 3 and max(img.shape[:2]) == 300
@@ -20,8 +21,9 @@ def test_render_returns_an_rgb_image_with_the_car(oval):
 
 
 def test_record_episode_writes_a_gif(oval, tmp_path):
-    env = RoboRacerEnv(track=oval, render_mode="rgb_array", render_size=200, time_limit_s=1.0,
-                       sim={"lidar": {"num_beams": 109}})
+    env = RoboRacerEnv(
+        track=oval, render_mode="rgb_array", render_size=200, time_limit_s=1.0, sim={"lidar": {"num_beams": 109}}
+    )
     driver = PurePursuitDriver.for_env(env)
     res = record_episode(env, driver.act, tmp_path / "ep.gif", seed=0, every=2)
     assert res["truncated"] and res["steps"] == 20

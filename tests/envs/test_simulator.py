@@ -12,7 +12,6 @@ from roboracer_arena import _core
 from roboracer_arena.envs import LidarConfig, PhysicsConfig, SimConfig
 from roboracer_arena.errors import ConfigError, InvalidArgumentError
 
-
 # Straights 6 m, centreline radius 3 m, corridor 2 m: walls are stadiums of radius 4 and 2.
 STADIUM = _core.stadium_track(6.0, 3.0, 2.0)
 

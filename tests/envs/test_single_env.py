@@ -27,10 +27,13 @@ def test_check_env_passes(oval):
 
 
 @pytest.mark.filterwarnings("ignore:.*(infinity|symmetric and normalized|not having a spec).*")
-@pytest.mark.parametrize("options", [
-    {"action_mode": "normalised", "observation": {"normalise": True}},
-    {"vehicles_per_env": 2, "observation": {"scan": False}},
-])
+@pytest.mark.parametrize(
+    "options",
+    [
+        {"action_mode": "normalised", "observation": {"normalise": True}},
+        {"vehicles_per_env": 2, "observation": {"scan": False}},
+    ],
+)
 def test_check_env_passes_with_options(oval, options):
     check_env(RoboRacerEnv(track=oval, **SMALL, **options))
 
@@ -152,8 +155,9 @@ def test_grid_start_and_track_choice(oval):
 
 def test_lidar_rate_holds_the_scan_under_a_faster_control_loop(oval):
     # 100 Hz control, 40 Hz scanner: 2 fresh scans in every 5 steps, the rest repeat the last one.
-    env = RoboRacerEnv(track=oval, control_rate_hz=100.0,
-                       sim={"physics": {"dt": 0.01}, "lidar": {"num_beams": 61, "rate_hz": 40.0}})
+    env = RoboRacerEnv(
+        track=oval, control_rate_hz=100.0, sim={"physics": {"dt": 0.01}, "lidar": {"num_beams": 61, "rate_hz": 40.0}}
+    )
     obs, _ = env.reset(seed=0)
     scans = [obs["scan"].copy()]
     for _ in range(10):

@@ -1,8 +1,6 @@
 """Grid start placement (envs/start.py): on the line, clear of the walls, facing the
 longest free run ahead -- not wherever the extracted centreline happens to begin."""
 
-import math
-
 import numpy as np
 import pytest
 

@@ -5,18 +5,18 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.vector import AutoresetMode
+from synthetic_tracks import stadium
 
 import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
 from roboracer_arena.envs.vector import RoboRacerVectorEnv
-
-from synthetic_tracks import stadium
 
 SMALL = {"sim": {"lidar": {"num_beams": 109}}}
 
 
 def make_vec(n, track, **kw):
-    return gym.make_vec("RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point",
-                        track=track, **{**SMALL, **kw})
+    return gym.make_vec(
+        "RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track, **{**SMALL, **kw}
+    )
 
 
 def test_make_vec_four_envs(oval):
@@ -69,7 +69,7 @@ def test_next_step_autoreset(oval):
     env = make_vec(3, oval, reset_poses="grid", time_limit_s=0.5)  # 10 steps
     env.reset(seed=0)
     go = np.tile([0.0, 2.0], (3, 1)).astype(np.float32)
-    for k in range(10):
+    for _ in range(10):
         obs, rew, term, trunc, info = env.step(go)
     assert trunc.all() and not term.any() and "final_obs" not in info
     x_last = obs["odometry"][0, 0]
@@ -88,7 +88,7 @@ def test_same_step_autoreset_returns_reset_obs_and_final_obs(oval):
     env = make_vec(3, oval, reset_poses="grid", time_limit_s=0.5, autoreset_mode="SameStep")  # 10 steps
     assert env.metadata["autoreset_mode"] == AutoresetMode.SAME_STEP
     env.reset(seed=0)
-    for k in range(10):
+    for _ in range(10):
         obs, rew, term, trunc, info = env.step(np.tile([0.0, 2.0], (3, 1)).astype(np.float32))
     assert trunc.all() and not term.any()
     assert info["_final_obs"].all() and info["final_obs"][0]["odometry"].shape == (7,)
@@ -168,8 +168,17 @@ def test_pure_pursuit_drives_every_env_of_a_vector_env(oval):
     from roboracer_arena.drivers import PurePursuitDriver
 
     tracks = [oval, stadium(4.0, 2.5, name="b")]
-    env = make_vec(4, tracks, reset_poses="random", vehicles_per_env=2, grid_offset=0.0, grid_spacing=1.5,
-                   observation={"normalise": True}, action_mode="normalised", time_limit_s=None)
+    env = make_vec(
+        4,
+        tracks,
+        reset_poses="random",
+        vehicles_per_env=2,
+        grid_offset=0.0,
+        grid_spacing=1.5,
+        observation={"normalise": True},
+        action_mode="normalised",
+        time_limit_s=None,
+    )
     driver = PurePursuitDriver.for_env(env)
     obs, info = env.reset(seed=5)
     total = np.zeros(4)

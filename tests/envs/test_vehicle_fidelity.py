@@ -11,10 +11,10 @@ from pydantic import ValidationError
 from roboracer_arena import _core
 from roboracer_arena.bench import fidelity
 from roboracer_arena.bench.f1tenth_st import GYM_PARAMS, SingleTrack
-from roboracer_arena.sim_config import PhysicsConfig, SimConfig, VehicleConfig
 from roboracer_arena.envs.env_config import RandomisationConfig
 from roboracer_arena.envs.single import RoboRacerEnv
 from roboracer_arena.errors import InvalidArgumentError
+from roboracer_arena.sim_config import PhysicsConfig, SimConfig, VehicleConfig
 
 
 def _stop_distances(friction: np.ndarray, mass: np.ndarray) -> np.ndarray:
@@ -24,7 +24,9 @@ def _stop_distances(friction: np.ndarray, mass: np.ndarray) -> np.ndarray:
     sim = _core.Simulator([(walls, centre)], 2, 1, SimConfig().to_json(), 0)
     mask = np.ones(2, bool)
     v = VehicleConfig()
-    sim.set_vehicle_params(mask, friction, mass, np.full(2, v.steer_time_constant), np.full(2, v.throttle_time_constant))
+    sim.set_vehicle_params(
+        mask, friction, mass, np.full(2, v.steer_time_constant), np.full(2, v.throttle_time_constant)
+    )
     sim.reset(mask, np.array([[[-80.0, 0.0, 0.0]], [[-80.0, 0.0, 0.0]]]))
     sim.set_speeds(mask, np.full((2, 1), 5.0))
     state = np.zeros((2, 1, len(sim.state_fields)))

@@ -35,8 +35,25 @@ def test_example_script_runs_and_writes_outputs(tmp_path, monkeypatch):
     import sys
 
     png, out = tmp_path / "curve.png", tmp_path / "es.json"
-    monkeypatch.setattr(sys, "argv", ["train_es.py", "--track", TRACK, "--generations", "2", "--pairs", "4",
-                                      "--episode-steps", "20", "--png", str(png), "--json", str(out)])
+    monkeypatch.setattr(
+        sys,
+        "argv",
+        [
+            "train_es.py",
+            "--track",
+            TRACK,
+            "--generations",
+            "2",
+            "--pairs",
+            "4",
+            "--episode-steps",
+            "20",
+            "--png",
+            str(png),
+            "--json",
+            str(out),
+        ],
+    )
     with pytest.raises(SystemExit) as e:
         runpy.run_path(str(EXAMPLE), run_name="__main__")
     assert e.value.code == 0

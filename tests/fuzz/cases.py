@@ -41,6 +41,7 @@ def ring_map(**yaml_fields) -> dict:
 def png_declaring(width: int, height: int) -> bytes:
     """A valid-CRC PNG whose IHDR declares ``width`` × ``height`` grey pixels over one
     tiny IDAT: decoders that trust the header allocate it all."""
+
     def chunk(kind: bytes, data: bytes) -> bytes:
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
 
@@ -54,5 +55,10 @@ def pgm_declaring(width: int, height: int, maxval: int = 255, ascii: bool = True
 
 def build_case(cid: str, files: dict, *extra_args: str, **kw) -> dict:
     """``build ring.yaml -o out.usdc`` (the output is the target: absent on failure)."""
-    return {"id": cid, "files": files, "argv": ["build", "ring.yaml", "-o", "out.usdc", *extra_args],
-            "target": "out.usdc", **kw}
+    return {
+        "id": cid,
+        "files": files,
+        "argv": ["build", "ring.yaml", "-o", "out.usdc", *extra_args],
+        "target": "out.usdc",
+        **kw,
+    }

@@ -29,8 +29,13 @@ def run_cases(cases: list[dict], timeout_s: float = 240.0) -> dict[str, dict]:
     # Few threads, so the address space the cap measures does not grow with the CI's cores.
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "RAYON_NUM_THREADS": "2", "PXR_WORK_THREAD_LIMIT": "2"}
     proc = subprocess.run(
-        [sys.executable, str(WORKER)], input=json.dumps(cases), capture_output=True, text=True,
-        timeout=timeout_s, preexec_fn=_cap_memory, env=env,
+        [sys.executable, str(WORKER)],
+        input=json.dumps(cases),
+        capture_output=True,
+        text=True,
+        timeout=timeout_s,
+        preexec_fn=_cap_memory,
+        env=env,
     )
     results, current = {}, None
     for line in proc.stdout.splitlines():
@@ -41,9 +46,7 @@ def run_cases(cases: list[dict], timeout_s: float = 240.0) -> dict[str, dict]:
             results[r["id"]] = r
             current = None
     if proc.returncode != 0 or current is not None:
-        raise AssertionError(
-            f"worker died (exit {proc.returncode}) on case {current!r}: {proc.stderr[-1500:]}"
-        )
+        raise AssertionError(f"worker died (exit {proc.returncode}) on case {current!r}: {proc.stderr[-1500:]}")
     # Whatever reached the process's own stderr (Rust writes there directly) must be clean too.
     leaked = [t for t in PANIC_TEXT if t in proc.stderr]
     assert not leaked, f"panic text on the worker's stderr: {proc.stderr[-1500:]}"

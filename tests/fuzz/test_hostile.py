@@ -4,14 +4,11 @@ in one worker process under a memory cap and a time limit (see ``harness.py``)."
 
 from __future__ import annotations
 
+import io
 import json
 
-import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
-
-import io
-
 from PIL import Image
 
 from builder.ringmap import ring_raster
@@ -23,14 +20,42 @@ from .harness import check_all
 # -- value palettes -------------------------------------------------------------------
 
 YAML_SCALARS = st.sampled_from(
-    [".nan", ".inf", "-.inf", "1e300", "-1e300", "1e-300", "1e6", "1000", "0", "-0.05", "0.05", "0.1", "1",
-     "true", "null", "[]", "{}", "''", "abc", "0x10", "5e-324", "1.0e+308"]
+    [
+        ".nan",
+        ".inf",
+        "-.inf",
+        "1e300",
+        "-1e300",
+        "1e-300",
+        "1e6",
+        "1000",
+        "0",
+        "-0.05",
+        "0.05",
+        "0.1",
+        "1",
+        "true",
+        "null",
+        "[]",
+        "{}",
+        "''",
+        "abc",
+        "0x10",
+        "5e-324",
+        "1.0e+308",
+    ]
 )
 JSON_HOSTILE = st.one_of(
-    st.floats(0, 3), st.integers(0, 30),  # plausible values too, so some runs go all the way
-    st.booleans(), st.none(), st.text(max_size=8), st.just(float("nan")), st.just(float("inf")),
+    st.floats(0, 3),
+    st.integers(0, 30),  # plausible values too, so some runs go all the way
+    st.booleans(),
+    st.none(),
+    st.text(max_size=8),
+    st.just(float("nan")),
+    st.just(float("inf")),
     st.sampled_from([1e308, -1e308, 1e-300, -5, 0, 2**70, -(2**70), 1e12]),
-    st.lists(st.integers(), max_size=3), st.dictionaries(st.text(max_size=3), st.integers(), max_size=2),
+    st.lists(st.integers(), max_size=3),
+    st.dictionaries(st.text(max_size=3), st.integers(), max_size=2),
     st.floats(allow_nan=True, allow_infinity=True),
 )
 NUM_TEXT = st.one_of(
@@ -45,8 +70,14 @@ def draw_cases(strategy: st.SearchStrategy, n: int) -> list:
     a failing case is reported whole by the worker)."""
     out: list = []
 
-    @settings(max_examples=n, derandomize=True, database=None, deadline=None, phases=[Phase.generate],
-              suppress_health_check=list(HealthCheck))
+    @settings(
+        max_examples=n,
+        derandomize=True,
+        database=None,
+        deadline=None,
+        phases=[Phase.generate],
+        suppress_health_check=list(HealthCheck),
+    )
     @given(strategy)
     def collect(case):
         out.append(case)
@@ -61,19 +92,29 @@ def numbered(prefix: str, cases: list[dict]) -> list[dict]:
 
 # -- strategies -----------------------------------------------------------------------
 
+
 @st.composite
 def hostile_map(draw) -> dict:
     """A build of a map whose YAML fields, image header or image bytes are hostile."""
     kind = draw(st.sampled_from(["yaml", "pgm", "png", "bytes"]))
     if kind == "yaml":  # hostile fields over a valid image
-        origin = draw(st.one_of(
-            st.lists(YAML_SCALARS, min_size=0, max_size=5).map(lambda xs: "[" + ", ".join(xs) + "]"), YAML_SCALARS))
+        origin = draw(
+            st.one_of(
+                st.lists(YAML_SCALARS, min_size=0, max_size=5).map(lambda xs: "[" + ", ".join(xs) + "]"), YAML_SCALARS
+            )
+        )
         resolution = draw(st.one_of(YAML_SCALARS, st.floats(0.0005, 2.0).map(repr)))
-        return build_case("", {"ring.png": b64(ring_png()), "ring.yaml": text(map_yaml("ring.png", resolution, origin))})
+        return build_case(
+            "", {"ring.png": b64(ring_png()), "ring.yaml": text(map_yaml("ring.png", resolution, origin))}
+        )
     if kind == "pgm":
         size = st.one_of(st.integers(0, 2**64 + 5), st.integers(0, 300))
-        img = pgm_declaring(draw(size), draw(size), draw(st.sampled_from([0, 1, 255, 256, 65535, 65536, 2**40])),
-                            ascii=draw(st.booleans()))
+        img = pgm_declaring(
+            draw(size),
+            draw(size),
+            draw(st.sampled_from([0, 1, 255, 256, 65535, 65536, 2**40])),
+            ascii=draw(st.booleans()),
+        )
     elif kind == "png":
         size = st.one_of(st.integers(0, 2**32 - 1), st.integers(0, 300))
         img = png_declaring(draw(size), draw(size))
@@ -95,7 +136,9 @@ def random_raster(draw) -> dict:
         img = np.where(rng.random((h, w)) < 0.9, ring_raster(max(h, w))[:h, :w], img).astype(np.uint8)
     buf = io.BytesIO()
     Image.fromarray(img, mode="L").save(buf, format="PNG")
-    start = draw(st.none() | st.tuples(st.floats(-5.1, -2.5), st.floats(-5.1, -2.5)).map(lambda p: f"--start={p[0]},{p[1]}"))
+    start = draw(
+        st.none() | st.tuples(st.floats(-5.1, -2.5), st.floats(-5.1, -2.5)).map(lambda p: f"--start={p[0]},{p[1]}")
+    )
     return build_case("", {"ring.png": b64(buf.getvalue()), "ring.yaml": text(map_yaml())}, *([start] if start else []))
 
 
@@ -103,21 +146,49 @@ def random_raster(draw) -> dict:
 def hostile_spec(draw) -> dict:
     """``validate`` of a valid ring map against a spec with 1–3 hostile fields."""
     spec = dict(SPEC_OK)
-    fields = ["lap_length_m", "corridor_width_m", "hall_x_m", "hall_y_m", "hairpins", "chicanes", "sweepers",
-              "min_radius_m", "longest_straight_m", "name", "direction", "feature_order", "extra_key"]
+    fields = [
+        "lap_length_m",
+        "corridor_width_m",
+        "hall_x_m",
+        "hall_y_m",
+        "hairpins",
+        "chicanes",
+        "sweepers",
+        "min_radius_m",
+        "longest_straight_m",
+        "name",
+        "direction",
+        "feature_order",
+        "extra_key",
+    ]
     for k in draw(st.lists(st.sampled_from(fields), min_size=1, max_size=3, unique=True)):
         spec[k] = draw(JSON_HOSTILE)
-    return {"files": {**ring_map(), "spec.json": text(json.dumps(spec))},
-            "argv": ["validate", "ring.yaml", "--spec", "spec.json"]}
+    return {
+        "files": {**ring_map(), "spec.json": text(json.dumps(spec))},
+        "argv": ["validate", "ring.yaml", "--spec", "spec.json"],
+    }
 
 
 @st.composite
 def hostile_config(draw) -> dict:
     """A build with a config whose geometry/materials/physics fields are hostile."""
-    fields = {"geometry": ["wall_height_m", "wall_offset_m", "tube_diameter_m", "tube_segments", "ring_spacing_m",
-                           "ring_width_m", "ring_scale", "simplify_tolerance_m", "smoothing_iterations",
-                           "centreline_spacing_m", "floor_margin_m"],
-              "physics": ["static_friction", "gravity"], "materials": ["texture_size_px"]}
+    fields = {
+        "geometry": [
+            "wall_height_m",
+            "wall_offset_m",
+            "tube_diameter_m",
+            "tube_segments",
+            "ring_spacing_m",
+            "ring_width_m",
+            "ring_scale",
+            "simplify_tolerance_m",
+            "smoothing_iterations",
+            "centreline_spacing_m",
+            "floor_margin_m",
+        ],
+        "physics": ["static_friction", "gravity"],
+        "materials": ["texture_size_px"],
+    }
     group = draw(st.sampled_from(sorted(fields)))
     cfg = {group: {draw(st.sampled_from(fields[group])): draw(JSON_HOSTILE)}}
     return build_case("", {**ring_map(), "c.json": text(json.dumps(cfg))}, "--config", "c.json")
@@ -155,6 +226,7 @@ def hostile_flags(draw) -> dict:
 
 
 # -- tests ----------------------------------------------------------------------------
+
 
 def test_hostile_maps():
     check_all(numbered("map", draw_cases(hostile_map(), 60)))

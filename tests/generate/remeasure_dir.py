@@ -10,9 +10,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from independent_measure import problems  # noqa: E402
+from independent_measure import problems
 
-from roboracer_arena.spec import TrackSpec  # noqa: E402
+from roboracer_arena.spec import TrackSpec
 
 
 def main(root: Path) -> int:

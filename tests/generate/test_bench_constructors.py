@@ -33,7 +33,21 @@ def test_cli_prints_the_table_and_writes_json(tmp_path, capsys):
     path = tmp_path / "specs.jsonl"
     path.write_text("\n".join(SPECS))
     out = tmp_path / "r.json"
-    code = main(["bench", "constructors", "--specs", str(path), "--seeds", "0", "--constructors", "lattice", "random", "--json", str(out)])
+    code = main(
+        [
+            "bench",
+            "constructors",
+            "--specs",
+            str(path),
+            "--seeds",
+            "0",
+            "--constructors",
+            "lattice",
+            "random",
+            "--json",
+            str(out),
+        ]
+    )
     assert code == 0
     text = capsys.readouterr().out
     assert "valid trials" in text and "21/30  21/21  3.7 s" in text and "rejected too-long" in text

@@ -49,11 +49,11 @@ def test_generate_rejects_with_exit_3(tmp_path, capsys):
     "content, needles",
     [
         (None, ["missing.json", "cannot read"]),
-        ("{\"lap_length_m\": 40,", ["bad.json", "not valid JSON"]),
+        ('{"lap_length_m": 40,', ["bad.json", "not valid JSON"]),
         ('{"lap_length_m": -3}', ["bad.json", "lap_length_m"]),
         ('{"hairpins": -1}', ["bad.json", "hairpins"]),
         ('{"lap_length_m": 40, "colour": "red"}', ["bad.json", "colour", "Extra inputs"]),
-        ('[1, 2]', ["bad.json", "JSON object"]),
+        ("[1, 2]", ["bad.json", "JSON object"]),
     ],
 )
 def test_bad_spec_file_exits_2_with_one_line(tmp_path, capsys, content, needles):

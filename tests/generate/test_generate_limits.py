@@ -65,7 +65,13 @@ def test_bad_spec_values_are_refused_naming_the_field(field, value):
 
 @pytest.mark.parametrize(
     "resolution, origin",
-    [(1e-300, (0.0, 0.0, 0.0)), (0.05, (1e300, -1e300, 0.0)), (math.nan, (0.0, 0.0, 0.0)), (1e300, (0.0, 0.0, 0.0)), (0.05, (0.0, math.inf, 0.0))],
+    [
+        (1e-300, (0.0, 0.0, 0.0)),
+        (0.05, (1e300, -1e300, 0.0)),
+        (math.nan, (0.0, 0.0, 0.0)),
+        (1e300, (0.0, 0.0, 0.0)),
+        (0.05, (0.0, math.inf, 0.0)),
+    ],
 )
 def test_validate_refuses_unmeasurable_frames(resolution, origin):
     data = np.full((40, 40), 254, np.uint8)
@@ -97,10 +103,28 @@ spec_values = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integ
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(lap=spec_values, width=spec_values, hx=spec_values, hy=spec_values, h=st.integers(0, 6), c=st.integers(0, 3), s=st.integers(0, 3))
+@given(
+    lap=spec_values,
+    width=spec_values,
+    hx=spec_values,
+    hy=spec_values,
+    h=st.integers(0, 6),
+    c=st.integers(0, 3),
+    s=st.integers(0, 3),
+)
 def test_any_spec_gives_a_typed_outcome_or_a_typed_error(lap, width, hx, hy, h, c, s):
     try:
-        spec = TrackSpec.from_dict({"lap_length_m": lap, "corridor_width_m": width, "hall_x_m": hx, "hall_y_m": hy, "hairpins": h, "chicanes": c, "sweepers": s})
+        spec = TrackSpec.from_dict(
+            {
+                "lap_length_m": lap,
+                "corridor_width_m": width,
+                "hall_x_m": hx,
+                "hall_y_m": hy,
+                "hairpins": h,
+                "chicanes": c,
+                "sweepers": s,
+            }
+        )
     except SpecError:
         return
     try:

@@ -61,7 +61,18 @@ def test_every_check_reports_measured_bound_and_verdict(tmp_path):
     paths = write_outputs(acc, tmp_path)
     report = json.loads(paths["report_json"].read_text())
     names = {c["name"] for c in report["checks"]}
-    assert {"corridor", "infield", "lap_length", "width", "min_radius", "hairpins", "chicanes", "sweepers", "self_clearance", "hall_fit"} <= names
+    assert {
+        "corridor",
+        "infield",
+        "lap_length",
+        "width",
+        "min_radius",
+        "hairpins",
+        "chicanes",
+        "sweepers",
+        "self_clearance",
+        "hall_fit",
+    } <= names
     for c in report["checks"]:
         assert c["measured"] and c["bound"] and c["passed"] is True
     assert json.loads(paths["spec_json"].read_text()) == SMALL.model_dump()

@@ -7,12 +7,11 @@ import json
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from independent_measure import assert_independently_valid
 
 from roboracer_arena import TrackSpec
 from roboracer_arena.generate import Acceptance, GenerationFailure, generate_track, screen
 from roboracer_arena.paths import bench_data
-from independent_measure import assert_independently_valid
-
 
 
 def _bench_specs() -> list[TrackSpec]:
@@ -40,7 +39,11 @@ specs = st.builds(
 )
 
 
-@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.filter_too_much])
+@settings(
+    max_examples=30,
+    deadline=None,
+    suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.filter_too_much],
+)
 @given(spec=specs, seed=st.integers(0, 2**32 - 1))
 def test_every_accepted_map_passes_independent_remeasurement(spec, seed, tmp_path_factory):
     assume(screen(spec)["passed"])

@@ -29,7 +29,13 @@ def test_rerun_without_build_removes_the_stale_stage(tmp_path, capsys):
     assert main(["generate", "--spec", str(spec), "-o", str(out), "--seed", "1", "--json"]) == 0
     capsys.readouterr()
     assert not (out / "track.usda").exists() and not (out / "textures").exists()
-    assert sorted(p.name for p in out.iterdir()) == ["centreline.csv", "map.png", "map.yaml", "report.json", "spec.json"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "centreline.csv",
+        "map.png",
+        "map.yaml",
+        "report.json",
+        "spec.json",
+    ]
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".")] == []  # no temp folders left
 
 

@@ -4,11 +4,11 @@ constructor and judged by the same raster validator; the sweep's spec file is th
 ``sweep_specs()`` defines."""
 
 import pytest
+from independent_measure import assert_independently_valid
 
 from roboracer_arena import TrackSpec
 from roboracer_arena.bench.constructor_sweep import SWEEP_FILE, load_sweep_file, sweep_specs
 from roboracer_arena.generate import Acceptance, generate_track, screen
-from independent_measure import assert_independently_valid
 
 ISSUE_CASE = TrackSpec(lap_length_m=30, corridor_width_m=1.0, hall_x_m=12, hall_y_m=9, sweepers=1)
 
@@ -25,7 +25,16 @@ def test_issue_case_30m_1m_12x9_one_sweeper_is_accepted(seed, tmp_path):
     "spec",
     [
         TrackSpec(name="oval-25m-narrow", lap_length_m=25, corridor_width_m=0.8, hall_x_m=10, hall_y_m=8),
-        TrackSpec(name="hairpin-chicane-13x10", lap_length_m=40, corridor_width_m=1.0, hall_x_m=13, hall_y_m=10, hairpins=1, chicanes=1, direction="clockwise"),
+        TrackSpec(
+            name="hairpin-chicane-13x10",
+            lap_length_m=40,
+            corridor_width_m=1.0,
+            hall_x_m=13,
+            hall_y_m=10,
+            hairpins=1,
+            chicanes=1,
+            direction="clockwise",
+        ),
         TrackSpec(name="long-in-16x12", lap_length_m=45, corridor_width_m=1.5, hall_x_m=16, hall_y_m=12),
     ],
     ids=lambda s: s.name,
@@ -45,8 +54,9 @@ def test_shipped_sweep_file_is_the_defined_sweep():
 
 
 def test_sweep_runner_counts_and_writes_remeasurable_maps(tmp_path):
-    from roboracer_arena.bench.constructor_sweep import run_sweep
     from independent_measure import problems
+
+    from roboracer_arena.bench.constructor_sweep import run_sweep
 
     specs = [ISSUE_CASE.model_copy(update={"name": "issue-case"}), TrackSpec(name="paper-200m", lap_length_m=200.0)]
     result = run_sweep(specs, maps=tmp_path, progress=False)

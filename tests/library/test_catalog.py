@@ -11,8 +11,22 @@ from roboracer_arena.errors import InvalidArgumentError
 from roboracer_arena.library import Catalog, load_catalog, resolve, resolve_tracks
 from roboracer_arena.library.catalog import sha256_file
 
-REQUIRED = ("id", "name", "kind", "source", "scale", "resolution_m", "lap_length_m", "width_mean_m", "width_min_m",
-            "min_radius_m", "raster", "sha256", "map", "notes")
+REQUIRED = (
+    "id",
+    "name",
+    "kind",
+    "source",
+    "scale",
+    "resolution_m",
+    "lap_length_m",
+    "width_mean_m",
+    "width_min_m",
+    "min_radius_m",
+    "raster",
+    "sha256",
+    "map",
+    "notes",
+)
 
 
 @pytest.fixture(scope="module")

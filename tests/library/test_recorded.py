@@ -24,8 +24,10 @@ def _write(tmp_path, name: str, img: np.ndarray, image_name: str | None = None):
     d = tmp_path / "cps-tuwien-f1tenth-maps" / "maps"
     d.mkdir(parents=True, exist_ok=True)
     Image.fromarray(img).save(d / f"{name}.png")
-    (d / f"{name}.yaml").write_text(f"image: {image_name or name + '.png'}\nresolution: 0.05\norigin: [0, 0, 0]\n"
-                                    "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    (d / f"{name}.yaml").write_text(
+        f"image: {image_name or name + '.png'}\nresolution: 0.05\norigin: [0, 0, 0]\n"
+        "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
+    )
     return d / f"{name}.yaml"
 
 

@@ -17,8 +17,12 @@ def test_verify_one_track_of_each_kind():
     s = verify(cat, picks, jobs=1)
     assert s["tracks"] == 3 and s["passed"] == 3, s["failed"]
     for r in s["results"]:
-        assert {k: v["status"] for k, v in r["checks"].items()} == {"load": "pass", "ring": "pass", "usd": "pass",
-                                                                  "drive": "pass"}, r
+        assert {k: v["status"] for k, v in r["checks"].items()} == {
+            "load": "pass",
+            "ring": "pass",
+            "usd": "pass",
+            "drive": "pass",
+        }, r
 
 
 def test_verify_catches_a_tampered_map(tmp_path):
@@ -53,10 +57,12 @@ def test_prune_moves_failed_recorded_maps_only():
     rec, gen = cat.select("recorded")[0], cat.select("generated")[0]
     bad = {"status": "FAIL", "detail": "lap not completed"}
     ok = {"status": "pass", "detail": "fine"}
-    summary = {"results": [
-        {"id": rec["id"], "kind": "recorded", "passed": False, "checks": {"load": ok, "drive": bad}},
-        {"id": gen["id"], "kind": "generated", "passed": False, "checks": {"load": ok, "drive": bad}},
-    ]}
+    summary = {
+        "results": [
+            {"id": rec["id"], "kind": "recorded", "passed": False, "checks": {"load": ok, "drive": bad}},
+            {"id": gen["id"], "kind": "generated", "passed": False, "checks": {"load": ok, "drive": bad}},
+        ]
+    }
     n = len(cat.entries)
     assert prune_catalog(cat, summary) == [rec["id"]]
     assert len(cat.entries) == n - 1 and cat.left_out[-1]["id"] == rec["id"]

@@ -41,7 +41,9 @@ def test_recorded_maps_need_the_sources_setting(monkeypatch):
     with pytest.raises(MapIOError, match=f"recorded map '{rec['id']}'.*set ROBORACER_ARENA_SOURCES"):
         load_catalog().map_path(rec)
     monkeypatch.setenv(paths.SOURCES_ENV, "/nonexistent/track-sources")
-    with pytest.raises(MapIOError, match="/nonexistent/track-sources: track-sources folder not found.*ROBORACER_ARENA_SOURCES"):
+    with pytest.raises(
+        MapIOError, match="/nonexistent/track-sources: track-sources folder not found.*ROBORACER_ARENA_SOURCES"
+    ):
         load_catalog().map_path(rec)
 
 
@@ -64,8 +66,13 @@ def test_tracks_catalog_writes_where_the_user_says(tmp_path, sources, capsys):
     """An empty tracks folder and a sources folder with two recorded maps (one with a
     source centreline beside it) give a catalog of those two, written there."""
     src = tmp_path / "sources"
-    for rel in ("f1tenth-gym/maps/berlin.yaml", "f1tenth-gym/maps/berlin.png", "bdevan5-f1tenth-benchmarks/maps/aut.yaml",
-                "bdevan5-f1tenth-benchmarks/maps/aut.png", "bdevan5-f1tenth-benchmarks/maps/aut_centerline.csv"):
+    for rel in (
+        "f1tenth-gym/maps/berlin.yaml",
+        "f1tenth-gym/maps/berlin.png",
+        "bdevan5-f1tenth-benchmarks/maps/aut.yaml",
+        "bdevan5-f1tenth-benchmarks/maps/aut.png",
+        "bdevan5-f1tenth-benchmarks/maps/aut_centerline.csv",
+    ):
         (src / rel).parent.mkdir(parents=True, exist_ok=True)
         (src / rel).symlink_to(sources / rel)
     out = tmp_path / "mytracks"
@@ -74,9 +81,14 @@ def test_tracks_catalog_writes_where_the_user_says(tmp_path, sources, capsys):
     doc = json.loads((out / "catalog.json").read_text())
     assert doc["counts"] == {"circuit": 0, "recorded": 2, "generated": 0}
     by_id = {e["id"]: e for e in doc["tracks"]}
-    assert by_id["gym-berlin"]["direction"] == "counterclockwise" and by_id["gym-berlin"]["direction_source"].startswith("default")
+    assert by_id["gym-berlin"]["direction"] == "counterclockwise" and by_id["gym-berlin"][
+        "direction_source"
+    ].startswith("default")
     assert by_id["bdevan5-aut"]["direction"] == "clockwise"
-    assert by_id["bdevan5-aut"]["direction_source"] == "point order of the source file bdevan5-f1tenth-benchmarks/maps/aut_centerline.csv"
+    assert (
+        by_id["bdevan5-aut"]["direction_source"]
+        == "point order of the source file bdevan5-f1tenth-benchmarks/maps/aut_centerline.csv"
+    )
 
 
 def test_third_party_notice_names_every_packaged_circuit_and_its_source():
@@ -90,7 +102,9 @@ def test_third_party_notice_names_every_packaged_circuit_and_its_source():
     assert "MIT License" in (REPO / "LICENSE").read_text()
 
 
-@pytest.mark.skipif(not os.environ.get("ROBORACER_ARENA_EXPECT_INSTALLED"), reason="runs against the installed wheel only")
+@pytest.mark.skipif(
+    not os.environ.get("ROBORACER_ARENA_EXPECT_INSTALLED"), reason="runs against the installed wheel only"
+)
 def test_running_against_the_installed_wheel():
     """`make test` runs this suite against the wheel installed outside the checkout."""
     assert "site-packages" in roboracer_arena.__file__ and paths.checkout_dir() is None

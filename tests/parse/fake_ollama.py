@@ -64,13 +64,13 @@ def start(fake: FakeOllama) -> tuple[ThreadingHTTPServer, threading.Thread]:
             except (BrokenPipeError, ConnectionResetError):
                 pass  # the client gave up (timeout test)
 
-        def do_GET(self) -> None:  # noqa: N802
+        def do_GET(self) -> None:
             if self.path == "/api/tags":
                 self._send(200, json.dumps({"models": [{"name": m, "model": m} for m in fake.models]}))
             else:
                 self._send(404, json.dumps({"error": "not found"}))
 
-        def do_POST(self) -> None:  # noqa: N802
+        def do_POST(self) -> None:
             length = int(self.headers.get("Content-Length", 0))
             req = json.loads(self.rfile.read(length) or b"{}")
             fake.requests.append({"path": self.path, **req})

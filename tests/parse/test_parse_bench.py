@@ -47,7 +47,9 @@ def _small_set(tmp_path: Path) -> Path:
 
 
 def test_ollama_row_counts_inventions_and_guard(tmp_path, fake_ollama, capsys):
-    fake_ollama.reply = Reply(content=TrackSpec(lap_length_m=38, hall_x_m=15, hall_y_m=12, min_radius_m=9).model_dump_json())
+    fake_ollama.reply = Reply(
+        content=TrackSpec(lap_length_m=38, hall_x_m=15, hall_y_m=12, min_radius_m=9).model_dump_json()
+    )
     res = run(_small_set(tmp_path), ("ollama",), repeats=2, ollama_host=fake_ollama.url)
     row = res["rows"]["ollama gemma4:31b"]
     assert row["parse"] == "0/1" and row["audit"] == "0/2"

@@ -6,7 +6,6 @@ import json
 from pathlib import Path
 
 import pytest
-
 from fake_ollama import Reply
 
 from roboracer_arena.cli import EXIT_BAD_INPUT, EXIT_OK, EXIT_REJECTED, main
@@ -37,7 +36,9 @@ def test_parse_contradiction_exits_2(capsys):
 
 def test_parse_with_ollama_backend_and_invention(fake_ollama, capsys):
     text = "a 38 m lap for a small 15 by 12 hall"
-    fake_ollama.reply = Reply(content=TrackSpec(lap_length_m=38, hall_x_m=15, hall_y_m=12, min_radius_m=9).model_dump_json())
+    fake_ollama.reply = Reply(
+        content=TrackSpec(lap_length_m=38, hall_x_m=15, hall_y_m=12, min_radius_m=9).model_dump_json()
+    )
     argv = ["parse", text, "--backend", "ollama", "--ollama-host", fake_ollama.url]
     assert main(argv) == EXIT_BAD_INPUT
     assert "invented" in capsys.readouterr().err

@@ -23,7 +23,7 @@ WIDTH = ["a {w} m wide corridor", "corridor width of {w} m", "corridors {w} m wi
 DIRECTION = [("clockwise", "clockwise"), ("anticlockwise", "counterclockwise"), ("CCW", "counterclockwise"),
              ("driven counter-clockwise", "counterclockwise"), ("CW", "clockwise")]  # fmt: skip
 RADIUS = ["a minimum radius of {r} m", "no turn tighter than {r} m", "a {r} m minimum radius"]
-STRAIGHT = ["a longest straight of {s} m", "an {s} m straight" , "a straight of at least {s} m"]
+STRAIGHT = ["a longest straight of {s} m", "an {s} m straight", "a straight of at least {s} m"]
 NAME = ['called "{nm}"', "named {nm}"]
 
 
@@ -57,6 +57,7 @@ def requests(draw):
         want["longest_straight_m"] = float(s)
     feats = draw(st.lists(st.sampled_from(["hairpin", "chicane", "sweeper"]), unique=True, max_size=3))
     counts = {f: draw(st.integers(0, 3)) for f in feats}
+
     def say(f: str, n: int) -> str:
         return f"no {f}s" if n == 0 else (f"a {f}" if n == 1 else f"{num(n, words)} {f}s")
 

@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import pytest
 
 from roboracer_arena.errors import GroundingError
 from roboracer_arena.parse import ground, parse_request
-from roboracer_arena.spec import TrackSpec
 from roboracer_arena.paths import bench_data
+from roboracer_arena.spec import TrackSpec
 
 PAPER = "a 38 m lap for a small 15 by 12 hall"
 PAPER_SPEC = dict(lap_length_m=38, hall_x_m=15, hall_y_m=12)

@@ -18,7 +18,9 @@ from roboracer_arena.parse.rules import parse_rules
 
 def test_over_long_request_is_refused_before_any_work():
     text = "a 45 m lap " * (MAX_REQUEST_CHARS // 10)
-    with pytest.raises(RequestParseError, match=f"{len(text)} characters long; the parser accepts at most {MAX_REQUEST_CHARS}"):
+    with pytest.raises(
+        RequestParseError, match=f"{len(text)} characters long; the parser accepts at most {MAX_REQUEST_CHARS}"
+    ):
         parse_request(text)
     with pytest.raises(RequestParseError, match="at most"):
         parse_request(text, backend="ollama", ollama_host="http://127.0.0.1:9")  # refused before any call

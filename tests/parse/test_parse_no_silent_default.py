@@ -138,7 +138,9 @@ def test_cli_generate_lenient_warns_and_builds(tmp_path, capsys):
 def test_ollama_summed_counts_explain_each_written_count(fake_ollama):
     text = "two hairpins then a chicane then two more hairpins, 45 m"
     fake_ollama.reply = Reply(
-        content=TrackSpec(hairpins=4, chicanes=1, lap_length_m=45, feature_order=["hairpin"] * 2 + ["chicane"] + ["hairpin"] * 2).model_dump_json()
+        content=TrackSpec(
+            hairpins=4, chicanes=1, lap_length_m=45, feature_order=["hairpin"] * 2 + ["chicane"] + ["hairpin"] * 2
+        ).model_dump_json()
     )
     r = parse_request(text, backend="ollama", ollama_host=fake_ollama.url)
     assert r.spec.hairpins == 4 and r.ignored == ()

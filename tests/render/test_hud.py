@@ -12,8 +12,9 @@ SMALL = "gen-l040-w12-h2c1s1-clo-s0"
 
 
 def test_frames_carry_time_speed_and_lap():
-    env = RoboRacerEnv(track=SMALL, render_mode="rgb_array", render_size=300, reset_poses="grid",
-                       sim={"lidar": {"num_beams": 19}})
+    env = RoboRacerEnv(
+        track=SMALL, render_mode="rgb_array", render_size=300, reset_poses="grid", sim={"lidar": {"num_beams": 19}}
+    )
     obs, _ = env.reset(seed=0)
     driver = PurePursuitDriver.for_env(env)
     for _ in range(20):

@@ -29,8 +29,13 @@ def test_demo_stage_renders_headless(demo_stage, tmp_path):
     png = tmp_path / "still.png"
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
     cli = "import sys; from roboracer_arena.cli import main; sys.exit(main())"
-    run = subprocess.run([sys.executable, "-c", cli, "preview", "--3d", str(demo_stage), "-o", str(png), "--json"],
-                         capture_output=True, text=True, env=env, timeout=300)
+    run = subprocess.run(
+        [sys.executable, "-c", cli, "preview", "--3d", str(demo_stage), "-o", str(png), "--json"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
     assert run.returncode == 0, run.stderr
     summary = json.loads(run.stdout)
     assert {"floor", "ducts", "rings", "collision walls", "car"} <= set(summary["drawn"])

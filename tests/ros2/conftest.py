@@ -106,8 +106,7 @@ class RosNode:
             if len(got) >= count:
                 return got
             time.sleep(0.005)
-        pytest.fail(f"timed out after {timeout} s waiting for {count} sample(s) on {name} "
-                    f"(got {len(self.get(name))})")
+        pytest.fail(f"timed out after {timeout} s waiting for {count} sample(s) on {name} (got {len(self.get(name))})")
 
     def wait_matched(self, name: str, timeout: float = 20.0) -> None:
         """Wait until the writer of ``name`` has matched a reader (the bridge)."""
@@ -160,8 +159,17 @@ class BridgeProcess:
     """``roboracer-arena ros2 ...`` in a subprocess (stopped by the test, bounded by --duration)."""
 
     def __init__(self, args: list[str], duration: float = 60.0) -> None:
-        cmd = [sys.executable, "-c", "import sys; from roboracer_arena.cli import main; sys.exit(main())", "ros2", *args, "--loopback", "--json",
-               "--duration", str(duration)]
+        cmd = [
+            sys.executable,
+            "-c",
+            "import sys; from roboracer_arena.cli import main; sys.exit(main())",
+            "ros2",
+            *args,
+            "--loopback",
+            "--json",
+            "--duration",
+            str(duration),
+        ]
         env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
         self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
 

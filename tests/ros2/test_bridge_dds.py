@@ -15,16 +15,27 @@ from roboracer_arena.ros2 import state_msgs as sm
 pytestmark = [pytest.mark.slow, pytest.mark.timeout(120)]
 
 SCAN, ODOM, TF, TF_STATIC, CLOCK, MAP, CENTRELINE = (
-    "sensor_msgs/msg/LaserScan", "nav_msgs/msg/Odometry", "tf2_msgs/msg/TFMessage", "tf2_msgs/msg/TFMessage",
-    "rosgraph_msgs/msg/Clock", "nav_msgs/msg/OccupancyGrid", "visualization_msgs/msg/Marker")
+    "sensor_msgs/msg/LaserScan",
+    "nav_msgs/msg/Odometry",
+    "tf2_msgs/msg/TFMessage",
+    "tf2_msgs/msg/TFMessage",
+    "rosgraph_msgs/msg/Clock",
+    "nav_msgs/msg/OccupancyGrid",
+    "visualization_msgs/msg/Marker",
+)
 DRIVE, INITIALPOSE = "ackermann_msgs/msg/AckermannDriveStamped", "geometry_msgs/msg/PoseWithCovarianceStamped"
 
 
 def _subscribe_all(node, cars: int = 1) -> None:
     from roboracer_arena.ros2.topics import car_names
 
-    for name, typ in (("/tf", TF), ("/tf_static", TF_STATIC), ("/clock", CLOCK), ("/map", MAP),
-                      ("/centreline", CENTRELINE)):
+    for name, typ in (
+        ("/tf", TF),
+        ("/tf_static", TF_STATIC),
+        ("/clock", CLOCK),
+        ("/map", MAP),
+        ("/centreline", CENTRELINE),
+    ):
         node.subscribe(name, typ)
     for i in range(cars):
         n = car_names(i)
@@ -37,8 +48,12 @@ def _drive(node, speed: float, steer: float = 0.0, topic: str = "/drive"):
 
     w = node._writers.get(topic) or node.publisher(topic, DRIVE)
     node.wait_matched(topic)
-    w.write(msgs.AckermannDriveStamped(header=msgs.Header(frame_id="ego_racecar/base_link"),
-                                       drive=msgs.AckermannDrive(steering_angle=steer, speed=speed)))
+    w.write(
+        msgs.AckermannDriveStamped(
+            header=msgs.Header(frame_id="ego_racecar/base_link"),
+            drive=msgs.AckermannDrive(steering_angle=steer, speed=speed),
+        )
+    )
     return w
 
 
@@ -116,11 +131,20 @@ def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, 
     _drive(ros_node, 0.0)
     target = line[len(line) // 4]
     heading = math.atan2(*(line[len(line) // 4 + 1] - target)[::-1])
-    w.write(msgs.PoseWithCovarianceStamped(header=msgs.Header(frame_id="map"), pose=msgs.PoseWithCovariance(
-        pose=msgs.Pose(position=msgs.Point(x=float(target[0]), y=float(target[1])),
-                       orientation=sm.yaw_quaternion(heading)))))
-    near = ros_node.wait_for("/ego_racecar/odom", pred=lambda m: math.hypot(
-        m.pose.pose.position.x - target[0], m.pose.pose.position.y - target[1]) < 0.05)[0]
+    w.write(
+        msgs.PoseWithCovarianceStamped(
+            header=msgs.Header(frame_id="map"),
+            pose=msgs.PoseWithCovariance(
+                pose=msgs.Pose(
+                    position=msgs.Point(x=float(target[0]), y=float(target[1])), orientation=sm.yaw_quaternion(heading)
+                )
+            ),
+        )
+    )
+    near = ros_node.wait_for(
+        "/ego_racecar/odom",
+        pred=lambda m: math.hypot(m.pose.pose.position.x - target[0], m.pose.pose.position.y - target[1]) < 0.05,
+    )[0]
     assert sm.quaternion_yaw(near.pose.pose.orientation) == pytest.approx(heading, abs=0.05)
     assert sm.stamp_seconds(near.header.stamp) > sm.stamp_seconds(end.header.stamp)
     clocks = [sm.stamp_seconds(c.clock) for c in ros_node.get("/clock")]
@@ -140,8 +164,9 @@ def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, 
 def test_two_cars_use_the_opponent_topics(ellipse_map, domain_id, ros_node, bridge_process, tmp_path):
     _subscribe_all(ros_node, cars=2)
     rec = tmp_path / "two.mcap"
-    proc = bridge_process([str(ellipse_map), "--domain-id", str(domain_id), "--cars", "2", "--rate", "max",
-                           "--record", str(rec)])
+    proc = bridge_process(
+        [str(ellipse_map), "--domain-id", str(domain_id), "--cars", "2", "--rate", "max", "--record", str(rec)]
+    )
     opp = ros_node.wait_for("/opp_racecar/odom", 3)[-1]
     assert opp.child_frame_id == "opp_racecar/base_link"
     assert len(ros_node.wait_for("/opp_scan")[-1].ranges) == 1081
@@ -180,8 +205,18 @@ def _lockstep_run(ellipse_map, domain_id, node, bridge_process, commands) -> lis
     out = []
     for m in node.get("/ego_racecar/odom"):
         p, tw = m.pose.pose, m.twist.twist
-        out.append((sm.stamp_seconds(m.header.stamp), p.position.x, p.position.y, p.orientation.z,
-                    p.orientation.w, tw.linear.x, tw.linear.y, tw.angular.z))
+        out.append(
+            (
+                sm.stamp_seconds(m.header.stamp),
+                p.position.x,
+                p.position.y,
+                p.orientation.z,
+                p.orientation.w,
+                tw.linear.x,
+                tw.linear.y,
+                tw.angular.z,
+            )
+        )
     code, _, err = proc.stop()
     assert code == 0, err
     return [o for o in out if o[0] > 0.0]  # the t = 0 message may predate the node's match

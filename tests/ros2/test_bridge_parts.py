@@ -71,8 +71,9 @@ def test_qos_is_ros2_default_and_latched_for_map():
     from roboracer_arena.ros2.qos import qos_for
 
     scan, latched = qos_for("/scan"), qos_for("/map")
-    assert scan[Policy.Reliability].__scope__ == "Reliability" and isinstance(scan[Policy.Reliability],
-                                                                             Policy.Reliability.Reliable)
+    assert scan[Policy.Reliability].__scope__ == "Reliability" and isinstance(
+        scan[Policy.Reliability], Policy.Reliability.Reliable
+    )
     assert scan[Policy.History] == Policy.History.KeepLast(10)
     assert scan[Policy.Durability] == Policy.Durability.Volatile
     assert latched[Policy.Durability] == Policy.Durability.TransientLocal
@@ -80,12 +81,15 @@ def test_qos_is_ros2_default_and_latched_for_map():
     assert scan[Policy.DataRepresentation] == Policy.DataRepresentation(use_cdrv0_representation=True)
 
 
-@pytest.mark.parametrize("argv, needle", [
-    (["ros2", "missing.yaml", "--duration", "1"], "missing.yaml"),
-    (["ros2", "x.yaml", "--domain-id", "500"], "--domain-id"),
-    (["ros2", "x.yaml", "--cars", "0"], "--cars"),
-    (["ros2", "x.yaml", "--duration", "-1"], "--duration"),
-])
+@pytest.mark.parametrize(
+    "argv, needle",
+    [
+        (["ros2", "missing.yaml", "--duration", "1"], "missing.yaml"),
+        (["ros2", "x.yaml", "--domain-id", "500"], "--domain-id"),
+        (["ros2", "x.yaml", "--cars", "0"], "--cars"),
+        (["ros2", "x.yaml", "--duration", "-1"], "--duration"),
+    ],
+)
 def test_cli_bad_input_exits_2(argv, needle, capsys):
     from roboracer_arena.cli import main
 
@@ -110,8 +114,8 @@ def test_library_bridge_on_an_env_and_on_a_simulator(ellipse_map, domain_id):
     import gymnasium as gym
 
     from roboracer_arena import _core
-    from roboracer_arena.sim_config import SimConfig
     from roboracer_arena.ros2 import Bridge
+    from roboracer_arena.sim_config import SimConfig
 
     env = gym.make("RoboRacerArena-v0", track=str(ellipse_map))
     env.reset(seed=0)
@@ -151,8 +155,25 @@ def test_cli_runs_for_a_simulated_duration(ellipse_map, domain_id, tmp_path, cap
     from roboracer_arena.cli import main
 
     rec = tmp_path / "r.mcap"
-    assert main(["ros2", str(ellipse_map), "--rate", "max", "--sim-time", "1", "--loopback", "--domain-id",
-                 str(domain_id), "--record", str(rec), "--json"]) == 0
+    assert (
+        main(
+            [
+                "ros2",
+                str(ellipse_map),
+                "--rate",
+                "max",
+                "--sim-time",
+                "1",
+                "--loopback",
+                "--domain-id",
+                str(domain_id),
+                "--record",
+                str(rec),
+                "--json",
+            ]
+        )
+        == 0
+    )
     stats = json.loads(capsys.readouterr().out)
     assert stats["sim_time_s"] >= 1.0 and stats["published"]["/scan"] >= 40 and rec.stat().st_size > 10_000
     assert not list(tmp_path.glob(".r.*"))  # no temporary file left behind

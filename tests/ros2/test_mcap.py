@@ -72,8 +72,9 @@ def test_episode_recorder_wraps_an_env(ellipse_map, tmp_path):
     from roboracer_arena.ros2 import McapEpisodeRecorder
 
     path = tmp_path / "episodes.mcap"
-    env = McapEpisodeRecorder(gym.make("RoboRacerArena-v0", track=str(ellipse_map), reset_poses="grid",
-                                       vehicles_per_env=2).unwrapped, path)
+    env = McapEpisodeRecorder(
+        gym.make("RoboRacerArena-v0", track=str(ellipse_map), reset_poses="grid", vehicles_per_env=2).unwrapped, path
+    )
     for ep in range(2):
         env.reset(seed=ep)
         for _ in range(10):
@@ -100,5 +101,7 @@ def test_drive_cli_writes_mcap(ellipse_map, tmp_path, capsys):
     assert len(msgs["/drive"]) == steps and len(msgs["/scan"]) == steps + 1
     assert max(m.drive.speed for m in msgs["/drive"]) > 1.0
     o0, o1 = msgs["/ego_racecar/odom"][0], msgs["/ego_racecar/odom"][-1]
-    assert math.hypot(o1.pose.pose.position.x - o0.pose.pose.position.x,
-                      o1.pose.pose.position.y - o0.pose.pose.position.y) > 2.0
+    assert (
+        math.hypot(o1.pose.pose.position.x - o0.pose.pose.position.x, o1.pose.pose.position.y - o0.pose.pose.position.y)
+        > 2.0
+    )

@@ -59,8 +59,10 @@ def random_msg(typename: str, rng: random.Random):
     cls = msgs.msg_class(typename)
     kwargs = {}
     for f in msgs.parse_fields(typename):
+
         def one(f=f):
             return random_msg(f.type, rng) if f.type in msgs.DEFINITIONS else _random_value(f.type, rng)
+
         if f.array is None:
             kwargs[f.name] = one()
         else:
@@ -70,7 +72,9 @@ def random_msg(typename: str, rng: random.Random):
 
 def _same(ours, theirs, where: str) -> None:
     """Field-by-field equality of our message and rosbags' (names and values)."""
-    their_fields = [f.name for f in dataclasses.fields(theirs) if not f.name.startswith("__") and not f.name.isupper()]  # constants
+    their_fields = [
+        f.name for f in dataclasses.fields(theirs) if not f.name.startswith("__") and not f.name.isupper()
+    ]  # constants
     our_fields = [f.name for f in dataclasses.fields(ours)]
     assert our_fields == their_fields, f"{where}: fields differ"
     for name in their_fields:
@@ -108,8 +112,11 @@ def test_the_bridge_messages_serialise_like_rosbags(typestore):
     """The messages the bridge actually builds from simulator state."""
     n = car_names(0)
     ranges = np.random.default_rng(0).uniform(0.1, 30, 1081).astype(np.float32)
-    occ = type("Occ", (), {"data": np.array([[0, 254, 205], [254, 254, 0]], np.uint8), "resolution": 0.05,
-                           "origin": (-1.0, -2.0, 0.0)})()
+    occ = type(
+        "Occ",
+        (),
+        {"data": np.array([[0, 254, 205], [254, 254, 0]], np.uint8), "resolution": 0.05, "origin": (-1.0, -2.0, 0.0)},
+    )()
     cases = [
         (sm.laser_scan(n, 1.25, ranges, 1.5 * np.pi, 0.0, 30.0, 1 / 39.9), "sensor_msgs/msg/LaserScan"),
         (sm.odometry(n, 3.0, 1.0, -2.0, 0.3, 1.5, 0.01, 0.2), "nav_msgs/msg/Odometry"),
@@ -139,8 +146,13 @@ def test_schema_text_lists_every_dependency_once():
     text = msgs.schema_text("nav_msgs/msg/Odometry")
     deps = [line[5:] for line in text.splitlines() if line.startswith("MSG: ")]
     assert len(deps) == len(set(deps))
-    assert {"std_msgs/Header", "builtin_interfaces/Time", "geometry_msgs/PoseWithCovariance",
-            "geometry_msgs/Twist", "geometry_msgs/Quaternion"} <= set(deps)
+    assert {
+        "std_msgs/Header",
+        "builtin_interfaces/Time",
+        "geometry_msgs/PoseWithCovariance",
+        "geometry_msgs/Twist",
+        "geometry_msgs/Quaternion",
+    } <= set(deps)
 
 
 def test_fast_packers_match_the_idl_serialisation(typestore):
@@ -159,7 +171,8 @@ def test_fast_packers_match_the_idl_serialisation(typestore):
             _check(msg, "nav_msgs/msg/Odometry", typestore)
             ranges = rng.uniform(0, 30, 1081 if i < 2 else 7).astype(np.float32)
             assert cdr.LaserScanPacker(n, 4.7, 0.01, 30.0, 1 / 39.9).pack(t, ranges) == msgs.serialize(
-                sm.laser_scan(n, t, ranges, 4.7, 0.01, 30.0, 1 / 39.9))
+                sm.laser_scan(n, t, ranges, 4.7, 0.01, 30.0, 1 / 39.9)
+            )
             assert cdr.pack_clock(t) == msgs.serialize(sm.clock(t))
         children = [car_names(k).base_link for k in range(i + 1)]
         poses = [tuple(rng.normal(size=3)) for _ in children]
@@ -173,14 +186,20 @@ def test_every_byte_the_bridge_sends_is_rosbags_serialisation(tmp_path, typestor
     from mcap.reader import make_reader
 
     from roboracer_arena import _core
-    from roboracer_arena.track import Track
     from roboracer_arena.ros2 import Bridge
+    from roboracer_arena.track import Track
 
     walls, centre = _core.stadium_track()
-    bridge = Bridge(Track.from_polylines(walls, centre, "stadium"), cars=2, rate=None, lockstep=True,
-                    record=tmp_path / "b.mcap", dds=False)
+    bridge = Bridge(
+        Track.from_polylines(walls, centre, "stadium"),
+        cars=2,
+        rate=None,
+        lockstep=True,
+        record=tmp_path / "b.mcap",
+        dds=False,
+    )
     bridge.start()
-    for k in range(10):
+    for _ in range(10):
         bridge.drive(0, 0.1, 1.0)
         bridge.drive(1, -0.1, 1.0)
     while bridge.sim_time < 0.5 - 1e-9:
@@ -192,5 +211,15 @@ def test_every_byte_the_bridge_sends_is_rosbags_serialisation(tmp_path, typestor
             decoded = typestore.deserialize_cdr(message.data, schema.name)
             assert typestore.serialize_cdr(decoded, schema.name) == message.data, channel.topic
             seen.add(channel.topic)
-    assert {"/scan", "/opp_scan", "/ego_racecar/odom", "/opp_racecar/odom", "/tf", "/tf_static", "/clock",
-            "/centreline", "/drive", "/opp_drive"} <= seen
+    assert {
+        "/scan",
+        "/opp_scan",
+        "/ego_racecar/odom",
+        "/opp_racecar/odom",
+        "/tf",
+        "/tf_static",
+        "/clock",
+        "/centreline",
+        "/drive",
+        "/opp_drive",
+    } <= seen

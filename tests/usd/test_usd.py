@@ -9,11 +9,10 @@ import numpy as np
 import pytest
 from pxr import Usd, UsdGeom, UsdPhysics, UsdShade
 
+from builder.synthetic import load_physics, ring_meshes
 from roboracer_arena.build_config import BuildConfig
 from roboracer_arena.errors import ConfigError, MapIOError
 from roboracer_arena.usd import METADATA_KEY, read_meshes, stage_metadata, validate_stage, write_stage
-
-from builder.synthetic import load_physics, ring_meshes
 
 META = {"source_map": "/maps/ring.yaml", "resolution": 0.05, "origin": [-5.0, -5.0, 0.0], "build_config": "{}"}
 

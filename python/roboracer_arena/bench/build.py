@@ -133,8 +133,8 @@ def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
     """Runs in the subprocess: import everything, then time ``repeat`` builds."""
     import resource
 
-    from ..builder import build_environment
     from ..build_config import BuildConfig
+    from ..builder import build_environment
     from ..usd import textures as tex
     from ..usd.stage import warm_up
 
@@ -174,7 +174,9 @@ def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
 # --- driver ------------------------------------------------------------------------
 
 
-def run(labels: list[str] | None = None, repeat: int = 3, textures: bool = True, progress: bool = True) -> dict[str, Any]:
+def run(
+    labels: list[str] | None = None, repeat: int = 3, textures: bool = True, progress: bool = True
+) -> dict[str, Any]:
     """Measure the chosen sizes; returns ``{"rows": [...], "paper": [...], "targets": {...}}``."""
     from tqdm import tqdm
 
@@ -186,7 +188,9 @@ def run(labels: list[str] | None = None, repeat: int = 3, textures: bool = True,
         for label, rel, target in tqdm(chosen, desc="bench build", unit="map", disable=not progress, file=sys.stderr):
             yaml_path = generated_map(tmpdir) if rel == GENERATED else src / rel
             if not yaml_path.is_file():
-                rows.append({"label": label, "map": str(yaml_path), "error": "map not found (set ROBORACER_ARENA_SOURCES)"})
+                rows.append(
+                    {"label": label, "map": str(yaml_path), "error": "map not found (set ROBORACER_ARENA_SOURCES)"}
+                )
                 continue
             if target is not None:
                 yaml_path = resampled_map(yaml_path, target, tmpdir)
@@ -235,7 +239,9 @@ def format_table(result: dict[str, Any]) -> str:
         "s: median wall-clock in-process build (load + geometry + USD), 1 thread; 1st s: the first build in the"
         " process; min s: fastest build; CPU s: median process CPU time of a build (robust to a loaded machine)."
     )
-    lines.append("paper columns: the paper's time and USD size linearly interpolated at the same raster MP (Table map2usd).")
+    lines.append(
+        "paper columns: the paper's time and USD size linearly interpolated at the same raster MP (Table map2usd)."
+    )
     ok = [r for r in result["rows"] if "error" not in r]
     if ok:
         keys = [k for k in ok[0]["stages"] if k not in ("total", "geometry.total")]
@@ -243,7 +249,9 @@ def format_table(result: dict[str, Any]) -> str:
         lines += ["", "per-stage median milliseconds (g.* = inside the Rust geometry stage):"]
         lines.append(f"{'map':<20} " + " ".join(f"{k:>10}" for k in short))
         for r in ok:
-            lines.append(f"{r['label']:<20} " + " ".join(f"{1e3 * r['stages'].get(k, float('nan')):>10.1f}" for k in keys))
+            lines.append(
+                f"{r['label']:<20} " + " ".join(f"{1e3 * r['stages'].get(k, float('nan')):>10.1f}" for k in keys)
+            )
     return "\n".join(lines)
 
 
@@ -262,15 +270,23 @@ def format_markdown(result: dict[str, Any]) -> str:
         )
     out += [f"| {r['label']} | error: {r['error']} |" for r in result["rows"] if "error" in r]
     if rows:
-        keys = [k for k in rows[0]["stages"] if k not in ("total", "geometry.total", "geometry.crop", "geometry.meshes")]
-        out += ["", "| map (ms) | " + " | ".join(k.replace("geometry.", "g.") for k in keys) + " |", "|---|" + "---:|" * len(keys)]
+        keys = [
+            k for k in rows[0]["stages"] if k not in ("total", "geometry.total", "geometry.crop", "geometry.meshes")
+        ]
+        out += [
+            "",
+            "| map (ms) | " + " | ".join(k.replace("geometry.", "g.") for k in keys) + " |",
+            "|---|" + "---:|" * len(keys),
+        ]
         out += [f"| {r['label']} | " + " | ".join(f"{1e3 * r['stages'][k]:.1f}" for k in keys) + " |" for r in rows]
     return "\n".join(out)
 
 
 def register(kinds) -> None:
     p = kinds.add_parser("build", help="map → USD build time and size vs the paper", description=__doc__)
-    p.add_argument("--sizes", nargs="+", metavar="LABEL", choices=[s[0] for s in SIZES], help="subset of sizes (default: all)")
+    p.add_argument(
+        "--sizes", nargs="+", metavar="LABEL", choices=[s[0] for s in SIZES], help="subset of sizes (default: all)"
+    )
     p.add_argument("--repeat", type=int, default=3, help="builds per size; the median is reported (default 3)")
     p.add_argument("--no-textures", action="store_true", help="build without PNG textures")
     p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")

@@ -125,7 +125,9 @@ def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, p
         "by_width": by("corridor_width_m"),
         "by_hall": by("hall"),
         "by_features": by("features"),
-        "misses": [{k: r[k] for k in ("spec", "seed", "outcome", "candidates", "top_reasons") if k in r} for r in misses],
+        "misses": [
+            {k: r[k] for k in ("spec", "seed", "outcome", "candidates", "top_reasons") if k in r} for r in misses
+        ],
         "rows": rows,
     }
 
@@ -139,7 +141,9 @@ def print_sweep(result: dict[str, Any]) -> None:
     for key in ("by_lap", "by_width", "by_hall", "by_features"):
         print(f"  {key[3:]:<9} " + "  ".join(f"{k}: {v}" for k, v in result[key].items()))
     for m in result["misses"]:
-        print(f"  miss {m['spec']} seed {m['seed']}: {m['outcome']} after {m['candidates']} ({json.dumps(m.get('top_reasons', {}))})")
+        print(
+            f"  miss {m['spec']} seed {m['seed']}: {m['outcome']} after {m['candidates']} ({json.dumps(m.get('top_reasons', {}))})"
+        )
 
 
 def load_sweep_file() -> list[TrackSpec]:

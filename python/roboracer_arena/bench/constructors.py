@@ -93,14 +93,14 @@ def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConf
         out = generate_track(spec, seed=seed, config=config)
         if isinstance(out, Acceptance):
             return out.map, "", out.candidates_tried
-        reasons = getattr(out, "reasons", {}) or {out.kind: 1}
-        return None, max(reasons, key=reasons.get), getattr(out, "candidates_tried", 0)
+        reasons: dict[str, int] = getattr(out, "reasons", {}) or {out.kind: 1}
+        return None, max(reasons, key=lambda k: reasons[k]), getattr(out, "candidates_tried", 0)
     if constructor == "lattice-raw":
         info, line = _core.construct_lattice(spec.model_dump_json(), config.model_dump_json(), seed)
         tried = json.loads(info)["tried"]
         if line is None:
             reasons = json.loads(info)["reasons"]
-            return None, max(reasons, key=reasons.get), tried
+            return None, max(reasons, key=lambda k: reasons[k]), tried
         return rasterise(line, spec, config), "", tried
     line = construct_baseline(spec, config, seed, constructor)
     if line is None:
@@ -112,7 +112,13 @@ def run_trial(spec: TrackSpec, seed: int, constructor: str, config: ConstructorC
     """One matched trial: build, write the map, read it back, validate it."""
     t0 = time.perf_counter()
     m, why, tried = _build(spec, seed, constructor, config)
-    row: dict[str, Any] = {"spec": spec.name, "seed": seed, "constructor": constructor, "built": m is not None, "candidates": tried}
+    row: dict[str, Any] = {
+        "spec": spec.name,
+        "seed": seed,
+        "constructor": constructor,
+        "built": m is not None,
+        "candidates": tried,
+    }
     if m is None:
         row.update(valid=False, failed_checks=[], not_built_reason=why)
     else:
@@ -144,7 +150,13 @@ def summarise(rows: list[dict[str, Any]], constructor: str) -> dict[str, Any]:
     }
 
 
-def run(specs: list[TrackSpec], seeds: list[int], constructors: list[str], config: ConstructorConfig | None = None, progress: bool = True) -> dict[str, Any]:
+def run(
+    specs: list[TrackSpec],
+    seeds: list[int],
+    constructors: list[str],
+    config: ConstructorConfig | None = None,
+    progress: bool = True,
+) -> dict[str, Any]:
     """Run every (admissible spec, seed, constructor) trial; returns rows and summaries."""
     config = config or ConstructorConfig()
     admissible, rejections = [], []
@@ -176,7 +188,9 @@ def print_table(result: dict[str, Any]) -> None:
         print(f"  rejected {r['spec']}: {'; '.join(r['violations'])}")
     if len(result["screen_rejections"]) > 5:
         print(f"  … and {len(result['screen_rejections']) - 5} more (see --json)")
-    head = f"{'constructor':<12} {'valid trials':>12} {'valid/built':>11} {'s/trial':>8} {'median s':>8}   {'paper':>22}"
+    head = (
+        f"{'constructor':<12} {'valid trials':>12} {'valid/built':>11} {'s/trial':>8} {'median s':>8}   {'paper':>22}"
+    )
     print(head)
     print("-" * len(head))
     for s in result["summary"]:
@@ -188,18 +202,44 @@ def print_table(result: dict[str, Any]) -> None:
         )
     for s in result["summary"]:
         if s["constructor"].startswith("lattice"):
-            print(f"  {s['constructor']}: candidates per trial median {s['candidates_median']:g}, max {s['candidates_max']} (cap 800)")
+            print(
+                f"  {s['constructor']}: candidates per trial median {s['candidates_median']:g}, max {s['candidates_max']} (cap 800)"
+            )
         if s["failed_checks"] or s["not_built"]:
-            print(f"  {s['constructor']}: failed checks {s['failed_checks'] or '{}'}; not built {s['not_built'] or '{}'}")
+            print(
+                f"  {s['constructor']}: failed checks {s['failed_checks'] or '{}'}; not built {s['not_built'] or '{}'}"
+            )
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("constructors", help="lattice vs DE vs random sampling (the paper's Table 3)", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--specs", type=Path, default=None, metavar="FILE.jsonl", help="one TrackSpec JSON per line (default: the set shipped in the package)")
+    p = kinds.add_parser(
+        "constructors",
+        help="lattice vs DE vs random sampling (the paper's Table 3)",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument(
+        "--specs",
+        type=Path,
+        default=None,
+        metavar="FILE.jsonl",
+        help="one TrackSpec JSON per line (default: the set shipped in the package)",
+    )
     p.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], metavar="S", help="seeds (default 0 1 2)")
-    p.add_argument("--constructors", nargs="+", choices=CONSTRUCTOR_CHOICES, default=list(CONSTRUCTOR_CHOICES), metavar="C", help=f"subset of {', '.join(CONSTRUCTOR_CHOICES)} (default all)")
+    p.add_argument(
+        "--constructors",
+        nargs="+",
+        choices=CONSTRUCTOR_CHOICES,
+        default=list(CONSTRUCTOR_CHOICES),
+        metavar="C",
+        help=f"subset of {', '.join(CONSTRUCTOR_CHOICES)} (default all)",
+    )
     p.add_argument("--json", type=Path, metavar="FILE", help="write the summary and every trial to FILE")
-    p.add_argument("--sweep", action="store_true", help="instead: Algorithm 1's acceptance on the stratified sweep of admissible specs (bench/data/sweep_specs.jsonl)")
+    p.add_argument(
+        "--sweep",
+        action="store_true",
+        help="instead: Algorithm 1's acceptance on the stratified sweep of admissible specs (bench/data/sweep_specs.jsonl)",
+    )
     p.add_argument("--maps", type=Path, metavar="DIR", help="with --sweep: write every accepted map under DIR")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="with --sweep: worker processes (default 1)")
     p.set_defaults(func=_cli)

@@ -29,8 +29,9 @@ import argparse
 import json
 import os
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
@@ -46,14 +47,27 @@ WORKLOADS = ("constant", "lap", "random")
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("env", help="gymnasium step throughput, full lidar every 0.01 s step, three workloads",
-                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--num-envs", type=int, nargs="+", default=[1, 256], help="env counts (default 1 256; 1 = single env)")
-    p.add_argument("--map", type=Path, default=None, help="map YAML (default: f1tenth-racetracks Spielberg from the sources)")
+    p = kinds.add_parser(
+        "env",
+        help="gymnasium step throughput, full lidar every 0.01 s step, three workloads",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument(
+        "--num-envs", type=int, nargs="+", default=[1, 256], help="env counts (default 1 256; 1 = single env)"
+    )
+    p.add_argument(
+        "--map", type=Path, default=None, help="map YAML (default: f1tenth-racetracks Spielberg from the sources)"
+    )
     p.add_argument("--seconds", type=float, default=3.0, help="time budget per measurement (default 3)")
     p.add_argument("--beams", type=int, default=1080, help="lidar beams (default 1080)")
-    p.add_argument("--workloads", nargs="+", choices=WORKLOADS, default=list(WORKLOADS),
-                   help="workloads to run (default: all three)")
+    p.add_argument(
+        "--workloads",
+        nargs="+",
+        choices=WORKLOADS,
+        default=list(WORKLOADS),
+        help="workloads to run (default: all three)",
+    )
     p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
@@ -91,8 +105,9 @@ def record_lap(track: Any, beams: int, max_steps: int = 20_000) -> np.ndarray:
     return np.asarray(actions, dtype=np.float32)
 
 
-def workload_actions(kind: str, lap: np.ndarray, n: int, bounds: tuple[np.ndarray, np.ndarray],
-                     steps: int = 4096) -> np.ndarray:
+def workload_actions(
+    kind: str, lap: np.ndarray, n: int, bounds: tuple[np.ndarray, np.ndarray], steps: int = 4096
+) -> np.ndarray:
     """Actions (T, n, 2) float32 of a workload for ``n`` envs, cycled by the timing loops."""
     if kind == "constant":
         return np.broadcast_to(np.array([0.0, 1.0], np.float32), (1, n, 2)).copy()
@@ -131,6 +146,7 @@ class _CoreTimer:
                 return attr(*args)
             finally:
                 self.seconds += time.perf_counter() - t0
+
         return timed
 
 
@@ -154,7 +170,9 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
         core["step"] += time.perf_counter() - t0
         core["seconds"] += b.sim.seconds - before
         return term, trunc
+
     restart = len(acts) if kind == "lap" else 0
+    env: gym.Env | gym.vector.VectorEnv
     if n == 1:
         kwargs.pop("time_limit_s")  # under gymnasium.make the limit is max_episode_steps (-1: none)
         env = gym.make("RoboRacerArena-v0", track=track, max_episode_steps=-1, **kwargs)
@@ -168,8 +186,9 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
                 env.reset()  # (no reseed: that would rebuild the simulator; the grid start has no noise)
                 counts["resets"] += 1
     else:
-        env = gym.make_vec("RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track,
-                           **kwargs)
+        env = gym.make_vec(
+            "RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track, **kwargs
+        )
         env.reset(seed=0)
         T = len(acts)
 
@@ -182,14 +201,20 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
     calls, dt, cpu = _timed(step, seconds, 64 if n == 1 else 4)
     env.close()
     steps = calls * n
-    return {"workload": kind, "num_envs": n, "steps": steps, "resets": counts["resets"], "seconds": round(dt, 3),
-            "cpu_seconds": round(cpu, 3), "env_steps_per_s": round(steps / dt, 1),
-            "us_per_step": round(dt / calls * 1e6, 2),
-            "python_us_per_step": round((core["step"] - core["seconds"]) / calls * 1e6, 2)}
+    return {
+        "workload": kind,
+        "num_envs": n,
+        "steps": steps,
+        "resets": counts["resets"],
+        "seconds": round(dt, 3),
+        "cpu_seconds": round(cpu, 3),
+        "env_steps_per_s": round(steps / dt, 1),
+        "us_per_step": round(dt / calls * 1e6, 2),
+        "python_us_per_step": round((core["step"] - core["seconds"]) / calls * 1e6, 2),
+    }
 
 
-def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float,
-               scan: bool) -> float:
+def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float, scan: bool) -> float:
     """µs per ``Simulator.step`` call of a bare simulator on the same actions (with or
     without the scan), resetting a collided env to its grid start like the env does."""
     from .._core import Simulator
@@ -245,12 +270,22 @@ def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: 
         sim.reset(mask, np.array(centreline_pose(track, s)).reshape(1, 1, 3))
         per.append(median_us(scans) - median_us(None))
     a = np.array(per)
-    return {"beams": beams, "poses": len(a), "median_us": round(float(np.median(a)), 2),
-            "p90_us": round(float(np.percentile(a, 90)), 2), "max_us": round(float(a.max()), 2)}
+    return {
+        "beams": beams,
+        "poses": len(a),
+        "median_us": round(float(np.median(a)), 2),
+        "p90_us": round(float(np.percentile(a, 90)), 2),
+        "max_us": round(float(a.max()), 2),
+    }
 
 
-def run(map_path: Path | None = None, num_envs: list[int] | None = None, seconds: float = 3.0,
-        beams: int = 1080, workloads: list[str] | None = None) -> dict[str, Any]:
+def run(
+    map_path: Path | None = None,
+    num_envs: list[int] | None = None,
+    seconds: float = 3.0,
+    beams: int = 1080,
+    workloads: list[str] | None = None,
+) -> dict[str, Any]:
     """Measure and print the table; returns the results."""
     from .. import envs
     from ..envs.env_config import EnvConfig
@@ -269,18 +304,31 @@ def run(map_path: Path | None = None, num_envs: list[int] | None = None, seconds
             row = _time_env(track, beams, kind, acts, n, seconds)
             physics = _time_core(track, beams, kind, acts, n, seconds / 2, scan=False)
             core = _time_core(track, beams, kind, acts, n, seconds / 2, scan=True)
-            row["breakdown_us_per_call"] = {"physics": round(physics, 2), "scan": round(max(core - physics, 0.0), 2),
-                                            "python": row["python_us_per_step"]}
+            row["breakdown_us_per_call"] = {
+                "physics": round(physics, 2),
+                "scan": round(max(core - physics, 0.0), 2),
+                "python": row["python_us_per_step"],
+            }
             rows.append(row)
     scan = scan_over_lap(track)
     load = _load()
     _print_table(track.name, beams, rows, threads=os.cpu_count() or 1, loads=(load_before, load))
-    print(f"one {scan['beams']}-beam scan at {scan['poses']} centreline poses around the lap: median "
-          f"{scan['median_us']:.1f} µs, p90 {scan['p90_us']:.1f}, max {scan['max_us']:.1f}  "
-          f"target ≤{TARGET_SCAN_US:.0f} µs {'ok' if scan['median_us'] <= TARGET_SCAN_US else 'MISS'}")
-    return {"map": track.name, "beams": beams, "physics_dt": 0.01, "threads": os.cpu_count(),
-            "load_average_1min": [load_before, load], "recorded_lap_steps": len(lap), "scan_over_lap": scan,
-            "f1tenth_gym_env_steps_per_s": list(F1TENTH_GYM), "rows": rows}
+    print(
+        f"one {scan['beams']}-beam scan at {scan['poses']} centreline poses around the lap: median "
+        f"{scan['median_us']:.1f} µs, p90 {scan['p90_us']:.1f}, max {scan['max_us']:.1f}  "
+        f"target ≤{TARGET_SCAN_US:.0f} µs {'ok' if scan['median_us'] <= TARGET_SCAN_US else 'MISS'}"
+    )
+    return {
+        "map": track.name,
+        "beams": beams,
+        "physics_dt": 0.01,
+        "threads": os.cpu_count(),
+        "load_average_1min": [load_before, load],
+        "recorded_lap_steps": len(lap),
+        "scan_over_lap": scan,
+        "f1tenth_gym_env_steps_per_s": list(F1TENTH_GYM),
+        "rows": rows,
+    }
 
 
 def _load() -> float | None:
@@ -291,25 +339,34 @@ def _verdict(r: dict[str, Any]) -> str:
     if r["num_envs"] == 1:
         t = TARGET_SINGLE_US
         return f"≤{t:.0f} µs {'ok' if r['us_per_step'] <= t else 'MISS'}" if r["workload"] == "constant" else ""
-    t = TARGET_VECTOR.get(r["workload"])
-    return f"≥{t:,.0f} {'ok' if r['env_steps_per_s'] >= t else 'MISS'}" if t else ""
+    target = TARGET_VECTOR.get(r["workload"])
+    return f"≥{target:,.0f} {'ok' if r['env_steps_per_s'] >= target else 'MISS'}" if target else ""
 
 
-def _print_table(name: str, beams: int, rows: list[dict[str, Any]], threads: int,
-                 loads: tuple[float | None, float | None]) -> None:
+def _print_table(
+    name: str, beams: int, rows: list[dict[str, Any]], threads: int, loads: tuple[float | None, float | None]
+) -> None:
     lo, hi = F1TENTH_GYM
-    print(f"gymnasium step throughput: map {name}, {beams}-beam lidar every step, 0.01 s physics step, "
-          f"autoreset on collision, {threads} threads, load average {loads[0]} before / {loads[1]} after")
+    print(
+        f"gymnasium step throughput: map {name}, {beams}-beam lidar every step, 0.01 s physics step, "
+        f"autoreset on collision, {threads} threads, load average {loads[0]} before / {loads[1]} after"
+    )
     print(f"F1TENTH Gym reference (constant action, single env): {lo:,.0f}–{hi:,.0f} env-steps/s")
-    print(f"{'workload':<10}{'envs':>6}{'env-steps/s':>13}{'µs/call':>10}{'resets':>8}"
-          f"{'physics':>9}{'scan':>8}{'python':>8}  target")
+    print(
+        f"{'workload':<10}{'envs':>6}{'env-steps/s':>13}{'µs/call':>10}{'resets':>8}"
+        f"{'physics':>9}{'scan':>8}{'python':>8}  target"
+    )
     for r in rows:
         b = r["breakdown_us_per_call"]
-        print(f"{r['workload']:<10}{r['num_envs']:>6}{r['env_steps_per_s']:>13,.0f}{r['us_per_step']:>10.1f}"
-              f"{r['resets']:>8}{b['physics']:>9.1f}{b['scan']:>8.1f}{b['python']:>8.1f}  {_verdict(r)}")
-    print("(wall clock; µs per step() call, for the vector env per call over all envs; physics and scan replay the "
-          "actions on a bare Simulator: physics = its step without the scan, scan = the extra of the scan; python = "
-          "the time of the env's step() spent outside the simulator's calls)")
+        print(
+            f"{r['workload']:<10}{r['num_envs']:>6}{r['env_steps_per_s']:>13,.0f}{r['us_per_step']:>10.1f}"
+            f"{r['resets']:>8}{b['physics']:>9.1f}{b['scan']:>8.1f}{b['python']:>8.1f}  {_verdict(r)}"
+        )
+    print(
+        "(wall clock; µs per step() call, for the vector env per call over all envs; physics and scan replay the "
+        "actions on a bare Simulator: physics = its step without the scan, scan = the extra of the scan; python = "
+        "the time of the env's step() spent outside the simulator's calls)"
+    )
 
 
 def run_quick() -> dict[str, Any]:

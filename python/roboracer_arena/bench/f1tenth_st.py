@@ -20,9 +20,22 @@ G = 9.81
 
 #: F1TENTH Gym's published default parameters (its F1/10 Traxxas car).
 GYM_PARAMS: dict[str, float] = {
-    "mu": 1.0489, "C_Sf": 4.718, "C_Sr": 5.4562, "lf": 0.15875, "lr": 0.17145, "h": 0.074,
-    "m": 3.74, "I": 0.04712, "s_min": -0.4189, "s_max": 0.4189, "sv_min": -3.2, "sv_max": 3.2,
-    "v_switch": 7.319, "a_max": 9.51, "v_min": -5.0, "v_max": 20.0,
+    "mu": 1.0489,
+    "C_Sf": 4.718,
+    "C_Sr": 5.4562,
+    "lf": 0.15875,
+    "lr": 0.17145,
+    "h": 0.074,
+    "m": 3.74,
+    "I": 0.04712,
+    "s_min": -0.4189,
+    "s_max": 0.4189,
+    "sv_min": -3.2,
+    "sv_max": 3.2,
+    "v_switch": 7.319,
+    "a_max": 9.51,
+    "v_min": -5.0,
+    "v_max": 20.0,
 }
 
 
@@ -75,8 +88,13 @@ def _deriv(s: list[float], a: float, sv: float, p: dict[str, float]) -> list[flo
     lwb = lf + lr
     if abs(v) < 0.5:  # kinematic model at low speed
         return [
-            v * math.cos(psi), v * math.sin(psi), sv, a, v / lwb * math.tan(d),
-            a / lwb * math.tan(d) + v / (lwb * math.cos(d) ** 2) * sv, 0.0,
+            v * math.cos(psi),
+            v * math.sin(psi),
+            sv,
+            a,
+            v / lwb * math.tan(d),
+            a / lwb * math.tan(d) + v / (lwb * math.cos(d) ** 2) * sv,
+            0.0,
         ]
     cf, cr = p["C_Sf"], p["C_Sr"]
     nf, nr = G * lr - a * h, G * lf + a * h

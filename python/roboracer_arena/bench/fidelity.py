@@ -29,8 +29,8 @@ from typing import Any
 import numpy as np
 
 from .. import _core
-from ..sim_config import PhysicsConfig, SimConfig, VehicleConfig
 from ..fileio import atomic_write_text
+from ..sim_config import PhysicsConfig, SimConfig, VehicleConfig
 from .f1tenth_st import GYM_PARAMS, SingleTrack
 
 HALL = 150.0
@@ -191,14 +191,26 @@ def run(quick: bool = False) -> dict[str, Any]:
             lin = linear_theory(v, d, vc)
             turns.append(
                 {
-                    "v": v, "steer": d, "yaw_rate": ours["yaw_rate"], "lat_acc": ours["lat_acc"],
-                    "linear_yaw_rate": lin, "limit_lat_acc": mu_g,
+                    "v": v,
+                    "steer": d,
+                    "yaw_rate": ours["yaw_rate"],
+                    "lat_acc": ours["lat_acc"],
+                    "linear_yaw_rate": lin,
+                    "limit_lat_acc": mu_g,
                     "linear_saturated": lin * v > mu_g,
-                    "gym_yaw_rate": gym["yaw_rate"], "gym_lat_acc": gym["lat_acc"],
+                    "gym_yaw_rate": gym["yaw_rate"],
+                    "gym_lat_acc": gym["lat_acc"],
                 }
             )
     dts = [0.0025, 0.005, 0.01, 0.02]
-    sens = [{"dt": dt, "yaw_rate_3ms_0.2": steady_turn(3.0, 0.2, dt)["yaw_rate"], **{f"brake_{k}": x for k, x in braking(dt).items() if k in ("t", "d")}} for dt in dts]
+    sens = [
+        {
+            "dt": dt,
+            "yaw_rate_3ms_0.2": steady_turn(3.0, 0.2, dt)["yaw_rate"],
+            **{f"brake_{k}": x for k, x in braking(dt).items() if k in ("t", "d")},
+        }
+        for dt in dts
+    ]
     return {
         "straight": straight_line(),
         "gym_straight": gym_straight(),
@@ -220,13 +232,17 @@ def _f(x: float | None, spec: str = ".2f") -> str:
 def print_table(res: dict[str, Any]) -> None:
     s, gs, b, gb = res["straight"], res["gym_straight"], res["braking"], res["gym_braking"]
     print("straight line and braking            ours     F1TENTH Gym ST   reference")
-    print(f"top speed (m/s)                   {s['top_speed']:7.2f}   {gs['top_speed']:14.2f}   Velineon 3500 kV on 3S, F1TENTH gearing: 16.8 no-load")
+    print(
+        f"top speed (m/s)                   {s['top_speed']:7.2f}   {gs['top_speed']:14.2f}   Velineon 3500 kV on 3S, F1TENTH gearing: 16.8 no-load"
+    )
     print(f"0 -> 6.66 m/s time (s)            {_f(s['t_0_to_6_66']):>7}   {_f(gs['t_0_to_6_66']):>14}")
     print(f"0 -> 6.66 m/s distance (m)        {_f(s['d_0_to_6_66']):>7}   {_f(gs['d_0_to_6_66']):>14}")
     print(f"brake 6 -> 0 time (s)             {b['t']:7.2f}   {gb['t']:14.2f}   ideal mu g stop {b['t_ideal']:.2f}")
     print(f"brake 6 -> 0 distance (m)         {b['d']:7.2f}   {gb['d']:14.2f}   ideal mu g stop {b['d_ideal']:.2f}")
     print()
-    print(f"steady cornering (last 1 s of 6 s); linear theory r = v d / (L + K v^2); friction limit mu g = {res['mu_g']:.2f} m/s^2")
+    print(
+        f"steady cornering (last 1 s of 6 s); linear theory r = v d / (L + K v^2); friction limit mu g = {res['mu_g']:.2f} m/s^2"
+    )
     head = f"{'v':>4} {'steer':>6} {'r ours':>8} {'r linear':>9} {'ours/lin':>9} {'a ours':>7} {'a/mu g':>7} {'r gym':>7} {'a gym':>7}"
     print(head)
     print("-" * len(head))
@@ -239,7 +255,9 @@ def print_table(res: dict[str, Any]) -> None:
         )
     e = res["envelope"]
     print()
-    print(f"recorded envelope: {RECORDED_SPEED} m/s reachable: {'yes' if s['top_speed'] >= RECORDED_SPEED else 'NO'} (top {s['top_speed']:.2f} m/s)")
+    print(
+        f"recorded envelope: {RECORDED_SPEED} m/s reachable: {'yes' if s['top_speed'] >= RECORDED_SPEED else 'NO'} (top {s['top_speed']:.2f} m/s)"
+    )
     print(
         f"  {RECORDED_YAW} rad/s without sliding: no. The steady non-sliding bound min(v tan(dmax)/L, mu g/v) peaks at "
         f"{e['r_max']:.2f} rad/s at {e['v_at_r_max']:.2f} m/s; {RECORDED_YAW} rad/s would need mu >= "
@@ -263,7 +281,9 @@ def _cli(args: argparse.Namespace) -> int:
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("fidelity", help="vehicle model vs physics and F1TENTH Gym's single-track model", description=__doc__)
+    p = kinds.add_parser(
+        "fidelity", help="vehicle model vs physics and F1TENTH Gym's single-track model", description=__doc__
+    )
     p.add_argument("--quick", action="store_true", help="fewer speeds (1, 3, 5 m/s)")
     p.add_argument("--json", type=Path, metavar="FILE", help="write the results to FILE as JSON")
     p.set_defaults(func=_cli)

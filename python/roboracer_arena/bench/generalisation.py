@@ -34,8 +34,12 @@ HELD_OUT = ("gym-skirk", "gym-vegas", "gym-example", "cps-torino-redraw", "cps-c
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("generalisation", help="ES on one track vs on a track pool, laps on held-out maps",
-                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = kinds.add_parser(
+        "generalisation",
+        help="ES on one track vs on a track pool, laps on held-out maps",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     p.add_argument("--seeds", type=int, default=3, help="training seeds per condition (default 3)")
     p.add_argument("--generations", type=int, default=40, help="ES generations per run (default 40)")
     p.add_argument("--pairs", type=int, default=16, help="antithetic pairs per generation (default 16)")
@@ -46,9 +50,16 @@ def register(kinds) -> None:
     p.set_defaults(func=_run_cli)
 
 
-def run(seeds: int = 3, generations: int = 40, pairs: int = 16, episode_steps: int = 200, single: str = SINGLE,
-        held_out: tuple[str, ...] | list[str] = HELD_OUT, verbose: bool = True,
-        pool: dict[str, float] | None = None) -> dict[str, Any]:
+def run(
+    seeds: int = 3,
+    generations: int = 40,
+    pairs: int = 16,
+    episode_steps: int = 200,
+    single: str = SINGLE,
+    held_out: tuple[str, ...] | list[str] = HELD_OUT,
+    verbose: bool = True,
+    pool: dict[str, float] | None = None,
+) -> dict[str, Any]:
     """Train both conditions for every seed and evaluate on ``held_out``; see module docstring."""
     from ..errors import ConfigError
     from ..learn.es import ESConfig, evaluate_laps, make_training_env, train
@@ -68,18 +79,33 @@ def run(seeds: int = 3, generations: int = 40, pairs: int = 16, episode_steps: i
             t0, c0 = time.perf_counter(), time.process_time()
             result = train(track, cfg, env=env)
             laps = evaluate_laps(result.theta, list(held_out), cfg)
-            run = {"condition": name, "seed": seed, "env_steps": result.env_steps,
-                   "train_seconds": round(result.seconds, 1), "cpu_seconds": round(time.process_time() - c0, 1),
-                   "wall_seconds": round(time.perf_counter() - t0, 1), "final_mean_return": result.curve[-1]["mean_return"],
-                   "laps": laps}
+            run = {
+                "condition": name,
+                "seed": seed,
+                "env_steps": result.env_steps,
+                "train_seconds": round(result.seconds, 1),
+                "cpu_seconds": round(time.process_time() - c0, 1),
+                "wall_seconds": round(time.perf_counter() - t0, 1),
+                "final_mean_return": result.curve[-1]["mean_return"],
+                "laps": laps,
+            }
             runs.append(run)
             if verbose:
                 clean = sum(lap["clean_lap"] for lap in laps)
-                print(f"  {name:6s} seed {seed}: {clean}/{len(laps)} clean laps on held-out maps "
-                      f"({run['env_steps']} env-steps, {run['wall_seconds']} s)", flush=True)
-    return {"budget": {"generations": generations, "pairs": pairs, "episode_steps": episode_steps},
-            "single": single, "pool": pool, "held_out": list(held_out), "seeds": seeds,
-            "summary": summarise(runs), "runs": runs}
+                print(
+                    f"  {name:6s} seed {seed}: {clean}/{len(laps)} clean laps on held-out maps "
+                    f"({run['env_steps']} env-steps, {run['wall_seconds']} s)",
+                    flush=True,
+                )
+    return {
+        "budget": {"generations": generations, "pairs": pairs, "episode_steps": episode_steps},
+        "single": single,
+        "pool": pool,
+        "held_out": list(held_out),
+        "seeds": seeds,
+        "summary": summarise(runs),
+        "runs": runs,
+    }
 
 
 def summarise(runs: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
@@ -93,17 +119,21 @@ def summarise(runs: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
         for lap in laps:
             per_track[lap["track"]] = per_track.get(lap["track"], 0) + int(lap["clean_lap"])
         steps = [r["env_steps"] for r in runs if r["condition"] == name]
-        out[name] = {"clean_lap_rate": round(len(times) / len(laps), 3),
-                     "mean_env_steps": round(sum(steps) / len(steps)),
-                     "mean_lap_time_s": round(sum(times) / len(times), 2) if times else None,
-                     "clean_laps_per_track": per_track}
+        out[name] = {
+            "clean_lap_rate": round(len(times) / len(laps), 3),
+            "mean_env_steps": round(sum(steps) / len(steps)),
+            "mean_lap_time_s": round(sum(times) / len(times), 2) if times else None,
+            "clean_laps_per_track": per_track,
+        }
     return out
 
 
 def print_table(res: dict[str, Any]) -> None:
     b = res["budget"]
-    print(f"ES budget per run: {b['generations']} generations x {2 * b['pairs']} envs x <= {b['episode_steps']} steps "
-          f"(episodes end at a contact); {res['seeds']} seeds per condition")
+    print(
+        f"ES budget per run: {b['generations']} generations x {2 * b['pairs']} envs x <= {b['episode_steps']} steps "
+        f"(episodes end at a contact); {res['seeds']} seeds per condition"
+    )
     print(f"held-out recorded maps: {', '.join(res['held_out'])}")
     print(f"{'condition':<34}{'env-steps/run':>14}{'clean-lap rate':>16}{'mean lap time (s)':>20}")
     names = {"single": f"one track ({res['single']})", "pool": "pool (" + " + ".join(res["pool"]) + ")"}

@@ -22,8 +22,12 @@ TARGET_SECONDS = 10.0
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("library", help="circuit library build time and raster accuracy",
-                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = kinds.add_parser(
+        "library",
+        help="circuit library build time and raster accuracy",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     p.add_argument("--sources", type=Path, default=None, help="track-sources directory")
     p.add_argument("--jobs", type=int, default=None, help="threads (default: all cores)")
     p.add_argument("--resolution", type=float, default=0.05, help="m per cell (default 0.05)")
@@ -38,26 +42,52 @@ def run(sources: Path | None = None, jobs: int | None = None, resolution: float 
         s = build_all(sources, tmp, CircuitConfig(resolution=resolution), jobs=jobs or os.cpu_count() or 1)
     errs = [r for r in s["results"] if r.get("length_error") is not None]
     res = {
-        "circuits": s["circuits"], "built": s["built"], "one_corridor": s["one_corridor"], "jobs": s["jobs"],
-        "seconds": s["seconds"], "mean_error_pct": 100 * (s["mean_length_error"] or 0),
-        "max_error_pct": 100 * (s["max_length_error"] or 0), "measured_circuits": len(errs),
+        "circuits": s["circuits"],
+        "built": s["built"],
+        "one_corridor": s["one_corridor"],
+        "jobs": s["jobs"],
+        "seconds": s["seconds"],
+        "mean_error_pct": 100 * (s["mean_length_error"] or 0),
+        "max_error_pct": 100 * (s["max_length_error"] or 0),
+        "measured_circuits": len(errs),
         "grade_separated": s["grade_separated"],
         "cpu_seconds_per_circuit": {
             "median": sorted(r["seconds"] for r in s["results"] if "seconds" in r)[len(s["results"]) // 2],
-            "raster_median": sorted(r["seconds_raster"] for r in s["results"] if "seconds_raster" in r)[len(s["results"]) // 2],
+            "raster_median": sorted(r["seconds_raster"] for r in s["results"] if "seconds_raster" in r)[
+                len(s["results"]) // 2
+            ],
         },
-        "per_circuit": [{k: r.get(k) for k in ("id", "source", "lap_length_m", "length_error", "width_mean_m",
-                                               "width_min_m", "narrowed_fraction", "grade_separated", "raster", "seconds")}
-                        for r in s["results"]],
+        "per_circuit": [
+            {
+                k: r.get(k)
+                for k in (
+                    "id",
+                    "source",
+                    "lap_length_m",
+                    "length_error",
+                    "width_mean_m",
+                    "width_min_m",
+                    "narrowed_fraction",
+                    "grade_separated",
+                    "raster",
+                    "seconds",
+                )
+            }
+            for r in s["results"]
+        ],
         "paper": PAPER,
     }
     print(f"{'':<28}{'ours':>12}{'paper':>12}")
     print(f"{'circuits built':<28}{res['built']:>12}{PAPER['circuits']:>12}")
-    print(f"{'wall time (s)':<28}{res['seconds']:>12.2f}{PAPER['seconds']:>12.2f}   ({res['jobs']} threads; target ≤ {TARGET_SECONDS:g} s)")
+    print(
+        f"{'wall time (s)':<28}{res['seconds']:>12.2f}{PAPER['seconds']:>12.2f}   ({res['jobs']} threads; target ≤ {TARGET_SECONDS:g} s)"
+    )
     print(f"{'length error mean (%)':<28}{res['mean_error_pct']:>12.3f}{PAPER['mean_error_pct']:>12.3f}")
     print(f"{'length error max (%)':<28}{res['max_error_pct']:>12.3f}{PAPER['max_error_pct']:>12.3f}")
-    print(f"{'per circuit, median (s)':<28}{res['cpu_seconds_per_circuit']['median']:>12.2f}"
-          f"   (of which smoothing + narrowing + rasterising {res['cpu_seconds_per_circuit']['raster_median']:.2f} s)")
+    print(
+        f"{'per circuit, median (s)':<28}{res['cpu_seconds_per_circuit']['median']:>12.2f}"
+        f"   (of which smoothing + narrowing + rasterising {res['cpu_seconds_per_circuit']['raster_median']:.2f} s)"
+    )
     return res
 
 

@@ -23,8 +23,9 @@ import resource
 import statistics
 import time
 import warnings
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from ..errors import ArenaError, InvalidArgumentError
 from ..fileio import atomic_write_text
@@ -60,7 +61,11 @@ def load_requests(path: Path) -> list[dict[str, Any]]:
             continue
         try:
             d = json.loads(line)
-            assert d["set"] in ("parse", "audit", "refuse") and isinstance(d["text"], str) and isinstance(d["expected"], dict)
+            assert (
+                d["set"] in ("parse", "audit", "refuse")
+                and isinstance(d["text"], str)
+                and isinstance(d["expected"], dict)
+            )
         except (json.JSONDecodeError, KeyError, AssertionError) as e:
             raise InvalidArgumentError(f"{path}:{n}: not a request line ({e})") from None
         out.append(d)
@@ -122,7 +127,14 @@ def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any
                 named = err is not None and str(req.get("span", "")) in err
                 refuse_ok += int(named)
                 if not named:
-                    misses.append({"id": req["id"], "set": "refuse", "fields": ["(accepted)" if err is None else "(span not named)"], "error": err})
+                    misses.append(
+                        {
+                            "id": req["id"],
+                            "set": "refuse",
+                            "fields": ["(accepted)" if err is None else "(span not named)"],
+                            "error": err,
+                        }
+                    )
                 continue
             exact, clean, wrong = score(got, req["expected"])
             if got is not None and not clean:  # would the grounding guard have caught it?
@@ -168,18 +180,24 @@ def run_sets() -> dict[str, Any]:
         reqs = [r for r in load_requests(bench_data(name)) if batch is None or r.get("batch") == batch]
         rows[label] = evaluate(_rules_call, reqs, 1)
     blind = json.loads(Path(BLIND_SCORE).read_text(encoding="utf-8"))
-    print(f"\nrules parser over the shipped request sets (audit once; blind = main at {blind['parser_commit']}, recorded)")
+    print(
+        f"\nrules parser over the shipped request sets (audit once; blind = main at {blind['parser_commit']}, recorded)"
+    )
     head = f"{'request set':<34} {'parse':>7} {'refusals':>9} {'audit':>7} {'all':>8}"
     print(head)
     print("-" * len(head))
     for name, b in blind["files"].items():
-        print(f"{'blind run: ' + name:<34} {b['parse']:>7} {b['refuse']:>9} {'-':>7} {str(b['correct']) + '/' + str(b['total']):>8}")
+        print(
+            f"{'blind run: ' + name:<34} {b['parse']:>7} {b['refuse']:>9} {'-':>7} {str(b['correct']) + '/' + str(b['total']):>8}"
+        )
     for label, r in rows.items():
         ok = r["parse_exact"] + r["refuse_correct"] + r["audit_pass"]
         n = r["parse_total"] + r["refuse_total"] + r["audit_calls"]
         print(f"{label:<34} {r['parse']:>7} {r['refuse']:>9} {r['audit']:>7} {f'{ok}/{n}':>8}")
         for m in r["misses"]:
-            print(f"  miss {m['id']} ({m['set']}): {', '.join(m['fields'])}" + (f" — {m['error']}" if m["error"] else ""))
+            print(
+                f"  miss {m['id']} ({m['set']}): {', '.join(m['fields'])}" + (f" — {m['error']}" if m["error"] else "")
+            )
     return {"sets": rows, "blind_recorded": blind}
 
 
@@ -236,7 +254,10 @@ def print_table(results: dict[str, Any]) -> None:
         print(f"{row[0]:<24} {row[1]:>7} {row[2]:>11} {row[3]:>10}  {row[4]}")
     for name, r in results["rows"].items():
         for m in r.get("misses", []):
-            print(f"  miss [{name}] {m['id']} ({m['set']}): {', '.join(m['fields'])}" + (f" — {m['error']}" if m["error"] else ""))
+            print(
+                f"  miss [{name}] {m['id']} ({m['set']}): {', '.join(m['fields'])}"
+                + (f" — {m['error']}" if m["error"] else "")
+            )
 
 
 def run_quick() -> dict[str, Any]:
@@ -262,7 +283,9 @@ def register(kinds) -> None:
 def _cli(args: argparse.Namespace) -> int:
     if args.repeats < 1:
         raise InvalidArgumentError(f"--repeats must be ≥ 1, got {args.repeats}")
-    results = run(args.requests or REPO_REQUESTS, tuple(args.backend), args.repeats, args.ollama_host, args.model, args.timeout)
+    results = run(
+        args.requests or REPO_REQUESTS, tuple(args.backend), args.repeats, args.ollama_host, args.model, args.timeout
+    )
     if args.requests is None:
         results.update(run_sets())
     if args.json:

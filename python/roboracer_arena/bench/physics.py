@@ -22,8 +22,8 @@ from typing import Any
 import numpy as np
 
 from .. import _core
-from ..sim_config import PhysicsConfig, SimConfig
 from ..fileio import atomic_write_text
+from ..sim_config import PhysicsConfig, SimConfig
 
 # Paper (Isaac Sim, AMD EPYC 9654 + RTX PRO 6000): vehicle-steps/s by vehicle count.
 PAPER = {1: 28.1, 256: 8707.0, 1024: 8368.0, 2048: 6818.0}
@@ -95,7 +95,7 @@ def measure(
         calls += 1
         wall_contacts += int(np.count_nonzero(events & 1))
     steps = calls * substeps * envs * per_env
-    pipeline, shortcut = sim.step_counts()
+    pipeline, shortcut_steps = sim.step_counts()
     return {
         "vehicles": envs * per_env,
         "envs": envs,
@@ -106,7 +106,7 @@ def measure(
         "vehicle_steps_per_s": steps / busy,
         "sim_seconds_per_wall_second": calls * substeps * dt / busy,
         "wall_contact_fraction": wall_contacts / max(1, calls * envs * per_env),
-        "rapier_pipeline_fraction": pipeline / max(1, pipeline + shortcut),
+        "rapier_pipeline_fraction": pipeline / max(1, pipeline + shortcut_steps),
         "mean_speed": float(np.mean(np.abs(state[..., sim.state_fields.index("vx")]))),
     }
 
@@ -118,7 +118,7 @@ def measure_scan(seconds: float = 1.0, beams: int = 1081) -> dict[str, Any]:
     scans = np.zeros((1, 1, sim.num_beams), np.float32)
     state = np.zeros((1, 1, len(sim.state_fields)))
     events = np.zeros((1, 1), np.uint8)
-    times = []
+    times: list[float] = []
     start = time.perf_counter()
     while time.perf_counter() - start < seconds or len(times) < 20:
         t0 = time.perf_counter()
@@ -131,7 +131,9 @@ def _threads() -> str:
     return os.environ.get("RAYON_NUM_THREADS") or f"{os.cpu_count()} (all cores)"
 
 
-def run(vehicles: list[int], per_env: int, seconds: float, substeps: int, dt: float, shortcut: bool = True) -> dict[str, Any]:
+def run(
+    vehicles: list[int], per_env: int, seconds: float, substeps: int, dt: float, shortcut: bool = True
+) -> dict[str, Any]:
     rows = [measure(n, per_env, seconds, substeps, dt, shortcut=shortcut) for n in vehicles]
     scan = measure_scan(min(1.0, seconds))
     return {"machine": platform.processor() or platform.machine(), "threads": _threads(), "rows": rows, "scan": scan}
@@ -154,7 +156,9 @@ def print_table(result: dict[str, Any]) -> None:
             f"{(('ok ' if ours >= target else 'MISS ') + f'{target:,.0f}') if target else '-':>9}"
         )
     s = result["scan"]
-    print(f"one {s['beams']}-beam lidar scan (exact 2D, stadium track): {s['scan_us_median']:.1f} us median over {s['repeats']} scans")
+    print(
+        f"one {s['beams']}-beam lidar scan (exact 2D, stadium track): {s['scan_us_median']:.1f} us median over {s['repeats']} scans"
+    )
 
 
 def _cli(args: argparse.Namespace) -> int:
@@ -168,9 +172,20 @@ def _cli(args: argparse.Namespace) -> int:
 
 def register(kinds) -> None:
     p = kinds.add_parser("physics", help="vehicle-steps/s of the native simulator (lidar off)", description=__doc__)
-    p.add_argument("--vehicles", type=int, nargs="+", default=[1, 256, 1024, 2048], metavar="N", help="vehicle counts (default: 1 256 1024 2048)")
-    p.add_argument("--per-env", type=int, default=1, metavar="V", help="vehicles per world (default 1: one car per env)")
-    p.add_argument("--seconds", type=float, default=3.0, metavar="S", help="timed seconds per vehicle count (default 3)")
+    p.add_argument(
+        "--vehicles",
+        type=int,
+        nargs="+",
+        default=[1, 256, 1024, 2048],
+        metavar="N",
+        help="vehicle counts (default: 1 256 1024 2048)",
+    )
+    p.add_argument(
+        "--per-env", type=int, default=1, metavar="V", help="vehicles per world (default 1: one car per env)"
+    )
+    p.add_argument(
+        "--seconds", type=float, default=3.0, metavar="S", help="timed seconds per vehicle count (default 3)"
+    )
     p.add_argument("--substeps", type=int, default=10, help="physics steps per Simulator.step call (default 10)")
     p.add_argument("--dt", type=float, default=PhysicsConfig().dt, help="physics time step in s (default 0.005)")
     p.add_argument(

@@ -83,13 +83,14 @@ def _timed_runs(ex: Any, tasks: list, repeats: int) -> tuple[list[float], list]:
     from ..distributed import map_ordered
     from ..library.generated import generate_files
 
-    walls, first = [], None
+    walls: list[float] = []
+    first: list = []
     for _ in range(repeats):
         t0 = time.perf_counter()
         res = map_ordered(ex, generate_files, tasks)
         walls.append(time.perf_counter() - t0)
         first = first or res
-    return walls, first  # type: ignore[return-value]
+    return walls, first
 
 
 def _gen_local(jobs: int, tasks: list, repeats: int) -> tuple[list[float], list]:

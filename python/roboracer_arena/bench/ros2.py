@@ -34,8 +34,12 @@ TARGET_RTF, TARGET_LATENCY_MS = 20.0, 50.0
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("ros2", help="ROS 2 bridge: message rate at --rate max, /drive latency in real time",
-                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = kinds.add_parser(
+        "ros2",
+        help="ROS 2 bridge: message rate at --rate max, /drive latency in real time",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     p.add_argument("--map", type=Path, default=None, help="map YAML (default: f1tenth-gym berlin from the sources)")
     p.add_argument("--seconds", type=float, default=8.0, help="wall seconds per mode (default 8)")
     p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
@@ -57,31 +61,51 @@ def follow_the_gap(ranges: np.ndarray, fov: float, speed: float = 2.0, max_steer
 
 
 def _run_mode(map_path: Path, rate: str, seconds: float) -> dict[str, Any]:
+    from cyclonedds.pub import DataWriter
+    from cyclonedds.sub import DataReader
+    from cyclonedds.topic import Topic
+
     from ..ros2 import msgs
     from ..ros2 import state_msgs as sm
     from ..ros2.dds import participant
     from ..ros2.qos import qos_for
     from ..ros2.topics import dds_topic
 
-    from cyclonedds.pub import DataWriter
-    from cyclonedds.sub import DataReader
-    from cyclonedds.topic import Topic
-
     domain = random.SystemRandom().randint(1, 200)
     dp = participant(domain, loopback=True)
-    subs = {"/scan": "sensor_msgs/msg/LaserScan", "/ego_racecar/odom": "nav_msgs/msg/Odometry",
-            "/tf": "tf2_msgs/msg/TFMessage", "/clock": "rosgraph_msgs/msg/Clock"}
-    readers = {t: DataReader(dp, Topic(dp, dds_topic(t), msgs.msg_class(ty), qos=qos_for(t)), qos=qos_for(t))
-               for t, ty in subs.items()}
-    drive_w = DataWriter(dp, Topic(dp, dds_topic("/drive"), msgs.AckermannDriveStamped, qos=qos_for("/drive")),
-                         qos=qos_for("/drive"))
-    cmd = [sys.executable, "-c", "import sys; from roboracer_arena.cli import main; sys.exit(main())", "ros2",
-           str(map_path), "--domain-id", str(domain), "--rate", rate, "--loopback", "--json",
-           "--duration", str(seconds + 30)]
+    subs = {
+        "/scan": "sensor_msgs/msg/LaserScan",
+        "/ego_racecar/odom": "nav_msgs/msg/Odometry",
+        "/tf": "tf2_msgs/msg/TFMessage",
+        "/clock": "rosgraph_msgs/msg/Clock",
+    }
+    readers: dict[str, DataReader[Any]] = {
+        t: DataReader(dp, Topic(dp, dds_topic(t), msgs.msg_class(ty), qos=qos_for(t)), qos=qos_for(t))
+        for t, ty in subs.items()
+    }
+    drive_w: DataWriter[Any] = DataWriter(
+        dp, Topic(dp, dds_topic("/drive"), msgs.AckermannDriveStamped, qos=qos_for("/drive")), qos=qos_for("/drive")
+    )
+    cmd = [
+        sys.executable,
+        "-c",
+        "import sys; from roboracer_arena.cli import main; sys.exit(main())",
+        "ros2",
+        str(map_path),
+        "--domain-id",
+        str(domain),
+        "--rate",
+        rate,
+        "--loopback",
+        "--json",
+        "--duration",
+        str(seconds + 30),
+    ]
     env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     counts = {t: 0 for t in subs}
-    first_clock = last_clock = None
+    first_clock: float | None = None
+    last_clock: float | None = None
     t_first = t_last = 0.0
     path_len, last_xy = 0.0, None
     deadline = time.monotonic() + seconds + 25  # discovery and startup included
@@ -103,9 +127,12 @@ def _run_mode(map_path: Path, rate: str, seconds: float) -> dict[str, Any]:
                         last_clock, t_last = c, now
                     elif t == "/scan" and first_clock is not None:
                         steer, speed = follow_the_gap(np.asarray(s.ranges), s.angle_max - s.angle_min)
-                        drive_w.write(msgs.AckermannDriveStamped(
-                            header=msgs.Header(stamp=s.header.stamp, frame_id="ego_racecar/base_link"),
-                            drive=msgs.AckermannDrive(steering_angle=steer, speed=speed)))
+                        drive_w.write(
+                            msgs.AckermannDriveStamped(
+                                header=msgs.Header(stamp=s.header.stamp, frame_id="ego_racecar/base_link"),
+                                drive=msgs.AckermannDrive(steering_angle=steer, speed=speed),
+                            )
+                        )
                     elif t == "/ego_racecar/odom":
                         p = s.pose.pose.position
                         if last_xy is not None:
@@ -122,15 +149,22 @@ def _run_mode(map_path: Path, rate: str, seconds: float) -> dict[str, Any]:
         except subprocess.TimeoutExpired:
             proc.kill()
             out, err = proc.communicate()
-    if first_clock is None:
+    if first_clock is None or last_clock is None:
         raise RuntimeError(f"bench ros2: no /clock received from the bridge (stderr: {err.strip()[-300:]})")
     wall = max(t_last - t_first, 1e-9)
-    bridge = json.loads(out[out.index("{"):]) if "{" in out else {}
+    bridge = json.loads(out[out.index("{") :]) if "{" in out else {}
     received = sum(counts.values())
-    return {"mode": f"--rate {rate}", "wall_s": round(wall, 3), "sim_s": round(last_clock - first_clock, 3),
-            "real_time_factor_received": round((last_clock - first_clock) / wall, 2),
-            "received_per_s": round(received / wall, 1), "scans_received_per_s": round(counts["/scan"] / wall, 1),
-            "received": counts, "odom_path_m": round(path_len, 2), "bridge": bridge}
+    return {
+        "mode": f"--rate {rate}",
+        "wall_s": round(wall, 3),
+        "sim_s": round(last_clock - first_clock, 3),
+        "real_time_factor_received": round((last_clock - first_clock) / wall, 2),
+        "received_per_s": round(received / wall, 1),
+        "scans_received_per_s": round(counts["/scan"] / wall, 1),
+        "received": counts,
+        "odom_path_m": round(path_len, 2),
+        "bridge": bridge,
+    }
 
 
 def run(map_path: Path | None = None, seconds: float = 8.0) -> dict[str, Any]:
@@ -140,22 +174,33 @@ def run(map_path: Path | None = None, seconds: float = 8.0) -> dict[str, Any]:
     load = round(os.getloadavg()[0], 2) if hasattr(os, "getloadavg") else None
     mx, rt = rows
     lat = rt["bridge"].get("drive_latency_ms") or {}
-    print(f"ROS 2 bridge on {map_path.stem}: 1 car, 1081-beam scan at 39.9 Hz, odometry+tf 50 Hz, /clock 100 Hz, "
-          f"DDS over loopback to a second process (follow-the-gap on every scan); load average {load}")
+    print(
+        f"ROS 2 bridge on {map_path.stem}: 1 car, 1081-beam scan at 39.9 Hz, odometry+tf 50 Hz, /clock 100 Hz, "
+        f"DDS over loopback to a second process (follow-the-gap on every scan); load average {load}"
+    )
     print(f"{'mode':<12}{'sim s/wall s':>14}{'msgs/s recv':>13}{'scans/s':>9}{'bridge CPU s':>14}  target")
     ok = "ok" if mx["real_time_factor_received"] >= TARGET_RTF else "MISS"
     for r in rows:
         b = r["bridge"]
         tgt = f"≥{TARGET_RTF:.0f}× {ok}" if r is mx else ""
-        print(f"{r['mode']:<12}{r['real_time_factor_received']:>14.2f}{r['received_per_s']:>13,.0f}"
-              f"{r['scans_received_per_s']:>9,.0f}{b.get('cpu_time_s', float('nan')):>14.2f}  {tgt}")
+        print(
+            f"{r['mode']:<12}{r['real_time_factor_received']:>14.2f}{r['received_per_s']:>13,.0f}"
+            f"{r['scans_received_per_s']:>9,.0f}{b.get('cpu_time_s', float('nan')):>14.2f}  {tgt}"
+        )
     if lat:
         ok = "ok" if lat["p99"] < TARGET_LATENCY_MS else "MISS"
-        print(f"/drive write → command in effect (real time, {rt['bridge'].get('drive_commands')} commands): "
-              f"median {lat['median']:.2f} ms, p99 {lat['p99']:.2f} ms, max {lat['max']:.2f} ms "
-              f"(target p99 < {TARGET_LATENCY_MS:.0f} ms = one control period) {ok}")
-    return {"map": map_path.stem, "load_average_1min": load, "target_real_time_factor": TARGET_RTF,
-            "target_latency_ms": TARGET_LATENCY_MS, "rows": rows}
+        print(
+            f"/drive write → command in effect (real time, {rt['bridge'].get('drive_commands')} commands): "
+            f"median {lat['median']:.2f} ms, p99 {lat['p99']:.2f} ms, max {lat['max']:.2f} ms "
+            f"(target p99 < {TARGET_LATENCY_MS:.0f} ms = one control period) {ok}"
+        )
+    return {
+        "map": map_path.stem,
+        "load_average_1min": load,
+        "target_real_time_factor": TARGET_RTF,
+        "target_latency_ms": TARGET_LATENCY_MS,
+        "rows": rows,
+    }
 
 
 def run_quick() -> dict[str, Any]:

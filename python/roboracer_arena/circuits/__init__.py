@@ -11,7 +11,17 @@ from .projection import geodesic_distance, geodesic_length, project_local
 from .sources import CircuitInput, circuit_inputs, read_geojson, read_tum_csv
 
 __all__ = [
-    "CircuitConfig", "CircuitInput", "build_all", "build_circuit", "circuit_inputs",
-    "geodesic_distance", "geodesic_length", "project_local", "read_geojson", "read_tum_csv", "reduce_widths",
-    "self_intersections", "smooth_resample",
+    "CircuitConfig",
+    "CircuitInput",
+    "build_all",
+    "build_circuit",
+    "circuit_inputs",
+    "geodesic_distance",
+    "geodesic_length",
+    "project_local",
+    "read_geojson",
+    "read_tum_csv",
+    "reduce_widths",
+    "self_intersections",
+    "smooth_resample",
 ]

@@ -11,10 +11,10 @@ import io
 import json
 import os
 import time
+from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Callable, Iterator
 
 import numpy as np
 
@@ -96,7 +96,7 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
 
     out = Path(outdir) / c.id
     out.mkdir(parents=True, exist_ok=True)
-    yaml_path = OccupancyMap(data, cfg.resolution, tuple(origin)).save(out / "map.yaml")
+    yaml_path = OccupancyMap(data, cfg.resolution, origin).save(out / "map.yaml")
     png = (out / "map.png").read_bytes()
     every = max(1, int(round(cfg.csv_spacing / cfg.spacing)))
     atomic_write_text(out / "centreline.csv", _csv(xy[::every], nar.widths[::every]))

@@ -4,6 +4,7 @@ reduction where non-local sections of the loop would merge after rasterisation."
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,7 +22,9 @@ def loop_length(xy: np.ndarray) -> float:
     return float(np.hypot(d[:, 0], d[:, 1]).sum())
 
 
-def smooth_resample(xy: np.ndarray, widths: np.ndarray, spacing: float, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
+def smooth_resample(
+    xy: np.ndarray, widths: np.ndarray, spacing: float, tolerance: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Fit a periodic cubic smoothing spline through a closed loop and resample it every
     ``spacing`` metres of arc length. ``tolerance`` is the RMS distance (m) the spline
     may keep from the input vertices (``s = N · tolerance²``). Widths are interpolated
@@ -87,7 +90,7 @@ def reduce_widths(
     widths: np.ndarray,
     wall_thickness: float,
     spacing: float,
-    crossings: list[tuple[int, int, np.ndarray]] = (),  # type: ignore[assignment]
+    crossings: Sequence[tuple[int, int, np.ndarray]] = (),
     min_fraction: float = MIN_WIDTH_FRACTION,
 ) -> Narrowing:
     """Narrow the corridor where two non-local sections would merge.
@@ -129,7 +132,8 @@ def reduce_widths(
             min_sep = float(d.min())
         need = (d - wall_thickness) / wsum
         bad = need < 1.0
-        for a, b, f in ((i[bad], j[bad], need[bad]), (j[bad], i[bad], need[bad])):
+        f = need[bad]
+        for a in (i[bad], j[bad]):  # both ends of every too-close pair narrow
             np.minimum.at(factor, a, np.clip(f, min_fraction, 1.0))
             unresolved[a[f < min_fraction]] = True
     ease = max(1, int(round(1.0 / spacing)))

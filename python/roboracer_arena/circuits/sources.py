@@ -29,11 +29,27 @@ BACINGER_WIDTH_M = 12.0
 
 #: bacinger id -> the TUM track at the same venue (the layouts are compared by length).
 SAME_VENUE = {
-    "ae-2009": "YasMarina", "at-1969": "Spielberg", "au-1953": "Melbourne", "be-1925": "Spa",
-    "bh-2002": "Sakhir", "br-1940": "SaoPaulo", "ca-1978": "Montreal", "cn-2004": "Shanghai",
-    "de-1927": "Nuerburgring", "de-1932": "Hockenheim", "es-1991": "Catalunya", "gb-1948": "Silverstone",
-    "hu-1986": "Budapest", "it-1922": "Monza", "jp-1962": "Suzuka", "mx-1962": "MexicoCity",
-    "my-1999": "Sepang", "nl-1948": "Zandvoort", "ru-2014": "Sochi", "us-1909": "IMS", "us-2012": "Austin",
+    "ae-2009": "YasMarina",
+    "at-1969": "Spielberg",
+    "au-1953": "Melbourne",
+    "be-1925": "Spa",
+    "bh-2002": "Sakhir",
+    "br-1940": "SaoPaulo",
+    "ca-1978": "Montreal",
+    "cn-2004": "Shanghai",
+    "de-1927": "Nuerburgring",
+    "de-1932": "Hockenheim",
+    "es-1991": "Catalunya",
+    "gb-1948": "Silverstone",
+    "hu-1986": "Budapest",
+    "it-1922": "Monza",
+    "jp-1962": "Suzuka",
+    "mx-1962": "MexicoCity",
+    "my-1999": "Sepang",
+    "nl-1948": "Zandvoort",
+    "ru-2014": "Sochi",
+    "us-1909": "IMS",
+    "us-2012": "Austin",
 }
 #: Layouts whose lap lengths differ by more than this are different circuits.
 SAME_LAYOUT_TOL = 0.03
@@ -42,11 +58,27 @@ SAME_LAYOUT_TOL = 0.03
 DIFFERENT_LAYOUT = {"us-1909"}
 #: Catalog ids for the bacinger circuits (the GeoJSON "Location" is often a town name).
 BACINGER_IDS = {
-    "ae-2009": "yas-marina-2009", "ar-1952": "buenos-aires", "az-2016": "baku", "br-1977": "jacarepagua",
-    "es-2026": "madring", "fr-1960": "magny-cours", "fr-1969": "paul-ricard", "it-1914": "mugello",
-    "it-1953": "imola", "mc-1929": "monaco", "pt-1972": "estoril", "pt-2008": "portimao", "qa-2004": "losail",
-    "sa-2021": "jeddah", "sg-2008": "marina-bay", "tr-2005": "istanbul-park", "us-1909": "indianapolis-road-course",
-    "us-1956": "watkins-glen", "us-2022": "miami", "us-2023": "las-vegas", "za-1961": "kyalami",
+    "ae-2009": "yas-marina-2009",
+    "ar-1952": "buenos-aires",
+    "az-2016": "baku",
+    "br-1977": "jacarepagua",
+    "es-2026": "madring",
+    "fr-1960": "magny-cours",
+    "fr-1969": "paul-ricard",
+    "it-1914": "mugello",
+    "it-1953": "imola",
+    "mc-1929": "monaco",
+    "pt-1972": "estoril",
+    "pt-2008": "portimao",
+    "qa-2004": "losail",
+    "sa-2021": "jeddah",
+    "sg-2008": "marina-bay",
+    "tr-2005": "istanbul-park",
+    "us-1909": "indianapolis-road-course",
+    "us-1956": "watkins-glen",
+    "us-2022": "miami",
+    "us-2023": "las-vegas",
+    "za-1961": "kyalami",
 }
 
 
@@ -118,8 +150,13 @@ def read_tum_csv(path: str | Path) -> CircuitInput:
     normal_left = np.column_stack([-tangent[:, 1], tangent[:, 0]])
     mid = xy + normal_left * ((wl - wr) / 2)[:, None]
     return CircuitInput(
-        id=slug(p.stem), name=re.sub(r"(?<=[a-z])(?=[A-Z])", " ", p.stem), source="tumftm", path=p,
-        xy=mid, widths=wr + wl, width_note="measured (TUM w_tr_right + w_tr_left)",
+        id=slug(p.stem),
+        name=re.sub(r"(?<=[a-z])(?=[A-Z])", " ", p.stem),
+        source="tumftm",
+        path=p,
+        xy=mid,
+        widths=wr + wl,
+        width_note="measured (TUM w_tr_right + w_tr_left)",
     )
 
 
@@ -157,11 +194,20 @@ def read_geojson(path: str | Path, width_m: float = BACINGER_WIDTH_M) -> Circuit
     cid = str(props.get("id") or p.stem)
     name = str(props.get("Name") or props.get("name") or cid)
     location = str(props.get("Location") or "")
-    meta = {"bacinger_id": cid, "location": location, "stated_length_m": props.get("length"),
-            "geodesic_length_m": round(geodesic_length(ll), 2)}
+    meta = {
+        "bacinger_id": cid,
+        "location": location,
+        "stated_length_m": props.get("length"),
+        "geodesic_length_m": round(geodesic_length(ll), 2),
+    }
     return CircuitInput(
-        id=BACINGER_IDS.get(cid) or slug(location or name), name=name, source="bacinger", path=p, xy=project_local(ll),
-        widths=np.full(len(ll), float(width_m)), width_note=f"constant {width_m:g} m full scale (no widths in the data)",
+        id=BACINGER_IDS.get(cid) or slug(location or name),
+        name=name,
+        source="bacinger",
+        path=p,
+        xy=project_local(ll),
+        widths=np.full(len(ll), float(width_m)),
+        width_note=f"constant {width_m:g} m full scale (no widths in the data)",
         meta=meta,
     )
 
@@ -172,7 +218,9 @@ def circuit_inputs(sources: str | Path | None = None) -> tuple[list[CircuitInput
     tum_files = sorted((root / TUM_DIR / "tracks").glob("*.csv"))
     geo_files = sorted((root / BACINGER_DIR / "circuits").glob("*.geojson"))
     if not tum_files and not geo_files:
-        raise MapIOError(f"{root}: no circuit data found (expected {TUM_DIR}/tracks/*.csv, {BACINGER_DIR}/circuits/*.geojson)")
+        raise MapIOError(
+            f"{root}: no circuit data found (expected {TUM_DIR}/tracks/*.csv, {BACINGER_DIR}/circuits/*.geojson)"
+        )
     tum = {f.stem: read_tum_csv(f) for f in tum_files}
     out = list(tum.values())
     skipped = []
@@ -185,8 +233,14 @@ def circuit_inputs(sources: str | Path | None = None) -> tuple[list[CircuitInput
         elif twin is not None:
             rel = abs(c.length_m - twin.length_m) / twin.length_m
             if rel <= SAME_LAYOUT_TOL:
-                skipped.append({"bacinger_id": c.meta["bacinger_id"], "name": c.name, "covered_by": twin.id,
-                                "length_difference": round(rel, 4)})
+                skipped.append(
+                    {
+                        "bacinger_id": c.meta["bacinger_id"],
+                        "name": c.name,
+                        "covered_by": twin.id,
+                        "length_difference": round(rel, 4),
+                    }
+                )
                 continue
             c.meta["differs_from"] = {"tum": twin.id, "length_difference": round(rel, 4)}
         if c.id in ids:

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Sequence
 from importlib import import_module
-from typing import Sequence
 
 from .. import __version__
 from ..errors import ArenaError
@@ -20,7 +20,16 @@ from ._common import check_numeric_flags
 
 # Subcommand modules, in the order `--help` lists them.
 COMMANDS: list[str] = [
-    "bench", "build", "circuits", "drive", "generate", "parse", "preview", "ros2", "tracks", "validate",
+    "bench",
+    "build",
+    "circuits",
+    "drive",
+    "generate",
+    "parse",
+    "preview",
+    "ros2",
+    "tracks",
+    "validate",
 ]
 
 EXIT_OK, EXIT_INTERNAL, EXIT_BAD_INPUT, EXIT_REJECTED, EXIT_GENERATION_FAILURE = 0, 1, 2, 3, 4

@@ -12,7 +12,18 @@ from pathlib import Path
 from ..fileio import atomic_write_text
 
 # Benchmark kinds, in the order `bench all` runs them.
-KINDS: list[str] = ["build", "physics", "env", "fidelity", "constructors", "parser", "library", "ros2", "generalisation", "ray"]
+KINDS: list[str] = [
+    "build",
+    "physics",
+    "env",
+    "fidelity",
+    "constructors",
+    "parser",
+    "library",
+    "ros2",
+    "generalisation",
+    "ray",
+]
 
 
 def register(sub) -> None:

@@ -7,17 +7,21 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ._common import add_json_flag, print_json
 from ..errors import InvalidArgumentError
+from ._common import add_json_flag, print_json
 
 
 def register(sub) -> None:
     p = sub.add_parser("build", help="ROS occupancy map → physics-ready USD stage", description=__doc__)
     p.add_argument("map", type=Path, metavar="MAP.yaml", help="ROS map YAML (image beside it)")
-    p.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.usdc", help="output stage (.usdc, .usda or .usd)")
+    p.add_argument(
+        "-o", "--out", type=Path, required=True, metavar="OUT.usdc", help="output stage (.usdc, .usda or .usd)"
+    )
     p.add_argument("--config", type=Path, metavar="F", help="BuildConfig file (.toml or .json)")
     p.add_argument(
-        "--start", metavar="x,y[,yaw]", help="seed the corridor from this pose (map frame, m/rad) instead of finding the ring; write --start=-1.5,2 when x is negative"
+        "--start",
+        metavar="x,y[,yaw]",
+        help="seed the corridor from this pose (map frame, m/rad) instead of finding the ring; write --start=-1.5,2 when x is negative",
     )
     p.add_argument("--usda", action="store_true", help="write text USD (the output must end in .usda or .usd)")
     p.add_argument("--no-textures", action="store_true", help="plain colours, no PNG textures beside the stage")

@@ -15,8 +15,9 @@ from ._common import add_json_flag, print_json
 
 
 def register(sub) -> None:
-    p = sub.add_parser("drive", help="drive the reference pure-pursuit car around a map (lap time, GIF)",
-                       description=__doc__)
+    p = sub.add_parser(
+        "drive", help="drive the reference pure-pursuit car around a map (lap time, GIF)", description=__doc__
+    )
     p.add_argument("map", metavar="MAP", help="ROS map YAML (or a catalog id)")
     p.add_argument("--laps", type=int, default=1, help="laps to drive (default 1)")
     p.add_argument("--gif", type=Path, metavar="OUT.gif", help="write the drive to OUT.gif (or .mp4)")
@@ -24,8 +25,12 @@ def register(sub) -> None:
     p.add_argument("--max-speed", type=float, default=None, help="speed cap of the driver (m/s, default 5)")
     p.add_argument("--max-time", type=float, default=None, help="give up after this much simulated time (s)")
     p.add_argument("--reverse", action="store_true", help="drive against the track's racing direction")
-    p.add_argument("--mcap", type=Path, metavar="RUN.mcap",
-                   help="record the drive as ROS 2 messages to an MCAP file (needs the [ros2] extra)")
+    p.add_argument(
+        "--mcap",
+        type=Path,
+        metavar="RUN.mcap",
+        help="record the drive as ROS 2 messages to an MCAP file (needs the [ros2] extra)",
+    )
     add_json_flag(p)
     p.set_defaults(func=run)
 
@@ -51,24 +56,37 @@ def run(args: argparse.Namespace) -> int:
 
         def wrapper(env):
             return McapEpisodeRecorder(env, args.mcap)
-    res = drive_laps(args.map, args.laps, params=params, video=args.gif, video_fps=args.fps,
-                     max_time_s=args.max_time, progress=not args.json, reverse=args.reverse,
-                     env_wrapper=wrapper)
+
+    res = drive_laps(
+        args.map,
+        args.laps,
+        params=params,
+        video=args.gif,
+        video_fps=args.fps,
+        max_time_s=args.max_time,
+        progress=not args.json,
+        reverse=args.reverse,
+        env_wrapper=wrapper,
+    )
     status = EXIT_OK if res.completed else EXIT_LAP_FAILED
     if args.json:
         print_json(res.to_dict())
         return status
     verdict = "completed" if res.completed else ("COLLIDED" if res.collided else "did not finish")
-    print(f"{res.track}: {verdict} {res.laps_completed}/{res.laps_requested} laps of {res.track_length:.1f} m "
-          f"in {res.sim_time:.2f} s simulated ({res.wall_time:.2f} s wall), top speed {res.max_speed:.2f} m/s")
+    print(
+        f"{res.track}: {verdict} {res.laps_completed}/{res.laps_requested} laps of {res.track_length:.1f} m "
+        f"in {res.sim_time:.2f} s simulated ({res.wall_time:.2f} s wall), top speed {res.max_speed:.2f} m/s"
+    )
     for i, t in enumerate(res.lap_times, 1):
         print(f"  lap {i}: {t:.2f} s")
     if res.collided:
         print(f"  contact on {res.contact_steps} control step(s), first at (x, y) = {tuple(res.contact_at or ())}")
         w = res.corridor_width_at_contact
         if w is not None and res.vehicle_width is not None and w < res.vehicle_width + 0.2:
-            print(f"  the corridor there is only {w:.2f} m wide for a {res.vehicle_width:.2f} m wide car: "
-                  "the map's drivable path is too narrow at that point")
+            print(
+                f"  the corridor there is only {w:.2f} m wide for a {res.vehicle_width:.2f} m wide car: "
+                "the map's drivable path is too narrow at that point"
+            )
     if res.video:
         print(f"  wrote {res.video}")
     if getattr(args, "mcap", None) is not None:

@@ -16,11 +16,11 @@ import dataclasses
 import sys
 from pathlib import Path
 
+from ..errors import InvalidArgumentError
+from ..spec import TrackSpec
 from . import EXIT_GENERATION_FAILURE, EXIT_LAP_FAILED, EXIT_OK, EXIT_REJECTED
 from ._common import add_json_flag, print_json
 from .parse import add_backend_args, parse_from_args, print_result
-from ..errors import InvalidArgumentError
-from ..spec import TrackSpec
 
 
 def register(sub) -> None:
@@ -36,7 +36,9 @@ def register(sub) -> None:
     p.add_argument("-o", "--out", type=Path, default=Path("out/generated"), metavar="OUTDIR", help="output directory")
     p.add_argument("--constructor", choices=["lattice", "de", "random"], default="lattice")
     p.add_argument("--build", action="store_true", help="also build the USD environment through the builder")
-    p.add_argument("--drive", action="store_true", help="then drive the reference car one lap on the map (exit 5 if it fails)")
+    p.add_argument(
+        "--drive", action="store_true", help="then drive the reference car one lap on the map (exit 5 if it fails)"
+    )
     add_backend_args(p)
     _share_timeout(p)
     add_json_flag(p)
@@ -84,8 +86,12 @@ def run(args: argparse.Namespace) -> int:
     if parsed is not None:
         summary["parse"] = parsed.to_dict()
     if isinstance(outcome, Acceptance):
-        summary.update(candidates_tried=outcome.candidates_tried, files=_write_folder(outcome, args),
-                       checks=outcome.report["checks"], features=outcome.report["features"])
+        summary.update(
+            candidates_tried=outcome.candidates_tried,
+            files=_write_folder(outcome, args),
+            checks=outcome.report["checks"],
+            features=outcome.report["features"],
+        )
         code = EXIT_OK
         if args.drive:
             code = _drive(Path(summary["files"]["map_yaml"]), args, summary)
@@ -113,7 +119,9 @@ def run(args: argparse.Namespace) -> int:
 def _check_outdir(out: Path) -> None:
     """Refuse a bad -o before any work (the same rule :func:`output_folder` applies)."""
     if out.exists() and not out.is_dir():
-        raise InvalidArgumentError(f"-o {out}: exists and is not a directory; give a new or an earlier generate output directory")
+        raise InvalidArgumentError(
+            f"-o {out}: exists and is not a directory; give a new or an earlier generate output directory"
+        )
 
 
 def _write_folder(acc, args: argparse.Namespace) -> dict[str, str]:
@@ -133,8 +141,8 @@ def _write_folder(acc, args: argparse.Namespace) -> dict[str, str]:
 
 def _build_stage(map_yaml: Path, tmp: Path, final: Path, args: argparse.Namespace) -> None:
     try:
-        from ..builder import build_environment  # type: ignore[import-not-found]
-        from ..maps import load_map  # type: ignore[import-not-found]
+        from ..builder import build_environment
+        from ..maps import load_map
     except ImportError as e:
         raise InvalidArgumentError(f"--build needs the USD builder, which this installation lacks ({e})") from e
     occ = load_map(map_yaml)

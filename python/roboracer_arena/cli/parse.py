@@ -28,7 +28,9 @@ def add_backend_args(p: argparse.ArgumentParser) -> None:
     g.add_argument("--backend", choices=BACKENDS, default="rules", help="parser backend (default: rules, no server)")
     g.add_argument("--ollama-host", metavar="URL", help="Ollama server (default: $OLLAMA_HOST or 127.0.0.1:11434)")
     g.add_argument("--model", default=DEFAULT_MODEL, help=f"Ollama model (default {DEFAULT_MODEL})")
-    g.add_argument("--timeout", type=float, default=120.0, metavar="S", help="seconds to wait for the model (default 120)")
+    g.add_argument(
+        "--timeout", type=float, default=120.0, metavar="S", help="seconds to wait for the model (default 120)"
+    )
     g.add_argument(
         "--lenient",
         action="store_true",

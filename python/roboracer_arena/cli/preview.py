@@ -19,22 +19,37 @@ from __future__ import annotations
 import argparse
 from dataclasses import asdict
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ._common import add_json_flag, print_json
+
+if TYPE_CHECKING:  # the renderers import heavy optional packages: load them only when used
+    from ..render.preview import PreviewSummary
+    from ..render.still3d import StillSummary
 
 USD_SUFFIXES = {".usd", ".usda", ".usdc"}
 
 
 def register(sub) -> None:
-    p = sub.add_parser("preview", help="picture of a map or a built stage (top-down, or --3d)", description=__doc__,
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = sub.add_parser(
+        "preview",
+        help="picture of a map or a built stage (top-down, or --3d)",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     p.add_argument("source", type=Path, metavar="MAP.yaml|STAGE.usdc", help="a ROS map YAML or a built USD stage")
-    p.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.png",
-                   help="picture to write (.png, .jpg or .jpeg)")
-    p.add_argument("--3d", dest="three_d", action="store_true",
-                   help="lit 3D still of a built stage (needs the render3d extra)")
+    p.add_argument(
+        "-o", "--out", type=Path, required=True, metavar="OUT.png", help="picture to write (.png, .jpg or .jpeg)"
+    )
+    p.add_argument(
+        "--3d", dest="three_d", action="store_true", help="lit 3D still of a built stage (needs the render3d extra)"
+    )
     p.add_argument("--config", type=Path, metavar="F", help="BuildConfig file for a map (.toml or .json)")
-    p.add_argument("--start", metavar="x,y[,yaw]", help="seed the corridor from this pose (maps only; --start=-1.5,2 when x is negative)")
+    p.add_argument(
+        "--start",
+        metavar="x,y[,yaw]",
+        help="seed the corridor from this pose (maps only; --start=-1.5,2 when x is negative)",
+    )
     p.add_argument("--cars", type=int, default=1, metavar="N", help="cars on the grid drawn at the start (default 1)")
     p.add_argument("--max-px", type=int, default=2048, help="longest side of the top-down map in pixels (default 2048)")
     add_json_flag(p)
@@ -53,6 +68,7 @@ def run(args: argparse.Namespace) -> int:
         raise InvalidArgumentError(f"--cars must be between 1 and 64, got {args.cars}")
     check_output(args.out, inputs=[args.source, *_map_image(args.source)])
     is_stage = args.source.suffix.lower() in USD_SUFFIXES
+    summary: StillSummary | PreviewSummary
     if args.three_d:
         if not is_stage:
             raise InvalidArgumentError(f"--3d renders a built stage (.usd, .usda, .usdc), got {args.source}")
@@ -66,8 +82,9 @@ def run(args: argparse.Namespace) -> int:
     else:
         from ..render.preview import preview_map
 
-        summary = preview_map(args.source, args.out, config=args.config, start=args.start, max_px=args.max_px,
-                              vehicles=args.cars)
+        summary = preview_map(
+            args.source, args.out, config=args.config, start=args.start, max_px=args.max_px, vehicles=args.cars
+        )
     if args.json:
         print_json(asdict(summary))
     else:

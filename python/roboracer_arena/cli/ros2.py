@@ -33,20 +33,34 @@ def _rate(value: str) -> float | None:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("ros2", help="run the simulator behind a ROS 2 (DDS) interface, optionally recording MCAP",
-                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = sub.add_parser(
+        "ros2",
+        help="run the simulator behind a ROS 2 (DDS) interface, optionally recording MCAP",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     p.add_argument("track", metavar="TRACK", help="ROS map YAML (or a catalog id)")
     p.add_argument("--cars", type=int, default=1, help="number of cars (default 1; 2 = ego + opponent)")
-    p.add_argument("--domain-id", type=int, default=None,
-                   help="ROS 2 domain id 0..232 (default: $ROS_DOMAIN_ID or 0)")
-    p.add_argument("--rate", type=_rate, default=1.0, metavar="R|max",
-                   help="simulated seconds per wall second (default 1 = real time; 'max' = as fast as possible)")
-    p.add_argument("--lockstep", action="store_true",
-                   help="advance one control period (1/drive_hz) per /drive message received (deterministic)")
+    p.add_argument("--domain-id", type=int, default=None, help="ROS 2 domain id 0..232 (default: $ROS_DOMAIN_ID or 0)")
+    p.add_argument(
+        "--rate",
+        type=_rate,
+        default=1.0,
+        metavar="R|max",
+        help="simulated seconds per wall second (default 1 = real time; 'max' = as fast as possible)",
+    )
+    p.add_argument(
+        "--lockstep",
+        action="store_true",
+        help="advance one control period (1/drive_hz) per /drive message received (deterministic)",
+    )
     p.add_argument("--config", type=Path, metavar="F", help="JSON bridge config: {'rates': {...}, 'sim': {...}}")
     p.add_argument("--record", type=Path, metavar="RUN.mcap", help="record every message to an MCAP file")
-    p.add_argument("--loopback", action="store_true",
-                   help="configure DDS for the loopback interface only (no multicast; unicast discovery on 127.0.0.1)")
+    p.add_argument(
+        "--loopback",
+        action="store_true",
+        help="configure DDS for the loopback interface only (no multicast; unicast discovery on 127.0.0.1)",
+    )
     p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S wall seconds")
     p.add_argument("--sim-time", type=float, default=None, metavar="S", help="stop after S simulated seconds")
     add_json_flag(p)
@@ -75,8 +89,16 @@ def run(args: argparse.Namespace) -> int:
         domain = int(env)
     check_domain_id(domain)
     config = BridgeConfig.load(args.config) if args.config else BridgeConfig()
-    bridge = Bridge(args.track, cars=args.cars, domain_id=domain, rate=args.rate, lockstep=args.lockstep,
-                    config=config, record=args.record, loopback=args.loopback)
+    bridge = Bridge(
+        args.track,
+        cars=args.cars,
+        domain_id=domain,
+        rate=args.rate,
+        lockstep=args.lockstep,
+        config=config,
+        record=args.record,
+        loopback=args.loopback,
+    )
     stop = {"flag": False}
 
     def on_signal(*_):
@@ -86,8 +108,9 @@ def run(args: argparse.Namespace) -> int:
     bridge.start()
     if not args.json:
         mode = "lockstep" if args.lockstep else ("max rate" if args.rate is None else f"{args.rate:g}x real time")
-        print(f"ros2 bridge on domain {domain}: {bridge.src.name}, {args.cars} car(s), {mode}; Ctrl-C stops",
-              flush=True)
+        print(
+            f"ros2 bridge on domain {domain}: {bridge.src.name}, {args.cars} car(s), {mode}; Ctrl-C stops", flush=True
+        )
     t0 = time.monotonic()
     try:
         while not stop["flag"] and not bridge.wait(0.05):

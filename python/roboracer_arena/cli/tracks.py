@@ -17,14 +17,23 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import Any
 
 from . import EXIT_BAD_INPUT, EXIT_OK
 from ._common import add_json_flag, print_json
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--catalog", type=Path, default=None, metavar="FILE", help="catalog JSON (default: the one shipped in the package)")
-    p.add_argument("--sources", type=Path, default=None, metavar="DIR", help="track-sources directory for recorded maps")
+    p.add_argument(
+        "--catalog",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help="catalog JSON (default: the one shipped in the package)",
+    )
+    p.add_argument(
+        "--sources", type=Path, default=None, metavar="DIR", help="track-sources directory for recorded maps"
+    )
     add_json_flag(p)
 
 
@@ -35,8 +44,12 @@ def _subset(p: argparse.ArgumentParser) -> None:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("tracks", help="the track library: list, show, build, verify, sheet", description=__doc__,
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = sub.add_parser(
+        "tracks",
+        help="the track library: list, show, build, verify, sheet",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     t = p.add_subparsers(dest="tracks_cmd", metavar="ACTION", required=True)
     a = t.add_parser("list", help="list catalog tracks")
     _common(a)
@@ -58,30 +71,49 @@ def register(sub) -> None:
     a.add_argument("--no-usd", action="store_true", help="skip the USD build check")
     a.add_argument("--no-drive", action="store_true", help="skip the pure-pursuit lap")
     a.add_argument("--reverse", action="store_true", help="drive each lap against the track's racing direction")
-    a.add_argument("--update-catalog", action="store_true",
-                   help="record the results in the catalog; recorded maps that fail move to left_out")
+    a.add_argument(
+        "--update-catalog",
+        action="store_true",
+        help="record the results in the catalog; recorded maps that fail move to left_out",
+    )
     _ray_flag(a)
     a.set_defaults(func=run_verify)
-    a = t.add_parser("generate", help="generate a library of tracks from a sweep file (locally or on Ray)",
-                     description=GENERATE_DOC, formatter_class=argparse.RawDescriptionHelpFormatter)
-    a.add_argument("--sweep", type=Path, required=True, metavar="SWEEP.json", help="sweep file: spec ranges and base seed")
+    a = t.add_parser(
+        "generate",
+        help="generate a library of tracks from a sweep file (locally or on Ray)",
+        description=GENERATE_DOC,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    a.add_argument(
+        "--sweep", type=Path, required=True, metavar="SWEEP.json", help="sweep file: spec ranges and base seed"
+    )
     a.add_argument("--count", type=int, required=True, metavar="N", help="accepted tracks to keep")
     a.add_argument("-o", "--out", type=Path, required=True, metavar="DIR", help="output directory")
-    a.add_argument("--max-requests", type=int, default=None, metavar="M", help="give up after M requests (default 10 x N)")
+    a.add_argument(
+        "--max-requests", type=int, default=None, metavar="M", help="give up after M requests (default 10 x N)"
+    )
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="local worker processes (default: all cores)")
     _ray_flag(a)
     add_json_flag(a)
     a.set_defaults(func=run_generate)
     a = t.add_parser("sheet", help="contact sheet of every track")
-    a.add_argument("-o", "--out", type=Path, required=True, metavar="sheet.png", help="picture to write (.png, .jpg or .jpeg)")
+    a.add_argument(
+        "-o", "--out", type=Path, required=True, metavar="sheet.png", help="picture to write (.png, .jpg or .jpeg)"
+    )
     a.add_argument("--columns", type=int, default=12, help="thumbnails per row (default 12)")
     _common(a)
     _subset(a)
     a.set_defaults(func=run_sheet)
     a = t.add_parser("catalog", help="rebuild tracks/catalog.json from tracks/ and the sources")
     _common(a)
-    a.add_argument("--tracks", type=Path, default=None, metavar="DIR", help="tracks directory read (circuits/, generated/) and written (catalog.json); "
-                   "default: the package's tracks/ in a source checkout, required for an installed package")
+    a.add_argument(
+        "--tracks",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="tracks directory read (circuits/, generated/) and written (catalog.json); "
+        "default: the package's tracks/ in a source checkout, required for an installed package",
+    )
     a.add_argument("--generate", action="store_true", help="rerun the generated-track sweep first")
     a.add_argument("--count", type=int, default=60, help="generated tracks to keep (default 60)")
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
@@ -105,9 +137,13 @@ first --count acceptances in k order."""
 
 
 def _ray_flag(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--ray", default=None, metavar="ADDRESS",
-                   help="run the work as Ray tasks: auto (running cluster / $RAY_ADDRESS), local (start one) or "
-                        "HOST:PORT; needs the [ray] extra")
+    p.add_argument(
+        "--ray",
+        default=None,
+        metavar="ADDRESS",
+        help="run the work as Ray tasks: auto (running cluster / $RAY_ADDRESS), local (start one) or "
+        "HOST:PORT; needs the [ray] extra",
+    )
 
 
 def _executor(args):
@@ -138,7 +174,8 @@ def _select(cat, args) -> list[dict]:
     if getattr(args, "kind", None):
         entries = [e for e in entries if e["kind"] == args.kind]
     if getattr(args, "limit", None) is not None:
-        out, seen = [], {}
+        out: list[dict[str, Any]] = []
+        seen: dict[str, int] = {}
         for e in entries:  # spread over the kinds: every n-th entry of each kind
             seen[e["kind"]] = seen.get(e["kind"], 0) + 1
         step = {k: max(1, n // args.limit) for k, n in seen.items()}
@@ -160,19 +197,28 @@ def run_list(args) -> int:
     cat = _load(args)
     entries = _select(cat, args)
     if args.json:
-        print_json([{k: e.get(k) for k in ("id", "name", "kind", "direction", "lap_length_m", "width_mean_m", "map")}
-                    for e in entries])
+        print_json(
+            [
+                {k: e.get(k) for k in ("id", "name", "kind", "direction", "lap_length_m", "width_mean_m", "map")}
+                for e in entries
+            ]
+        )
         return EXIT_OK
     print(f"{'id':<42}{'kind':<10}{'dir':<5}{'lap m':>9}{'w mean':>8}{'w min':>7}{'r min':>7}{'raster':>11}  source")
     for e in entries:
         r = e.get("raster") or {}
         d = {"clockwise": "cw", "counterclockwise": "ccw"}.get(e.get("direction", ""), "-")
-        print(f"{e['id']:<42}{e['kind']:<10}{d:<5}{_fmt(e.get('lap_length_m'), '9.1f')}{_fmt(e.get('width_mean_m'), '8.2f')}"
-              f"{_fmt(e.get('width_min_m'), '7.2f')}{_fmt(e.get('min_radius_m'), '7.2f')}"
-              f"{str(r.get('width_px', '')) + 'x' + str(r.get('height_px', '')):>11}  {e['source'].get('licence', '')[:24]}")
+        print(
+            f"{e['id']:<42}{e['kind']:<10}{d:<5}{_fmt(e.get('lap_length_m'), '9.1f')}{_fmt(e.get('width_mean_m'), '8.2f')}"
+            f"{_fmt(e.get('width_min_m'), '7.2f')}{_fmt(e.get('min_radius_m'), '7.2f')}"
+            f"{str(r.get('width_px', '')) + 'x' + str(r.get('height_px', '')):>11}  {e['source'].get('licence', '')[:24]}"
+        )
     counts = {k: sum(e["kind"] == k for e in entries) for k in ("circuit", "recorded", "generated")}
-    print(f"\n{len(entries)} tracks: " + ", ".join(f"{n} {k}" for k, n in counts.items())
-          + f"; {len(cat.left_out)} recorded maps left out (see 'tracks list --json' / catalog.json 'left_out')")
+    print(
+        f"\n{len(entries)} tracks: "
+        + ", ".join(f"{n} {k}" for k, n in counts.items())
+        + f"; {len(cat.left_out)} recorded maps left out (see 'tracks list --json' / catalog.json 'left_out')"
+    )
     return EXIT_OK
 
 
@@ -209,17 +255,24 @@ def run_build(args) -> int:
 
 
 def run_verify(args) -> int:
-    from ..library.verify import verify
-
     from ..errors import InvalidArgumentError
+    from ..library.verify import verify
 
     if args.reverse and args.update_catalog:
         raise InvalidArgumentError("--reverse and --update-catalog: the catalog records laps in the racing direction")
     cat = _load(args)
     entries = _select(cat, args)
     with _executor(args) as ex:
-        s = verify(cat, entries, args.sources, usd=not args.no_usd, drive=not args.no_drive,
-                   progress=_progress("verify"), reverse=args.reverse, executor=ex)
+        s = verify(
+            cat,
+            entries,
+            args.sources,
+            usd=not args.no_usd,
+            drive=not args.no_drive,
+            progress=_progress("verify"),
+            reverse=args.reverse,
+            executor=ex,
+        )
     if args.update_catalog:
         from ..fileio import atomic_write_text
         from ..library.verify import prune_catalog
@@ -246,8 +299,11 @@ def run_verify(args) -> int:
             print(f"  ({why})")
         if s["drive_cautious"]:
             print(f"  {len(s['drive_cautious'])} lap(s) needed the cautious retry: {', '.join(s['drive_cautious'])}")
-        print(f"{s['passed']}/{s['tracks']} tracks without a failed check in {s['seconds']:.1f} s "
-              f"({s['jobs']} worker(s)); by kind: " + ", ".join(f"{k} {v['passed']}/{v['tracks']}" for k, v in s["by_kind"].items()))
+        print(
+            f"{s['passed']}/{s['tracks']} tracks without a failed check in {s['seconds']:.1f} s "
+            f"({s['jobs']} worker(s)); by kind: "
+            + ", ".join(f"{k} {v['passed']}/{v['tracks']}" for k, v in s["by_kind"].items())
+        )
     return EXIT_OK if not s["failed"] else EXIT_BAD_INPUT
 
 
@@ -277,13 +333,17 @@ def run_catalog(args) -> int:
     if args.generate:
         g = build_generated(tracks / "generated", count=args.count, jobs=jobs, progress=_progress("generate"))
         if not args.json:
-            print(f"generated sweep: {g['specs_tried']} specs, {g['accepted']} accepted, {g['failed']} failed, "
-                  f"{g['rejected']} rejected; kept {g['kept']} ({g['seconds']:.1f} s)")
+            print(
+                f"generated sweep: {g['specs_tried']} specs, {g['accepted']} accepted, {g['failed']} failed, "
+                f"{g['rejected']} rejected; kept {g['kept']} ({g['seconds']:.1f} s)"
+            )
     cat = build_catalog(Path(sources), Path(tracks), jobs=jobs, progress=_progress("recorded maps"))
     if args.json:
         print_json({**cat.meta, "count": len(cat.entries), "left_out": cat.left_out})
     else:
-        print(f"wrote {cat.path}: {len(cat.entries)} tracks {cat.meta['counts']}; {len(cat.left_out)} recorded maps left out:")
+        print(
+            f"wrote {cat.path}: {len(cat.entries)} tracks {cat.meta['counts']}; {len(cat.left_out)} recorded maps left out:"
+        )
         for lo in cat.left_out:
             print(f"  {lo['source_path']}: {lo['reason']}")
     return EXIT_OK
@@ -296,16 +356,22 @@ def run_generate(args) -> int:
 
     sweep = load_sweep(args.sweep)
     with _executor(args) as ex:
-        s = generate_library(sweep, args.count, args.out, ex, max_requests=args.max_requests,
-                             progress=_progress("generate"))
+        s = generate_library(
+            sweep, args.count, args.out, ex, max_requests=args.max_requests, progress=_progress("generate")
+        )
     if args.json:
         print_json({k: v for k, v in s.items() if k != "records"})
     else:
-        print(f"{s['kept']}/{s['count']} tracks in {args.out / 'generated'} from {s['requests']} requests "
-              f"({s['accepted']} accepted, {s['rejected']} rejected, {s['failed']} failed) in {s['seconds']:.1f} s "
-              f"on {s['workers']} worker(s) ({s['executor']}); catalog {args.out / 'catalog.json'}")
+        print(
+            f"{s['kept']}/{s['count']} tracks in {args.out / 'generated'} from {s['requests']} requests "
+            f"({s['accepted']} accepted, {s['rejected']} rejected, {s['failed']} failed) in {s['seconds']:.1f} s "
+            f"on {s['workers']} worker(s) ({s['executor']}); catalog {args.out / 'catalog.json'}"
+        )
     if s["kept"] < s["count"]:
-        print(f"roboracer-arena tracks: error: only {s['kept']} of {s['count']} tracks within --max-requests "
-              f"{s['requests']}; widen the sweep ranges or raise --max-requests", file=sys.stderr)
+        print(
+            f"roboracer-arena tracks: error: only {s['kept']} of {s['count']} tracks within --max-requests "
+            f"{s['requests']}; widen the sweep ranges or raise --max-requests",
+            file=sys.stderr,
+        )
         return EXIT_GENERATION_FAILURE
     return EXIT_OK

@@ -6,9 +6,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..spec import TrackSpec
 from . import EXIT_GENERATION_FAILURE, EXIT_OK
 from ._common import add_json_flag, print_json
-from ..spec import TrackSpec
 
 
 def register(sub) -> None:

@@ -113,7 +113,7 @@ class LocalExecutor:
             except BrokenProcessPool:
                 # Every unfinished task failed with the pool; the finished ones are kept, the
                 # rest run again on a fresh pool (each index is yielded exactly once).
-                self._pool.shutdown(wait=False, cancel_futures=True)  # type: ignore[union-attr]
+                pool.shutdown(wait=False, cancel_futures=True)
                 self._pool = None
                 failures += 1
                 if failures > self.max_retries:

@@ -31,8 +31,12 @@ def register_envs() -> None:
 
 def __getattr__(name: str):
     lazy = {
-        "EnvConfig": "env_config", "ObservationConfig": "env_config", "RewardConfig": "env_config",
-        "RoboRacerEnv": "single", "RoboRacerVectorEnv": "vector", "resolve_tracks": "tracks",
+        "EnvConfig": "env_config",
+        "ObservationConfig": "env_config",
+        "RewardConfig": "env_config",
+        "RoboRacerEnv": "single",
+        "RoboRacerVectorEnv": "vector",
+        "resolve_tracks": "tracks",
     }
     if name == "Track":  # defined in the neutral roboracer_arena.track
         from ..track import Track
@@ -46,6 +50,17 @@ def __getattr__(name: str):
 
 
 __all__ = [
-    "ENV_ID", "EnvConfig", "LidarConfig", "ObservationConfig", "PhysicsConfig", "RewardConfig",
-    "RoboRacerEnv", "RoboRacerVectorEnv", "SimConfig", "Track", "VehicleConfig", "register_envs", "resolve_tracks",
+    "ENV_ID",
+    "EnvConfig",
+    "LidarConfig",
+    "ObservationConfig",
+    "PhysicsConfig",
+    "RewardConfig",
+    "RoboRacerEnv",
+    "RoboRacerVectorEnv",
+    "SimConfig",
+    "Track",
+    "VehicleConfig",
+    "register_envs",
+    "resolve_tracks",
 ]

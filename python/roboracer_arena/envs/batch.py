@@ -14,14 +14,14 @@ from __future__ import annotations
 
 import math
 from types import SimpleNamespace
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from gymnasium import spaces
 
+from ..track import Track
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
-from ..track import Track
 from .start import SIDE_MARGIN, grid_start_s
 
 CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
@@ -36,8 +36,15 @@ BACKWARDS_EPS = 1e-3
 class SimBatch:
     """``E`` environments × ``V`` vehicles on one native simulator (see module docstring)."""
 
-    def __init__(self, tracks: list[Track], num_envs: int, config: EnvConfig, seed: int,
-                 track_probs: np.ndarray | None = None, env_index_offset: int = 0) -> None:
+    def __init__(
+        self,
+        tracks: list[Track],
+        num_envs: int,
+        config: EnvConfig,
+        seed: int,
+        track_probs: np.ndarray | None = None,
+        env_index_offset: int = 0,
+    ) -> None:
         from .._core import Simulator
 
         self._Simulator = Simulator
@@ -54,7 +61,9 @@ class SimBatch:
         self.num_beams = B = int(self.sim.num_beams)
         self.fields = tuple(self.sim.state_fields)
         self.field_index = {f: i for i, f in enumerate(self.fields)}
-        missing = [f for f in (*config.observation.odometry, "x", "y", "yaw", "progress_s") if f not in self.field_index]
+        missing = [
+            f for f in (*config.observation.odometry, "x", "y", "yaw", "progress_s") if f not in self.field_index
+        ]
         if missing:
             raise RuntimeError(f"the simulator's state lacks fields {missing} (it has {self.fields})")
         self.substeps = config.substeps
@@ -96,10 +105,15 @@ class SimBatch:
             self.scans = self.obs.buf["scan"]
         self._row = self.state[0, 0]  # view: env 0, vehicle 0 (step_one)
         self._vx_col = self.field_index["vx"]
-        self._flat = SimpleNamespace(prev_s=self.prev_s.reshape(-1), progress=self.progress.reshape(-1),
-                                     elapsed=self.elapsed.reshape(-1), best_progress=self.best_progress.reshape(-1),
-                                     wrong_way=self.wrong_way.reshape(-1), half_len=self._half_len.reshape(-1),
-                                     length=self._len.reshape(-1))
+        self._flat = SimpleNamespace(
+            prev_s=self.prev_s.reshape(-1),
+            progress=self.progress.reshape(-1),
+            elapsed=self.elapsed.reshape(-1),
+            best_progress=self.best_progress.reshape(-1),
+            wrong_way=self.wrong_way.reshape(-1),
+            half_len=self._half_len.reshape(-1),
+            length=self._len.reshape(-1),
+        )
         self._reward = config.reward
         self._wrong_way_distance = config.wrong_way_distance
         # The scanner runs at its own rate: under a faster control loop the observation
@@ -155,11 +169,14 @@ class SimBatch:
         """Convert [steer rad, speed m/s] commands to this env's action mode (float32)."""
         c = np.clip(np.asarray(cmds, dtype=np.float64), self._lo, self._hi)
         if self.config.action_mode == "normalised":
-            c = np.stack([c[..., 0] / self._hi[0], np.where(c[..., 1] >= 0, c[..., 1] / self._hi[1], -c[..., 1] / self._lo[1])], axis=-1)
+            c = np.stack(
+                [c[..., 0] / self._hi[0], np.where(c[..., 1] >= 0, c[..., 1] / self._hi[1], -c[..., 1] / self._lo[1])],
+                axis=-1,
+            )
         return c.astype(np.float32)
 
     # ------------------------------------------------------------------ reset
-    def _randomise_vehicles(self, mask: np.ndarray, idx: np.ndarray) -> None:
+    def _randomise_vehicles(self, rngs: list[np.random.Generator], mask: np.ndarray, idx: np.ndarray) -> None:
         """Draw this episode's tyre friction, mass and actuator lags of each reset env from
         its stream (factors on the configured values) and hand them to the simulator."""
         rnd, veh = self.config.randomisation, self.config.sim.vehicle
@@ -167,7 +184,7 @@ class SimBatch:
         friction, mass = np.full(E, veh.tyre_friction), np.full(E, veh.mass)
         steer, throttle = np.full(E, veh.steer_time_constant), np.full(E, veh.throttle_time_constant)
         for e in idx:
-            f, m, lag = (self._vehicle_rngs[e].uniform(*r) for r in (rnd.friction_scale, rnd.mass_scale, rnd.lag_scale))
+            f, m, lag = (rngs[e].uniform(*r) for r in (rnd.friction_scale, rnd.mass_scale, rnd.lag_scale))
             friction[e], mass[e] = veh.tyre_friction * f, veh.mass * m
             steer[e], throttle[e] = veh.steer_time_constant * lag, veh.throttle_time_constant * lag
         self.sim.set_vehicle_params(mask, friction, mass, steer, throttle)
@@ -181,30 +198,51 @@ class SimBatch:
             s0 = [0.0] * len(tracks)
         rnd = cfg.randomisation
         spec = {
-            "random_s": cfg.reset_poses == "random", "s0": s0,
+            "random_s": cfg.reset_poses == "random",
+            "s0": s0,
             "track_weights": [] if probs is None else [float(p) for p in probs],
-            "grid_spacing": cfg.grid_spacing, "grid_offset": cfg.grid_offset,
-            "lateral_noise": cfg.start_lateral_noise, "heading_noise": cfg.start_heading_noise,
+            "grid_spacing": cfg.grid_spacing,
+            "grid_offset": cfg.grid_offset,
+            "lateral_noise": cfg.start_lateral_noise,
+            "heading_noise": cfg.start_heading_noise,
             "side_clearance": cfg.sim.vehicle.chassis_width / 2 + SIDE_MARGIN,
             "speed_noise": cfg.start_speed_noise,
-            "noise_std": [float(x) for x in rnd.lidar_noise_std], "dropout": float(rnd.lidar_dropout),
+            "noise_std": [float(x) for x in rnd.lidar_noise_std],
+            "dropout": float(rnd.lidar_dropout),
         }
         import json
 
         return json.dumps(spec)
 
     def _new_sim(self, seed: int) -> Any:
-        sim = self._Simulator(self._natives, self.num_envs, self.vehicles, self.config.sim.to_json(), seed,
-                              env_index_offset=self.env_index_offset)
+        sim = self._Simulator(
+            self._natives,
+            self.num_envs,
+            self.vehicles,
+            self.config.sim.to_json(),
+            seed,
+            env_index_offset=self.env_index_offset,
+        )
         sim.set_start_spec(self._start_json)
         # Vehicle factors (tyre friction, mass, lags) per episode, from each env's own stream
         # seeded from (seed, env index): the same episodes whatever num_envs.
-        self._vehicle_rngs = [np.random.default_rng([int(seed), self.env_index_offset + e, _VEHICLE_STREAM])
-                              for e in range(self.num_envs)] if self.config.randomisation.vehicle_active else None
+        self._vehicle_rngs = (
+            [
+                np.random.default_rng([int(seed), self.env_index_offset + e, _VEHICLE_STREAM])
+                for e in range(self.num_envs)
+            ]
+            if self.config.randomisation.vehicle_active
+            else None
+        )
         return sim
 
-    def reset(self, mask: np.ndarray, track_ids: np.ndarray | None = None, poses: np.ndarray | None = None,
-              speeds: np.ndarray | None = None) -> None:
+    def reset(
+        self,
+        mask: np.ndarray,
+        track_ids: np.ndarray | None = None,
+        poses: np.ndarray | None = None,
+        speeds: np.ndarray | None = None,
+    ) -> None:
         """Reset the environments where ``mask`` is True and observe them (only them).
 
         ``track_ids`` ((E,) ints, or None): the track of each reset env, else drawn (with
@@ -217,7 +255,7 @@ class SimBatch:
         self.sim.reset_drawn(mask, self.track_ids, self.start_pose, self.start_speed, track_ids, poses, speeds)
         idx = np.flatnonzero(mask)
         if self._vehicle_rngs is not None:
-            self._randomise_vehicles(mask, idx)
+            self._randomise_vehicles(self._vehicle_rngs, mask, idx)
         length = self.lengths[self.track_ids[idx]]
         self._len[idx, 0] = length
         self._half_len[idx, 0] = length / 2
@@ -244,8 +282,7 @@ class SimBatch:
     def step(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Step all environments with the stored actions. Returns (reward (E,), terminated
         (E,), truncated (E,), contact (E, V) bool)."""
-        self.sim.step(self.actions, self.substeps, self.scans if self._scan_due() else None,
-                      self.state, self.events)
+        self.sim.step(self.actions, self.substeps, self.scans if self._scan_due() else None, self.state, self.events)
         s = self.state[:, :, self._s_col]
         ds = s - self.prev_s
         if self._wrap:
@@ -273,7 +310,7 @@ class SimBatch:
                 vr -= r.wrong_way_penalty * wrong
             if self.config.wrong_way_ends_episode:
                 ends |= wrong
-        terminated = ends.any(axis=1)
+        terminated = cast(np.ndarray, ends.any(axis=1))  # an axis is given: an array, not a scalar
         self.obs.refresh(self, slice(None))
         reward = vr[:, 0].copy() if self.vehicles == 1 else vr.sum(axis=1)
         if self.max_steps is None:

@@ -55,9 +55,12 @@ class ObservationConfig(NumbersAreNumbers):
         description=f"Odometry columns ('odometry' key) in this order; any of {ODOMETRY_FIELDS}.",
     )
     normalise: bool = Field(False, description="Scale scan and odometry for learning (see class docstring).")
-    horizon: float = Field(10.0, gt=0, description="Normalised scan: ranges are clipped to this (m), then scaled to [0, 1].")
+    horizon: float = Field(
+        10.0, gt=0, description="Normalised scan: ranges are clipped to this (m), then scaled to [0, 1]."
+    )
     position_scale: float = Field(
-        20.0, gt=0, description="Normalised x, y: metres from the start pose that map to +-1.")
+        20.0, gt=0, description="Normalised x, y: metres from the start pose that map to +-1."
+    )
     frame_stack: int = Field(1, ge=1, le=64, description="Number of most recent frames stacked in each key.")
     previous_action: bool = Field(False, description="Add the previous action as obs['previous_action'].")
 
@@ -159,8 +162,11 @@ class EnvConfig(NumbersAreNumbers):
     reward: RewardConfig = Field(default_factory=RewardConfig)
     collision_ends_episode: bool = Field(True, description="A wall or vehicle contact terminates the episode.")
     time_limit_s: float | None = Field(
-        120.0, gt=0, description="Truncate after this much simulated time (None: never); see envs/episode_limit.py "
-        "for how it agrees with gymnasium's max_episode_steps.")
+        120.0,
+        gt=0,
+        description="Truncate after this much simulated time (None: never); see envs/episode_limit.py "
+        "for how it agrees with gymnasium's max_episode_steps.",
+    )
     reset_poses: Literal["random", "grid", "centreline_start"] = Field(
         "random",
         description="'random': a uniformly random point of the centreline; 'grid': the grid start "
@@ -168,13 +174,20 @@ class EnvConfig(NumbersAreNumbers):
         "s = 0 of the centreline as extracted. Further vehicles line up behind the first in a staggered grid.",
     )
     start_lateral_noise: float = Field(
-        0.0, ge=0, description="Start pose: uniform lateral offset in +-this (m), capped to keep the car off the walls.")
-    start_heading_noise: float = Field(0.0, ge=0, le=3.2, description="Start pose: uniform heading offset in +-this (rad).")
+        0.0, ge=0, description="Start pose: uniform lateral offset in +-this (m), capped to keep the car off the walls."
+    )
+    start_heading_noise: float = Field(
+        0.0, ge=0, le=3.2, description="Start pose: uniform heading offset in +-this (rad)."
+    )
     start_speed_noise: float = Field(
-        0.0, ge=0, description="Rolling start: forward speed drawn uniformly from [0, this] m/s (<= max_speed).")
+        0.0, ge=0, description="Rolling start: forward speed drawn uniformly from [0, this] m/s (<= max_speed)."
+    )
     wrong_way_distance: float = Field(
-        2.0, gt=0, description="A vehicle drives the wrong way when it moves backwards along the centreline more "
-        "than this (m) behind the furthest point it reached since reset.")
+        2.0,
+        gt=0,
+        description="A vehicle drives the wrong way when it moves backwards along the centreline more "
+        "than this (m) behind the furthest point it reached since reset.",
+    )
     wrong_way_ends_episode: bool = Field(False, description="Driving the wrong way terminates the episode.")
     randomisation: RandomisationConfig = Field(default_factory=lambda: RandomisationConfig())
     grid_spacing: float = Field(1.0, gt=0, description="Longitudinal gap between grid slots (m).")
@@ -200,7 +213,9 @@ class EnvConfig(NumbersAreNumbers):
     @model_validator(mode="after")
     def _start_speed(self) -> EnvConfig:
         if self.start_speed_noise > self.sim.vehicle.max_speed:
-            raise ValueError(f"start_speed_noise {self.start_speed_noise} exceeds max_speed {self.sim.vehicle.max_speed}")
+            raise ValueError(
+                f"start_speed_noise {self.start_speed_noise} exceeds max_speed {self.sim.vehicle.max_speed}"
+            )
         return self
 
     @property

@@ -18,7 +18,8 @@
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..errors import ConfigError
 from .env_config import EnvConfig
@@ -47,13 +48,17 @@ def vector_config(config: EnvConfig, max_episode_steps: int | None, explicit_tim
     if explicit_time_limit:
         if steps in (None, REGISTERED_MAX_EPISODE_STEPS) or steps == config.max_episode_steps:
             return config
-        raise ConfigError(f"max_episode_steps={steps} contradicts time_limit_s={config.time_limit_s} "
-                          f"({config.max_episode_steps} steps); give one of them")
+        raise ConfigError(
+            f"max_episode_steps={steps} contradicts time_limit_s={config.time_limit_s} "
+            f"({config.max_episode_steps} steps); give one of them"
+        )
     return EnvConfig.build(config, time_limit_s=None if steps is None else steps * config.control_dt)
 
 
 def check_make_kwargs(kwargs: Mapping[str, Any]) -> None:
     """Refuse ``time_limit_s`` under ``gymnasium.make`` (its TimeLimit is the limit there)."""
     if time_limit_given(kwargs):
-        raise ConfigError("time_limit_s cannot be used with gymnasium.make: pass max_episode_steps=N "
-                          "(steps; -1 for no limit) to make, or construct RoboRacerEnv(...) directly")
+        raise ConfigError(
+            "time_limit_s cannot be used with gymnasium.make: pass max_episode_steps=N "
+            "(steps; -1 for no limit) to make, or construct RoboRacerEnv(...) directly"
+        )

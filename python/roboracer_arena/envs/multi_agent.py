@@ -16,27 +16,27 @@ the class derives from ``pettingzoo.ParallelEnv``; without it, it has the same m
 
 from __future__ import annotations
 
-import functools
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
 try:  # optional dependency
     from pettingzoo import ParallelEnv as _Base
 except ImportError:  # pragma: no cover - exercised where pettingzoo is absent
-    _Base = object  # type: ignore[assignment,misc]
+    _Base = object
 
 from ..errors import ConfigError
 from .single import RoboRacerEnv
 
 
-class RoboRacerParallelEnv(_Base):  # type: ignore[misc,valid-type]
+class RoboRacerParallelEnv(_Base):
     """``V`` racing cars on one track, one agent each (see module docstring)."""
 
     metadata = {"name": "roboracer_arena_parallel_v0", "render_modes": ["rgb_array"], "render_fps": 20}
 
-    def __init__(self, track: Any = None, vehicles_per_env: int = 2, render_mode: str | None = None,
-                 **env_kwargs: Any) -> None:
+    def __init__(
+        self, track: Any = None, vehicles_per_env: int = 2, render_mode: str | None = None, **env_kwargs: Any
+    ) -> None:
         if vehicles_per_env < 2:
             raise ConfigError(f"vehicles_per_env must be >= 2 for a multi-agent env, got {vehicles_per_env}")
         self.env = RoboRacerEnv(track=track, vehicles_per_env=vehicles_per_env, render_mode=render_mode, **env_kwargs)
@@ -47,18 +47,22 @@ class RoboRacerParallelEnv(_Base):  # type: ignore[misc,valid-type]
         obs_space, act_space = self.env.observation_space, self.env.action_space
         from gymnasium import spaces
 
-        # Per-agent spaces: the env's with the leading vehicle axis dropped.
-        self._obs_space = spaces.Dict({k: spaces.Box(s.low[0], s.high[0], dtype=s.dtype)
-                                       for k, s in obs_space.spaces.items()})
-        self._act_space = spaces.Box(act_space.low[0], act_space.high[0], dtype=act_space.dtype)
+        # Per-agent spaces: the env's with the leading vehicle axis dropped (the env's
+        # observation space is a Dict of Boxes, its action space a Box).
+        def drop_vehicle_axis(s: spaces.Space) -> spaces.Box:
+            box = cast(spaces.Box, s)
+            return spaces.Box(box.low[0], box.high[0], dtype=box.dtype)
+
+        self._obs_space = spaces.Dict({k: drop_vehicle_axis(s) for k, s in cast(spaces.Dict, obs_space).spaces.items()})
+        self._act_space = drop_vehicle_axis(act_space)
         self._parked = self.env.from_ackermann(np.zeros((vehicles_per_env, 2)))[0]
 
-    @functools.lru_cache(maxsize=None)
     def observation_space(self, agent: str) -> Any:
+        """The same space object for every agent (PettingZoo wants a stable object per agent)."""
         return self._obs_space
 
-    @functools.lru_cache(maxsize=None)
     def action_space(self, agent: str) -> Any:
+        """The same space object for every agent."""
         return self._act_space
 
     def reset(self, seed: int | None = None, options: dict | None = None) -> tuple[dict, dict]:
@@ -102,6 +106,8 @@ class RoboRacerParallelEnv(_Base):  # type: ignore[misc,valid-type]
         out = {}
         for a in agents or self.agents:
             k = self._index[a]
-            out[a] = {key: (v[k] if isinstance(v, np.ndarray) and v.ndim >= 1 and len(v) == len(self.possible_agents)
-                            else v) for key, v in info.items()}
+            out[a] = {
+                key: (v[k] if isinstance(v, np.ndarray) and v.ndim >= 1 and len(v) == len(self.possible_agents) else v)
+                for key, v in info.items()
+            }
         return out

@@ -21,8 +21,9 @@ from .env_config import EnvConfig
 class ObservationAssembler:
     """Frames of ``E`` envs x ``V`` vehicles, with history when ``frame_stack > 1``."""
 
-    def __init__(self, config: EnvConfig, field_index: dict[str, int], num_envs: int, vehicles: int,
-                 num_beams: int) -> None:
+    def __init__(
+        self, config: EnvConfig, field_index: dict[str, int], num_envs: int, vehicles: int, num_beams: int
+    ) -> None:
         cfg = self.cfg = config.observation
         self.config = config
         E, V, B = num_envs, vehicles, num_beams
@@ -38,13 +39,19 @@ class ObservationAssembler:
         self._xy = (field_index["x"], field_index["y"], field_index["yaw"])
         #: Names of the columns of obs["odometry"] (yaw becomes yaw_sin, yaw_cos when normalised).
         self.columns: tuple[str, ...] = tuple(
-            c for f in self.fields for c in ((f"{f}_sin", f"{f}_cos") if cfg.normalise and f == "yaw" else (f,)))
+            c for f in self.fields for c in ((f"{f}_sin", f"{f}_cos") if cfg.normalise and f == "yaw" else (f,))
+        )
         veh, lid = config.sim.vehicle, config.sim.lidar
         self.range_max = float(lid.range_max)
         self.scan_high = 1.0 if cfg.normalise else self.range_max
         self._scan_scale = np.float32(1.0 / min(cfg.horizon, self.range_max))
-        self._scale = {"vx": veh.max_speed, "vy": veh.max_speed, "speed": veh.max_speed,
-                       "yaw_rate": 2 * math.pi, "steer": veh.max_steer}
+        self._scale = {
+            "vx": veh.max_speed,
+            "vy": veh.max_speed,
+            "speed": veh.max_speed,
+            "yaw_rate": 2 * math.pi,
+            "steer": veh.max_steer,
+        }
         self._max_steer, self._lo_speed, self._hi_speed = veh.max_steer, veh.min_speed, veh.max_speed
         K = len(self.columns)
         stack = (self.k,) if self.k > 1 else ()
@@ -68,17 +75,22 @@ class ObservationAssembler:
         stack = (self.k,) if self.k > 1 else ()
         out: dict[str, spaces.Space] = {}
         if "scan" in self.buf:
-            out["scan"] = spaces.Box(0.0, self.scan_high, shape=(*lead, *stack, self.buf["scan"].shape[-1]),
-                                     dtype=np.float32)
+            out["scan"] = spaces.Box(
+                0.0, self.scan_high, shape=(*lead, *stack, self.buf["scan"].shape[-1]), dtype=np.float32
+            )
         if "odometry" in self.buf:
             shape = (*lead, *stack, len(self.columns))
             hi = np.broadcast_to(self._odometry_high(), shape).astype(np.float32)
             out["odometry"] = spaces.Box(-hi, hi, dtype=np.float32)
         if "previous_action" in self.buf:
-            lo = np.broadcast_to(action_space.low.reshape(*lead, 2)[..., None, :] if stack else
-                                 action_space.low.reshape(*lead, 2), (*lead, *stack, 2))
-            hi2 = np.broadcast_to(action_space.high.reshape(*lead, 2)[..., None, :] if stack else
-                                  action_space.high.reshape(*lead, 2), (*lead, *stack, 2))
+            lo = np.broadcast_to(
+                action_space.low.reshape(*lead, 2)[..., None, :] if stack else action_space.low.reshape(*lead, 2),
+                (*lead, *stack, 2),
+            )
+            hi2 = np.broadcast_to(
+                action_space.high.reshape(*lead, 2)[..., None, :] if stack else action_space.high.reshape(*lead, 2),
+                (*lead, *stack, 2),
+            )
             out["previous_action"] = spaces.Box(lo.astype(np.float32), hi2.astype(np.float32), dtype=np.float32)
         return spaces.Dict(out)
 

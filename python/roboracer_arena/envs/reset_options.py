@@ -17,7 +17,8 @@ Other keys are ignored with a warning (wrappers may pass their own options throu
 from __future__ import annotations
 
 import warnings
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -26,15 +27,15 @@ from ..errors import ConfigError
 KNOWN = ("track_id", "track_ids", "poses", "speeds", "reset_mask")
 
 
-def reset_options(options: Mapping[str, Any] | None, num_envs: int, vehicles: int, num_tracks: int,
-                  single: bool) -> tuple[np.ndarray | None, np.ndarray | None, np.ndarray | None]:
+def reset_options(
+    options: Mapping[str, Any] | None, num_envs: int, vehicles: int, num_tracks: int, single: bool
+) -> tuple[np.ndarray | None, np.ndarray | None, np.ndarray | None]:
     """(track_ids (E,), poses (E, V, 3), speeds (E, V)), each None when not given."""
     if not options:
         return None, None, None
     unknown = [k for k in options if k not in KNOWN]
     if unknown:  # other keys may be meant for wrappers (gymnasium passes options through): warn only
-        warnings.warn(f"reset options {unknown} are not used by RoboRacerArena (it reads {list(KNOWN)})",
-                      stacklevel=3)
+        warnings.warn(f"reset options {unknown} are not used by RoboRacerArena (it reads {list(KNOWN)})", stacklevel=3)
     if "track_id" in options and "track_ids" in options:
         raise ConfigError("reset options: give track_id or track_ids, not both")
     ids = None
@@ -68,7 +69,9 @@ def reset_options(options: Mapping[str, Any] | None, num_envs: int, vehicles: in
         elif vehicles == 1 and sp.shape == (num_envs,):
             sp = sp[:, None]
         if sp.shape != (num_envs, vehicles):
-            raise ConfigError(f"reset option speeds must have shape {(vehicles,) if single else (num_envs, vehicles)}, "
-                              f"got {np.shape(options['speeds'])}")
+            raise ConfigError(
+                f"reset option speeds must have shape {(vehicles,) if single else (num_envs, vehicles)}, "
+                f"got {np.shape(options['speeds'])}"
+            )
         speeds = sp
     return ids, poses, speeds

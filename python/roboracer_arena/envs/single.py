@@ -83,7 +83,7 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         self._seeded = False
         self._one = np.ones(1, bool)
 
-    @property  # type: ignore[override]
+    @property
     def spec(self) -> Any:
         """The EnvSpec; ``max_episode_steps`` is the limit the env applies (see :mod:`.episode_limit`)."""
         if self._spec is None or self._batch.max_steps is None:
@@ -119,8 +119,8 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         if self._squeeze:  # one vehicle: the scalar path
             reward, terminated, truncated = b.step_one()
             return b.obs.observation_one(), reward, terminated, truncated, self._info()
-        reward, terminated, truncated, _ = b.step()
-        return self._obs(), float(reward[0]), bool(terminated[0]), bool(truncated[0]), self._info()
+        rewards, terminated_e, truncated_e, _ = b.step()
+        return self._obs(), float(rewards[0]), bool(terminated_e[0]), bool(truncated_e[0]), self._info()
 
     def render(self) -> np.ndarray | None:
         if self.render_mode != "rgb_array":
@@ -132,8 +132,13 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         from ..render.sim_view import hud_lines
 
         b = self._batch
-        return self._view.draw(int(b.track_ids[0]), b.state[0], b.field_index,
-                               b.scans[0] if self.config.observation.scan else None, hud=hud_lines(b, 0))
+        return self._view.draw(
+            int(b.track_ids[0]),
+            b.state[0],
+            b.field_index,
+            b.scans[0] if self.config.observation.scan else None,
+            hud=hud_lines(b, 0),
+        )
 
     # ------------------------------------------------------------ helpers (drivers, tools)
     def _obs(self) -> dict[str, np.ndarray]:
@@ -146,7 +151,7 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         b = self._batch
         tid = b.track_ids.item(0)
         if not self._squeeze:
-            info = b.info(0)
+            info: dict[str, Any] = b.info(0)
             info.update(track_id=tid, track=self.tracks[tid].name)
             return info
         ev, row = b.events.item(0), b._row.tolist()

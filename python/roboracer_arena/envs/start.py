@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 #: Cached grid start arc length per (track, slots, spacing).
-_GRID_CACHE: "weakref.WeakKeyDictionary[Any, dict[tuple[int, float], float]]" = weakref.WeakKeyDictionary()
+_GRID_CACHE: weakref.WeakKeyDictionary[Any, dict[tuple[int, float], float]] = weakref.WeakKeyDictionary()
 
 #: Metres kept between the car's side and a wall when start noise moves it sideways (the
 #: simulator's reset draws cap the lateral start noise with it, see ``envs.batch``).

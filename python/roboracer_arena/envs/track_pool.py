@@ -17,7 +17,8 @@ may hold
 from __future__ import annotations
 
 import fnmatch
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -32,8 +33,9 @@ DEFAULT_TRACK = "gen-l040-w12-h2c1s1-clo-s0"
 _KINDS = {"circuit": "circuit", "circuits": "circuit", "recorded": "recorded", "generated": "generated", "all": None}
 
 
-def resolve_track_pool(track: Any, corridor_params: Any = None,
-                       reverse: bool = False) -> tuple[list[Track], np.ndarray | None]:
+def resolve_track_pool(
+    track: Any, corridor_params: Any = None, reverse: bool = False
+) -> tuple[list[Track], np.ndarray | None]:
     """(tracks, probability of each or None for uniform) for ``track=`` (see module docstring),
     each in its racing direction, or the other way round with ``reverse=True``."""
     if track is None:
@@ -71,8 +73,11 @@ def _expand(item: Any) -> Any:
     if kind not in _KINDS:
         raise ConfigError(f"track pattern {item!r}: unknown kind {kind!r}; use one of {sorted(_KINDS)}")
     want = _KINDS[kind]
-    ids = [e["id"] for e in load_catalog().entries
-           if (want is None or e["kind"] == want) and fnmatch.fnmatchcase(e["id"], pattern)]
+    ids = [
+        e["id"]
+        for e in load_catalog().entries
+        if (want is None or e["kind"] == want) and fnmatch.fnmatchcase(e["id"], pattern)
+    ]
     if not ids:
         raise ConfigError(f"track pattern {item!r} matched no catalog track")
     return ids

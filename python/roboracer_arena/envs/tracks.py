@@ -82,8 +82,13 @@ def _with_own_direction(t: Track, item: Any) -> Track:
         path = getattr(item, "path", None) or getattr(getattr(item, "map", None), "path", None)
         return t.oriented(direction_for_map(path) if path else TrackDirection(DEFAULT_DIRECTION))
     start = getattr(item, "start", None)
-    return t.oriented(TrackDirection(check_direction(declared, f"{type(item).__name__}.direction"),
-                                     None if start is None else (float(start[0]), float(start[1])), "object"))
+    return t.oriented(
+        TrackDirection(
+            check_direction(declared, f"{type(item).__name__}.direction"),
+            None if start is None else (float(start[0]), float(start[1])),
+            "object",
+        )
+    )
 
 
 def resolve_catalog(selection: str) -> list[Any]:

@@ -36,7 +36,7 @@ exactly the episodes of that slice.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
@@ -79,8 +79,9 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self.config = vector_config(EnvConfig.build(config, **overrides), max_episode_steps, explicit)
         self.tracks, probs = resolve_track_pool(track, corridor_params, reverse=self.config.reverse)
         self.num_envs = int(num_envs)
-        self._batch = SimBatch(self.tracks, self.num_envs, self.config, seed=0, track_probs=probs,
-                               env_index_offset=self._env_offset)
+        self._batch = SimBatch(
+            self.tracks, self.num_envs, self.config, seed=0, track_probs=probs, env_index_offset=self._env_offset
+        )
         self.single_observation_space, self.single_action_space = self._batch.single_spaces()
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
@@ -98,7 +99,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self._all = np.ones(self.num_envs, bool)
         self._spec: Any = None
 
-    @property  # type: ignore[override]
+    @property
     def spec(self) -> Any:
         """The EnvSpec, its ``max_episode_steps`` the limit this env applies."""
         return self._spec
@@ -115,7 +116,8 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         if isinstance(seed, (list, tuple)):
             raise ValueError("pass one integer seed; environment i is seeded with (seed, i)")
         if seed is None and not self._seeded:
-            seed = int(np.random.SeedSequence().entropy % (2**63))
+            entropy = cast(int, np.random.SeedSequence().entropy)  # fresh from the OS: always an int
+            seed = int(entropy % (2**63))
         if seed is not None:
             self._np_random_seed = int(seed)
             self._np_random = np.random.default_rng(seed)
@@ -124,7 +126,9 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         mask = self._all
         if options and options.get("reset_mask") is not None:
             mask = np.asarray(options["reset_mask"], dtype=bool).reshape(self.num_envs)
-        track_ids, poses, speeds = reset_options(options, self.num_envs, self.vehicles_per_env, len(self.tracks), single=False)
+        track_ids, poses, speeds = reset_options(
+            options, self.num_envs, self.vehicles_per_env, len(self.tracks), single=False
+        )
         self._batch.reset(mask, track_ids, poses, speeds)
         self._autoreset &= ~mask
         return self._obs(), self._info()
@@ -152,8 +156,12 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
                     final_obs[e] = {k: v[j] for k, v in last.items()}
                 final_info = self._masked(self._info(), done)
                 b.reset(done)
-                infos = {"final_obs": final_obs, "_final_obs": done.copy(), "final_info": final_info,
-                         "_final_info": done.copy()}
+                infos = {
+                    "final_obs": final_obs,
+                    "_final_obs": done.copy(),
+                    "final_info": final_info,
+                    "_final_info": done.copy(),
+                }
         infos.update(self._info())
         return self._obs(), reward.astype(np.float64), terminated.copy(), truncated.copy(), infos
 
@@ -168,8 +176,10 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
 
         b = self._batch
         scans = b.scans if self.config.observation.scan else [None] * self.num_envs
-        return tuple(self._view.draw(int(b.track_ids[e]), b.state[e], b.field_index, scans[e], hud=hud_lines(b, e))
-                     for e in range(self.num_envs))
+        return tuple(
+            self._view.draw(int(b.track_ids[e]), b.state[e], b.field_index, scans[e], hud=hud_lines(b, e))
+            for e in range(self.num_envs)
+        )
 
     # ------------------------------------------------------------------ helpers
     def _obs(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:

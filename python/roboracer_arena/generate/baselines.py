@@ -113,7 +113,9 @@ def _segments(seq: list[str], x: np.ndarray, sense: float, turn_shift: float = 0
 
 def _integrate(segs: list[tuple[float, float]]) -> tuple[np.ndarray, np.ndarray]:
     """Points (and their arc length) of the curve starting at 0 heading +x (exact arcs)."""
-    xs, ys, ss = [np.zeros(1)], [np.zeros(1)], [np.zeros(1)]
+    xs: list[np.ndarray] = [np.zeros(1)]
+    ys: list[np.ndarray] = [np.zeros(1)]
+    ss: list[np.ndarray] = [np.zeros(1)]
     x = y = th = s = 0.0
     for length, k in segs:
         n = max(1, int(math.ceil(length / STEP_M)))
@@ -153,7 +155,11 @@ def _project(seq: list[str], n_links: int, x: np.ndarray, sense: float, max_stra
     segs = _segments(seq, x, sense, (sense * 2 * math.pi - total) / n_links)
     for _ in range(3):
         th, gap = _endpoint(segs)
-        free = [i for i, (length, k) in enumerate(segs) if k == 0.0 and (length > STRAIGHT_MIN_M + 1e-9 or gap @ [math.cos(th[i]), math.sin(th[i])] < 0)]
+        free = [
+            i
+            for i, (length, k) in enumerate(segs)
+            if k == 0.0 and (length > STRAIGHT_MIN_M + 1e-9 or gap @ [math.cos(th[i]), math.sin(th[i])] < 0)
+        ]
         if np.hypot(*gap) < 1e-6 or len(free) < 2:
             break
         u = np.column_stack([np.cos(th[free]), np.sin(th[free])])

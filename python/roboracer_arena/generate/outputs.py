@@ -88,9 +88,13 @@ def output_folder(outdir: str | Path) -> Iterator[Path]:
     out = Path(outdir)
     if out.exists() or out.is_symlink():
         if not out.is_dir() or out.is_symlink():
-            raise InvalidArgumentError(f"-o {out}: exists and is not a directory; give a new or an earlier generate output directory")
+            raise InvalidArgumentError(
+                f"-o {out}: exists and is not a directory; give a new or an earlier generate output directory"
+            )
         if not _is_generate_folder(out):
-            raise InvalidArgumentError(f"-o {out}: directory holds files generate did not write; give a new, empty or earlier generate output directory")
+            raise InvalidArgumentError(
+                f"-o {out}: directory holds files generate did not write; give a new, empty or earlier generate output directory"
+            )
     parent = out.absolute().parent
     try:
         parent.mkdir(parents=True, exist_ok=True)

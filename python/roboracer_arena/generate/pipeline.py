@@ -13,7 +13,7 @@ import numpy as np
 
 from .. import _core
 from ..constructor_config import ConstructorConfig
-from ..errors import InvalidArgumentError
+from ..errors import InternalError, InvalidArgumentError
 from ..maps import OccupancyMap
 from ..spec import TrackSpec
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
@@ -47,16 +47,25 @@ def derived_geometry(spec: TrackSpec, config: ConstructorConfig | None = None) -
     return json.loads(_core.derived_geometry(*_jsons(spec, config or ConstructorConfig())))
 
 
-def validate_map(m: OccupancyMap, spec: TrackSpec, config: ConstructorConfig | None = None) -> tuple[dict[str, Any], np.ndarray]:
+def validate_map(
+    m: OccupancyMap, spec: TrackSpec, config: ConstructorConfig | None = None
+) -> tuple[dict[str, Any], np.ndarray]:
     """Measure the raster against the spec; returns (report, measured centreline (N, 2))."""
-    report, line = _core.validate_map(np.ascontiguousarray(m.data, np.uint8), m.resolution, tuple(m.origin), *_jsons(spec, config or ConstructorConfig()))
+    report, line = _core.validate_map(
+        np.ascontiguousarray(m.data, np.uint8),
+        m.resolution,
+        m.origin,
+        *_jsons(spec, config or ConstructorConfig()),
+    )
     return json.loads(report), line
 
 
 def rasterise(centreline: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> OccupancyMap:
     """Eq. 3 at the configured resolution and wall thickness, constant corridor width."""
     xy = np.ascontiguousarray(centreline, np.float64)
-    data, origin = _core.rasterise_centreline(xy, np.full(len(xy), spec.corridor_width_m), config.resolution_m, config.wall_thickness_m, config.map_margin_m)
+    data, origin = _core.rasterise_centreline(
+        xy, np.full(len(xy), spec.corridor_width_m), config.resolution_m, config.wall_thickness_m, config.map_margin_m
+    )
     return OccupancyMap(data, config.resolution_m, origin)
 
 
@@ -95,9 +104,28 @@ def generate_track(
         kind, info, grid, line = _core.generate_lattice(*_jsons(spec, config), seed, timeout)
         info = json.loads(info)
         if kind == "accepted":
+            if grid is None or line is None:  # the core returns both with every acceptance
+                raise InternalError("generate_lattice accepted without a map and centreline")
             data, origin = grid
-            return Acceptance(spec, OccupancyMap(data, config.resolution_m, origin), line, info["report"], constructor, seed, info["tried"], time.perf_counter() - t0)
-        return GenerationFailure(spec, constructor, seed, info["tried"], dict(info["reasons"]), time.perf_counter() - t0, stopped=info.get("stopped"))
+            return Acceptance(
+                spec,
+                OccupancyMap(data, config.resolution_m, origin),
+                line,
+                info["report"],
+                constructor,
+                seed,
+                info["tried"],
+                time.perf_counter() - t0,
+            )
+        return GenerationFailure(
+            spec,
+            constructor,
+            seed,
+            info["tried"],
+            dict(info["reasons"]),
+            time.perf_counter() - t0,
+            stopped=info.get("stopped"),
+        )
     from .baselines import construct_baseline
 
     line = construct_baseline(spec, config, seed, constructor)

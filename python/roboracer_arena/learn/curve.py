@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 import io
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 from PIL import Image, ImageDraw, ImageFont
 
 from ..fileio import atomic_write_bytes
 
 
-def plot_curve(curve: Sequence[dict[str, float]], path: str | Path, title: str, size: tuple[int, int] = (720, 400)) -> None:
+def plot_curve(
+    curve: Sequence[dict[str, float]], path: str | Path, title: str, size: tuple[int, int] = (720, 400)
+) -> None:
     """Write ``path`` (PNG): return against env-steps, mean (blue) and best (grey) of each generation."""
     w, h = size
     left, right, top, bottom = 70, 20, 40, 50

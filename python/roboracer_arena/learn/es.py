@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
@@ -66,15 +67,19 @@ class MLPPolicy:
 
     def init(self, rng: np.random.Generator) -> np.ndarray:
         """Initial parameters: scaled normal first layer, small output layer."""
-        parts = [rng.normal(0, 1 / math.sqrt(self.inputs), self.shapes[0]), np.zeros(self.hidden),
-                 rng.normal(0, 0.1 / math.sqrt(self.hidden), self.shapes[2]), np.zeros(2)]
+        parts = [
+            rng.normal(0, 1 / math.sqrt(self.inputs), self.shapes[0]),
+            np.zeros(self.hidden),
+            rng.normal(0, 0.1 / math.sqrt(self.hidden), self.shapes[2]),
+            np.zeros(2),
+        ]
         return np.concatenate([p.ravel() for p in parts])
 
     def _unpack(self, theta: np.ndarray) -> list[np.ndarray]:
         out, i = [], 0
         for s in self.shapes:
             n = int(np.prod(s))
-            out.append(theta[..., i:i + n].reshape(*theta.shape[:-1], *s))
+            out.append(theta[..., i : i + n].reshape(*theta.shape[:-1], *s))
             i += n
         return out
 
@@ -97,18 +102,21 @@ def _make_env(track: Any, num_envs: int, cfg: ESConfig, **extra: Any) -> Any:
 
     from ..envs.vector import RoboRacerVectorEnv
 
-    return RoboRacerVectorEnv(num_envs=num_envs, track=track, autoreset_mode=AutoresetMode.DISABLED,
-                              **env_kwargs(cfg, **extra))
+    return RoboRacerVectorEnv(
+        num_envs=num_envs, track=track, autoreset_mode=AutoresetMode.DISABLED, **env_kwargs(cfg, **extra)
+    )
 
 
-def rollout(env: Any, policy: MLPPolicy, thetas: np.ndarray, steps: int, options: dict | None = None,
-            seed: int | None = None) -> tuple[np.ndarray, int]:
+def rollout(
+    env: Any, policy: MLPPolicy, thetas: np.ndarray, steps: int, options: dict | None = None, seed: int | None = None
+) -> tuple[np.ndarray, int]:
     """Episodic returns (N,) of one parameter vector per env, and env-steps simulated."""
     obs, _ = env.reset(seed=seed, options=options)
     n = env.num_envs
     ret, alive = np.zeros(n), np.ones(n, bool)
     t = 0
-    for t in range(1, steps + 1):
+    for _ in range(steps):
+        t += 1
         obs, rew, term, trunc, _ = env.step(policy.act(thetas, features(obs)))
         ret += rew * alive
         alive &= ~(term | trunc)
@@ -134,8 +142,12 @@ class TrainResult:
     seconds: float
 
     def summary(self) -> dict[str, Any]:
-        return {"config": {k: v for k, v in asdict(self.config).items()}, "env_steps": self.env_steps,
-                "seconds": round(self.seconds, 2), "curve": self.curve}
+        return {
+            "config": {k: v for k, v in asdict(self.config).items()},
+            "env_steps": self.env_steps,
+            "seconds": round(self.seconds, 2),
+            "curve": self.curve,
+        }
 
 
 def make_training_env(track: Any, cfg: ESConfig, ray_actors: int | None = None) -> Any:
@@ -152,12 +164,14 @@ def make_training_env(track: Any, cfg: ESConfig, ray_actors: int | None = None) 
 
     if ray_actors < 1 or (2 * cfg.pairs) % ray_actors:
         raise ConfigError(f"--ray actors: 2 * pairs = {2 * cfg.pairs} envs do not split over {ray_actors} actors")
-    return RayVectorEnv(ray_actors, 2 * cfg.pairs // ray_actors, track=track, autoreset_mode=AutoresetMode.DISABLED,
-                        **env_kwargs(cfg))
+    return RayVectorEnv(
+        ray_actors, 2 * cfg.pairs // ray_actors, track=track, autoreset_mode=AutoresetMode.DISABLED, **env_kwargs(cfg)
+    )
 
 
-def train(track: Any, cfg: ESConfig = ESConfig(), progress: Callable[[dict[str, float]], None] | None = None,
-          env: Any = None) -> TrainResult:
+def train(
+    track: Any, cfg: ESConfig = ESConfig(), progress: Callable[[dict[str, float]], None] | None = None, env: Any = None
+) -> TrainResult:
     """Train the policy with ES on ``track`` (anything ``track=`` accepts, pools included),
     or on ``env`` from :func:`make_training_env` (then ``track`` is ignored)."""
     if env is None:
@@ -188,16 +202,25 @@ def train(track: Any, cfg: ESConfig = ESConfig(), progress: Callable[[dict[str, 
         grad = -(shaped[0::2] - shaped[1::2]) @ eps / (2 * cfg.pairs * cfg.sigma) + cfg.weight_decay * theta
         m = b1 * m + (1 - b1) * grad
         v = b2 * v + (1 - b2) * grad * grad
-        theta = theta - cfg.learning_rate * (m / (1 - b1 ** (gen + 1))) / (np.sqrt(v / (1 - b2 ** (gen + 1))) + eps_adam)
-        row = {"generation": gen, "mean_return": float(ret.mean()), "max_return": float(ret.max()),
-               "env_steps": steps_total, "seconds": round(time.perf_counter() - t0, 3)}
+        theta = theta - cfg.learning_rate * (m / (1 - b1 ** (gen + 1))) / (
+            np.sqrt(v / (1 - b2 ** (gen + 1))) + eps_adam
+        )
+        row = {
+            "generation": gen,
+            "mean_return": float(ret.mean()),
+            "max_return": float(ret.max()),
+            "env_steps": steps_total,
+            "seconds": round(time.perf_counter() - t0, 3),
+        }
         curve.append(row)
         if progress:
             progress(row)
     return TrainResult(theta, cfg, curve, steps_total, time.perf_counter() - t0)
 
 
-def evaluate_laps(theta: np.ndarray, track: Any, cfg: ESConfig, max_time_s: float | None = None) -> list[dict[str, Any]]:
+def evaluate_laps(
+    theta: np.ndarray, track: Any, cfg: ESConfig, max_time_s: float | None = None
+) -> list[dict[str, Any]]:
     """Drive the policy from the grid start of every track of ``track`` (one env each) until
     it completes a lap, touches anything, drives the wrong way or runs out of time
     (default: the lap at 0.8 m/s, below the policy's slowest speed). Returns per track:
@@ -211,7 +234,8 @@ def evaluate_laps(theta: np.ndarray, track: Any, cfg: ESConfig, max_time_s: floa
     dt = env.config.control_dt
     limit = max_time_s if max_time_s is not None else max(t.length for t in tracks) / 0.8
     n = len(tracks)
-    done, clean, lap_time, progress = np.zeros(n, bool), np.zeros(n, bool), [None] * n, np.zeros(n)
+    done, clean, progress = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n)
+    lap_time: list[float | None] = [None] * n
     for _ in range(int(limit / dt)):
         obs, _, term, _, info = env.step(policy.act(theta, features(obs)))
         live = ~done
@@ -221,5 +245,7 @@ def evaluate_laps(theta: np.ndarray, track: Any, cfg: ESConfig, max_time_s: floa
         done |= term | info["lap_completed"]
         if done.all():
             break
-    return [{"track": t.name, "clean_lap": bool(clean[i]), "lap_time": lap_time[i], "progress": float(progress[i])}
-            for i, t in enumerate(tracks)]
+    return [
+        {"track": t.name, "clean_lap": bool(clean[i]), "lap_time": lap_time[i], "progress": float(progress[i])}
+        for i, t in enumerate(tracks)
+    ]

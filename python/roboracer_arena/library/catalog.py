@@ -21,8 +21,13 @@ from ..paths import sources_dir, tracks_dir
 
 KINDS = ("recorded", "circuit", "generated")
 #: Selections accepted by :func:`resolve` besides single ids.
-SELECTIONS = {"all": KINDS, "recorded": ("recorded",), "circuits": ("circuit",), "circuit": ("circuit",),
-              "generated": ("generated",)}
+SELECTIONS = {
+    "all": KINDS,
+    "recorded": ("recorded",),
+    "circuits": ("circuit",),
+    "circuit": ("circuit",),
+    "generated": ("generated",),
+}
 
 #: Licence of each source folder (from ../shared/track-sources/SOURCES.md).
 LICENCES = {
@@ -51,8 +56,11 @@ def provenance(sources: Path, folder: str) -> dict[str, str]:
         pass
     repo = re.search(r"^Source:\s*(\S+)", text, re.M)
     commit = re.search(r"\b([0-9a-f]{40})\b", text)
-    return {"repository": repo.group(1) if repo else "", "commit": commit.group(1) if commit else "",
-            "licence": LICENCES.get(folder, "unknown")}
+    return {
+        "repository": repo.group(1) if repo else "",
+        "commit": commit.group(1) if commit else "",
+        "licence": LICENCES.get(folder, "unknown"),
+    }
 
 
 def sha256_file(path: Path) -> str:
@@ -91,8 +99,12 @@ class Catalog:
         return base / entry["map"]
 
     def to_json(self) -> str:
-        return json.dumps({**self.meta, "count": len(self.entries), "tracks": self.entries,
-                           "left_out": self.left_out}, indent=2) + "\n"
+        return (
+            json.dumps(
+                {**self.meta, "count": len(self.entries), "tracks": self.entries, "left_out": self.left_out}, indent=2
+            )
+            + "\n"
+        )
 
 
 def load_catalog(path: str | Path | None = None) -> Catalog:
@@ -108,8 +120,9 @@ def load_catalog(path: str | Path | None = None) -> Catalog:
     return Catalog(entries=list(doc.get("tracks", [])), left_out=list(doc.get("left_out", [])), meta=meta, path=p)
 
 
-def resolve(id_or_selection: str | list[str], catalog: str | Path | Catalog | None = None,
-            sources: str | Path | None = None) -> list[Path]:
+def resolve(
+    id_or_selection: str | list[str], catalog: str | Path | Catalog | None = None, sources: str | Path | None = None
+) -> list[Path]:
     """Map YAML paths for a catalog id, a list of ids, or a selection (``"circuits"``,
     ``"generated"``, ``"recorded"``, ``"all"``). Raises ``InvalidArgumentError`` for an
     unknown id."""

@@ -16,9 +16,11 @@ def entry_direction(cat: Catalog, entry: dict[str, Any], sources: Path | None = 
     catalog), the one found beside its map."""
     if entry.get("direction"):
         start = entry.get("start")
-        return TrackDirection(check_direction(entry["direction"], f"catalog entry {entry['id']!r} direction"),
-                              None if start is None else (float(start[0]), float(start[1])),
-                              entry.get("direction_source", "catalog"))
+        return TrackDirection(
+            check_direction(entry["direction"], f"catalog entry {entry['id']!r} direction"),
+            None if start is None else (float(start[0]), float(start[1])),
+            entry.get("direction_source", "catalog"),
+        )
     return direction_for_map(cat.map_path(entry, sources))
 
 

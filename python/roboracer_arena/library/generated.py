@@ -11,8 +11,9 @@ from __future__ import annotations
 import itertools
 import json
 import time
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any
 
 import numpy as np
 
@@ -47,12 +48,21 @@ CSV_SPACING = 0.25
 
 def sweep() -> Iterator[tuple[str, TrackSpec, int]]:
     """``(id, spec, seed)`` in sweep order."""
-    for (vi, venue), (fi, feat), seed in itertools.product(enumerate(VENUES), enumerate(FEATURES), SEEDS):
+    for venue, feat, seed in itertools.product(VENUES, FEATURES, SEEDS):
         lap, width, hx, hy = venue
         h, c, s, direction = feat
         tid = f"gen-l{int(lap):03d}-w{int(round(width * 10)):02d}-h{h}c{c}s{s}-{direction[:3] if direction == 'clockwise' else 'ccw'}-s{seed}"
-        spec = TrackSpec(name=tid, lap_length_m=lap, corridor_width_m=width, hall_x_m=hx, hall_y_m=hy,
-                         hairpins=h, chicanes=c, sweepers=s, direction=direction)  # type: ignore[arg-type]
+        spec = TrackSpec(
+            name=tid,
+            lap_length_m=lap,
+            corridor_width_m=width,
+            hall_x_m=hx,
+            hall_y_m=hy,
+            hairpins=h,
+            chicanes=c,
+            sweepers=s,
+            direction=direction,
+        )
         yield tid, spec, seed
 
 
@@ -64,14 +74,20 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, by
     import tempfile
 
     from ..generate import generate_track, write_outputs
+    from ..generate.outcomes import Acceptance, Rejection
     from ..generate.outputs import centreline_csv
 
     tid, spec, seed = task
     out = generate_track(spec, seed)
-    rec = {"id": tid, "seed": seed, "outcome": out.kind, "seconds": round(out.seconds, 3),
-           "spec": json.loads(spec.model_dump_json())}
+    rec = {
+        "id": tid,
+        "seed": seed,
+        "outcome": out.kind,
+        "seconds": round(out.seconds, 3),
+        "spec": json.loads(spec.model_dump_json()),
+    }
     files: dict[str, bytes] = {}
-    if out.kind == "accepted":
+    if isinstance(out, Acceptance):
         with tempfile.TemporaryDirectory(prefix="rra-gen-") as tmp:
             paths = write_outputs(out, tmp, stem="map")
             # The committed centreline is thinned to ~CSV_SPACING m (the map is the reference).
@@ -81,7 +97,7 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, by
             atomic_write_text(paths["centreline_csv"], centreline_csv(line[::every], spec.corridor_width_m))
             files = {p.name: p.read_bytes() for p in paths.values()}
         rec["candidates_tried"] = out.candidates_tried
-    elif out.kind == "rejected":
+    elif isinstance(out, Rejection):
         rec["violations"] = out.violations
     return rec, files
 
@@ -105,7 +121,7 @@ def build_generated(
     ex = executor or LocalExecutor(jobs)
     try:
         it = ex.run(generate_files, tasks)
-        for i, (rec, files) in (progress(it, len(tasks)) if progress else it):
+        for i, (rec, files) in progress(it, len(tasks)) if progress else it:
             if files:
                 atomic_write_dir(Path(outdir) / rec["id"], files)
             recs[i] = rec

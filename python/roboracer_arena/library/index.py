@@ -27,25 +27,43 @@ def _circuit_entries(tracks: Path, sources: Path) -> list[dict[str, Any]]:
         prov = provenance(sources, folder)
         notes = [f"width: {r['width_note']}"]
         if r["grade_separated"]:
-            notes.append("grade-separated crossing: the centreline crosses itself (a bridge); the planar map "
-                         "overlaps there and the raster length check does not apply")
+            notes.append(
+                "grade-separated crossing: the centreline crosses itself (a bridge); the planar map "
+                "overlaps there and the raster length check does not apply"
+            )
         if r["narrowed_fraction"] > 0:
-            notes.append(f"narrowed where sections would merge: {100 * r['narrowed_fraction']:.1f} % of the lap "
-                         f"(never below 60 % of nominal)")
+            notes.append(
+                f"narrowed where sections would merge: {100 * r['narrowed_fraction']:.1f} % of the lap "
+                f"(never below 60 % of nominal)"
+            )
         if r.get("meta", {}).get("differs_from"):
             notes.append(f"layout differs from TUM '{r['meta']['differs_from']['tum']}'")
-        out.append({
-            "id": r["id"], "name": r["name"], "kind": "circuit",
-            "source": {**prov, "path": r["source_file"],
-                       "derived": "scaled 1:10, periodic cubic spline, rasterised by roboracer-arena"},
-            "scale": r["scale"], "resolution_m": r["resolution_m"], "lap_length_m": r["lap_length_m"],
-            "width_mean_m": r["width_mean_m"], "width_min_m": r["width_min_m"], "min_radius_m": r["min_radius_m"],
-            "raster": {"width_px": r["raster"]["width_px"], "height_px": r["raster"]["height_px"]},
-            "sha256": r["map_sha256"], "map": f"circuits/{r['map_yaml']}",
-            "centreline": f"circuits/{r['id']}/centreline.csv",
-            "grade_separated": r["grade_separated"], "narrowed_fraction": r["narrowed_fraction"],
-            "length_error": r["length_error"], "notes": notes,
-        })
+        out.append(
+            {
+                "id": r["id"],
+                "name": r["name"],
+                "kind": "circuit",
+                "source": {
+                    **prov,
+                    "path": r["source_file"],
+                    "derived": "scaled 1:10, periodic cubic spline, rasterised by roboracer-arena",
+                },
+                "scale": r["scale"],
+                "resolution_m": r["resolution_m"],
+                "lap_length_m": r["lap_length_m"],
+                "width_mean_m": r["width_mean_m"],
+                "width_min_m": r["width_min_m"],
+                "min_radius_m": r["min_radius_m"],
+                "raster": {"width_px": r["raster"]["width_px"], "height_px": r["raster"]["height_px"]},
+                "sha256": r["map_sha256"],
+                "map": f"circuits/{r['map_yaml']}",
+                "centreline": f"circuits/{r['id']}/centreline.csv",
+                "grade_separated": r["grade_separated"],
+                "narrowed_fraction": r["narrowed_fraction"],
+                "length_error": r["length_error"],
+                "notes": notes,
+            }
+        )
     return out
 
 
@@ -59,20 +77,35 @@ def _generated_entries(tracks: Path) -> list[dict[str, Any]]:
         m = load_map(d / "map.yaml")
         h, w = m.shape
         feats = f"{spec['hairpins']} hairpin(s), {spec['chicanes']} chicane(s), {spec['sweepers']} sweeper(s)"
-        out.append({
-            "id": d.name, "name": spec["name"], "kind": "generated",
-            "source": {**PROJECT, "path": f"generated/{d.name}/spec.json",
-                       "derived": f"generate_track(spec, seed={rep['seed']}) with the {rep['constructor']} constructor"},
-            # Rounded as the validator reports them (cm for lengths, mm for widths).
-            "scale": 1.0, "resolution_m": m.resolution, "lap_length_m": round(meas["lap_length_m"], 2),
-            "width_mean_m": round(meas["width_mean_m"], 3), "width_min_m": round(meas["width_min_m"], 3),
-            "min_radius_m": round(meas["min_radius_m"], 2),
-            "raster": {"width_px": w, "height_px": h}, "sha256": sha256_file(Path(m.meta["image_path"])),
-            "map": f"generated/{d.name}/map.yaml", "centreline": f"generated/{d.name}/centreline.csv",
-            "spec": f"generated/{d.name}/spec.json", "seed": rep["seed"],
-            "notes": [f"{spec['lap_length_m']:g} m lap, {spec['corridor_width_m']:g} m wide, {spec['direction']}, {feats}, "
-                      f"in a {spec['hall_x_m']:g} x {spec['hall_y_m']:g} m hall"],
-        })
+        out.append(
+            {
+                "id": d.name,
+                "name": spec["name"],
+                "kind": "generated",
+                "source": {
+                    **PROJECT,
+                    "path": f"generated/{d.name}/spec.json",
+                    "derived": f"generate_track(spec, seed={rep['seed']}) with the {rep['constructor']} constructor",
+                },
+                # Rounded as the validator reports them (cm for lengths, mm for widths).
+                "scale": 1.0,
+                "resolution_m": m.resolution,
+                "lap_length_m": round(meas["lap_length_m"], 2),
+                "width_mean_m": round(meas["width_mean_m"], 3),
+                "width_min_m": round(meas["width_min_m"], 3),
+                "min_radius_m": round(meas["min_radius_m"], 2),
+                "raster": {"width_px": w, "height_px": h},
+                "sha256": sha256_file(Path(m.meta["image_path"])),
+                "map": f"generated/{d.name}/map.yaml",
+                "centreline": f"generated/{d.name}/centreline.csv",
+                "spec": f"generated/{d.name}/spec.json",
+                "seed": rep["seed"],
+                "notes": [
+                    f"{spec['lap_length_m']:g} m lap, {spec['corridor_width_m']:g} m wide, {spec['direction']}, {feats}, "
+                    f"in a {spec['hall_x_m']:g} x {spec['hall_y_m']:g} m hall"
+                ],
+            }
+        )
     return out
 
 
@@ -89,11 +122,20 @@ def _recorded_entries(sources: Path, jobs: int, progress) -> tuple[list[dict[str
         if r.get("infields", 1) > 1:
             notes.append(f"{r['infields']} enclosed regions (obstacles or islands in the corridor)")
         out = {
-            "id": r["id"], "name": r["name"], "kind": "recorded",
+            "id": r["id"],
+            "name": r["name"],
+            "kind": "recorded",
             "source": {**prov, "path": r["source_path"]},
-            "scale": None, "resolution_m": r["resolution_m"], "lap_length_m": r["lap_length_m"],
-            "width_mean_m": r["width_mean_m"], "width_min_m": r["width_min_m"], "min_radius_m": r["min_radius_m"],
-            "raster": r["raster"], "sha256": sha256_file(img_path), "map": r["source_path"], "notes": notes,
+            "scale": None,
+            "resolution_m": r["resolution_m"],
+            "lap_length_m": r["lap_length_m"],
+            "width_mean_m": r["width_mean_m"],
+            "width_min_m": r["width_min_m"],
+            "min_radius_m": r["min_radius_m"],
+            "raster": r["raster"],
+            "sha256": sha256_file(img_path),
+            "map": r["source_path"],
+            "notes": notes,
         }
         entries.append(out)
     return entries, left_out
@@ -114,8 +156,8 @@ def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress=None) -> 
         "schema": "roboracer-arena track catalog v1",
         "built_with": f"roboracer-arena {__version__}",
         "sources_note": "recorded maps: 'map' is relative to the sources directory (--sources / "
-                        "$ROBORACER_ARENA_SOURCES, default ../shared/track-sources); circuits and generated: "
-                        "relative to this file's directory",
+        "$ROBORACER_ARENA_SOURCES, default ../shared/track-sources); circuits and generated: "
+        "relative to this file's directory",
         "counts": {k: sum(e["kind"] == k for e in entries) for k in ("circuit", "recorded", "generated")},
         "seconds": round(time.perf_counter() - t0, 2),
     }

@@ -79,8 +79,7 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
     """Load one recorded map and measure it; ``usable`` False comes with a ``reason``."""
     rel = str(yaml_path.relative_to(sources))
     name = yaml_path.stem[:-4] if yaml_path.stem.endswith("_map") else yaml_path.stem
-    rec: dict = {"id": record_id(sources, yaml_path), "name": name, "source_path": rel,
-                 "source_dir": rel.split("/")[0]}
+    rec: dict = {"id": record_id(sources, yaml_path), "name": name, "source_path": rel, "source_dir": rel.split("/")[0]}
     try:
         m = load_map(yaml_path)
     except (ArenaError, OSError, ValueError) as e:
@@ -89,15 +88,18 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
     data = np.asarray(m.data, np.uint8)
     h, w = data.shape
     img_bytes = data.tobytes()
-    rec.update(resolution_m=float(m.resolution), raster={"width_px": w, "height_px": h},
-               grid_sha256=hashlib.sha256(img_bytes + repr(float(m.resolution)).encode()).hexdigest())
+    rec.update(
+        resolution_m=float(m.resolution),
+        raster={"width_px": w, "height_px": h},
+        grid_sha256=hashlib.sha256(img_bytes + repr(float(m.resolution)).encode()).hexdigest(),
+    )
     iso, why, check = corridor_grid(yaml_path, data)
     rec["corridor_check"] = check
     if iso is None:
         rec.update(usable=False, reason=why)
         return rec
     try:
-        info_json, line, widths = _core.measure_map(iso, float(m.resolution), tuple(m.origin))
+        info_json, line, widths = _core.measure_map(iso, float(m.resolution), m.origin)
     except ArenaError as e:
         rec.update(usable=False, reason=f"no closed corridor: {e}")
         return rec
@@ -113,10 +115,15 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
     if lap < MIN_LAP_M:
         rec.update(usable=False, reason=f"corridor loop only {lap:.1f} m long (< {MIN_LAP_M} m)")
     elif info["mean_width_m"] < MIN_MEAN_WIDTH_M:
-        rec.update(usable=False, reason=f"corridor {info['mean_width_m']:.2f} m wide on average (< {MIN_MEAN_WIDTH_M} m)")
+        rec.update(
+            usable=False, reason=f"corridor {info['mean_width_m']:.2f} m wide on average (< {MIN_MEAN_WIDTH_M} m)"
+        )
     elif info["mean_width_m"] > MAX_MEAN_WIDTH_M:
-        rec.update(usable=False, reason=f"open area, not a corridor: {info['mean_width_m']:.1f} m wide on average "
-                                        f"(> {MAX_MEAN_WIDTH_M} m) around a {lap:.1f} m loop")
+        rec.update(
+            usable=False,
+            reason=f"open area, not a corridor: {info['mean_width_m']:.1f} m wide on average "
+            f"(> {MAX_MEAN_WIDTH_M} m) around a {lap:.1f} m loop",
+        )
     else:
         rec.update(usable=True, reason=None)
     return rec

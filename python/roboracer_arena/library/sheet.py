@@ -33,7 +33,7 @@ def thumbnail(yaml_path: Path, size: tuple[int, int]) -> tuple[Image.Image, tupl
     known = data != 205
     if known.any():
         rows, cols = np.nonzero(known.any(axis=1))[0], np.nonzero(known.any(axis=0))[0]
-        data = data[rows[0]: rows[-1] + 1, cols[0]: cols[-1] + 1]
+        data = data[rows[0] : rows[-1] + 1, cols[0] : cols[-1] + 1]
     # Drivable space dark, walls mid-grey, unknown white; shrink by block minimum first so
     # a corridor a few cells wide stays visible at thumbnail size.
     shade = np.where(data == 254, 30, np.where(data == 0, 150, 255)).astype(np.uint8)
@@ -47,8 +47,15 @@ def thumbnail(yaml_path: Path, size: tuple[int, int]) -> tuple[Image.Image, tupl
     return img, extent
 
 
-def contact_sheet(cat: Catalog, entries: list[dict], out: Path, sources: Path | None = None, columns: int = 12,
-                  cell: tuple[int, int] = (180, 150), progress=None) -> Path:
+def contact_sheet(
+    cat: Catalog,
+    entries: list[dict],
+    out: Path,
+    sources: Path | None = None,
+    columns: int = 12,
+    cell: tuple[int, int] = (180, 150),
+    progress=None,
+) -> Path:
     """Draw every entry as a thumbnail with its id, lap length, extent and scale bar; write
     the picture (PNG or JPEG by the extension of ``out``) atomically."""
     from ..render.formats import image_format
@@ -78,8 +85,9 @@ def contact_sheet(cat: Catalog, entries: list[dict], out: Path, sources: Path | 
         kind = f"{e['kind']}, lap {lap:.1f} m" if lap else e["kind"]
         draw.text((x0 + 4, y0 + cell[1] + 13), kind, fill=colour, font=font)
         if extent is not None:
-            draw.text((x0 + 4, y0 + cell[1] + 26), f"extent {extent[0]:.0f} x {extent[1]:.0f} m", fill=(60, 60, 60),
-                      font=font)
+            draw.text(
+                (x0 + 4, y0 + cell[1] + 26), f"extent {extent[0]:.0f} x {extent[1]:.0f} m", fill=(60, 60, 60), font=font
+            )
     return save_image(sheet, out)
 
 

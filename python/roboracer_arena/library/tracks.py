@@ -38,8 +38,9 @@ def entry_track(cat: Catalog, entry: dict[str, Any], sources: Path | None = None
     return dataclasses.replace(t, name=entry["id"]), "corridor centreline"
 
 
-def resolve_tracks(selection: str | list[str], catalog: str | Path | Catalog | None = None,
-                   sources: str | Path | None = None) -> list[Any]:
+def resolve_tracks(
+    selection: str | list[str], catalog: str | Path | Catalog | None = None, sources: str | Path | None = None
+) -> list[Any]:
     """Tracks (named by catalog id, each in the direction the catalog records) for an id,
     a list of ids, or a selection (``"circuits"``, ``"recorded"``, ``"generated"``, ``"all"``)."""
     cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)

@@ -48,8 +48,13 @@ class TrackResult:
         return all(c.status != FAIL for c in self.checks.values())
 
     def to_dict(self) -> dict[str, Any]:
-        return {"id": self.id, "kind": self.kind, "passed": self.passed, "seconds": round(self.seconds, 3),
-                "checks": {k: {"status": c.status, "detail": c.detail} for k, c in self.checks.items()}}
+        return {
+            "id": self.id,
+            "kind": self.kind,
+            "passed": self.passed,
+            "seconds": round(self.seconds, 3),
+            "checks": {k: {"status": c.status, "detail": c.detail} for k, c in self.checks.items()},
+        }
 
 
 def check_load(entry: dict, yaml_path: Path):
@@ -79,8 +84,11 @@ def check_ring(entry: dict, m, yaml_path: Path) -> Check:
         return Check(FAIL, f"no closed corridor: {e}")
     lap = info["centreline_length_m"]
     if entry.get("grade_separated"):
-        return Check(PASS, f"one corridor with {info['infields']} enclosed regions (grade-separated crossing; "
-                           f"lap length not comparable on the planar raster)")
+        return Check(
+            PASS,
+            f"one corridor with {info['infields']} enclosed regions (grade-separated crossing; "
+            f"lap length not comparable on the planar raster)",
+        )
     if entry["kind"] != "recorded" and info["infields"] != 1:
         return Check(FAIL, f"{info['infields']} enclosed regions, expected 1")
     ref = entry.get("lap_length_m")
@@ -130,19 +138,25 @@ def check_drive(cat: Catalog, entry: dict, sources: Path | None = None, reverse:
         if not r.completed:
             first = r
             r = drive_laps(target, laps=1, params=PurePursuitParams(**CAUTIOUS))
-            how = (f"cautious retry at {CAUTIOUS['max_speed']:g} m/s after a collision at "
-                   f"{first.distance:.1f} m with the reference settings")
+            how = (
+                f"cautious retry at {CAUTIOUS['max_speed']:g} m/s after a collision at "
+                f"{first.distance:.1f} m with the reference settings"
+            )
     except ArenaError as e:
         return Check(FAIL, f"simulator refused the track: {e}")
     if r.completed:
         return Check(PASS, f"lap {r.lap_times[0]:.1f} s over {r.track_length:.1f} m ({follows}, {how})")
     why = "collision" if r.collided else f"{r.laps_completed} lap(s) in {r.sim_time:.0f} s"
-    return Check(FAIL, f"lap not completed ({why} after {r.distance:.1f} of {r.track_length:.1f} m, {follows}, "
-                       f"also at {CAUTIOUS['max_speed']:g} m/s)")
+    return Check(
+        FAIL,
+        f"lap not completed ({why} after {r.distance:.1f} of {r.track_length:.1f} m, {follows}, "
+        f"also at {CAUTIOUS['max_speed']:g} m/s)",
+    )
 
 
-def verify_entry(cat: Catalog, entry: dict, sources: Path | None = None, usd: bool = True, drive: bool = True,
-                 reverse: bool = False) -> TrackResult:
+def verify_entry(
+    cat: Catalog, entry: dict, sources: Path | None = None, usd: bool = True, drive: bool = True, reverse: bool = False
+) -> TrackResult:
     t0 = time.perf_counter()
     res = TrackResult(entry["id"], entry["kind"])
     yaml_path = cat.map_path(entry, sources)
@@ -162,12 +176,26 @@ def _work(args) -> dict:
     try:
         return verify_entry(cat, entry, sources, usd, drive, reverse).to_dict()
     except Exception as e:  # one broken track never stops the run
-        return {"id": entry["id"], "kind": entry["kind"], "passed": False, "seconds": 0.0,
-                "checks": {"internal": {"status": FAIL, "detail": f"{type(e).__name__}: {e}"}}}
+        return {
+            "id": entry["id"],
+            "kind": entry["kind"],
+            "passed": False,
+            "seconds": 0.0,
+            "checks": {"internal": {"status": FAIL, "detail": f"{type(e).__name__}: {e}"}},
+        }
 
 
-def verify(cat: Catalog, entries: list[dict], sources: Path | None = None, jobs: int = 1, usd: bool = True,
-           drive: bool = True, progress=None, reverse: bool = False, executor: Executor | None = None) -> dict[str, Any]:
+def verify(
+    cat: Catalog,
+    entries: list[dict],
+    sources: Path | None = None,
+    jobs: int = 1,
+    usd: bool = True,
+    drive: bool = True,
+    progress=None,
+    reverse: bool = False,
+    executor: Executor | None = None,
+) -> dict[str, Any]:
     """Verify ``entries`` (laps against the racing direction with ``reverse``) on ``executor``
     (default: a local pool of ``jobs`` processes); returns per-track results in entry order
     and a summary. On a Ray cluster every node must see the same catalog and sources paths."""
@@ -181,17 +209,30 @@ def verify(cat: Catalog, entries: list[dict], sources: Path | None = None, jobs:
             ex.close()
     jobs = ex.workers
     names = ("load", "ring", "usd", "drive")
-    per_check = {n: {s: sum(1 for r in results if r["checks"].get(n, {}).get("status") == s) for s in (PASS, FAIL, NOT_RUN)}
-                 for n in names}
+    per_check = {
+        n: {s: sum(1 for r in results if r["checks"].get(n, {}).get("status") == s) for s in (PASS, FAIL, NOT_RUN)}
+        for n in names
+    }
     by_kind = {}
     for k in sorted({r["kind"] for r in results}):
         rs = [r for r in results if r["kind"] == k]
         by_kind[k] = {"tracks": len(rs), "passed": sum(r["passed"] for r in rs)}
-    cautious = [r["id"] for r in results
-                if r["checks"].get("drive", {}).get("status") == PASS and "cautious" in r["checks"]["drive"]["detail"]]
-    return {"tracks": len(results), "passed": sum(r["passed"] for r in results), "drive_cautious": cautious,
-            "failed": [r["id"] for r in results if not r["passed"]], "per_check": per_check, "by_kind": by_kind,
-            "seconds": round(time.perf_counter() - t0, 2), "jobs": jobs, "results": results}
+    cautious = [
+        r["id"]
+        for r in results
+        if r["checks"].get("drive", {}).get("status") == PASS and "cautious" in r["checks"]["drive"]["detail"]
+    ]
+    return {
+        "tracks": len(results),
+        "passed": sum(r["passed"] for r in results),
+        "drive_cautious": cautious,
+        "failed": [r["id"] for r in results if not r["passed"]],
+        "per_check": per_check,
+        "by_kind": by_kind,
+        "seconds": round(time.perf_counter() - t0, 2),
+        "jobs": jobs,
+        "results": results,
+    }
 
 
 def prune_catalog(cat: Catalog, summary: dict[str, Any]) -> list[str]:

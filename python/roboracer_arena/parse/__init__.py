@@ -41,8 +41,8 @@ from __future__ import annotations
 from ..errors import BackendError, InvalidArgumentError
 from ..spec import TrackSpec
 from .grounding import Grounded, ground, unexplained_numbers
-from .ollama_backend import DEFAULT_MODEL, DEFAULT_TIMEOUT_S, ask_ollama, reachable
 from .limits import FIELD_RANGES, MAX_REQUEST_CHARS, check_length, check_range
+from .ollama_backend import DEFAULT_MODEL, DEFAULT_TIMEOUT_S, ask_ollama, reachable
 from .result import DEFAULTS, FIELDS, Fragment, ParseResult
 from .rules import ignored_note, parse_rules, refuse_numbers
 

@@ -19,15 +19,17 @@ from dataclasses import dataclass
 
 from ..errors import RequestParseError
 from .found import Found
-from .limits import check_range, quote
 from .lexer import Canon
+from .limits import check_range, quote
 from .vocab import FEATURE_ADJ, FEATURE_NOUN, FEATURE_RE, NUM, ORDER_FORWARD, ORDER_REVERSE, ORDER_START
 
 _B, _E = r"(?<![^ ])", r"(?![^ ])"
 _ADJS = rf"(?:{FEATURE_ADJ} ){{0,4}}"  # bounded: no regex backtracking over long runs
 _F = rf"(?P<f>{FEATURE_RE})"
 _ZERO_LIST = re.compile(
-    _B + rf"(?:no|zero|without(?: any)?) {_ADJS}{FEATURE_RE}(?: (?:or|nor|and|,) (?:(?:no|any) )?{_ADJS}{FEATURE_RE})*" + _E
+    _B
+    + rf"(?:no|zero|without(?: any)?) {_ADJS}{FEATURE_RE}(?: (?:or|nor|and|,) (?:(?:no|any) )?{_ADJS}{FEATURE_RE})*"
+    + _E
 )
 _FEATURE_WORD = re.compile(_B + FEATURE_RE + _E)
 _COUNTED = [
@@ -118,7 +120,11 @@ def _link(c: Canon, a: Mention, b: Mention) -> str:
         nxt = words[k + 1] if k + 1 < len(words) else ""
         if w == "followed" or (w in ORDER_FORWARD and w != "preceding"):
             return "forward"
-        if w == "preceded" or w == "preceding" or (w in ORDER_REVERSE and nxt not in ("that", "which", "this", "it", "those")):
+        if (
+            w == "preceded"
+            or w == "preceding"
+            or (w in ORDER_REVERSE and nxt not in ("that", "which", "this", "it", "those"))
+        ):
             return "reverse"
         if w == "after":  # "after that": forward
             return "forward"
@@ -196,7 +202,7 @@ def parse_features(c: Canon, f: Found) -> None:
     for feat, zm in zero.items():
         if counts[feat] > 0:
             raise RequestParseError(
-                f"contradictory {FEATURE_NOUN[feat]}: {f.text[zm.span[0]:zm.span[1]]!r} but also {counts[feat]} stated"
+                f"contradictory {FEATURE_NOUN[feat]}: {f.text[zm.span[0] : zm.span[1]]!r} but also {counts[feat]} stated"
             )
         f.values[FEATURE_NOUN[feat]] = 0
     for feat, n in counts.items():
@@ -224,10 +230,10 @@ def _restated_counts(c: Canon, f: Found, ms: list[Mention]) -> None:
         if m.count == ms[j].count:
             m.kind = "ref"
             continue
-        a, b = ms[j].span, m.span
+        sa, sb = ms[j].span, m.span
         raise RequestParseError(
             f"the request states {FEATURE_NOUN[m.feature]} twice with different counts: "
-            f"{quote(f.text, *a)} (characters {a[0]}-{a[1]}) and {quote(f.text, *b)} (characters {b[0]}-{b[1]}); "
+            f"{quote(f.text, *sa)} (characters {sa[0]}-{sa[1]}) and {quote(f.text, *sb)} (characters {sb[0]}-{sb[1]}); "
             "say 'more' or 'another' to add"
         )
 
@@ -294,7 +300,16 @@ def _first_or_last(c: Canon, f: Found, ms: list[Mention], counts: Counter[str]) 
                 f.values["feature_order"] = [lead] * counts[lead] + [other] * counts[other]
                 f.spans["feature_order"] = [(m.span[0], c.tokens[j].end)]
                 for k in range(m.last + 1, j + 1):
-                    if c.tokens[k].canon in _ORDER_GLUE | {"comes", "come", "should", "must", "go", "goes", "at", "the", w}:
+                    if c.tokens[k].canon in _ORDER_GLUE | {
+                        "comes",
+                        "come",
+                        "should",
+                        "must",
+                        "go",
+                        "goes",
+                        "at",
+                        "the",
+                        w,
+                    }:
                         c.consume_token(k)
                 return
-

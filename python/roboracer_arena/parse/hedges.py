@@ -82,8 +82,9 @@ def read_hedges(c: Canon, spans: dict[str, list[tuple[int, int]]]) -> dict[str, 
             for k in (starts.get(p) for p in range(s, e) if p in starts):
                 if k is None:
                     continue
-                if c.tokens[k].hedge is not None:
-                    out.setdefault(name, (c.tokens[k].hedge, (c.tokens[k].start, c.tokens[k].end)))
+                hedge = c.tokens[k].hedge
+                if hedge is not None:
+                    out.setdefault(name, (hedge, (c.tokens[k].start, c.tokens[k].end)))
                     continue
                 found = _phrase_before(c, k) or _phrase_after(c, k)
                 if found is None:

@@ -18,6 +18,7 @@ from .result import Span
 #: work and any error message bounded.
 MAX_REQUEST_CHARS = 10_000
 
+
 def _field_ranges() -> dict[str, tuple[float, float]]:
     """(lowest, highest) of every numeric TrackSpec field, from the schema itself."""
     out = {}
@@ -25,7 +26,7 @@ def _field_ranges() -> dict[str, tuple[float, float]]:
         if info.annotation not in (int, float):
             continue
         lo = next((getattr(m, k) for m in info.metadata for k in ("ge", "gt") if getattr(m, k, None) is not None), 0)
-        hi = next(getattr(m, "le") for m in info.metadata if getattr(m, "le", None) is not None)
+        hi = next(m.le for m in info.metadata if getattr(m, "le", None) is not None)
         out[name] = (lo, hi)
     return out
 

@@ -115,7 +115,7 @@ def read_number(words: Sequence[str], i: int) -> tuple[float, int] | None:
     whole = _integer(words, i)
     if whole is None:
         return None
-    value: float = float(whole[0])
+    value = float(whole[0])
     used = whole[1]
     j = i + used
     # "one point five", "two point two five"

@@ -57,7 +57,7 @@ class ParseResult:
         """The fields the request did not state (they hold their documented defaults)."""
         return tuple(k for k in FIELDS if k not in self.stated)
 
-    def replace(self, **changes: Any) -> "ParseResult":
+    def replace(self, **changes: Any) -> ParseResult:
         """A copy with ``changes`` applied (the result is frozen)."""
         return replace(self, **changes)
 

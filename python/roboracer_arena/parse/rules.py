@@ -104,17 +104,51 @@ _DIM = rf"(?: (?P<wa>{_LONG}|{_WIDE}))?"
 # before a plural one, is not a length.
 _NOT_LAP_COUNT = rf"(?!1 {LAP}(?: |$))(?!{NUM} {alt(*[w for w in LAP_NOUNS if w.endswith('s')])}(?: |$))"
 # Words that may join a value to the field after it ("6 m is the longest straight").
-_CONN = "(?:" + alt("is", "as", "for", "of", "be", "being", "the", "my", "our", "its", "a", "an", "should", "must", "will", "would", "to") + " ){0,3}"
+_CONN = (
+    "(?:"
+    + alt(
+        "is",
+        "as",
+        "for",
+        "of",
+        "be",
+        "being",
+        "the",
+        "my",
+        "our",
+        "its",
+        "a",
+        "an",
+        "should",
+        "must",
+        "will",
+        "would",
+        "to",
+    )
+    + " ){0,3}"
+)
 # "between 40 and 50 m", "40-50 m", "from 40 to 50", "2 or 3 hairpins": refused.
-_RANGE = _rx(rf"between {NUM}(?: {UNIT})? and {NUM}(?: {UNIT})?|(?:from )?{NUM}(?: {UNIT})? (?:to|or) {NUM}(?: {UNIT})?")
+_RANGE = _rx(
+    rf"between {NUM}(?: {UNIT})? and {NUM}(?: {UNIT})?|(?:from )?{NUM}(?: {UNIT})? (?:to|or) {NUM}(?: {UNIT})?"
+)
 _HALL_TAIL = rf"(?: {HALL})?"
 
 # (pattern, handler) in the order they run.
 RULES: list[tuple[re.Pattern[str], Handler]] = [
     # -- hall: "15 by 12 m hall", "15x12", "20 m long by 15 m wide", "a hall of 20 x 15 m"
-    (_rx(rf"(?:{HALL} (?:{FILL}))?{_q('a')}{_DIM} (?:x|by|times) {_q('b')}(?: (?P<wb>{_LONG}|{_WIDE}))?{_HALL_TAIL}"), _hall_pair),
+    (
+        _rx(
+            rf"(?:{HALL} (?:{FILL}))?{_q('a')}{_DIM} (?:x|by|times) {_q('b')}(?: (?P<wb>{_LONG}|{_WIDE}))?{_HALL_TAIL}"
+        ),
+        _hall_pair,
+    ),
     # "a hall 15 m wide and 12 m long", "hall: 20 m long, 15 m wide"
-    (_rx(rf"{HALL} (?:{FILL}){_q('a')} (?P<wa>{_LONG}|{_WIDE})(?: and| ,)? (?:{FILL}){_q('b')} (?P<wb>{_LONG}|{_WIDE})"), _hall_pair),
+    (
+        _rx(
+            rf"{HALL} (?:{FILL}){_q('a')} (?P<wa>{_LONG}|{_WIDE})(?: and| ,)? (?:{FILL}){_q('b')} (?P<wb>{_LONG}|{_WIDE})"
+        ),
+        _hall_pair,
+    ),
     # "15 m wide and 12 m long hall"
     (_rx(rf"{_q('a')} (?P<wa>{_LONG}|{_WIDE})(?: and| ,| by)? {_q('b')} (?P<wb>{_LONG}|{_WIDE}) {HALL}"), _hall_pair),
     # "hall width of 15 m", "a hall 20 m long", "a 20 m long hall"
@@ -122,22 +156,35 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     (_rx(rf"{HALL} (?:{FILL}){_q('q')} (?P<w>{_LONG}|{_WIDE})"), _hall_one),
     (_rx(rf"{_q('q')} (?P<w>{_LONG}|{_WIDE}) {HALL}"), _hall_one),
     # -- quantity then noun ("no turn tighter than 2 m radius" first: it ends in "radius")
-    (_rx(rf"(?:{FILL})?(?:no|not|never) (?:{_TURNS} )?(?:{FILL})tighter than (?:a )?{_q('q')}(?: radius)?{_QEND}"),
-     _setter("min_radius_m")),
+    (
+        _rx(rf"(?:{FILL})?(?:no|not|never) (?:{_TURNS} )?(?:{FILL})tighter than (?:a )?{_q('q')}(?: radius)?{_QEND}"),
+        _setter("min_radius_m"),
+    ),
     (_rx(rf"{_FREE}{_q('q')} {_MINR}{_RKIND}radius"), _setter("min_radius_m")),
     (_rx(rf"{_FREE}{_q('q')} (?:long )?{_STRAIGHT_ADJ}straights?"), _setter("longest_straight_m")),
-    (_rx(rf"{_FREE}{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
-     lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
-    (_rx(rf"{_FREE}{_NOT_LAP_COUNT}{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
-         rf"|{_q('t')} (?:in )?(?:total|overall)(?: (?:{LAP} )?{_LENGTHN})?"),
-     lambda m, c, f: f.set("lap_length_m", _qty(m, next(g for g in "qpt" if m[g])), _span(c, m))),
+    (
+        _rx(rf"{_FREE}{_q('q')} (?:{_WIDE} )?(?:{CORR}|(?:{LAP} )?width)|{_q('p')} {_WIDE} {LAP}"),
+        lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m)),
+    ),
+    (
+        _rx(
+            rf"{_FREE}{_NOT_LAP_COUNT}{_q('q')} (?:long )?{LAP}(?: length)?|{_q('p')} (?:per|a|each) lap"
+            rf"|{_q('t')} (?:in )?(?:total|overall)(?: (?:{LAP} )?{_LENGTHN})?"
+        ),
+        lambda m, c, f: f.set("lap_length_m", _qty(m, next(g for g in "qpt" if m[g])), _span(c, m)),
+    ),
     # -- noun then quantity
     (_rx(rf"{_MINR}{_RKIND}radius (?:{FILL}){_q('q')}{_QEND}"), _setter("min_radius_m")),
-    (_rx(rf"{alt('tightest', 'smallest', 'sharpest')} {_TURNS} (?:{FILL}){_q('q')}(?: radius)?{_QEND}"), _setter("min_radius_m")),
+    (
+        _rx(rf"{alt('tightest', 'smallest', 'sharpest')} {_TURNS} (?:{FILL}){_q('q')}(?: radius)?{_QEND}"),
+        _setter("min_radius_m"),
+    ),
     (_rx(rf"{_STRAIGHT_ADJ}straights? (?:{FILL}){_q('q')}(?: long| in length)?{_QEND}"), _setter("longest_straight_m")),
     (_rx(rf"(?:(?:{CORR}|{LAP}) )?width (?:{FILL}){_q('q')}{_QEND}"), _setter("corridor_width_m")),
-    (_rx(rf"(?:{CORR}|{LAP}) (?:{FILL}){_q('q')} {_WIDE}|{CORR} (?:{FILL}){_q('p')}{_QEND}"),
-     lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m))),
+    (
+        _rx(rf"(?:{CORR}|{LAP}) (?:{FILL}){_q('q')} {_WIDE}|{CORR} (?:{FILL}){_q('p')}{_QEND}"),
+        lambda m, c, f: f.set("corridor_width_m", _qty(m, "q" if m["q"] else "p"), _span(c, m)),
+    ),
     (_rx(rf"(?:(?:{LAP}|total|overall) )?(?:{LAP} )?{_LENGTHN} (?:{FILL}){_q('q')}{_QEND}"), _setter("lap_length_m")),
     (_rx(rf"{LAP} (?:{FILL}){_q('q')}(?: {_LONG}| around| round)?{_QEND}"), _setter("lap_length_m")),
     # -- value before field: "six metres is the longest straight", "25 metres of lap"
@@ -197,7 +244,11 @@ def _direction(c: Canon, f: Found) -> None:
         back = [c.tokens[j].canon for j in range(max(0, k - 2), k)]
         if any(w in ("not", "n't", "never") or w.endswith("n't") for w in back):
             sense = "ccw" if sense == "cw" else "cw"  # "not clockwise": only two senses exist
-            start = next(j for j in range(max(0, k - 2), k) if c.tokens[j].canon in ("not", "never") or c.tokens[j].canon.endswith("n't"))
+            start = next(
+                j
+                for j in range(max(0, k - 2), k)
+                if c.tokens[j].canon in ("not", "never") or c.tokens[j].canon.endswith("n't")
+            )
         for j in range(start, k + 1):
             c.consume_token(j)
         found.setdefault(sense, []).append((c.tokens[start].start, t.end))

@@ -67,11 +67,10 @@ FILLER = set(FILL_WORDS) | set(HALL_NOUNS) | set(LAP_NOUNS) | set(CORRIDOR_NOUNS
     "f1tenth", "car", "cars", "direction", "driven", "driving", "drive", "run", "runs",
     "running", "going", "go", "goes", "raced", "thanks", "thank", "okay", "ok", "hi",
     "hello", "let's", "let", "one", "race", "racing", "map", "environment", "somewhere",
-    "available", "our", "only", "all", "both", "each", "every", "any", "it's", "i'll",
-    "do", "does", "please", "something", "arrange", "arranged", "placed", "put", "s",
+    "available", "only", "all", "both", "each", "every", "any", "it's", "i'll",
+    "do", "does", "something", "arrange", "arranged", "placed", "put", "s",
     "sense", "used", "use", "using", "by", "a", "an", "the", "with", "has", "have", "having",
-    "where", "whose", "what", "around", "dimensions", "dimension", "measurements", "sized",
-    "turn", "turns", "corner", "corners", "bend", "bends", "curve", "curves", "call", "named",
+    "where", "whose", "what", "around", "dimensions", "dimension", "measurements", "turn", "turns", "corner", "corners", "bend", "bends", "curve", "curves", "call", "named",
 }  # fmt: skip
 
 #: Words that order features along the lap; "after"-type words reverse the order.

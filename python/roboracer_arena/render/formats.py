@@ -19,8 +19,9 @@ def image_format(path: str | Path) -> str:
     suffix = Path(path).suffix.lower()
     fmt = IMAGE_FORMATS.get(suffix)
     if fmt is None:
-        raise ConfigError(f"{path}: unsupported picture format {suffix or '(no extension)'!r}; "
-                          f"use one of {', '.join(IMAGE_FORMATS)}")
+        raise ConfigError(
+            f"{path}: unsupported picture format {suffix or '(no extension)'!r}; use one of {', '.join(IMAGE_FORMATS)}"
+        )
     return fmt
 
 
@@ -29,11 +30,13 @@ def video_format(path: str | Path) -> str:
     other extension, and for ``.mp4`` when the ``video`` extra (imageio) is missing."""
     suffix = Path(path).suffix.lower()
     if suffix not in VIDEO_FORMATS:
-        raise ConfigError(f"{path}: unsupported video format {suffix or '(no extension)'!r} "
-                          f"(use {' or '.join(VIDEO_FORMATS)})")
+        raise ConfigError(
+            f"{path}: unsupported video format {suffix or '(no extension)'!r} (use {' or '.join(VIDEO_FORMATS)})"
+        )
     if suffix == ".mp4" and not (_importable("imageio") and (_importable("imageio_ffmpeg") or _importable("av"))):
-        raise ConfigError(f"{path}: MP4 output needs the 'video' extra (pip install roboracer-arena[video]); "
-                          "or write a .gif")
+        raise ConfigError(
+            f"{path}: MP4 output needs the 'video' extra (pip install roboracer-arena[video]); or write a .gif"
+        )
     return suffix
 
 

@@ -5,8 +5,8 @@ over the map, so the legend never covers the track."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Sequence
 
 import numpy as np
 from PIL import Image, ImageDraw
@@ -89,15 +89,24 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
     _axes(d, canvas, ax, ay, text_font)
     axes_box = (ax - 50, ay - 50, ax + 50, ay + 50)
 
-    shift = lambda b: (b[0] + mx, b[1] + my, b[2] + mx, b[3] + my)  # noqa: E731
-    layout = Layout(img.size, (mx, my, mx + mw, my + mh), title_box, legend_box, scale_box, axes_box, scale_m,
-                    [(t, shift(b)) for t, b in canvas.label_boxes], list(canvas.dropped_labels))
+    shift = lambda b: (b[0] + mx, b[1] + my, b[2] + mx, b[3] + my)
+    layout = Layout(
+        img.size,
+        (mx, my, mx + mw, my + mh),
+        title_box,
+        legend_box,
+        scale_box,
+        axes_box,
+        scale_m,
+        [(t, shift(b)) for t, b in canvas.label_boxes],
+        list(canvas.dropped_labels),
+    )
     return img, layout
 
 
 def _text_h(d: ImageDraw.ImageDraw, text: str, f) -> int:
-    l, t, r, b = d.textbbox((0, 0), text or " ", font=f)
-    return b
+    _, _, _, b = d.textbbox((0, 0), text or " ", font=f)
+    return int(b)  # Pillow types the box as floats; bitmap and FreeType fonts give ints
 
 
 def _wrap(d: ImageDraw.ImageDraw, text: str, f, width: int) -> list[str]:
@@ -113,8 +122,9 @@ def _wrap(d: ImageDraw.ImageDraw, text: str, f, width: int) -> list[str]:
     return [*lines, cur]
 
 
-def _legend_rows(d: ImageDraw.ImageDraw, legend: Sequence[LegendEntry], f,
-                 width: int) -> list[list[tuple[LegendEntry, int]]]:
+def _legend_rows(
+    d: ImageDraw.ImageDraw, legend: Sequence[LegendEntry], f, width: int
+) -> list[list[tuple[LegendEntry, int]]]:
     """Legend entries flowed into rows no wider than ``width`` px: [(entry, its width)]."""
     rows: list[list[tuple[LegendEntry, int]]] = [[]]
     used = 0
@@ -140,21 +150,28 @@ def _swatch(d: ImageDraw.ImageDraw, e: LegendEntry, box: tuple[int, int, int, in
         d.rectangle([x0 + 6, cy - 4, x1 - 6, cy + 4], fill=e.colour, outline=(0, 0, 0))
     elif e.kind == "startline":
         for k in range(0, x1 - x0, 6):
-            d.rectangle([x0 + k, cy - 3, min(x1, x0 + k + 5), cy + 3], fill=(0, 0, 0) if k % 12 else (255, 255, 255),
-                        outline=(0, 0, 0))
+            d.rectangle(
+                [x0 + k, cy - 3, min(x1, x0 + k + 5), cy + 3],
+                fill=(0, 0, 0) if k % 12 else (255, 255, 255),
+                outline=(0, 0, 0),
+            )
     else:
         d.rectangle([x0 + 4, y0, x1 - 4, y1 - 1], fill=e.colour, outline=(0, 0, 0))
 
 
-def direction_chevron(d: ImageDraw.ImageDraw, tip: tuple[float, float], heading: tuple[float, float], colour: RGB,
-                      size: float = 9.0) -> None:
+def direction_chevron(
+    d: ImageDraw.ImageDraw, tip: tuple[float, float], heading: tuple[float, float], colour: RGB, size: float = 9.0
+) -> None:
     """A filled arrow head at ``tip`` pointing along the image-space unit vector ``heading``."""
     hx, hy = heading
     nx, ny = -hy, hx
     x, y = tip
-    pts = [(x, y), (x - size * hx + 0.6 * size * nx, y - size * hy + 0.6 * size * ny),
-           (x - 0.55 * size * hx, y - 0.55 * size * hy),
-           (x - size * hx - 0.6 * size * nx, y - size * hy - 0.6 * size * ny)]
+    pts = [
+        (x, y),
+        (x - size * hx + 0.6 * size * nx, y - size * hy + 0.6 * size * ny),
+        (x - 0.55 * size * hx, y - 0.55 * size * hy),
+        (x - size * hx - 0.6 * size * nx, y - size * hy - 0.6 * size * ny),
+    ]
     d.polygon(pts, fill=colour, outline=(255, 255, 255))
 
 

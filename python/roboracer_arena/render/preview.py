@@ -48,15 +48,21 @@ def track_name(map_path: Path) -> str:
     return map_path.parent.name if map_path.stem == "map" and map_path.parent.name else map_path.stem
 
 
-def preview_map(map_path: str | Path, out_png: str | Path, config: Any = None, start: Any = None, max_px: int = 2048,
-                vehicles: int = 1) -> PreviewSummary:
+def preview_map(
+    map_path: str | Path,
+    out_png: str | Path,
+    config: Any = None,
+    start: Any = None,
+    max_px: int = 2048,
+    vehicles: int = 1,
+) -> PreviewSummary:
     """Extract the corridor of a ROS map and draw map, corridor, collision walls, ducts,
     racing direction, start line and grid (``vehicles`` cars); write PNG or JPEG."""
     from ..builder import parse_start, resolve_config
     from ..corridor import extract_corridor
     from ..direction import direction_for_map
-    from ..track import Track
     from ..maps import load_map
+    from ..track import Track
     from .formats import image_format
 
     image_format(out_png)  # a bad extension fails before any work
@@ -87,8 +93,11 @@ def preview_map(map_path: str | Path, out_png: str | Path, config: Any = None, s
         drawn += ["centreline", "direction", "start"]
         legend += marks
     h, w = occ.data.shape
-    facts = [race.get("direction", "direction unknown"), f"lap {race['lap_length_m']:.1f} m" if race else None,
-             f"map {w * occ.resolution:.1f} x {h * occ.resolution:.1f} m at {occ.resolution:g} m/cell"]
+    facts = [
+        race.get("direction", "direction unknown"),
+        f"lap {race['lap_length_m']:.1f} m" if race else None,
+        f"map {w * occ.resolution:.1f} x {h * occ.resolution:.1f} m at {occ.resolution:g} m/cell",
+    ]
     title = f"{name}: {', '.join(f for f in facts if f)}"
     return _write(canvas, title, _subtitle(race, vehicles), legend, out_png, map_path, drawn, features, race)
 
@@ -136,8 +145,8 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, v
     walls = meshes.get("/World/Track/Walls")
     if walls is not None and len(walls.triangles):
         tri = walls.points[walls.triangles][:, :, :2]
-        for a, b in ((0, 1), (1, 2), (2, 0)):
-            canvas.segments(tri[:, a], tri[:, b], WALL, width_px=2)
+        for i, j in ((0, 1), (1, 2), (2, 0)):
+            canvas.segments(tri[:, i], tri[:, j], WALL, width_px=2)
         drawn.append("walls")
         legend.append(LegendEntry("collision walls (invisible)", WALL, "line"))
     features = _generated_overlay(canvas, src, drawn, legend) if src is not None else []
@@ -149,8 +158,11 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, v
         drawn += ["direction", "start"]
         legend += marks
     name = Path(usd_path).stem
-    facts = [race.get("direction", "direction unknown (source map not found)"),
-             f"lap {race['lap_length_m']:.1f} m" if race else None, "stage meshes read back"]
+    facts = [
+        race.get("direction", "direction unknown (source map not found)"),
+        f"lap {race['lap_length_m']:.1f} m" if race else None,
+        "stage meshes read back",
+    ]
     title = f"{name}: {', '.join(f for f in facts if f)}"
     return _write(canvas, title, _subtitle(race, vehicles), legend, out_png, Path(usd_path), drawn, features, race)
 
@@ -165,20 +177,32 @@ def _subtitle(race: dict[str, Any], vehicles: int) -> str:
     if not race:
         return ""
     x, y, yaw = race["grid"][0]
-    return (f"Arrows: the way the env drives it. Start: the env's grid start (reset_poses='grid', "
-            f"{vehicles} car{'s' if vehicles > 1 else ''}) at x {x:.2f} m, y {y:.2f} m, "
-            f"heading {np.degrees(yaw):.0f}°.")
+    return (
+        f"Arrows: the way the env drives it. Start: the env's grid start (reset_poses='grid', "
+        f"{vehicles} car{'s' if vehicles > 1 else ''}) at x {x:.2f} m, y {y:.2f} m, "
+        f"heading {np.degrees(yaw):.0f}°."
+    )
 
 
-def _write(canvas: TopDown, title: str, subtitle: str, legend: list[LegendEntry], out: str | Path, source: Path,
-           drawn: list[str], features: list[dict[str, Any]], race: dict[str, Any]) -> PreviewSummary:
+def _write(
+    canvas: TopDown,
+    title: str,
+    subtitle: str,
+    legend: list[LegendEntry],
+    out: str | Path,
+    source: Path,
+    drawn: list[str],
+    features: list[dict[str, Any]],
+    race: dict[str, Any],
+) -> PreviewSummary:
     img, layout = framed(canvas, title, subtitle, legend)
     save_image(img, out)
     return PreviewSummary(str(out), str(source), img.size, drawn, features, race, asdict(layout))
 
 
-def _generated_overlay(canvas: TopDown, map_yaml: Path, drawn: list[str],
-                       legend: list[LegendEntry]) -> list[dict[str, Any]]:
+def _generated_overlay(
+    canvas: TopDown, map_yaml: Path, drawn: list[str], legend: list[LegendEntry]
+) -> list[dict[str, Any]]:
     """If ``map_yaml`` is a generated track (``centreline.csv`` and ``report.json`` beside it,
     as :mod:`roboracer_arena.generate.outputs` writes them), draw its centreline and label
     each detected feature; returns the features drawn."""

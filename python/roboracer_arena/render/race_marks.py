@@ -43,11 +43,16 @@ def draw_race_marks(canvas: TopDown, track: Any, vehicles: int = 1) -> tuple[lis
         canvas.reserve(_car(canvas, p, veh.chassis_length * scale, veh.chassis_width * scale))
     canvas.label((x, y), "start", (0, 0, 0), marker=False, size_px=16)
     grid = "the car" if vehicles == 1 else f"{vehicles} cars"
-    legend = [LegendEntry(f"racing direction ({track.direction})", ARROW, "arrow"),
-              LegendEntry("start line", (0, 0, 0), "startline"),
-              LegendEntry(f"grid start: {grid}" + (" (enlarged)" if scale > 1 else ""), CAR, "car")]
-    info = {"direction": track.direction, "lap_length_m": round(track.length, 2),
-            "grid": [[round(float(v), 3) for v in p] for p in poses]}
+    legend = [
+        LegendEntry(f"racing direction ({track.direction})", ARROW, "arrow"),
+        LegendEntry("start line", (0, 0, 0), "startline"),
+        LegendEntry(f"grid start: {grid}" + (" (enlarged)" if scale > 1 else ""), CAR, "car"),
+    ]
+    info = {
+        "direction": track.direction,
+        "lap_length_m": round(track.length, 2),
+        "grid": [[round(float(v), 3) for v in p] for p in poses],
+    }
     return legend, info
 
 
@@ -67,8 +72,9 @@ def _direction_arrows(canvas: TopDown, track: Any) -> None:
         norm = float(np.hypot(*v))
         if norm < 1e-9:
             continue
-        direction_chevron(canvas.draw, (float(pa[0]), float(pa[1])), (float(v[0] / norm), float(v[1] / norm)), ARROW,
-                          size=15)
+        direction_chevron(
+            canvas.draw, (float(pa[0]), float(pa[1])), (float(v[0] / norm), float(v[1] / norm)), ARROW, size=15
+        )
 
 
 def _start_line(canvas: TopDown, xy: tuple[float, float], yaw: float, half_width: float) -> np.ndarray:

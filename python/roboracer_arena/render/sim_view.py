@@ -5,7 +5,8 @@ Used by the envs' ``render()`` (rgb_array), so every rollout GIF/MP4 frame carri
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 from PIL import Image, ImageDraw
@@ -22,8 +23,14 @@ VEHICLE_COLOURS = [(214, 39, 40), (31, 119, 180), (44, 160, 44), (148, 103, 189)
 class SimView:
     """Draws frames of any of ``tracks`` at about ``size`` pixels along the longer side."""
 
-    def __init__(self, tracks: Sequence[Any], sim: SimConfig | None = None, size: int = 600,
-                 margin: float = 0.5, max_rays: int = 90) -> None:
+    def __init__(
+        self,
+        tracks: Sequence[Any],
+        sim: SimConfig | None = None,
+        size: int = 600,
+        margin: float = 0.5,
+        max_rays: int = 90,
+    ) -> None:
         self.tracks = list(tracks)
         self.sim = sim or SimConfig()
         self.size = int(size)
@@ -51,8 +58,14 @@ class SimView:
         self._backgrounds[track_id] = (img, tf)
         return img, tf
 
-    def draw(self, track_id: int, state: np.ndarray, field_index: Mapping[str, int],
-             scans: np.ndarray | None = None, hud: Sequence[str] = ()) -> np.ndarray:
+    def draw(
+        self,
+        track_id: int,
+        state: np.ndarray,
+        field_index: Mapping[str, int],
+        scans: np.ndarray | None = None,
+        hud: Sequence[str] = (),
+    ) -> np.ndarray:
         """One frame, (H, W, 3) uint8: vehicles from ``state`` (V, S) rows, rays from
         ``scans`` (V, B), the text lines ``hud`` in the top-left corner."""
         bg, tf = self._background(track_id)
@@ -111,8 +124,14 @@ def hud_lines(batch: Any, env: int = 0) -> list[str]:
     return lines
 
 
-def _draw_hud(img: Image.Image, lines: Sequence[str], size_px: int, background: Image.Image,
-              cars: Sequence[tuple[float, float]], car_px: float) -> None:
+def _draw_hud(
+    img: Image.Image,
+    lines: Sequence[str],
+    size_px: int,
+    background: Image.Image,
+    cars: Sequence[tuple[float, float]],
+    car_px: float,
+) -> None:
     """``lines`` on a white panel in the corner of the picture that covers no car (centres
     ``cars`` in pixels, ``car_px`` half-length) and the fewest track pixels (the drawn ``background``)."""
     from .topdown import font
@@ -124,10 +143,12 @@ def _draw_hud(img: Image.Image, lines: Sequence[str], size_px: int, background: 
     W, H = img.size
     ink = np.any(np.asarray(background) != BACKGROUND, axis=2)
     corners = [(4, 4), (W - w - 4, 4), (4, H - h - 4), (W - w - 4, H - h - 4)]
+
     def cost(c: tuple[int, int]) -> int:
-        hidden = sum(c[0] - car_px <= cx <= c[0] + w + car_px and c[1] - car_px <= cy <= c[1] + h + car_px
-                     for cx, cy in cars)
-        return hidden * W * H + int(ink[max(c[1], 0):c[1] + h, max(c[0], 0):c[0] + w].sum())
+        hidden = sum(
+            c[0] - car_px <= cx <= c[0] + w + car_px and c[1] - car_px <= cy <= c[1] + h + car_px for cx, cy in cars
+        )
+        return hidden * W * H + int(ink[max(c[1], 0) : c[1] + h, max(c[0], 0) : c[0] + w].sum())
 
     x, y = min(corners, key=cost)
     d.rectangle([x, y, x + w, y + h], fill=(255, 255, 255, 215), outline=(0, 0, 0))

@@ -82,11 +82,13 @@ def render_still(usd_path: str | Path, out: str | Path, size: tuple[int, int] = 
     kit.AddLightsToRenderer(ren)
     rgb, renderer = _render(vtk, ren, size)
     img = Image.fromarray(rgb)
-    _caption(img, f"{Path(usd_path).name}: {', '.join(drawn)} "
-                  "(collision walls translucent; invisible in the simulator)")
+    _caption(
+        img, f"{Path(usd_path).name}: {', '.join(drawn)} (collision walls translucent; invisible in the simulator)"
+    )
     save_image(img, out)
-    return StillSummary(str(out), str(usd_path), img.size, drawn, None if car is None else [round(v, 3) for v in car],
-                        renderer)
+    return StillSummary(
+        str(out), str(usd_path), img.size, drawn, None if car is None else [round(v, 3) for v in car], renderer
+    )
 
 
 def _vtk() -> Any:
@@ -110,7 +112,7 @@ def _material_colours(meta: dict[str, Any]) -> dict[str, tuple[float, float, flo
         except (ValueError, TypeError, ConfigError):
             pass  # an older or foreign stage: default colours still show the shapes
     mc = cfg.materials
-    return {"floor": tuple(mc.floor_colour), "duct": tuple(mc.duct_colour), "ring": tuple(mc.ring_colour)}
+    return {"floor": mc.floor_colour, "duct": mc.duct_colour, "ring": mc.ring_colour}
 
 
 def _car_pose(meta: dict[str, Any]) -> tuple[float, float, float] | None:
@@ -146,8 +148,15 @@ def _polydata(vtk: Any, points: np.ndarray, triangles: np.ndarray) -> Any:
     return normals.GetOutput()
 
 
-def _add(vtk: Any, ren: Any, points: np.ndarray, triangles: np.ndarray, rgb: tuple[float, float, float],
-         opacity: float = 1.0, specular: float = 0.2) -> None:
+def _add(
+    vtk: Any,
+    ren: Any,
+    points: np.ndarray,
+    triangles: np.ndarray,
+    rgb: tuple[float, float, float],
+    opacity: float = 1.0,
+    specular: float = 0.2,
+) -> None:
     mapper = vtk.vtkPolyDataMapper()
     mapper.SetInputData(_polydata(vtk, points, triangles))
     actor = vtk.vtkActor()

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import io
 import math
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
@@ -61,7 +61,7 @@ class TopDown:
     @classmethod
     def for_raster(
         cls, data: np.ndarray, resolution: float, origin: Sequence[float], max_px: int = 2048, min_px: int = 1024
-    ) -> "TopDown":
+    ) -> TopDown:
         """A canvas showing an occupancy raster (254 free white, 0 occupied black, 205 grey),
         scaled so its longer side is at most ``max_px`` and, for small maps, enlarged
         towards ``min_px`` (at most 4x) so labels stay legible."""
@@ -74,7 +74,7 @@ class TopDown:
     @classmethod
     def for_bounds(
         cls, lo: Sequence[float], hi: Sequence[float], resolution: float = 0.05, margin: float = 0.5, max_px: int = 2048
-    ) -> "TopDown":
+    ) -> TopDown:
         """A blank canvas covering the world box ``lo``–``hi`` (m) plus ``margin``."""
         x0, y0 = lo[0] - margin, lo[1] - margin
         w = max(1, math.ceil((hi[0] - lo[0] + 2 * margin) / resolution))
@@ -113,7 +113,9 @@ class TopDown:
             m = m.resize(self.image.size, Image.Resampling.BOX if self.scale < 1 else Image.Resampling.NEAREST)
         self.image.paste(Image.new("RGB", self.image.size, colour[:3]), (0, 0), m)
 
-    def polyline(self, xy: np.ndarray, colour: RGB | RGBA, width_m: float = 0.0, closed: bool = False, min_px: int = 1) -> None:
+    def polyline(
+        self, xy: np.ndarray, colour: RGB | RGBA, width_m: float = 0.0, closed: bool = False, min_px: int = 1
+    ) -> None:
         """A polyline in world metres; ``width_m`` 0 draws it ``min_px`` wide."""
         pts = self.to_px(xy)
         if len(pts) < 2:
@@ -155,8 +157,9 @@ class TopDown:
         self.reserved.append(box)
         return box
 
-    def label(self, xy: Sequence[float], text: str, colour: RGB = (0, 0, 0), marker: bool = True,
-              size_px: int = 14) -> Box | None:
+    def label(
+        self, xy: Sequence[float], text: str, colour: RGB = (0, 0, 0), marker: bool = True, size_px: int = 14
+    ) -> Box | None:
         """Text near a world point, with a small marker and a white halo for legibility.
 
         The text goes to the first spot around the point (nearest first, with a leader line
@@ -164,20 +167,21 @@ class TopDown:
         placed before; its box is kept in :attr:`label_boxes`. If there is no such spot the
         text is left out (its marker stays), recorded in :attr:`dropped_labels`, and None
         is returned."""
-        (x, y), = self.to_px(np.asarray(xy, dtype=np.float64)[None, :2])
+        ((x, y),) = self.to_px(np.asarray(xy, dtype=np.float64)[None, :2])
         if marker:
             self.points(np.asarray(xy, dtype=np.float64)[None, :2], colour, radius_px=max(3, size_px // 4))
         face = font(size_px)
         left, top, right, bottom = self.draw.textbbox((0, 0), text, font=face, stroke_width=2)
-        w, h = right - left, bottom - top
+        w, h = int(right - left), int(bottom - top)  # typed float by Pillow, ints in practice
         box = self._free_spot(x, y, w, h)
         if box is None:
             self.dropped_labels.append(text)
             return None
         if math.dist((x, y), _nearest_in_box(box, x, y)) > size_px:
             self.draw.line([(x, y), _nearest_in_box(box, x, y)], fill=colour, width=1)
-        self.draw.text((box[0] - left, box[1] - top), text, fill=colour, font=face, stroke_width=2,
-                       stroke_fill=(255, 255, 255))
+        self.draw.text(
+            (box[0] - left, box[1] - top), text, fill=colour, font=face, stroke_width=2, stroke_fill=(255, 255, 255)
+        )
         self.label_boxes.append((text, box))
         return box
 
@@ -187,12 +191,25 @@ class TopDown:
         diagonals, nearest first."""
         W, H = self.image.size
         for d in (6, 14, 28, 48, 80, 130, 200):
-            for px, py in ((x + d, y - h / 2), (x + d, y - d - h), (x - d - w, y - d - h), (x - w / 2, y - d - h),
-                           (x - d - w, y - h / 2), (x + d, y + d), (x - d - w, y + d), (x - w / 2, y + d)):
+            for px, py in (
+                (x + d, y - h / 2),
+                (x + d, y - d - h),
+                (x - d - w, y - d - h),
+                (x - w / 2, y - d - h),
+                (x - d - w, y - h / 2),
+                (x + d, y + d),
+                (x - d - w, y + d),
+                (x - w / 2, y + d),
+            ):
                 box = (math.floor(px) - pad, math.floor(py) - pad, math.ceil(px + w) + pad, math.ceil(py + h) + pad)
-                if box[0] >= 0 and box[1] >= 0 and box[2] <= W and box[3] <= H and \
-                        not any(boxes_overlap(box, b) for _, b in self.label_boxes) and \
-                        not any(boxes_overlap(box, b) for b in self.reserved):
+                if (
+                    box[0] >= 0
+                    and box[1] >= 0
+                    and box[2] <= W
+                    and box[3] <= H
+                    and not any(boxes_overlap(box, b) for _, b in self.label_boxes)
+                    and not any(boxes_overlap(box, b) for b in self.reserved)
+                ):
                     return box
         return None
 

@@ -3,8 +3,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -25,8 +26,15 @@ def write_video(frames: Sequence[np.ndarray], path: str | Path, fps: float = 20.
         imgs = [Image.fromarray(np.asarray(f, dtype=np.uint8)) for f in frames]
         pal = [im.convert("P", palette=Image.Palette.ADAPTIVE, colors=64) for im in imgs]
         with atomic_path(path) as tmp:
-            pal[0].save(tmp, format="GIF", save_all=True, append_images=pal[1:],
-                        duration=max(20, round(1000 / fps)), loop=0, optimize=False)
+            pal[0].save(
+                tmp,
+                format="GIF",
+                save_all=True,
+                append_images=pal[1:],
+                duration=max(20, round(1000 / fps)),
+                loop=0,
+                optimize=False,
+            )
         return path
     if suffix == ".mp4":
         import imageio.v3 as iio  # present: video_format checked the 'video' extra
@@ -35,7 +43,9 @@ def write_video(frames: Sequence[np.ndarray], path: str | Path, fps: float = 20.
             try:
                 iio.imwrite(tmp, np.stack([_pad16(f) for f in frames]), fps=fps, extension=".mp4")
             except Exception as e:  # imageio raises plain errors when no ffmpeg/pyav plugin is present
-                raise ConfigError(f"{path}: cannot write MP4 ({e}); install imageio-ffmpeg or av, or write a .gif") from e
+                raise ConfigError(
+                    f"{path}: cannot write MP4 ({e}); install imageio-ffmpeg or av, or write a .gif"
+                ) from e
     return path
 
 
@@ -45,9 +55,15 @@ def _pad16(f: np.ndarray) -> np.ndarray:
     return np.pad(np.asarray(f, dtype=np.uint8), ((0, -h % 16), (0, -w % 16), (0, 0)), mode="edge")
 
 
-def record_episode(env: Any, policy: Callable[[Any], Any], path: str | Path | None = None,
-                   max_steps: int = 10_000, seed: int | None = None, every: int = 1,
-                   options: dict[str, Any] | None = None) -> dict[str, Any]:
+def record_episode(
+    env: Any,
+    policy: Callable[[Any], Any],
+    path: str | Path | None = None,
+    max_steps: int = 10_000,
+    seed: int | None = None,
+    every: int = 1,
+    options: dict[str, Any] | None = None,
+) -> dict[str, Any]:
     """Run one episode of a single env (``render_mode="rgb_array"``) with ``policy(obs)``,
     keep every ``every``-th frame and write them to ``path`` if given. Returns a summary
     with the frames, steps, total reward, the final info and whether it terminated."""
@@ -65,5 +81,11 @@ def record_episode(env: Any, policy: Callable[[Any], Any], path: str | Path | No
     if path is not None:
         fps = env.metadata.get("render_fps", 20) / every
         write_video(frames, path, fps=fps)
-    return {"frames": frames, "steps": steps, "reward": total, "info": info,
-            "terminated": bool(terminated), "truncated": bool(truncated)}
+    return {
+        "frames": frames,
+        "steps": steps,
+        "reward": total,
+        "info": info,
+        "terminated": bool(terminated),
+        "truncated": bool(truncated),
+    }

@@ -18,7 +18,10 @@ from importlib import import_module
 from typing import Any
 
 _LAZY = {
-    "Bridge": "bridge", "BridgeConfig": "clock", "RatesConfig": "clock", "McapRecorder": "recorder",
+    "Bridge": "bridge",
+    "BridgeConfig": "clock",
+    "RatesConfig": "clock",
+    "McapRecorder": "recorder",
     "McapEpisodeRecorder": "episode_recorder",
 }
 

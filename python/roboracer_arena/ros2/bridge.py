@@ -52,9 +52,20 @@ class Bridge:
         dds: False runs the simulation and the recording without any DDS entity.
     """
 
-    def __init__(self, env_or_sim: Any, *, cars: int | None = None, domain_id: int = 0, rate: float | None = 1.0,
-                 lockstep: bool = False, config: BridgeConfig | None = None, record: str | Path | None = None,
-                 loopback: bool = False, dds: bool = True, seed: int = 0) -> None:
+    def __init__(
+        self,
+        env_or_sim: Any,
+        *,
+        cars: int | None = None,
+        domain_id: int = 0,
+        rate: float | None = 1.0,
+        lockstep: bool = False,
+        config: BridgeConfig | None = None,
+        record: str | Path | None = None,
+        loopback: bool = False,
+        dds: bool = True,
+        seed: int = 0,
+    ) -> None:
         self.config = config or BridgeConfig()
         self.src: SimSource = sim_source(env_or_sim, cars=cars, config=self.config.sim, seed=seed)
         self.domain_id, self.loopback, self.use_dds = domain_id, loopback, dds
@@ -74,8 +85,9 @@ class Bridge:
         self.step = 0
         lid = self.src.config.lidar
         self._odom_packers = [OdometryPacker(n) for n in self.names]
-        self._scan_packers = [LaserScanPacker(n, lid.fov, lid.range_min, lid.range_max, 1.0 / r.scan_hz)
-                              for n in self.names]
+        self._scan_packers = [
+            LaserScanPacker(n, lid.fov, lid.range_min, lid.range_max, 1.0 / r.scan_hz) for n in self.names
+        ]
         self._tf_packer = TfPacker([n.base_link for n in self.names])
         self._raw: dict[str, Any] = {}
         self._stop = threading.Event()
@@ -149,14 +161,20 @@ class Bridge:
         wall = time.perf_counter() - self._wall0 if self._wall0 else 0.0
         lat = np.asarray(self.drive_latency_s, dtype=float)
         return {
-            "sim_time_s": round(self.sim_time, 6), "wall_time_s": round(wall, 6),
+            "sim_time_s": round(self.sim_time, 6),
+            "wall_time_s": round(wall, 6),
             "cpu_time_s": round(time.process_time() - self._cpu0, 3) if self._wall0 else 0.0,
             "real_time_factor": round(self.sim_time / wall, 3) if wall > 0 else None,
-            "published": dict(self.published), "messages": int(sum(self.published.values())),
+            "published": dict(self.published),
+            "messages": int(sum(self.published.values())),
             "drive_commands": int(len(lat)),
-            "drive_latency_ms": None if not len(lat) else {
-                "median": round(float(np.median(lat)) * 1e3, 3), "p99": round(float(np.quantile(lat, 0.99)) * 1e3, 3),
-                "max": round(float(lat.max()) * 1e3, 3)},
+            "drive_latency_ms": None
+            if not len(lat)
+            else {
+                "median": round(float(np.median(lat)) * 1e3, 3),
+                "p99": round(float(np.quantile(lat, 0.99)) * 1e3, 3),
+                "max": round(float(lat.max()) * 1e3, 3),
+            },
             "error": None if self.error is None else repr(self.error),
         }
 
@@ -218,12 +236,12 @@ class Bridge:
         if "odom" in due:
             cols = [f[k] for k in ("x", "y", "yaw", "vx", "vy", "yaw_rate")]
             rows = st[:, cols].tolist()
-            for packer, n, (x, y, yaw, vx, vy, wz) in zip(self._odom_packers, self.names, rows):
-                self._emit_cdr(n.odom, packer.pack(t, x, y, yaw, vx, vy, wz), TYPE_OF["odom"])
+            for odom_packer, n, (x, y, yaw, vx, vy, wz) in zip(self._odom_packers, self.names, rows):
+                self._emit_cdr(n.odom, odom_packer.pack(t, x, y, yaw, vx, vy, wz), TYPE_OF["odom"])
             self._emit_cdr(TF, self._tf_packer.pack(t, [row[:3] for row in rows]), TYPE_OF[TF])
         if "scan" in due:
-            for i, (packer, n) in enumerate(zip(self._scan_packers, self.names)):
-                self._emit_cdr(n.scan, packer.pack(t, self.scans[0, i]), TYPE_OF["scan"])
+            for i, (scan_packer, n) in enumerate(zip(self._scan_packers, self.names)):
+                self._emit_cdr(n.scan, scan_packer.pack(t, self.scans[0, i]), TYPE_OF["scan"])
 
     # ------------------------------------------------------------------ commands
     def _poll(self) -> None:
@@ -258,8 +276,9 @@ class Bridge:
             raise IndexError(f"car {car} out of range (0..{self.src.vehicles - 1})")
         if self._recorder is not None:
             n = self.names[car]
-            self._recorder.write(n.drive, TYPE_OF["drive"], sm.drive_command(self.sim_time, n.base_link, steer, speed),
-                                 self.sim_time)
+            self._recorder.write(
+                n.drive, TYPE_OF["drive"], sm.drive_command(self.sim_time, n.base_link, steer, speed), self.sim_time
+            )
         if self.lockstep and car == 0:
             self._pending_lockstep.append(((float(steer), float(speed)), time.time_ns()))
         else:
@@ -270,7 +289,9 @@ class Bridge:
         self._reset_pose = (x, y, yaw)
 
     def _apply_reset(self) -> None:
-        x, y, yaw = self._reset_pose  # type: ignore[misc]
+        if self._reset_pose is None:  # (the caller checks; nothing to apply)
+            return
+        x, y, yaw = self._reset_pose
         self._reset_pose = None
         f = self.src.fields
         poses = np.stack([self.state[..., f["x"]], self.state[..., f["y"]], self.state[..., f["yaw"]]], axis=-1)
@@ -305,7 +326,7 @@ class Bridge:
                     period_end = None
                     self._periods_done += 1
                 self._pace()
-        except BaseException as e:  # noqa: BLE001 - reported by stats() and the CLI
+        except BaseException as e:
             self.error = e
 
     def _advance(self, n: int, scan: bool) -> None:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import struct
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -63,7 +63,8 @@ class OdometryPacker:
 
     def __init__(self, names: CarNames) -> None:
         lay = _Layout()
-        lay.prim("i", 4), lay.prim("I", 4)
+        lay.prim("i", 4)
+        lay.prim("I", 4)
         self._frame = lay.string(MAP_FRAME)
         self._child = lay.string(names.base_link)
         lay.prim("d", 8, 7 + 36 + 6 + 36)
@@ -71,8 +72,27 @@ class OdometryPacker:
 
     def pack(self, t: float, x: float, y: float, yaw: float, vx: float, vy: float, yaw_rate: float) -> bytes:
         sec, nsec = _sec_nsec(t)
-        return HEADER + self._s.pack(sec, nsec, *self._frame, *self._child, x, y, 0.0, 0.0, 0.0, math.sin(yaw / 2),
-                                     math.cos(yaw / 2), *_ZEROS36, vx, vy, 0.0, 0.0, 0.0, yaw_rate, *_ZEROS36)
+        return HEADER + self._s.pack(
+            sec,
+            nsec,
+            *self._frame,
+            *self._child,
+            x,
+            y,
+            0.0,
+            0.0,
+            0.0,
+            math.sin(yaw / 2),
+            math.cos(yaw / 2),
+            *_ZEROS36,
+            vx,
+            vy,
+            0.0,
+            0.0,
+            0.0,
+            yaw_rate,
+            *_ZEROS36,
+        )
 
 
 class TfPacker:
@@ -83,7 +103,8 @@ class TfPacker:
         lay.prim("I", 4)
         self._strings = []
         for child in children:
-            lay.prim("i", 4), lay.prim("I", 4)
+            lay.prim("i", 4)
+            lay.prim("I", 4)
             parent_v = lay.string(parent)
             child_v = lay.string(child)
             lay.prim("d", 8, 7)
@@ -104,7 +125,8 @@ class LaserScanPacker:
 
     def __init__(self, names: CarNames, fov: float, range_min: float, range_max: float, scan_time: float) -> None:
         lay = _Layout()
-        lay.prim("i", 4), lay.prim("I", 4)
+        lay.prim("i", 4)
+        lay.prim("I", 4)
         self._frame = lay.string(names.laser)
         lay.prim("f", 4, 7)
         lay.prim("I", 4)  # ranges count; float32 elements follow, aligned (offset is a multiple of 4)

@@ -57,7 +57,7 @@ def participant(domain_id: int, loopback: bool = False) -> Any:
     return DomainParticipant(domain_id)
 
 
-def raw_writer(writer: Any, msg_class: type) -> Any:
+def raw_writer(writer: Any, msg_class: Any) -> Any:
     """A function ``write(data)`` that publishes already serialised CDR ``data`` (with its
     encapsulation header) on ``writer``, exactly as ``writer.write(sample)`` would after
     serialising (same padding to 4 bytes, same C call). Falls back to deserialising and

@@ -15,7 +15,7 @@ forwarded, so drivers written for the env work on the wrapper too.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import gymnasium as gym
 import numpy as np
@@ -25,16 +25,23 @@ from .recorder import McapRecorder
 from .source import _load_map
 from .topics import CENTRELINE, CLOCK, MAP, TF, TF_STATIC, TYPE_OF, car_names
 
+if TYPE_CHECKING:
+    from ..envs.batch import SimBatch
+    from ..envs.single import RoboRacerEnv
+
 
 class McapEpisodeRecorder(gym.Wrapper):
     """Record a single ``RoboRacerArena-v0`` env to ``path`` (see module docstring)."""
 
     def __init__(self, env: gym.Env, path: str | Path) -> None:
         super().__init__(env)
+        from ..envs.single import RoboRacerEnv  # here: the envs package is heavy and optional for ros2 users
+
         inner = env.unwrapped
-        self._batch = getattr(inner, "_batch", None)
-        if self._batch is None or not hasattr(inner, "tracks"):
+        if not isinstance(inner, RoboRacerEnv):
             raise TypeError("McapEpisodeRecorder wraps a RoboRacerArena-v0 single env")
+        self._inner: RoboRacerEnv = inner
+        self._batch: SimBatch = inner._batch
         self.recorder = McapRecorder(path)
         self._names = [car_names(i) for i in range(inner.config.vehicles_per_env)]
         self._dt = inner.config.control_dt
@@ -75,7 +82,7 @@ class McapEpisodeRecorder(gym.Wrapper):
 
     # ------------------------------------------------------------------ helpers
     def _write_track(self) -> None:
-        inner, rec, t = self.env.unwrapped, self.recorder, self._t
+        inner, rec, t = self._inner, self.recorder, self._t
         tid = int(self._batch.track_ids[0])
         if tid in self._tracks_done:
             return
@@ -91,16 +98,24 @@ class McapEpisodeRecorder(gym.Wrapper):
     def _write_state(self, scan: bool) -> None:
         b, rec, t = self._batch, self.recorder, self._t
         f, st = b.field_index, b.state[0]
-        lid = self.env.unwrapped.config.sim.lidar
+        lid = self._inner.config.sim.lidar
         rec.write(CLOCK, TYPE_OF[CLOCK], sm.clock(t), t)
         tfs = []
         for i, n in enumerate(self._names):
             x, y, yaw = (float(st[i, f[k]]) for k in ("x", "y", "yaw"))
-            rec.write(n.odom, TYPE_OF["odom"], sm.odometry(n, t, x, y, yaw, float(st[i, f["vx"]]),
-                                                           float(st[i, f["vy"]]), float(st[i, f["yaw_rate"]])), t)
+            rec.write(
+                n.odom,
+                TYPE_OF["odom"],
+                sm.odometry(n, t, x, y, yaw, float(st[i, f["vx"]]), float(st[i, f["vy"]]), float(st[i, f["yaw_rate"]])),
+                t,
+            )
             tfs.append(sm.transform(t, "map", n.base_link, x, y, 0.0, yaw))
-            if scan and self.env.unwrapped.config.observation.scan:
+            if scan and self._inner.config.observation.scan:
                 ranges = np.clip(b.scans[0, i], lid.range_min, lid.range_max)
-                rec.write(n.scan, TYPE_OF["scan"], sm.laser_scan(n, t, ranges, lid.fov, lid.range_min, lid.range_max,
-                                                                 1.0 / lid.rate_hz), t)
+                rec.write(
+                    n.scan,
+                    TYPE_OF["scan"],
+                    sm.laser_scan(n, t, ranges, lid.fov, lid.range_min, lid.range_max, 1.0 / lid.rate_hz),
+                    t,
+                )
         rec.write(TF, TYPE_OF[TF], sm.tf_message(tfs), t)

@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from functools import lru_cache
-from typing import Any
+from functools import cache
+from typing import Any, cast
 
 from ._deps import require
 
@@ -135,19 +135,34 @@ def schema_text(typename: str) -> str:
     return "\n".join(parts) + "\n"
 
 
-@lru_cache(maxsize=None)
+@cache
 def msg_class(typename: str) -> type:
     """The IdlStruct class of ``typename`` (``pkg/msg/Type``), built once."""
     if typename not in DEFINITIONS:
         raise KeyError(f"unknown message type {typename!r}")
     require("cyclonedds")
     from cyclonedds.idl import IdlMeta, IdlStruct
-    from cyclonedds.idl import types as t
+    from cyclonedds.idl import types as idl_types
 
-    prim = {"bool": bool, "int8": t.int8, "uint8": t.uint8, "int32": t.int32, "uint32": t.uint32,
-            "int64": t.int64, "uint64": t.uint64, "float32": t.float32, "float64": t.float64, "string": str}
+    # The field types are built at runtime (``sequence[base]``, ``array[base, n]`` through
+    # ``__class_getitem__``), which static typing cannot follow: treat the module as dynamic.
+    t: Any = idl_types
+
+    prim = {
+        "bool": bool,
+        "int8": t.int8,
+        "uint8": t.uint8,
+        "int32": t.int32,
+        "uint32": t.uint32,
+        "int64": t.int64,
+        "uint64": t.uint64,
+        "float32": t.float32,
+        "float64": t.float64,
+        "string": str,
+    }
     name = typename.split("/")[-1]
-    ns = IdlMeta.__prepare__(name, (IdlStruct,), typename=dds_type_name(typename))
+    # __prepare__ is typed as a read-only Mapping but returns the mutable class namespace dict.
+    ns = cast(dict[str, Any], IdlMeta.__prepare__(name, (IdlStruct,), typename=dds_type_name(typename)))
     for f in parse_fields(typename):
         base = prim[f.type] if f.type in prim else msg_class(f.type)
         if f.array is None:
@@ -159,7 +174,7 @@ def msg_class(typename: str) -> type:
         else:
             ns["__annotations__"][f.name] = t.array[base, f.array]
             ns[f.name] = dataclasses.field(default_factory=_array_factory(f.type, base, f.array))
-    cls = IdlMeta(name, (IdlStruct,), ns)
+    cls: type = IdlMeta(name, (IdlStruct,), ns)
     return dataclasses.dataclass(cls)
 
 
@@ -185,17 +200,28 @@ def serialize(msg: Any) -> bytes:
 
 # Short names for the types the bridge uses.
 _EXPORTS = {
-    "Time": "builtin_interfaces/msg/Time", "Header": "std_msgs/msg/Header", "ColorRGBA": "std_msgs/msg/ColorRGBA",
-    "Point": "geometry_msgs/msg/Point", "Vector3": "geometry_msgs/msg/Vector3",
-    "Quaternion": "geometry_msgs/msg/Quaternion", "Pose": "geometry_msgs/msg/Pose",
+    "Time": "builtin_interfaces/msg/Time",
+    "Header": "std_msgs/msg/Header",
+    "ColorRGBA": "std_msgs/msg/ColorRGBA",
+    "Point": "geometry_msgs/msg/Point",
+    "Vector3": "geometry_msgs/msg/Vector3",
+    "Quaternion": "geometry_msgs/msg/Quaternion",
+    "Pose": "geometry_msgs/msg/Pose",
     "PoseWithCovariance": "geometry_msgs/msg/PoseWithCovariance",
     "PoseWithCovarianceStamped": "geometry_msgs/msg/PoseWithCovarianceStamped",
-    "Twist": "geometry_msgs/msg/Twist", "TwistWithCovariance": "geometry_msgs/msg/TwistWithCovariance",
-    "Transform": "geometry_msgs/msg/Transform", "TransformStamped": "geometry_msgs/msg/TransformStamped",
-    "TFMessage": "tf2_msgs/msg/TFMessage", "Clock": "rosgraph_msgs/msg/Clock", "LaserScan": "sensor_msgs/msg/LaserScan",
-    "Odometry": "nav_msgs/msg/Odometry", "MapMetaData": "nav_msgs/msg/MapMetaData",
-    "OccupancyGrid": "nav_msgs/msg/OccupancyGrid", "AckermannDrive": "ackermann_msgs/msg/AckermannDrive",
-    "AckermannDriveStamped": "ackermann_msgs/msg/AckermannDriveStamped", "Marker": "visualization_msgs/msg/Marker",
+    "Twist": "geometry_msgs/msg/Twist",
+    "TwistWithCovariance": "geometry_msgs/msg/TwistWithCovariance",
+    "Transform": "geometry_msgs/msg/Transform",
+    "TransformStamped": "geometry_msgs/msg/TransformStamped",
+    "TFMessage": "tf2_msgs/msg/TFMessage",
+    "Clock": "rosgraph_msgs/msg/Clock",
+    "LaserScan": "sensor_msgs/msg/LaserScan",
+    "Odometry": "nav_msgs/msg/Odometry",
+    "MapMetaData": "nav_msgs/msg/MapMetaData",
+    "OccupancyGrid": "nav_msgs/msg/OccupancyGrid",
+    "AckermannDrive": "ackermann_msgs/msg/AckermannDrive",
+    "AckermannDriveStamped": "ackermann_msgs/msg/AckermannDriveStamped",
+    "Marker": "visualization_msgs/msg/Marker",
 }
 
 

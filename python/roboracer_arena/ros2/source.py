@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from ..sim_config import SimConfig
 from ..errors import ConfigError
+from ..sim_config import SimConfig
 
 
 @dataclass
@@ -66,15 +66,27 @@ def sim_source(env_or_sim: Any, cars: int | None = None, config: SimConfig | Non
     if isinstance(env_or_sim, _core.Simulator):
         sim = env_or_sim
         tid = int(sim.track_ids()[0])
-        return SimSource(sim, int(sim.vehicles_per_env), SimConfig.model_validate(json.loads(sim.config_json)),
-                         np.asarray(sim.centreline(tid)), track_id=tid)
+        return SimSource(
+            sim,
+            int(sim.vehicles_per_env),
+            SimConfig.model_validate(json.loads(sim.config_json)),
+            np.asarray(sim.centreline(tid)),
+            track_id=tid,
+        )
     inner = getattr(env_or_sim, "unwrapped", None)
     batch = getattr(inner, "_batch", None)
-    if batch is not None and hasattr(batch, "sim"):  # a RoboRacerArena-v0 env
+    if inner is not None and batch is not None and hasattr(batch, "sim"):  # a RoboRacerArena-v0 env
         tid = int(batch.track_ids[0])
         track = inner.tracks[tid]
-        return SimSource(batch.sim, int(batch.vehicles), inner.config.sim, np.asarray(track.centreline),
-                         occupancy_map=_load_map(track.source), name=track.name, track_id=tid)
+        return SimSource(
+            batch.sim,
+            int(batch.vehicles),
+            inner.config.sim,
+            np.asarray(track.centreline),
+            occupancy_map=_load_map(track.source),
+            name=track.name,
+            track_id=tid,
+        )
     from ..envs.tracks import resolve_tracks
 
     track = resolve_tracks(env_or_sim)[0]

@@ -10,7 +10,8 @@ Beam ``k`` of a scan points at ``angle_min + k * angle_increment`` with
 from __future__ import annotations
 
 import math
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -42,31 +43,45 @@ def header(t: float, frame_id: str) -> Any:
     return msgs.Header(stamp=stamp(t), frame_id=frame_id)
 
 
-def laser_scan(names: CarNames, t: float, ranges: np.ndarray, fov: float, range_min: float, range_max: float,
-               scan_time: float) -> Any:
+def laser_scan(
+    names: CarNames, t: float, ranges: np.ndarray, fov: float, range_min: float, range_max: float, scan_time: float
+) -> Any:
     """``sensor_msgs/LaserScan`` of one car's scan (ranges in metres, float32)."""
     n = len(ranges)
     return msgs.LaserScan(
-        header=header(t, names.laser), angle_min=-fov / 2, angle_max=fov / 2,
-        angle_increment=fov / (n - 1) if n > 1 else 0.0, time_increment=0.0, scan_time=scan_time,
-        range_min=range_min, range_max=range_max, ranges=ranges.tolist(), intensities=[])
+        header=header(t, names.laser),
+        angle_min=-fov / 2,
+        angle_max=fov / 2,
+        angle_increment=fov / (n - 1) if n > 1 else 0.0,
+        time_increment=0.0,
+        scan_time=scan_time,
+        range_min=range_min,
+        range_max=range_max,
+        ranges=ranges.tolist(),
+        intensities=[],
+    )
 
 
-def odometry(names: CarNames, t: float, x: float, y: float, yaw: float, vx: float, vy: float,
-             yaw_rate: float) -> Any:
+def odometry(names: CarNames, t: float, x: float, y: float, yaw: float, vx: float, vy: float, yaw_rate: float) -> Any:
     """``nav_msgs/Odometry`` of one car (pose in ``map``, twist in ``base_link``)."""
     return msgs.Odometry(
-        header=header(t, MAP_FRAME), child_frame_id=names.base_link,
-        pose=msgs.PoseWithCovariance(pose=msgs.Pose(position=msgs.Point(x=x, y=y, z=0.0),
-                                                    orientation=yaw_quaternion(yaw))),
-        twist=msgs.TwistWithCovariance(twist=msgs.Twist(linear=msgs.Vector3(x=vx, y=vy, z=0.0),
-                                                        angular=msgs.Vector3(x=0.0, y=0.0, z=yaw_rate))))
+        header=header(t, MAP_FRAME),
+        child_frame_id=names.base_link,
+        pose=msgs.PoseWithCovariance(
+            pose=msgs.Pose(position=msgs.Point(x=x, y=y, z=0.0), orientation=yaw_quaternion(yaw))
+        ),
+        twist=msgs.TwistWithCovariance(
+            twist=msgs.Twist(linear=msgs.Vector3(x=vx, y=vy, z=0.0), angular=msgs.Vector3(x=0.0, y=0.0, z=yaw_rate))
+        ),
+    )
 
 
 def transform(t: float, parent: str, child: str, x: float, y: float, z: float, yaw: float) -> Any:
     return msgs.TransformStamped(
-        header=header(t, parent), child_frame_id=child,
-        transform=msgs.Transform(translation=msgs.Vector3(x=x, y=y, z=z), rotation=yaw_quaternion(yaw)))
+        header=header(t, parent),
+        child_frame_id=child,
+        transform=msgs.Transform(translation=msgs.Vector3(x=x, y=y, z=z), rotation=yaw_quaternion(yaw)),
+    )
 
 
 def tf_message(transforms: Sequence[Any]) -> Any:
@@ -87,8 +102,12 @@ def occupancy_grid(occ_map: Any, t: float = 0.0) -> Any:
     h, w = data.shape
     ox, oy, oyaw = occ_map.origin
     info = msgs.MapMetaData(
-        map_load_time=stamp(t), resolution=float(occ_map.resolution), width=w, height=h,
-        origin=msgs.Pose(position=msgs.Point(x=ox, y=oy, z=0.0), orientation=yaw_quaternion(oyaw)))
+        map_load_time=stamp(t),
+        resolution=float(occ_map.resolution),
+        width=w,
+        height=h,
+        origin=msgs.Pose(position=msgs.Point(x=ox, y=oy, z=0.0), orientation=yaw_quaternion(oyaw)),
+    )
     return msgs.OccupancyGrid(header=header(t, MAP_FRAME), info=info, data=grid[::-1].ravel().tolist())
 
 
@@ -98,13 +117,20 @@ def centreline_marker(centreline: np.ndarray, t: float = 0.0) -> Any:
     if len(c) > 1 and not np.allclose(c[0], c[-1]):
         c = np.vstack([c, c[:1]])
     return msgs.Marker(
-        header=header(t, MAP_FRAME), ns="centreline", id=0, type=msgs.MARKER_LINE_STRIP, action=msgs.MARKER_ADD,
-        pose=msgs.Pose(orientation=msgs.Quaternion(w=1.0)), scale=msgs.Vector3(x=0.05),
+        header=header(t, MAP_FRAME),
+        ns="centreline",
+        id=0,
+        type=msgs.MARKER_LINE_STRIP,
+        action=msgs.MARKER_ADD,
+        pose=msgs.Pose(orientation=msgs.Quaternion(w=1.0)),
+        scale=msgs.Vector3(x=0.05),
         color=msgs.ColorRGBA(r=0.1, g=0.8, b=0.2, a=1.0),
-        points=[msgs.Point(x=float(x), y=float(y), z=0.0) for x, y in c])
+        points=[msgs.Point(x=float(x), y=float(y), z=0.0) for x, y in c],
+    )
 
 
 def drive_command(t: float, frame_id: str, steer: float, speed: float) -> Any:
     """``ackermann_msgs/AckermannDriveStamped`` (what the bridge records of a command)."""
-    return msgs.AckermannDriveStamped(header=header(t, frame_id),
-                                      drive=msgs.AckermannDrive(steering_angle=steer, speed=speed))
+    return msgs.AckermannDriveStamped(
+        header=header(t, frame_id), drive=msgs.AckermannDrive(steering_angle=steer, speed=speed)
+    )

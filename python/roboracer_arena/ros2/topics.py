@@ -16,7 +16,13 @@ from dataclasses import dataclass
 
 MAP_FRAME = "map"
 TF, TF_STATIC, CLOCK, MAP, INITIALPOSE, CENTRELINE = (
-    "/tf", "/tf_static", "/clock", "/map", "/initialpose", "/centreline")
+    "/tf",
+    "/tf_static",
+    "/clock",
+    "/map",
+    "/initialpose",
+    "/centreline",
+)
 
 # ROS 2 type of every topic the bridge uses (per-car topics by their role).
 TYPE_OF = {

@@ -80,13 +80,15 @@ def _check_mesh(where: str, pts: np.ndarray, counts: np.ndarray, idx: np.ndarray
     if len(counts) and (counts.min() < 3 or int(counts.sum()) != len(idx)):
         raise MapFormatError(f"{where}: face vertex counts must be ≥ 3 and add up to the {len(idx)} indices")
     if len(idx) and (idx.min() < 0 or idx.max() >= len(pts)):
-        raise MapFormatError(f"{where}: face vertex indices must be in [0, {len(pts) - 1}], got {idx.min()}..{idx.max()}")
+        raise MapFormatError(
+            f"{where}: face vertex indices must be in [0, {len(pts) - 1}], got {idx.min()}..{idx.max()}"
+        )
 
 
 def _triangulate(counts: np.ndarray, idx: np.ndarray) -> np.ndarray:
     if len(counts) and np.all(counts == 3):
         return idx.reshape(-1, 3)
-    tris = []
+    tris: list[tuple[int, int, int]] = []
     start = 0
     for c in counts:
         face = idx[start : start + c]

@@ -17,9 +17,10 @@ module knows nothing about maps or corridors.
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics, Vt
@@ -85,7 +86,9 @@ def author_stage(
     world = UsdGeom.Xform.Define(stage, "/World")
     stage.SetDefaultPrim(world.GetPrim())
     layer = stage.GetRootLayer()
-    layer.documentation = "RoboRacer Arena track: floor, invisible collision walls, visible ducts (air-duct tubes with rings)."
+    layer.documentation = (
+        "RoboRacer Arena track: floor, invisible collision walls, visible ducts (air-duct tubes with rings)."
+    )
     layer.customLayerData = {METADATA_KEY: _vt_dict(metadata)}
 
     scene = UsdPhysics.Scene.Define(stage, "/World/PhysicsScene")
@@ -228,4 +231,3 @@ def warm_up() -> None:
     looks.bind(mesh.GetPrim(), mat)
     UsdPhysics.MaterialAPI.Apply(mat.GetPrim())
     stage.GetRootLayer().ExportToString()
-

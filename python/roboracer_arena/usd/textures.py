@@ -18,7 +18,6 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, PngImagePlugin  # noqa: F401  (imported here, not inside a timed build)
 
-
 TEXTURE_DIR = "textures"
 SHADE_MEAN = 0.9  # mean texel value; the material's scale is colour / SHADE_MEAN
 
