@@ -10,14 +10,16 @@ partial or redirected output behind. Every ``OSError`` becomes a one-line
 
 from __future__ import annotations
 
+import json
 import os
 import stat
 import tempfile
 from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
+from typing import Any
 
-from .errors import InvalidArgumentError, MapIOError
+from .errors import InvalidArgumentError, MapFormatError, MapIOError
 
 _UMASK = os.umask(0)  # read the process umask once (os.umask can only read by setting)
 os.umask(_UMASK)
@@ -179,6 +181,20 @@ def read_text(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BYTES) -> s
     except UnicodeDecodeError as e:
         hint = " (it looks like UTF-16; save it as UTF-8)" if data[:2] in (b"\xff\xfe", b"\xfe\xff") else ""
         raise MapIOError(f"{path}: {what} is not UTF-8 text (byte {e.start}){hint}") from None
+
+
+def read_json(
+    path: str | Path, what: str, error: type[Exception] = MapFormatError, max_bytes: int = MAX_TEXT_BYTES
+) -> Any:
+    """A JSON document from :func:`read_text` (regular file, size cap, UTF-8). Malformed or
+    absurdly nested JSON raises ``error`` with one line naming the file and what it is."""
+    text = read_text(path, what, max_bytes)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as e:
+        raise error(f"{path}: {what} is not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from None
+    except RecursionError:
+        raise error(f"{path}: {what} is JSON nested too deeply") from None
 
 
 def atomic_write_dir(path: str | Path, files: dict[str, bytes]) -> None:

@@ -54,7 +54,7 @@ def test_bridge_config_file(tmp_path):
         BridgeConfig.load(bad)
     broken = tmp_path / "broken.json"
     broken.write_text("{")
-    with pytest.raises(ConfigError, match="broken.json: not valid JSON"):
+    with pytest.raises(ConfigError, match="broken.json: bridge config is not valid JSON"):
         BridgeConfig.load(broken)
 
 

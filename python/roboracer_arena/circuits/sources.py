@@ -9,7 +9,6 @@ venue TUM does not cover with the same layout (same venue and lap length within 
 
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import MapFormatError, MapIOError
+from ..fileio import read_json
 from ..paths import sources_dir
 from .projection import geodesic_length, project_local
 
@@ -164,12 +164,7 @@ def read_geojson(path: str | Path, width_m: float = BACINGER_WIDTH_M) -> Circuit
     """Read a GeoJSON LineString circuit (FeatureCollection, Feature or bare geometry),
     project it to local metres (transverse Mercator, WGS84) and give it a constant width."""
     p = Path(path)
-    try:
-        doc = json.loads(p.read_text(encoding="utf-8"))
-    except OSError as e:
-        raise MapIOError(f"{p}: cannot read GeoJSON: {e.strerror or e}") from e
-    except json.JSONDecodeError as e:
-        raise MapFormatError(f"{p}: not valid JSON (line {e.lineno}): {e.msg}") from e
+    doc = read_json(p, "GeoJSON circuit", MapFormatError, max_bytes=256 * 2**20)
     feat = doc
     if isinstance(doc, dict) and doc.get("type") == "FeatureCollection":
         feats = doc.get("features") or []

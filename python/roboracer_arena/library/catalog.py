@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InvalidArgumentError, MapIOError
+from ..fileio import read_json
 from ..paths import sources_dir, tracks_dir
 
 KINDS = ("recorded", "circuit", "generated")
@@ -110,12 +111,7 @@ class Catalog:
 def load_catalog(path: str | Path | None = None) -> Catalog:
     """Read ``tracks/catalog.json`` (or ``path``)."""
     p = Path(path) if path else default_tracks_dir() / "catalog.json"
-    try:
-        doc = json.loads(p.read_text(encoding="utf-8"))
-    except OSError as e:
-        raise MapIOError(f"{p}: cannot read the track catalog: {e.strerror or e}") from e
-    except json.JSONDecodeError as e:
-        raise MapIOError(f"{p}: the track catalog is not valid JSON (line {e.lineno}): {e.msg}") from e
+    doc = read_json(p, "track catalog", MapIOError, max_bytes=64 * 2**20)
     meta = {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count")}
     return Catalog(entries=list(doc.get("tracks", [])), left_out=list(doc.get("left_out", [])), meta=meta, path=p)
 

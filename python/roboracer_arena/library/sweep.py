@@ -25,7 +25,6 @@ order.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -33,6 +32,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import SpecError
+from ..fileio import read_json
 from ..spec import TrackSpec
 
 #: The example sweep (also ``examples/sweep.json``): varied halls, lap lengths and features.
@@ -128,12 +128,7 @@ class SweepFile(BaseModel):
 def load_sweep(path: str | Path) -> SweepFile:
     """Read and check a sweep file; errors name the file and the field."""
     p = Path(path)
-    try:
-        doc = json.loads(p.read_text(encoding="utf-8"))
-    except OSError as e:
-        raise SpecError(f"{p}: cannot read the sweep file: {e.strerror or e}") from None
-    except json.JSONDecodeError as e:
-        raise SpecError(f"{p}: not valid JSON (line {e.lineno}): {e.msg}") from None
+    doc = read_json(p, "sweep file", SpecError)
     try:
         return SweepFile.model_validate(doc)
     except ValidationError as e:

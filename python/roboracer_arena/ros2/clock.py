@@ -10,7 +10,6 @@ simulated second on average. :class:`Pacer` holds the simulation to ``rate`` × 
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from pathlib import Path
@@ -18,7 +17,7 @@ from pathlib import Path
 from pydantic import ConfigDict, Field, ValidationError
 
 from ..errors import ArenaError, ConfigError
-from ..fileio import read_text
+from ..fileio import read_json
 from ..sim_config import SimConfig
 from ..strict import NumbersAreNumbers
 
@@ -50,13 +49,9 @@ class BridgeConfig(NumbersAreNumbers):
         """Read a JSON file; bad JSON or fields fail with :class:`ConfigError` naming the file."""
         p = Path(path)
         try:
-            raw = json.loads(read_text(p, "bridge config"))
-        except ArenaError as e:
+            raw = read_json(p, "bridge config", ConfigError)
+        except ArenaError as e:  # unreadable: one line, as a config error
             raise ConfigError(str(e)) from None
-        except json.JSONDecodeError as e:
-            raise ConfigError(f"{p}: not valid JSON: {e}") from e
-        except RecursionError:
-            raise ConfigError(f"{p}: JSON nested too deeply to be a bridge config") from None
         try:
             return cls.model_validate(raw)
         except ValidationError as e:
