@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import stat
 import tempfile
 from collections.abc import Iterable, Iterator, Sequence
@@ -197,26 +198,41 @@ def read_json(
         raise error(f"{path}: {what} is JSON nested too deeply") from None
 
 
-def atomic_write_dir(path: str | Path, files: dict[str, bytes]) -> None:
-    """Write ``files`` (name -> bytes) as the directory ``path``, all or nothing: they go to a
-    temporary sibling directory that is then renamed onto ``path`` (a previous ``path`` is
-    moved aside first and deleted after), so readers see the old or the new set, never a mix."""
-    import shutil
-
+@contextmanager
+def atomic_dir(path: str | Path) -> Iterator[Path]:
+    """Yield a fresh temporary sibling directory of ``path``; when the block succeeds it
+    replaces ``path`` by rename (a previous ``path`` is moved aside first and deleted after),
+    so readers see the old folder or the new one, never a mix. On any error the temporary
+    folder is removed and ``path`` is left as it was."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
-    old = None
+    parent = path.absolute().parent
     try:
+        parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent))
+        os.chmod(tmp, 0o777 & ~_UMASK)  # mkdtemp makes 0700; the folder is a normal output
+    except OSError as e:
+        raise MapIOError(f"{path}: cannot create the output directory: {_why(e)}") from None
+    old: Path | None = None
+    try:
+        yield tmp
+        if path.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".old", dir=parent))
+            os.replace(path, old / "previous")
+        os.replace(tmp, path)
+    except BaseException:
+        if old is not None and not path.exists():
+            os.replace(old / "previous", path)  # put the earlier folder back
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    finally:
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)
+
+
+def atomic_write_dir(path: str | Path, files: dict[str, bytes]) -> None:
+    """Write ``files`` (name -> bytes) as the directory ``path``, all or nothing
+    (:func:`atomic_dir`)."""
+    with atomic_dir(path) as tmp:
         for name, data in files.items():
             (tmp / name).write_bytes(data)
             os.chmod(tmp / name, 0o666 & ~_UMASK)
-        os.chmod(tmp, 0o777 & ~_UMASK)
-        if path.exists():
-            old = Path(tempfile.mkdtemp(prefix=f".{path.name}.old.", dir=path.parent))
-            os.replace(path, old / path.name)
-        os.replace(tmp, path)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-        if old is not None:
-            shutil.rmtree(old, ignore_errors=True)

@@ -13,15 +13,13 @@ import contextlib
 import io
 import json
 import os
-import shutil
-import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import InvalidArgumentError
-from ..fileio import atomic_write_text
+from ..fileio import atomic_dir, atomic_write_text
 from .outcomes import Acceptance
 
 REPORT_NAME = "report.json"
@@ -95,27 +93,5 @@ def output_folder(outdir: str | Path) -> Iterator[Path]:
             raise InvalidArgumentError(
                 f"-o {out}: directory holds files generate did not write; give a new, empty or earlier generate output directory"
             )
-    parent = out.absolute().parent
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".tmp", dir=parent))
-        mask = os.umask(0o22)
-        os.umask(mask)
-        os.chmod(tmp, 0o777 & ~mask)  # mkdtemp makes 0700; the folder is a normal output
-    except OSError as e:
-        raise InvalidArgumentError(f"-o {out}: cannot create the output directory: {e.strerror or e}") from e
-    old: Path | None = None
-    try:
+    with atomic_dir(out) as tmp:
         yield tmp
-        if out.exists():
-            old = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".old", dir=parent))
-            os.replace(out, old / "previous")
-        os.replace(tmp, out)
-    except BaseException:
-        if old is not None and not out.exists():
-            os.replace(old / "previous", out)  # put the earlier folder back
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    finally:
-        if old is not None:
-            shutil.rmtree(old, ignore_errors=True)
