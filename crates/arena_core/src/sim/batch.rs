@@ -114,7 +114,8 @@ impl Simulator {
             ));
         }
         let model = VehicleModel::new(&params.vehicle, &params.physics);
-        let scanner = Scanner::new(&params.lidar);
+        let mut scanner = Scanner::new(&params.lidar);
+        scanner.split = num_envs == 1;
         let worlds = (0..num_envs)
             .into_par_iter()
             .map(|e| {
