@@ -31,3 +31,17 @@ def test_the_panic_prints_nothing_to_stderr():
     )
     assert out.returncode == 0 and out.stdout.strip() == "InternalError"
     assert "panicked" not in out.stderr
+
+
+def test_the_cli_reports_an_internal_error_with_exit_1(monkeypatch, capsys):
+    """A caught panic is a bug, not bad input: exit 1 and one line, never a traceback."""
+    import roboracer_arena.cli.validate as validate_cmd
+    from roboracer_arena.cli import EXIT_INTERNAL, main
+
+    def panics(args):
+        _core._boundary_self_test()
+
+    monkeypatch.setattr(validate_cmd, "run", panics)
+    assert main(["validate", "m.yaml", "--spec", "s.json"]) == EXIT_INTERNAL == 1
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "internal error" in err and "Traceback" not in err

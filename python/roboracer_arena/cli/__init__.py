@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from importlib import import_module
 
 from .. import __version__
-from ..errors import ArenaError
+from ..errors import ArenaError, InternalError
 from ._common import check_numeric_flags
 
 # Subcommand modules, in the order `--help` lists them.
@@ -61,6 +61,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         check_numeric_flags(args)
         return int(args.func(args) or 0)
+    except InternalError as e:  # a caught core panic: a bug, not bad input
+        print(f"roboracer-arena {args.command}: {e}", file=sys.stderr)
+        return EXIT_INTERNAL
     except ArenaError as e:
         print(f"roboracer-arena {args.command}: error: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
