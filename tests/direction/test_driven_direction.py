@@ -16,6 +16,25 @@ from roboracer_arena.library import load_catalog
 from roboracer_arena.paths import tracks_dir
 
 
+def _clockwise_generated():
+    """A 40 m clockwise track with one hairpin, generated afresh (seed 0)."""
+    from roboracer_arena import TrackSpec
+    from roboracer_arena.generate import generate_track
+
+    spec = TrackSpec(
+        name="cw",
+        lap_length_m=40.0,
+        corridor_width_m=1.2,
+        hall_x_m=20.0,
+        hall_y_m=15.0,
+        direction="clockwise",
+        hairpins=1,
+        chicanes=0,
+        sweepers=0,
+    )
+    return generate_track(spec, seed=0)
+
+
 def _sign(path) -> int:
     return 1 if shoelace(path) > 0 else -1
 
@@ -49,22 +68,10 @@ def test_clockwise_generated_track_is_driven_clockwise():
 
 def test_generated_map_path_outside_the_catalog_keeps_the_requested_direction(tmp_path):
     """A freshly generated clockwise track, driven from its folder (not the catalog)."""
-    from roboracer_arena import TrackSpec
-    from roboracer_arena.generate import Acceptance, generate_track, write_outputs
+    from roboracer_arena.generate import Acceptance, write_outputs
     from roboracer_arena.track import track_from_map_path
 
-    spec = TrackSpec(
-        name="cw",
-        lap_length_m=40.0,
-        corridor_width_m=1.2,
-        hall_x_m=20.0,
-        hall_y_m=15.0,
-        direction="clockwise",
-        hairpins=1,
-        chicanes=0,
-        sweepers=0,
-    )
-    out = generate_track(spec, seed=0)
+    out = _clockwise_generated()
     assert isinstance(out, Acceptance)
     paths = write_outputs(out, tmp_path)
     t = track_from_map_path(paths["map_yaml"])
@@ -100,21 +107,9 @@ def test_generated_outcome_and_its_map_plug_in_everywhere(tmp_path):
     in the requested direction."""
     import gymnasium as gym
 
-    from roboracer_arena import TrackSpec, build_environment, extract_corridor, load_map
-    from roboracer_arena.generate import generate_track
+    from roboracer_arena import build_environment, extract_corridor, load_map
 
-    spec = TrackSpec(
-        name="cw",
-        lap_length_m=40.0,
-        corridor_width_m=1.2,
-        hall_x_m=20.0,
-        hall_y_m=15.0,
-        direction="clockwise",
-        hairpins=1,
-        chicanes=0,
-        sweepers=0,
-    )
-    out = generate_track(spec, seed=0)
+    out = _clockwise_generated()
     m = out.map
     assert type(m) is type(load_map(m.save(tmp_path / "cw.yaml")))
     assert extract_corridor(m).walls
