@@ -168,8 +168,10 @@ STATE_FIELDS: tuple[str, ...]
 class Simulator:
     """``num_envs`` independent rapier worlds with ``vehicles_per_env`` cars each.
 
-    ``tracks``: list of ``(walls, centreline)``; walls = list of closed (N, 2) float64
-    polylines (map-frame metres), centreline = closed (M, 2) float64 polyline.
+    ``tracks``: list of ``(walls, centreline)`` or ``(walls, centreline, wall_height)``;
+    walls = list of closed (N, 2) float64 polylines (map-frame metres), centreline = closed
+    (M, 2) float64 polyline, wall_height (m, in (0, 10]; default the build geometry's 0.5) the
+    height of the extruded collision walls (``Track.native()`` passes the build's own).
     ``config_json``: ``SimConfig().to_json()``. Every env starts on track 0.
     ``seed`` (None = 0) and ``env_index_offset`` (None = 0; the index of env 0 in a larger
     batch, so that a shard draws the same per-env streams as the whole) are ints >= 0.
@@ -195,7 +197,10 @@ class Simulator:
 
     def __new__(
         cls,
-        tracks: list[tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]],
+        tracks: Sequence[
+            tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]
+            | tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64], float]
+        ],
         num_envs: int,
         vehicles_per_env: int,
         config_json: str = "{}",

@@ -228,7 +228,6 @@ class PhysicsConfig(NumbersAreNumbers):
         description="Physics time step (s). Steps above 10 ms are split into equal internal steps, so every accepted dt is stable.",
     )
     gravity: float = Field(9.81, gt=0, description="Gravity (m/s^2).")
-    wall_height: float = Field(0.5, gt=0, description="Height of the extruded collision walls (m).")
     wall_friction: float = Field(0.3, ge=0, description="Chassis-wall friction coefficient.")
     ground_friction: float = Field(
         0.83, ge=0, description="Ground collider friction (chassis on ground only; tyres use tyre_friction)."

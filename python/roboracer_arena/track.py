@@ -6,6 +6,7 @@ all use it, and it imports none of them.
 
 from __future__ import annotations
 
+import json
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -15,11 +16,14 @@ from typing import Any
 
 import numpy as np
 
+from . import _core
 from .direction import TrackDirection, direction_for_map, direction_of, orient_to
 from .direction import reverse as reverse_line
 from .errors import ConfigError, MapIOError
 
 MAP_SUFFIXES = (".yaml", ".yml")
+#: The build geometry's default wall height (the core's ``DEFAULT_WALL_HEIGHT_M``).
+DEFAULT_WALL_HEIGHT_M: float = json.loads(_core.config_defaults("build"))["wall_height_m"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -38,10 +42,16 @@ class Track:
     #: True when the first centreline vertex is the source's own start line (a circuit's
     #: or recorded map's centreline file), not wherever an extracted centreline begins.
     source_start: bool = field(default=False, repr=False)
+    #: Height (m) of the collision walls the simulator extrudes: the build geometry's
+    #: ``wall_height_m`` when the track comes from a map, so physics and USD walls agree.
+    wall_height: float = field(default=DEFAULT_WALL_HEIGHT_M, repr=False)
 
     @classmethod
-    def from_polylines(cls, walls: Sequence[Any], centreline: Any, name: str = "track") -> Track:
-        """A track from wall polylines ((N_i, 2) arrays) and a closed centreline ((M, 2))."""
+    def from_polylines(
+        cls, walls: Sequence[Any], centreline: Any, name: str = "track", wall_height: float = DEFAULT_WALL_HEIGHT_M
+    ) -> Track:
+        """A track from wall polylines ((N_i, 2) arrays), a closed centreline ((M, 2)) and
+        the height of its collision walls (m)."""
         ws = tuple(np.ascontiguousarray(np.asarray(w, dtype=np.float64)) for w in walls)
         c = np.ascontiguousarray(np.asarray(centreline, dtype=np.float64))
         for i, w in enumerate(ws):
@@ -51,7 +61,7 @@ class Track:
             raise ConfigError(f"track {name!r}: centreline must be a finite (M>=3, 2) array, got shape {c.shape}")
         if not ws:
             raise ConfigError(f"track {name!r}: no walls")
-        return cls(name=name, walls=ws, centreline=c)
+        return cls(name=name, walls=ws, centreline=c, wall_height=float(wall_height))
 
     @property
     def direction(self) -> str:
@@ -128,9 +138,9 @@ class Track:
             near = c[[int(np.argmin(np.hypot(c[:, 0] - x, c[:, 1] - y)))]]
         return float(2.0 * self.clearance(near).min())
 
-    def native(self) -> tuple[list[np.ndarray], np.ndarray]:
-        """The ``(walls, centreline)`` pair the native simulator takes."""
-        return list(self.walls), self.centreline
+    def native(self) -> tuple[list[np.ndarray], np.ndarray, float]:
+        """The ``(walls, centreline, wall_height)`` the native simulator takes."""
+        return list(self.walls), self.centreline, self.wall_height
 
 
 def track_from_map_path(
@@ -169,6 +179,8 @@ def _params_key(params: Any) -> str | None:
 
 
 def _from_corridor(corridor: Any, name: str, source: Any = None) -> Track:
-    t = Track.from_polylines(list(corridor.walls), corridor.centreline, name=name)
+    params = getattr(corridor, "params", None) or {}  # corridor-like objects may have none
+    height = float(params.get("wall_height_m", DEFAULT_WALL_HEIGHT_M))
+    t = Track.from_polylines(list(corridor.walls), corridor.centreline, name=name, wall_height=height)
     object.__setattr__(t, "source", source if source is not None else corridor)
     return t

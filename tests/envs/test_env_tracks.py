@@ -11,8 +11,8 @@ def test_track_geometry_of_the_stadium(oval):
     assert oval.length == pytest.approx(2 * 6.0 + 2 * np.pi * 3.0, rel=2e-3)
     xmin, ymin, xmax, ymax = oval.bounds
     assert xmin == pytest.approx(-6.8, abs=0.01) and ymax == pytest.approx(3.8, abs=0.01)
-    walls, centreline = oval.native()
-    assert len(walls) == 2 and centreline.dtype == np.float64
+    walls, centreline, wall_height = oval.native()
+    assert len(walls) == 2 and centreline.dtype == np.float64 and wall_height == 0.5  # the build default
 
 
 def test_one_or_many_tracks(oval):

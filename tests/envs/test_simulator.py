@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from roboracer_arena import _core
-from roboracer_arena.envs import LidarConfig, PhysicsConfig, SimConfig
+from roboracer_arena.envs import LidarConfig, SimConfig
 from roboracer_arena.errors import ConfigError, InvalidArgumentError
 
 # Straights 6 m, centreline radius 3 m, corridor 2 m: walls are stadiums of radius 4 and 2.
@@ -168,14 +168,22 @@ def berlin(berlin_geometry):
     return berlin_geometry.walls, berlin_geometry.centreline
 
 
-def test_physics_walls_are_the_builders_wall_mesh(berlin_geometry):
-    """The collision mesh in every world is exactly the mesh the USD stage gets."""
-    geo = berlin_geometry
-    config = SimConfig(physics=PhysicsConfig(wall_height=geo.params["wall_height_m"]))
-    sim = _core.Simulator([(geo.walls, geo.centreline)], 2, 1, config.to_json(), 0)
-    vertices, triangles = sim.wall_mesh(0)
-    usd_vertices, usd_triangles = geo.meshes["walls"]
-    assert np.array_equal(vertices, usd_vertices) and np.array_equal(triangles, usd_triangles)
+def test_physics_walls_are_the_builders_wall_mesh(berlin_geometry, sources):
+    """The collision mesh in every world is exactly the mesh the USD stage gets: the
+    track carries the build's wall height (one knob), at its default and when changed."""
+    from roboracer_arena.corridor import extract_corridor
+    from roboracer_arena.track import _from_corridor
+
+    for geo in (
+        berlin_geometry,
+        extract_corridor(sources / "f1tenth-gym" / "maps" / "berlin.yaml", {"wall_height_m": 0.8}),
+    ):
+        track = _from_corridor(geo, "berlin")
+        assert track.wall_height == geo.params["wall_height_m"]
+        sim = _core.Simulator([track.native()], 2, 1, SimConfig().to_json(), 0)
+        vertices, triangles = sim.wall_mesh(0)
+        usd_vertices, usd_triangles = geo.meshes["walls"]
+        assert np.array_equal(vertices, usd_vertices) and np.array_equal(triangles, usd_triangles)
 
 
 def _reference_ranges(walls, origin, angles, range_max):

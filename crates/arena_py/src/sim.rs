@@ -8,6 +8,7 @@ use arena_core::sim::{
     ResetGiven, ResetOut, SimParams, Simulator as CoreSim, StartSpec, Track, STATE_FIELDS,
     STATE_SIZE,
 };
+use arena_core::track::params::DEFAULT_WALL_HEIGHT_M;
 use arena_core::ArenaError as CoreError;
 use numpy::{
     PyArray1, PyArray2, PyArray3, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods,
@@ -210,22 +211,37 @@ impl Simulator {
         let mut raw = Vec::new();
         for (i, item) in tracks.try_iter()?.enumerate() {
             let item = item?;
-            let (walls, centre): (Bound<'_, PyAny>, Bound<'_, PyAny>) = item
-                .extract()
-                .map_err(|_| invalid(format!("tracks[{i}] must be a (walls, centreline) pair")))?;
+            let bad = || {
+                invalid(format!(
+                    "tracks[{i}] must be (walls, centreline) or (walls, centreline, wall_height)"
+                ))
+            };
+            let (walls, centre, height): (Bound<'_, PyAny>, Bound<'_, PyAny>, f64) =
+                match item.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() {
+                    Ok((w, c)) => (w, c, DEFAULT_WALL_HEIGHT_M),
+                    Err(_) => item.extract().map_err(|_| bad())?,
+                };
+            if !(height.is_finite() && height > 0.0 && height <= 10.0) {
+                return Err(invalid(format!(
+                    "tracks[{i}] wall_height must be in (0, 10] m, got {height}"
+                )));
+            }
             let mut ws = Vec::new();
             for (j, w) in walls.try_iter()?.enumerate() {
                 ws.push(points(&w?, &format!("tracks[{i}] wall {j}"))?);
             }
-            raw.push((ws, points(&centre, &format!("tracks[{i}] centreline"))?));
+            raw.push((
+                ws,
+                points(&centre, &format!("tracks[{i}] centreline"))?,
+                height,
+            ));
         }
-        let h = params.physics.wall_height;
         let inner = boundary::call(py, "Simulator", move || {
             let built: arena_core::Result<Vec<Arc<Track>>> = raw
                 .iter()
                 .enumerate()
-                .map(|(i, (w, c))| {
-                    Track::new(w, c, h)
+                .map(|(i, (w, c, h))| {
+                    Track::new(w, c, *h)
                         .map(Arc::new)
                         .map_err(|e| CoreError::invalid(format!("tracks[{i}]: {e}")))
                 })

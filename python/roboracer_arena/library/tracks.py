@@ -32,8 +32,9 @@ def entry_track(cat: Catalog, entry: dict[str, Any], sources: Path | None = None
     how = entry_direction(cat, entry, sources)
     if entry.get("grade_separated") and line_csv is not None and line_csv.is_file():
         line = np.loadtxt(line_csv, delimiter=",", comments="#", ndmin=2)[:, :2]
-        walls = track_from_map_path(yaml_path).walls
-        return Track.from_polylines(walls, line, name=entry["id"]).oriented(how), "circuit centreline"
+        base = track_from_map_path(yaml_path)
+        t = Track.from_polylines(base.walls, line, name=entry["id"], wall_height=base.wall_height)
+        return t.oriented(how), "circuit centreline"
     t = track_from_map_path(yaml_path, direction=how)
     return dataclasses.replace(t, name=entry["id"]), "corridor centreline"
 

@@ -12,8 +12,14 @@ use super::world::{World, EVENT_WALL, STATE_SIZE};
 
 /// A world with one car in a square hall of half-side `half` (walls from `walls`).
 fn hall_with(params: &SimParams, walls: Vec<Vec<[f64; 2]>>) -> (World, VehicleModel) {
-    let track =
-        Arc::new(Track::new(&walls, &square_room(1.0), params.physics.wall_height).unwrap());
+    let track = Arc::new(
+        Track::new(
+            &walls,
+            &square_room(1.0),
+            crate::track::params::DEFAULT_WALL_HEIGHT_M,
+        )
+        .unwrap(),
+    );
     let model = VehicleModel::new(&params.vehicle, &params.physics);
     let world = World::new(track, 0, 1, &model, &params.physics, 0, 0);
     (world, model)

@@ -152,7 +152,6 @@ impl Default for LidarParams {
 pub struct PhysicsParams {
     pub dt: f64,
     pub gravity: f64,
-    pub wall_height: f64,
     pub wall_friction: f64,
     pub ground_friction: f64,
     pub solver_iterations: usize,
@@ -167,7 +166,6 @@ impl Default for PhysicsParams {
         PhysicsParams {
             dt: 0.005,
             gravity: 9.81,
-            wall_height: 0.5,
             wall_friction: 0.3,
             ground_friction: 0.83,
             solver_iterations: 2,
@@ -256,7 +254,6 @@ impl SimParams {
             ("lidar.rate_hz", self.lidar.rate_hz),
             ("physics.dt", self.physics.dt),
             ("physics.gravity", self.physics.gravity),
-            ("physics.wall_height", self.physics.wall_height),
         ] {
             check(
                 pos(x),

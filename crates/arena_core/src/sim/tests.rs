@@ -8,7 +8,8 @@ use super::*;
 
 fn stadium_sim(envs: usize, vehicles: usize, params: SimParams, seed: u64) -> Simulator {
     let (walls, centre) = stadium_track(6.0, 3.0, 2.0);
-    let track = Arc::new(Track::new(&walls, &centre, params.physics.wall_height).unwrap());
+    let track =
+        Arc::new(Track::new(&walls, &centre, crate::track::params::DEFAULT_WALL_HEIGHT_M).unwrap());
     Simulator::new(vec![track], envs, vehicles, params, seed).unwrap()
 }
 
@@ -78,7 +79,14 @@ fn wall_impact(dt: f64, max_speed: f64) {
     let h = 10.0;
     let room = square_room(h);
     let centre = square_room(5.0);
-    let track = Arc::new(Track::new(&[room], &centre, params.physics.wall_height).unwrap());
+    let track = Arc::new(
+        Track::new(
+            &[room],
+            &centre,
+            crate::track::params::DEFAULT_WALL_HEIGHT_M,
+        )
+        .unwrap(),
+    );
     let mut sim = Simulator::new(vec![track], 1, 1, params.clone(), 0).unwrap();
     sim.reset(&[true], &[-9.0, 0.0, 0.0]).unwrap();
     let mut out = Out::new(&sim);

@@ -36,9 +36,17 @@ fn sim(envs: usize, seed: u64) -> Simulator {
     params.lidar.num_beams = BEAMS;
     params.lidar.noise_std = 0.02;
     let (walls, centre) = stadium_track(6.0, 3.0, 2.0);
-    let track = Arc::new(Track::new(&walls, &centre, params.physics.wall_height).unwrap());
+    let track =
+        Arc::new(Track::new(&walls, &centre, crate::track::params::DEFAULT_WALL_HEIGHT_M).unwrap());
     let (walls2, centre2) = stadium_track(10.0, 4.0, 2.5);
-    let track2 = Arc::new(Track::new(&walls2, &centre2, params.physics.wall_height).unwrap());
+    let track2 = Arc::new(
+        Track::new(
+            &walls2,
+            &centre2,
+            crate::track::params::DEFAULT_WALL_HEIGHT_M,
+        )
+        .unwrap(),
+    );
     let mut s = Simulator::new(vec![track, track2], envs, 1, params, seed).unwrap();
     s.set_start_spec(spec(2)).unwrap();
     s

@@ -4,6 +4,10 @@
 use crate::error::{ArenaError, Result};
 use serde::{Deserialize, Serialize};
 
+/// Height of the extruded collision walls (m) unless the build says otherwise: the one
+/// default for the USD walls and the simulator's walls alike.
+pub const DEFAULT_WALL_HEIGHT_M: f64 = 0.5;
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BuildParams {
@@ -35,7 +39,7 @@ pub struct BuildParams {
 impl Default for BuildParams {
     fn default() -> Self {
         BuildParams {
-            wall_height_m: 0.5,
+            wall_height_m: DEFAULT_WALL_HEIGHT_M,
             wall_offset_m: 0.0,
             tube_diameter_m: 0.33,
             tube_segments: 12,
