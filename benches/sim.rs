@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use arena_core::sim::shapes::stadium_track;
 use arena_core::sim::{SimParams, Simulator, Track, STATE_SIZE};
+use arena_core::track::params::DEFAULT_WALL_HEIGHT_M;
 use criterion::{criterion_group, criterion_main, Criterion};
 use rapier3d::parry::query::{Ray, RayCast};
 use rapier3d::prelude::Vector;
@@ -13,7 +14,7 @@ use rapier3d::prelude::Vector;
 fn simulator(envs: usize, per_env: usize) -> Simulator {
     let params = SimParams::default();
     let (walls, centre) = stadium_track(18.0, 9.0, 2.0);
-    let track = Arc::new(Track::new(&walls, &centre, params.physics.wall_height).unwrap());
+    let track = Arc::new(Track::new(&walls, &centre, DEFAULT_WALL_HEIGHT_M).unwrap());
     let mut sim = Simulator::new(vec![track.clone()], envs, per_env, params, 0).unwrap();
     let len = track.centreline.length();
     let mut poses = Vec::new();
