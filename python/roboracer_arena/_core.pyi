@@ -31,7 +31,6 @@ __all__ = [
     "load_map",
     "save_map",
     "build_geometry",
-    "default_build_params",
     "config_defaults",
     "check_config",
     "measure_map",
@@ -148,9 +147,6 @@ def build_geometry(
     start: Sequence[float] | None = None,
 ) -> _Geometry:
     """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
-
-def default_build_params() -> str:
-    """The default geometry parameters (``BuildParams``) as JSON."""
 
 # --- library (circuits, catalog): raster measurement ---------------------------------
 def measure_map(

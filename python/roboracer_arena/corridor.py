@@ -52,7 +52,7 @@ Mesh = tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
 
 #: The builder's geometry defaults (one source of truth: the Rust ``BuildParams``;
 #: mirrored by ``BuildConfig.geometry``).
-DEFAULT_PARAMS: dict[str, Any] = json.loads(_core.default_build_params())
+DEFAULT_PARAMS: dict[str, Any] = json.loads(_core.config_defaults("build"))
 
 
 @dataclass(frozen=True, eq=False)

@@ -6,7 +6,6 @@ all use it, and it imports none of them.
 
 from __future__ import annotations
 
-import json
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -16,14 +15,14 @@ from typing import Any
 
 import numpy as np
 
-from . import _core
+from .corridor import DEFAULT_PARAMS
 from .direction import TrackDirection, direction_for_map, direction_of, orient_to
 from .direction import reverse as reverse_line
 from .errors import ConfigError, MapIOError
 
 MAP_SUFFIXES = (".yaml", ".yml")
 #: The build geometry's default wall height (the core's ``DEFAULT_WALL_HEIGHT_M``).
-DEFAULT_WALL_HEIGHT_M: float = json.loads(_core.config_defaults("build"))["wall_height_m"]
+DEFAULT_WALL_HEIGHT_M: float = DEFAULT_PARAMS["wall_height_m"]
 
 
 @dataclass(frozen=True, eq=False)

@@ -81,14 +81,7 @@ fn build_geometry<'py>(
     Ok(d)
 }
 
-/// The default geometry parameters as JSON.
-#[pyfunction]
-fn default_build_params() -> String {
-    BuildParams::default().to_json()
-}
-
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(build_geometry, m)?)?;
-    m.add_function(wrap_pyfunction!(default_build_params, m)?)?;
     Ok(())
 }
