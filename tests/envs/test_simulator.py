@@ -240,3 +240,10 @@ def test_drives_a_lap_of_berlin_without_touching_a_wall(berlin):
     assert lap_events == 1 and state[0, 0, sim.state_fields.index("laps")] == 1
     lap_time = state[0, 0, sim.state_fields.index("last_lap_time")]
     assert sim.centreline_length(0) / 2.6 < lap_time < sim.centreline_length(0) / 1.5
+
+
+@pytest.mark.parametrize("height", [math.nan, math.inf, -1.0, 0.0, 1e300, True, "x"])
+def test_a_bad_wall_height_is_refused_naming_it(height):
+    walls, centre = _core.stadium_track()
+    with pytest.raises(InvalidArgumentError, match=r"tracks\[0\] wall_height"):
+        _core.Simulator([(walls, centre, height)], 1, 1, "{}", 0)

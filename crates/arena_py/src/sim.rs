@@ -216,14 +216,27 @@ impl Simulator {
                     "tracks[{i}] must be (walls, centreline) or (walls, centreline, wall_height)"
                 ))
             };
-            let (walls, centre, height): (Bound<'_, PyAny>, Bound<'_, PyAny>, f64) =
+            let (walls, centre, height) =
                 match item.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() {
                     Ok((w, c)) => (w, c, DEFAULT_WALL_HEIGHT_M),
-                    Err(_) => item.extract().map_err(|_| bad())?,
+                    Err(_) => {
+                        let (w, c, h): (Bound<'_, PyAny>, Bound<'_, PyAny>, Bound<'_, PyAny>) =
+                            item.extract().map_err(|_| bad())?;
+                        let h = match h.extract::<f64>() {
+                            Ok(v) if !h.is_instance_of::<PyBool>() => v,
+                            _ => {
+                                return Err(invalid(format!(
+                                    "tracks[{i}] wall_height must be a number"
+                                )))
+                            }
+                        };
+                        (w, c, h)
+                    }
                 };
             if !(height.is_finite() && height > 0.0 && height <= 10.0) {
                 return Err(invalid(format!(
-                    "tracks[{i}] wall_height must be in (0, 10] m, got {height}"
+                    "tracks[{i}] wall_height must be in (0, 10] m, got {}",
+                    arena_core::limits::show(height)
                 )));
             }
             let mut ws = Vec::new();
