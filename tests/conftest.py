@@ -18,6 +18,14 @@ def sources_dir() -> Path:
 
 
 @pytest.fixture(scope="session")
+def oval():
+    """A synthetic stadium track (exact geometry, no map needed)."""
+    from synthetic_tracks import stadium
+
+    return stadium()
+
+
+@pytest.fixture(scope="session")
 def sources() -> Path:
     d = sources_dir()
     if not (d / "map-inventory.csv").is_file():

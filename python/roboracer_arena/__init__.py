@@ -15,10 +15,15 @@ from typing import Any
 
 from . import errors
 from ._core import __version__
+from .envs import register_envs
 from .spec import TrackSpec
 
+# Gymnasium 1.x has no plugin entry points (removed in 1.0), so, as ale_py does, the
+# package registers RoboRacerArena-v0 when it is imported: the one import-time effect.
+register_envs()
+
 # Heavier submodules load on first use so `import roboracer_arena` stays fast and a
-# user who only parses requests never imports pxr or gymnasium.
+# user who only parses requests never imports pxr or the simulator.
 _LAZY = {
     "load_map": "roboracer_arena.maps",
     "OccupancyMap": "roboracer_arena.maps",
@@ -29,16 +34,6 @@ _LAZY = {
     "generate_track": "roboracer_arena.generate",
     "parse_request": "roboracer_arena.parse",
 }
-
-
-def _install_gym_registration() -> None:
-    # RoboRacerArena-v0 for gymnasium.make / make_vec, without importing gymnasium here.
-    from .envs._gym_hook import install
-
-    install()
-
-
-_install_gym_registration()
 
 
 def __getattr__(name: str) -> Any:

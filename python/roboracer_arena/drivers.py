@@ -85,19 +85,35 @@ class PurePursuitDriver:
             return np.zeros(2)
         rx, ry = x - p.rear_axle_offset * np.cos(yaw), y - p.rear_axle_offset * np.sin(yaw)
         i = self.project(rx, ry)
-        lookahead = float(
-            np.clip(p.lookahead_min + p.lookahead_gain * max(speed, 0.0), p.lookahead_min, p.lookahead_max)
-        )
+        steer, v = self._steer_and_speed(np.array([i]), rx, ry, yaw, speed)
+        return np.array([steer[0], v[0]])
+
+    def act_along(
+        self, x: np.ndarray, y: np.ndarray, yaw: np.ndarray, speed: np.ndarray, progress_s: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Vectorised :meth:`act_pose` for many cars whose arc length along this centreline
+        is already known (the simulator's ``progress_s``), so no per-car projection:
+        ``(steer, speed)`` arrays shaped like the inputs."""
+        p = self.params
+        rx, ry = x - p.rear_axle_offset * np.cos(yaw), y - p.rear_axle_offset * np.sin(yaw)
+        i = np.rint(np.mod(progress_s, self.length) / self.ds).astype(np.int64) % len(self.points)
+        return self._steer_and_speed(i, rx, ry, yaw, speed)
+
+    def _steer_and_speed(self, i: np.ndarray, rx: Any, ry: Any, yaw: Any, speed: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The pursuit law: steer the rear axle at (rx, ry) onto the point a speed-dependent
+        lookahead beyond centreline index ``i``; speed from the profile just ahead."""
+        p = self.params
         n = len(self.points)
-        tx, ty = self.points[(i + max(1, round(lookahead / self.ds))) % n]
-        dx, dy = tx - rx, ty - ry
+        lookahead = np.clip(
+            p.lookahead_min + p.lookahead_gain * np.maximum(speed, 0.0), p.lookahead_min, p.lookahead_max
+        )
+        target = self.points[(i + np.maximum(1, np.rint(lookahead / self.ds)).astype(np.int64)) % n]
+        dx, dy = target[..., 0] - rx, target[..., 1] - ry
         c, s = np.cos(yaw), np.sin(yaw)
         lx, ly = c * dx + s * dy, -s * dx + c * dy
-        steer = float(np.arctan2(2.0 * p.wheelbase * ly, lx * lx + ly * ly))
-        steer = float(np.clip(steer, -p.max_steer, p.max_steer))
-        ahead = (i + np.arange(0, max(1, round(0.6 / self.ds)))) % n
-        v = float(self.speed_profile[ahead].min())
-        return np.array([steer, v])
+        steer = np.clip(np.arctan2(2.0 * p.wheelbase * ly, lx * lx + ly * ly), -p.max_steer, p.max_steer)
+        ahead = (i[..., None] + np.arange(max(1, round(0.6 / self.ds)))) % n
+        return np.asarray(steer, dtype=np.float64), self.speed_profile[ahead].min(axis=-1)
 
 
 def _resample_closed(c: np.ndarray, spacing: float) -> tuple[np.ndarray, float]:

@@ -23,6 +23,7 @@ from roboracer_arena.cli import main
 from roboracer_arena.distributed import LocalExecutor, RayExecutor, RayVectorEnv, map_ordered
 from roboracer_arena.library.generated import generate_files
 from roboracer_arena.library.sweep import SweepFile
+from synthetic_tracks import stadium
 
 SWEEP = {
     "name": "r",
@@ -47,10 +48,7 @@ def cluster():
 
 
 @pytest.fixture(scope="module")
-def oval():
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "envs"))
-    from synthetic_tracks import stadium
-
+def ovals():
     return [stadium(), stadium(4.0, 2.0, name="b")]
 
 
@@ -132,12 +130,12 @@ def local_vec(n, tracks, **kw):
 
 
 @pytest.mark.parametrize("mode", [AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP])
-def test_ray_vector_env_rolls_out_exactly_like_the_local_vector_env(oval, mode, monkeypatch):
+def test_ray_vector_env_rolls_out_exactly_like_the_local_vector_env(ovals, mode, monkeypatch):
     from roboracer_arena.distributed import ray_vector
 
     monkeypatch.setattr(ray_vector, "INLINE_BYTES", 2000)  # step results come back in several pieces
     kw = {"autoreset_mode": mode, "max_episode_steps": 15}  # short episodes: autoresets happen
-    renv, lenv = RayVectorEnv(2, 3, track=oval, **SMALL_ENV, **kw), local_vec(6, oval, **kw)
+    renv, lenv = RayVectorEnv(2, 3, track=ovals, **SMALL_ENV, **kw), local_vec(6, ovals, **kw)
     try:
         assert renv.single_observation_space == lenv.single_observation_space
         assert renv.observation_space == lenv.observation_space and renv.action_space == lenv.action_space
@@ -165,8 +163,8 @@ def test_ray_vector_env_rolls_out_exactly_like_the_local_vector_env(oval, mode, 
         lenv.close()
 
 
-def test_ray_vector_env_passes_gymnasium_checks_and_wrappers(oval):
-    env = RayVectorEnv(2, 2, track=oval, **SMALL_ENV)
+def test_ray_vector_env_passes_gymnasium_checks_and_wrappers(ovals):
+    env = RayVectorEnv(2, 2, track=ovals, **SMALL_ENV)
     try:
         check_reset_seed_determinism(env)  # gymnasium's own check (its step check is single-env only)
         a = env.action_space.sample()
@@ -182,7 +180,7 @@ def test_ray_vector_env_passes_gymnasium_checks_and_wrappers(oval):
     finally:
         env.close()
     with pytest.raises(ValueError, match="num_actors"):
-        RayVectorEnv(0, 2, track=oval)
+        RayVectorEnv(0, 2, track=ovals)
 
 
 def test_es_example_script_runs_with_ray(tmp_path, monkeypatch):
@@ -234,7 +232,7 @@ def test_es_on_ray_actors_gives_the_local_curve():
     assert [strip(r) for r in on_ray.curve] == [strip(r) for r in local.curve]
 
 
-def test_ray_vector_env_bad_kwargs_raise_the_envs_own_error(oval):
+def test_ray_vector_env_bad_kwargs_raise_the_envs_own_error(ovals):
     with pytest.raises(Exception, match="lidar|num_beams") as e:
-        RayVectorEnv(1, 2, track=oval, sim={"lidar": {"num_beams": -3}})
+        RayVectorEnv(1, 2, track=ovals, sim={"lidar": {"num_beams": -3}})
     assert "Ray" not in type(e.value).__name__

@@ -1,17 +1,9 @@
-"""Fixtures for the env tests: a synthetic stadium track (exact geometry, no map needed)
-and the shared recorded Berlin map."""
+"""Fixtures for the env tests: the shared recorded Berlin map (the synthetic ``oval``
+is in the top-level conftest)."""
 
 from __future__ import annotations
 
 import pytest
-from synthetic_tracks import stadium
-
-from roboracer_arena.track import Track
-
-
-@pytest.fixture(scope="session")
-def oval() -> Track:
-    return stadium()
 
 
 @pytest.fixture(scope="session")

@@ -226,7 +226,7 @@ def test_drives_a_lap_of_berlin_without_touching_a_wall(berlin):
     sim.reset(np.ones(1, bool), np.array([[sim.centreline_pose(0, 0.0)]]))
     scans, state, events = buffers(sim)
     sim.observe(None, state, events)
-    driver = _Driver(sim, speed=2.5, lookahead=1.0)
+    driver = _Driver(sim, speed=2.5)
     actions = np.zeros((1, 1, 2))
     laps = state[..., sim.state_fields.index("laps")]
     lap_events = 0

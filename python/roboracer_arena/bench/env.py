@@ -219,7 +219,7 @@ def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seco
     without the scan), resetting a collided env to its grid start like the env does."""
     from .._core import Simulator
     from ..envs.env_config import EnvConfig
-    from ..envs.start import centreline_pose, grid_start_s
+    from ..start_grid import centreline_pose, grid_start_s
 
     cfg = EnvConfig.build(None, **_env_kwargs(beams))
     sim = Simulator([track.native()], n, 1, cfg.sim.to_json(), 0)
@@ -250,7 +250,7 @@ def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: 
     the median of ``observe`` with the scan minus without it (one env, one car)."""
     from .._core import Simulator
     from ..envs.env_config import EnvConfig
-    from ..envs.start import centreline_pose
+    from ..start_grid import centreline_pose
 
     cfg = EnvConfig.build(None, **_env_kwargs(beams))
     sim = Simulator([track.native()], 1, 1, cfg.sim.to_json(), 0)

@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from .. import _core
+from ..drivers import PurePursuitDriver, PurePursuitParams
 from ..fileio import atomic_write_text
 from ..sim_config import PhysicsConfig, SimConfig
 
@@ -36,31 +37,22 @@ def _track(scale: float = 3.0):
 
 
 class _Driver:
-    """Vectorised pure pursuit on the centreline, so cars keep driving laps.
+    """The reference pure pursuit, vectorised over thousands of cars per call: each car's
+    place on the centreline is the simulator's own ``progress_s``, so there is no per-car
+    projection, and the speed command is the bench's constant ``speed``."""
 
-    Not :class:`roboracer_arena.drivers.PurePursuitDriver`: that reference driver steers one
-    car at a time in Python, while this bench drives thousands of cars per call."""
-
-    def __init__(self, sim: _core.Simulator, speed: float, lookahead: float = 1.5):
-        pts = sim.centreline(0)
-        seg = np.linalg.norm(np.roll(pts, -1, axis=0) - pts, axis=1)
-        self.cum = np.concatenate([[0.0], np.cumsum(seg)])
-        self.pts = np.vstack([pts, pts[:1]])
-        self.length = self.cum[-1]
-        self.speed, self.lookahead = speed, lookahead
+    def __init__(self, sim: _core.Simulator, speed: float):
+        vehicle = SimConfig().vehicle
+        params = PurePursuitParams(
+            wheelbase=vehicle.wheelbase, max_steer=vehicle.max_steer, max_speed=speed, min_speed=speed
+        )
+        self.driver = PurePursuitDriver(sim.centreline(0), params)
         fields = sim.state_fields
-        self.ix, self.iy, self.iyaw, self.is_ = (fields.index(k) for k in ("x", "y", "yaw", "progress_s"))
-        self.wheelbase = SimConfig().vehicle.wheelbase
+        self.cols = [fields.index(k) for k in ("x", "y", "yaw", "vx", "progress_s")]
 
     def actions(self, state: np.ndarray, out: np.ndarray) -> None:
-        s = np.mod(state[..., self.is_] + self.lookahead, self.length)
-        tx = np.interp(s, self.cum, self.pts[:, 0])
-        ty = np.interp(s, self.cum, self.pts[:, 1])
-        dx, dy = tx - state[..., self.ix], ty - state[..., self.iy]
-        alpha = np.arctan2(dy, dx) - state[..., self.iyaw]
-        ld = np.maximum(np.hypot(dx, dy), 1e-3)
-        out[..., 0] = np.arctan(2.0 * self.wheelbase * np.sin(alpha) / ld)
-        out[..., 1] = self.speed
+        x, y, yaw, vx, s = (state[..., c] for c in self.cols)
+        out[..., 0], out[..., 1] = self.driver.act_along(x, y, yaw, vx, s)
 
 
 def measure(

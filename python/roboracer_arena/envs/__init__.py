@@ -1,8 +1,7 @@
 """Simulation environments: native simulator configuration (:mod:`.config`) and the
 gymnasium ``RoboRacerArena-v0`` env / vector env built on ``_core.Simulator``.
 
-``import roboracer_arena`` registers ``RoboRacerArena-v0`` with gymnasium (at once if
-gymnasium is already imported, otherwise right after gymnasium's own import), so
+``import roboracer_arena`` registers ``RoboRacerArena-v0`` with gymnasium, so
 ``gymnasium.make("RoboRacerArena-v0", track=...)`` and
 ``gymnasium.make_vec("RoboRacerArena-v0", num_envs=N, vectorization_mode="vector_entry_point", ...)``
 work; ``gymnasium.make("roboracer_arena:RoboRacerArena-v0", ...)`` works without it.

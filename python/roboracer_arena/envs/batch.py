@@ -19,10 +19,10 @@ from typing import Any, cast
 import numpy as np
 from gymnasium import spaces
 
+from ..start_grid import SIDE_MARGIN, grid_start_s
 from ..track import Track
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
-from .start import SIDE_MARGIN, grid_start_s
 
 CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
 #: Stream index of the per-env vehicle-randomisation RNG (apart from every other draw).

@@ -14,6 +14,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from ..errors import ConfigError
 from ..sim_config import SimConfig
+from ..start_grid import GRID_OFFSET, GRID_SPACING
 from ..strict import NumbersAreNumbers
 
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
@@ -170,7 +171,7 @@ class EnvConfig(NumbersAreNumbers):
     reset_poses: Literal["random", "grid", "centreline_start"] = Field(
         "random",
         description="'random': a uniformly random point of the centreline; 'grid': the grid start "
-        "(envs/start.py: on the line, clear of walls, facing the longest free run ahead); 'centreline_start': "
+        "(start_grid.py: on the line, clear of walls, facing the longest free run ahead); 'centreline_start': "
         "s = 0 of the centreline as extracted. Further vehicles line up behind the first in a staggered grid.",
     )
     start_lateral_noise: float = Field(
@@ -190,8 +191,8 @@ class EnvConfig(NumbersAreNumbers):
     )
     wrong_way_ends_episode: bool = Field(False, description="Driving the wrong way terminates the episode.")
     randomisation: RandomisationConfig = Field(default_factory=lambda: RandomisationConfig())
-    grid_spacing: float = Field(1.0, gt=0, description="Longitudinal gap between grid slots (m).")
-    grid_offset: float = Field(0.2, ge=0, description="Lateral offset of the staggered grid slots (m).")
+    grid_spacing: float = Field(GRID_SPACING, gt=0, description="Longitudinal gap between grid slots (m).")
+    grid_offset: float = Field(GRID_OFFSET, ge=0, description="Lateral offset of the staggered grid slots (m).")
     reverse: bool = Field(
         False,
         description="Drive every track against its racing direction (the centreline reversed; "

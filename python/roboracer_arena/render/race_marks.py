@@ -1,9 +1,9 @@
 """Race markings on a top-down picture: the racing direction as arrows along the
 centreline, the start line and the grid where the env really puts the cars.
 
-The track is the env's own :class:`~roboracer_arena.envs.tracks.Track` (in its racing
+The track is the env's own :class:`~roboracer_arena.track.Track` (in its racing
 direction), and the grid comes from the env's grid-start code
-(:func:`~roboracer_arena.envs.start.grid_poses`) with the env's default grid spacing and
+(:func:`~roboracer_arena.start_grid.grid_poses`) with the env's default grid spacing and
 offset, so the picture shows what ``reset_poses="grid"`` does."""
 
 from __future__ import annotations
@@ -13,6 +13,8 @@ from typing import Any
 
 import numpy as np
 
+from ..sim_config import VehicleConfig
+from ..start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
 from .frame import LegendEntry, direction_chevron
 from .topdown import TopDown
 
@@ -27,17 +29,13 @@ MIN_CAR_PX = 22
 def draw_race_marks(canvas: TopDown, track: Any, vehicles: int = 1) -> tuple[list[LegendEntry], dict[str, Any]]:
     """Draw direction arrows, start line and grid on ``canvas``; returns the legend entries
     and what was drawn (direction, lap length, grid poses)."""
-    from ..envs.env_config import EnvConfig
-    from ..envs.start import grid_poses
-
-    cfg = EnvConfig()
     _direction_arrows(canvas, track)
-    poses = grid_poses(track, vehicles, cfg.grid_spacing, cfg.grid_offset)
+    poses = grid_poses(track, vehicles, GRID_SPACING, GRID_OFFSET)
     x, y, yaw = poses[0]
     # across the corridor, and at least 36 px long so it shows on a big circuit
     half = max(float(track.clearance([[x, y]])[0]), 18.0 / canvas.px_per_m())
     canvas.reserve(_start_line(canvas, (x, y), yaw, half))
-    veh = cfg.sim.vehicle
+    veh = VehicleConfig()
     scale = max(1.0, MIN_CAR_PX / (veh.chassis_length * canvas.px_per_m()))
     for p in poses:
         canvas.reserve(_car(canvas, p, veh.chassis_length * scale, veh.chassis_width * scale))

@@ -120,12 +120,10 @@ def _car_pose(meta: dict[str, Any]) -> tuple[float, float, float] | None:
     src = meta.get("source_map")
     if not src or not Path(str(src)).is_file():
         return None
-    from ..envs.env_config import EnvConfig
-    from ..envs.start import grid_poses
+    from ..start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
     from ..track import track_from_map_path
 
-    cfg = EnvConfig()
-    x, y, yaw = grid_poses(track_from_map_path(str(src)), 1, cfg.grid_spacing, cfg.grid_offset)[0]
+    x, y, yaw = grid_poses(track_from_map_path(str(src)), 1, GRID_SPACING, GRID_OFFSET)[0]
     return float(x), float(y), float(yaw)
 
 

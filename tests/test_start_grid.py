@@ -1,11 +1,11 @@
-"""Grid start placement (envs/start.py): on the line, clear of the walls, facing the
+"""Grid start placement (start_grid.py): on the line, clear of the walls, facing the
 longest free run ahead -- not wherever the extracted centreline happens to begin."""
 
 import numpy as np
 import pytest
 
-from roboracer_arena.envs.start import centreline_pose, free_run_ahead, grid_start_s
 from roboracer_arena.envs.track_pool import resolve_track_pool
+from roboracer_arena.start_grid import centreline_pose, free_run_ahead, grid_start_s
 
 
 def test_centreline_pose_interpolates_and_wraps(oval):

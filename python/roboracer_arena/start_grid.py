@@ -1,5 +1,8 @@
 """Start poses: where the grid start of a track is, and start-pose noise.
 
+A track concept, not an env one: the envs, the renderer and the benches all place cars
+with it.
+
 The grid start is chosen from the track's geometry, not from wherever the extracted
 centreline happens to begin: the first grid slot sits on the centreline where every slot
 of the grid keeps a safe distance from the walls and the free run straight ahead (to the
@@ -24,6 +27,11 @@ _GRID_CACHE: weakref.WeakKeyDictionary[Any, dict[tuple[int, float], float]] = we
 #: Metres kept between the car's side and a wall when start noise moves it sideways (the
 #: simulator's reset draws cap the lateral start noise with it, see ``envs.batch``).
 SIDE_MARGIN = 0.1
+
+#: Default longitudinal gap between grid slots (m), ``EnvConfig.grid_spacing``.
+GRID_SPACING = 1.0
+#: Default lateral offset of the staggered grid slots (m), ``EnvConfig.grid_offset``.
+GRID_OFFSET = 0.2
 
 
 def centreline_pose(track: Any, s: float) -> tuple[float, float, float]:
