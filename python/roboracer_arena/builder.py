@@ -190,10 +190,10 @@ def build_environment(
 
 def stage_meshes(geo: Any, cfg: BuildConfig) -> list:
     """Turn the corridor meshes (``floor``, ``walls``, ``ducts``, ``rings``) into stage
-    records with their looks and physics roles; the ducts get texture coordinates
-    (see :mod:`roboracer_arena.usd.barriers`)."""
+    records with their looks and physics roles; the ducts get the core's texture
+    coordinates (``u`` in metres along the duct, scaled here to the texture tile)."""
     from .usd import StageMesh
-    from .usd.barriers import duct_st
+    from .usd.materials import DUCT_TEXTURE_TILE_M
 
     meshes = geo.meshes
     out = []
@@ -206,7 +206,8 @@ def stage_meshes(geo: Any, cfg: BuildConfig) -> list:
         out.append(StageMesh("/World/Track/Walls", v, t, "Wall", collider=True, guide=True))
     v, t = meshes["ducts"]
     if len(t):
-        st, st_idx = duct_st(geo.ducts, cfg.geometry.tube_segments)
+        st, st_idx = geo.duct_st
+        st = st * np.array([1.0 / DUCT_TEXTURE_TILE_M, 1.0], dtype=np.float32)
         out.append(StageMesh("/World/Track/Barriers/Ducts", v, t, "Duct", st=st, st_indices=st_idx))
     v, t = meshes["rings"]
     if len(t):

@@ -63,6 +63,10 @@ class CorridorGeometry:
     ducts: list[npt.NDArray[np.float64]]
     centreline: npt.NDArray[np.float64]
     meshes: dict[str, Mesh]
+    #: Texture coordinates of the ``ducts`` mesh, face-varying: ``(st (U, 2) float32, one
+    #: index per triangle corner (3 T,) uint32)``; ``u`` in metres along the duct, ``v``
+    #: 0..1 around it, with seam rows/columns so a texture repeats continuously.
+    duct_st: tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
     iou: float
     max_wall_deviation_cells: float
     corridor_mask: npt.NDArray[np.bool_]
@@ -130,6 +134,7 @@ def extract_corridor(
         ducts=list(out["ducts"]),
         centreline=out["centreline"],
         meshes={k: (v, t) for k, (v, t) in out["meshes"].items()},
+        duct_st=out["duct_st"],
         iou=float(out["iou"]),
         max_wall_deviation_cells=float(out["max_wall_deviation_cells"]),
         corridor_mask=out["corridor_mask"],

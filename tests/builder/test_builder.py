@@ -108,24 +108,22 @@ def test_bad_inputs_raise_typed_errors_and_write_nothing(tmp_path, ring_yaml):
     assert issubclass(CorridorError, ArenaError)
 
 
-def test_ducts_follow_the_tube_layout_and_get_texture_coordinates(ring_yaml):
+def test_ducts_get_the_cores_texture_coordinates(ring_yaml):
     from roboracer_arena.corridor import extract_corridor
-    from roboracer_arena.usd.barriers import duct_st, tube_triangles
 
     geo = extract_corridor(ring_yaml)
     g = BuildConfig().geometry
     s = g.tube_segments
     v, t = geo.meshes["ducts"]
-    # the core's tube layout, which the texture coordinates assume
-    expect, base = [], 0
-    for d in geo.ducts:
-        expect.append(tube_triangles(len(d), s) + base)
-        base += len(d) * s
-    assert len(v) == base and np.array_equal(t, np.concatenate(expect))
-    st, st_idx = duct_st(geo.ducts, s)
+    assert len(v) == sum(len(d) * s for d in geo.ducts)
+    st, st_idx = geo.duct_st
+    assert st.dtype == np.float32 and st.shape[1] == 2
     assert len(st_idx) == 3 * len(t) and st_idx.max() < len(st)
-    # rings: one every ring_spacing_m along each duct, 2 sections of tube_segments vertices
+    # u runs 0 .. each duct's length (seam row included), v 0 .. 1 around the tube
     lengths = [np.hypot(*(np.roll(d, -1, 0) - d).T).sum() for d in geo.ducts]
+    assert st[:, 0].min() == 0 and st[:, 0].max() == pytest.approx(max(lengths), rel=1e-5)
+    assert st[:, 1].min() == 0 and st[:, 1].max() == 1
+    # rings: one every ring_spacing_m along each duct, 2 sections of tube_segments vertices
     assert len(geo.meshes["rings"][0]) == sum(int(L // g.ring_spacing_m) for L in lengths) * 2 * s
 
 

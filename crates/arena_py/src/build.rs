@@ -65,6 +65,17 @@ fn build_geometry<'py>(
     meshes.set_item("floor", mesh_to_py(py, geo.floor))?;
     meshes.set_item("walls", mesh_to_py(py, geo.wall_mesh))?;
     meshes.set_item("ducts", mesh_to_py(py, geo.duct_mesh))?;
+    let (st, st_idx) = geo.duct_st;
+    let st =
+        numpy::ndarray::Array2::from_shape_vec((st.len(), 2), st.into_iter().flatten().collect())
+            .expect("shape");
+    d.set_item(
+        "duct_st",
+        (
+            PyArray2::from_owned_array(py, st),
+            numpy::PyArray1::from_vec(py, st_idx),
+        ),
+    )?;
     meshes.set_item("rings", mesh_to_py(py, geo.ring_mesh))?;
     d.set_item("meshes", meshes)?;
     d.set_item("iou", geo.iou)?;

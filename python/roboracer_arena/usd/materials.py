@@ -11,6 +11,7 @@ from .textures import SHADE_MEAN
 LOOKS = "/World/Looks"
 PHYSICS_MATERIAL = f"{LOOKS}/TrackPhysics"
 ST = "st"  # the texture-coordinate primvar every textured mesh carries
+DUCT_TEXTURE_TILE_M = 0.5  # metres of duct per texture tile (16 ribs → 3 cm rib pitch)
 
 
 def define_preview_material(

@@ -32,6 +32,37 @@ pub fn sweep_closed_tube(path: &[[f64; 2]], radius: f64, z: f64, segments: usize
     m
 }
 
+/// Texture coordinates of [`sweep_closed_tube`]'s triangles, face-varying: `(st, indices)`
+/// with one index per triangle corner, in the tube's triangle order. `u` is the arc
+/// length along the path in metres, `v` runs 0..1 around the tube. The grid of values has
+/// a seam row (the loop's closure at `u` = its length) and a seam column (`v` = 1), so
+/// a texture repeats continuously along and around the tube.
+pub fn closed_tube_st(path: &[[f64; 2]], segments: usize) -> (Vec<[f32; 2]>, Vec<u32>) {
+    let n = path.len();
+    let s = segments.max(3);
+    if n < 3 {
+        return (Vec::new(), Vec::new());
+    }
+    let cols = s + 1; // seam column
+    let mut st = Vec::with_capacity((n + 1) * cols);
+    let mut u = 0.0;
+    for i in 0..=n {
+        if i > 0 {
+            u += dist(path[i - 1], path[i % n]);
+        }
+        st.extend((0..cols).map(|k| [u as f32, k as f32 / s as f32]));
+    }
+    let mut idx = Vec::with_capacity(6 * n * s);
+    for i in 0..n {
+        for k in 0..s {
+            let at = |r: usize, c: usize| (r * cols + c) as u32;
+            let (p, q, r, t) = (at(i, k), at(i, k + 1), at(i + 1, k), at(i + 1, k + 1));
+            idx.extend([p, t, r, p, q, t]); // the corner order of `stitch`
+        }
+    }
+    (st, idx)
+}
+
 /// Rings every `spacing` metres of arc length along a closed path: open bands of
 /// length `width` and radius `radius`, each two cross-sections joined by quads.
 pub fn rings_along(
@@ -144,6 +175,37 @@ mod tests {
 
     fn circle(n: usize, r: f64) -> Vec<[f64; 2]> {
         crate::geometry::test_circle(n, r)
+    }
+
+    /// Each triangle corner's texture coordinate belongs to that corner's vertex: quad
+    /// (i, k) has corners at rows i, i+1 and columns k, k+1 (`stitch`'s order), `u` is
+    /// the row's arc length (row n = the seam, the loop's full length), `v` = column / s.
+    #[test]
+    fn tube_st_follows_the_triangle_corners() {
+        let (n, s) = (12, 6);
+        let path = circle(n, 2.0);
+        let m = sweep_closed_tube(&path, 0.1, 0.1, s);
+        let (st, idx) = closed_tube_st(&path, s);
+        assert_eq!(idx.len(), 3 * m.triangles.len());
+        let seg = dist(path[0], path[1]);
+        let corners = [[(0, 0), (1, 1), (1, 0)], [(0, 0), (0, 1), (1, 1)]];
+        for (t, (tri, uv)) in m.triangles.iter().zip(idx.chunks(3)).enumerate() {
+            let (i, k) = ((t / 2) / s, (t / 2) % s);
+            for (c, &(dr, dc)) in corners[t % 2].iter().enumerate() {
+                assert_eq!(tri[c] as usize, ((i + dr) % n) * s + (k + dc) % s);
+                let [u, v] = st[uv[c] as usize];
+                assert!(
+                    (u as f64 - (i + dr) as f64 * seg).abs() < 1e-4,
+                    "u {u} at row {}",
+                    i + dr
+                );
+                assert!(
+                    (v - (k + dc) as f32 / s as f32).abs() < 1e-6,
+                    "v {v} at column {}",
+                    k + dc
+                );
+            }
+        }
     }
 
     /// Signed volume of a closed mesh (positive when triangles face outward).

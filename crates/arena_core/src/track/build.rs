@@ -26,7 +26,7 @@ use crate::geometry::contour::marching_squares;
 use crate::geometry::fill::{fill_even_odd, iou};
 use crate::geometry::mesh::{extrude_walls, TriMesh};
 use crate::geometry::smooth::{resample_closed, simplify_closed, smooth_closed};
-use crate::geometry::tube::{bounds, floor_quad, rings_along, sweep_closed_tube};
+use crate::geometry::tube::{bounds, closed_tube_st, floor_quad, rings_along, sweep_closed_tube};
 use crate::geometry::{signed_area, Polyline};
 use crate::grid::edt::edt_within;
 use crate::grid::{bilinear, OccupancyGrid};
@@ -46,6 +46,9 @@ pub struct Geometry {
     /// Visual duct tubes: per duct, `n` cross-sections of `tube_segments` vertices,
     /// quads `[p, t, r], [p, q, t]` (see `geometry::tube`), ducts one after another.
     pub duct_mesh: TriMesh,
+    /// Texture coordinates of `duct_mesh`, face-varying: `(u` metres along the duct, `v`
+    /// 0..1 around it) values and one index per triangle corner (`geometry::tube::closed_tube_st`).
+    pub duct_st: (Vec<[f32; 2]>, Vec<u32>),
     /// Visual rings around the ducts, every `ring_spacing_m`.
     pub ring_mesh: TriMesh,
     /// IoU of the re-rasterised walls' drivable region with the corridor.
@@ -239,8 +242,13 @@ pub fn build_geometry(
     }
     let wall_mesh = extrude_walls(&walls, 0.0, p.wall_height_m);
     let (mut duct_mesh, mut ring_mesh) = (TriMesh::default(), TriMesh::default());
+    let mut duct_st: (Vec<[f32; 2]>, Vec<u32>) = Default::default();
     for d in &ducts {
         duct_mesh.append(&sweep_closed_tube(d, radius, radius, p.tube_segments));
+        let (st, idx) = closed_tube_st(d, p.tube_segments);
+        let base = duct_st.0.len() as u32;
+        duct_st.1.extend(idx.into_iter().map(|i| i + base));
+        duct_st.0.extend(st);
         ring_mesh.append(&rings_along(
             d,
             p.ring_spacing_m,
@@ -272,6 +280,7 @@ pub fn build_geometry(
         floor,
         wall_mesh,
         duct_mesh,
+        duct_st,
         ring_mesh,
         iou,
         max_wall_deviation_cells,
