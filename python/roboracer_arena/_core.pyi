@@ -132,6 +132,7 @@ class _Geometry(TypedDict):
     ducts: list[npt.NDArray[np.float64]]
     centreline: npt.NDArray[np.float64]
     meshes: dict[str, tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]]
+    duct_st: tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
     iou: float
     max_wall_deviation_cells: float
     corridor_mask: npt.NDArray[np.bool_]
