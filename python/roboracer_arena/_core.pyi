@@ -111,7 +111,7 @@ def analyse_curve(xy: npt.NDArray[np.float64], corner_radius: float, exclude_m: 
     InvalidArgumentError unless ≥ 3 finite points span a length in (0, 5000] m and
     ``corner_radius`` / ``exclude_m`` are finite and in range."""
 
-# --- maps (ROS map YAML + PGM/PNG, nav2 rules) ---------------------------------------
+# --- grid (grid.rs): ROS map YAML + PGM/PNG, nav2 rules, distance transform ---------
 def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], str]:
     """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta_json)``.
     The YAML and image must be regular files; the image size is checked against the pixel
@@ -126,7 +126,7 @@ def save_map(
 ) -> str:
     """Write a trinary map image (png/pgm) beside ``yaml_path`` and the YAML, atomically; returns the image path."""
 
-# --- builder (map → walls, ducts, centreline, meshes, round-trip check) ---------------
+# --- track (track.rs): map → walls, ducts, centreline, meshes, round-trip check ------
 class _Geometry(TypedDict):
     walls: list[npt.NDArray[np.float64]]
     ducts: list[npt.NDArray[np.float64]]
@@ -149,7 +149,7 @@ def build_geometry(
 ) -> _Geometry:
     """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
 
-# --- library (circuits, catalog): raster measurement ---------------------------------
+# --- track (track.rs): raster measurement for the library ---------------------------
 def measure_map(
     data: npt.NDArray[np.uint8],
     resolution: float,

@@ -310,7 +310,7 @@ fn validate_map<'py>(
     boundary::call(py, "validate_map", || {
         validate::check_frame(resolution, [origin.0, origin.1, origin.2])
     })?;
-    let grid = crate::maps::grid_from_py(py, &data, resolution, origin)?;
+    let grid = crate::grid::grid_from_py(py, &data, resolution, origin)?;
     let report = boundary::call_ok(py, "validate_map", move || {
         validate::validate_map(&grid, &spec, &cfg)
     })?;

@@ -1,7 +1,77 @@
-//! Bindings for `arena_core::grid`: thin wrappers, GIL released for heavy work.
+//! Bindings for `arena_core::grid`: ROS map YAML + PGM/PNG reading and writing
+//! (`grid::mapfile`) and the distance transform; GIL released for heavy work.
 
+use crate::boundary;
+use arena_core::grid::mapfile::{self, ImageFormat};
+use arena_core::grid::OccupancyGrid;
 use numpy::{PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
+
+/// A map from Python: `data` (H, W) uint8 (254 free, 0 occupied, 205 unknown, row 0 =
+/// top image row), resolution (m/cell) and origin (x, y, yaw). Size, resolution and
+/// origin are checked by the core (`limits::check_grid_header`) before the copy.
+pub(crate) fn grid_from_py(
+    py: Python<'_>,
+    data: &PyReadonlyArray2<'_, u8>,
+    resolution: f64,
+    origin: (f64, f64, f64),
+) -> PyResult<OccupancyGrid> {
+    let (h, w) = (data.shape()[0], data.shape()[1]);
+    let o = [origin.0, origin.1, origin.2];
+    boundary::call(py, "map", || {
+        arena_core::limits::check_grid_header(w, h, resolution, o)
+    })?;
+    // A C-contiguous array is one memcpy; anything else (Fortran order, strided views)
+    // goes element by element in logical order (`as_slice` accepts Fortran order too).
+    let cells: Vec<u8> = match data.as_slice() {
+        Ok(s) if data.is_c_contiguous() => s.to_vec(),
+        _ => data.as_array().iter().copied().collect(),
+    };
+    Ok(OccupancyGrid {
+        width: w,
+        height: h,
+        resolution,
+        origin: o,
+        data: cells,
+    })
+}
+
+/// `(data, resolution, origin, meta_json)` as returned to Python.
+type LoadedMap<'py> = (Bound<'py, PyArray2<u8>>, f64, (f64, f64, f64), String);
+
+/// Load a ROS map YAML and its image (nav2 rules for mode, negate and thresholds).
+/// Returns ``(data uint8 (H, W), resolution, origin (x, y, yaw), meta_json)``.
+#[pyfunction]
+fn load_map<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<LoadedMap<'py>> {
+    let (g, meta) = boundary::call(py, "load_map", move || mapfile::load_map(&path))?;
+    let res = g.resolution;
+    let (data, origin) = crate::generate::grid_to_py(py, g);
+    Ok((
+        data,
+        res,
+        origin,
+        serde_json::to_string(&meta).expect("meta serialises"),
+    ))
+}
+
+/// Write a trinary map: ``STEM.png|pgm`` beside ``yaml_path``, then the YAML (atomically).
+/// Returns the image path.
+#[pyfunction]
+#[pyo3(signature = (data, resolution, origin, yaml_path, image_format="png"))]
+fn save_map(
+    py: Python<'_>,
+    data: PyReadonlyArray2<'_, u8>,
+    resolution: f64,
+    origin: (f64, f64, f64),
+    yaml_path: std::path::PathBuf,
+    image_format: &str,
+) -> PyResult<String> {
+    let g = grid_from_py(py, &data, resolution, origin)?;
+    let img = boundary::call(py, "save_map", move || {
+        mapfile::save_map(&g, &yaml_path, ImageFormat::parse(image_format)?)
+    })?;
+    Ok(img.display().to_string())
+}
 
 /// Exact Euclidean distance (in cells) from every cell to the nearest True cell.
 #[pyfunction]
@@ -22,6 +92,8 @@ fn distance_transform<'py>(
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(load_map, m)?)?;
+    m.add_function(wrap_pyfunction!(save_map, m)?)?;
     m.add_function(wrap_pyfunction!(distance_transform, m)?)?;
     Ok(())
 }

@@ -5,14 +5,12 @@
 use pyo3::prelude::*;
 
 mod boundary;
-mod build;
 mod config;
 mod errors;
 mod generate;
 mod grid;
-mod library;
-mod maps;
 mod sim;
+mod track;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -22,10 +20,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     boundary::register(m)?;
     grid::register(m)?;
     generate::register(m)?;
-    maps::register(m)?;
-    build::register(m)?;
+    track::register(m)?;
     config::register(m)?;
-    library::register(m)?;
     sim::register(m)?;
     Ok(())
 }
