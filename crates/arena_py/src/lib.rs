@@ -9,6 +9,7 @@ mod build;
 mod config;
 mod errors;
 mod generate;
+mod geometry;
 mod grid;
 mod library;
 mod maps;
@@ -22,6 +23,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     boundary::register(m)?;
     grid::register(m)?;
     generate::register(m)?;
+    geometry::register(m)?;
     maps::register(m)?;
     build::register(m)?;
     config::register(m)?;

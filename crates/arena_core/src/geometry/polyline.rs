@@ -110,22 +110,26 @@ pub fn resample_closed(p: &[[f64; 2]], spacing: f64) -> Vec<[f64; 2]> {
 }
 
 /// [`resample_closed`] carrying a per-vertex value (e.g. a corridor width) along: each
-/// value is interpolated linearly in arc length like the points. `values.len()` must
-/// equal `p.len()`.
+/// value is interpolated linearly in arc length like the points. `values` has one entry
+/// per point (periodic: the closing edge runs back to `values[0]`), or one more, the
+/// value on returning to point 0, for an unwrapped quantity such as a curve parameter.
 pub fn resample_closed_values(
     p: &[[f64; 2]],
     values: &[f64],
     spacing: f64,
 ) -> (Vec<[f64; 2]>, Vec<f64>) {
-    assert_eq!(p.len(), values.len(), "one value per point");
     let n = p.len();
+    assert!(
+        values.len() == n || values.len() == n + 1,
+        "one value per point (or one more)"
+    );
     match stations(p, spacing) {
-        None => (p.to_vec(), values.to_vec()),
+        None => (p.to_vec(), values[..n].to_vec()),
         Some(st) => st
             .into_iter()
             .map(|(i, t)| {
-                let j = (i + 1) % n;
-                (lerp(p[i], p[j], t), values[i] + t * (values[j] - values[i]))
+                let (a, b) = (values[i], values.get(i + 1).copied().unwrap_or(values[0]));
+                (lerp(p[i], p[(i + 1) % n], t), a + t * (b - a))
             })
             .unzip(),
     }

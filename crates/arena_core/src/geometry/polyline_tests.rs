@@ -55,6 +55,9 @@ fn resampling_carries_values_linearly_in_arc_length() {
     assert_eq!(pts[3], [1.0, 0.5]);
     // Back towards point 0 on the closing edge: 3 → 0.
     assert_eq!(v, vec![0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 1.5]);
+    // An unwrapped value (here the arc length itself) runs on to its closing value.
+    let (_, s) = resample_closed_values(&sq, &[0.0, 1.0, 2.0, 3.0, 4.0], 0.5);
+    assert_eq!(s, vec![0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5]);
     // Degenerate spacing or loops come back unchanged.
     assert_eq!(resample_closed(&sq, 0.0), sq);
     assert_eq!(resample_closed(&[[1.0, 1.0]; 5], 0.1), vec![[1.0, 1.0]; 5]);
