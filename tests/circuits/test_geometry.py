@@ -1,5 +1,5 @@
 """Spline resampling and the width reduction on a synthetic near-touching loop (crossings and
-lengths from the core toolbox, see tests/test_geometry.py)."""
+lengths from the core toolbox, see tests/test_polyline.py)."""
 
 from __future__ import annotations
 

@@ -12,11 +12,22 @@ use arena_core::geometry::polyline as pl;
 
 type Points = Vec<[f64; 2]>;
 
-/// Points of `xy` checked by the core door, truncated to the points to use.
-fn checked(mut p: Points, min: usize, closed: bool, what: &str) -> arena_core::Result<Points> {
-    let n = pl::check_points(&p, min, closed, what)?;
-    p.truncate(n);
-    Ok(p)
+/// Run `f` in the core on the points of `xy` that pass the door (at least `min`, finite,
+/// a repeated closing point dropped when `closed`), through `boundary::call`.
+fn on_points<T: Send>(
+    py: Python<'_>,
+    what: &str,
+    xy: &PyReadonlyArray2<'_, f64>,
+    min: usize,
+    closed: bool,
+    f: impl FnOnce(Points) -> arena_core::Result<T> + Send,
+) -> PyResult<T> {
+    let mut p = points_from_py(xy, "xy")?;
+    call(py, what, move || {
+        let n = pl::check_points(&p, min, closed, "xy")?;
+        p.truncate(n);
+        f(p)
+    })
 }
 
 fn points_to_py<'py>(py: Python<'py>, p: &[[f64; 2]]) -> Bound<'py, PyArray2<f64>> {
@@ -29,9 +40,7 @@ fn points_to_py<'py>(py: Python<'py>, p: &[[f64; 2]]) -> Bound<'py, PyArray2<f64
 #[pyfunction]
 #[pyo3(signature = (xy, closed=true))]
 fn polyline_length(py: Python<'_>, xy: PyReadonlyArray2<'_, f64>, closed: bool) -> PyResult<f64> {
-    let p = points_from_py(&xy, "xy")?;
-    call(py, "polyline_length", move || {
-        let p = checked(p, 2, closed, "xy")?;
+    on_points(py, "polyline_length", &xy, 2, closed, move |p| {
         Ok(pl::polyline_length(&p, closed))
     })
 }
@@ -45,9 +54,7 @@ fn cumulative_length<'py>(
     xy: PyReadonlyArray2<'py, f64>,
     closed: bool,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let p = points_from_py(&xy, "xy")?;
-    let cum = call(py, "cumulative_length", move || {
-        let p = checked(p, 2, closed, "xy")?;
+    let cum = on_points(py, "cumulative_length", &xy, 2, closed, move |p| {
         Ok(pl::cumulative_length(&p, closed))
     })?;
     Ok(PyArray1::from_vec(py, cum))
@@ -56,10 +63,7 @@ fn cumulative_length<'py>(
 /// Signed area (m²) of a closed polyline (N ≥ 3): positive when counter-clockwise.
 #[pyfunction]
 fn signed_area(py: Python<'_>, xy: PyReadonlyArray2<'_, f64>) -> PyResult<f64> {
-    let p = points_from_py(&xy, "xy")?;
-    call(py, "signed_area", move || {
-        Ok(pl::signed_area(&checked(p, 3, true, "xy")?))
-    })
+    on_points(py, "signed_area", &xy, 3, true, |p| Ok(pl::signed_area(&p)))
 }
 
 /// Points evenly spaced by arc length along a closed polyline (N ≥ 3), about
@@ -70,9 +74,7 @@ fn resample_closed<'py>(
     xy: PyReadonlyArray2<'py, f64>,
     spacing: f64,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let p = points_from_py(&xy, "xy")?;
-    let out = call(py, "resample_closed", move || {
-        let p = checked(p, 3, true, "xy")?;
+    let out = on_points(py, "resample_closed", &xy, 3, true, move |p| {
         pl::check_spacing(spacing, pl::polyline_length(&p, true))?;
         Ok(pl::resample_closed(&p, spacing))
     })?;
@@ -100,7 +102,8 @@ fn resample_closed_values<'py>(
             )));
         }
         let given = p.len();
-        let p = checked(p, 3, true, "xy")?;
+        let n = pl::check_points(&p, 3, true, "xy")?;
+        let p = &p[..n];
         // One per point of xy as given; a dropped repeated closing point keeps its value
         // as the closing value, which is also how an unwrapped parameter is passed.
         if !(v.len() == given || v.len() == p.len() + 1) {
@@ -109,8 +112,8 @@ fn resample_closed_values<'py>(
                 v.len()
             )));
         }
-        pl::check_spacing(spacing, pl::polyline_length(&p, true))?;
-        Ok(pl::resample_closed_values(&p, &v, spacing))
+        pl::check_spacing(spacing, pl::polyline_length(p, true))?;
+        Ok(pl::resample_closed_values(p, &v, spacing))
     })?;
     Ok((points_to_py(py, &pts), PyArray1::from_vec(py, vals)))
 }
@@ -123,10 +126,9 @@ fn curvature<'py>(
     xy: PyReadonlyArray2<'py, f64>,
     span_m: f64,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let p = points_from_py(&xy, "xy")?;
-    let k = call(py, "curvature", move || {
+    let k = on_points(py, "curvature", &xy, 3, true, move |p| {
         pl::check_span(span_m)?;
-        Ok(pl::curvature_closed(&checked(p, 3, true, "xy")?, span_m))
+        Ok(pl::curvature_closed(&p, span_m))
     })?;
     Ok(PyArray1::from_vec(py, k))
 }
@@ -135,10 +137,9 @@ fn curvature<'py>(
 /// about ``span_m``; ``inf`` when it never bends.
 #[pyfunction]
 fn min_radius(py: Python<'_>, xy: PyReadonlyArray2<'_, f64>, span_m: f64) -> PyResult<f64> {
-    let p = points_from_py(&xy, "xy")?;
-    call(py, "min_radius", move || {
+    on_points(py, "min_radius", &xy, 3, true, move |p| {
         pl::check_span(span_m)?;
-        Ok(pl::min_radius_closed(&checked(p, 3, true, "xy")?, span_m))
+        Ok(pl::min_radius_closed(&p, span_m))
     })
 }
 
@@ -151,9 +152,8 @@ fn self_intersections<'py>(
     py: Python<'py>,
     xy: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<(Bound<'py, PyArray2<i64>>, Bound<'py, PyArray2<f64>>)> {
-    let p = points_from_py(&xy, "xy")?;
-    let x = call(py, "self_intersections", move || {
-        Ok(pl::self_intersections_closed(&checked(p, 3, true, "xy")?))
+    let x = on_points(py, "self_intersections", &xy, 3, true, |p| {
+        Ok(pl::self_intersections_closed(&p))
     })?;
     let flat: Vec<i64> = x.iter().flat_map(|c| [c.i as i64, c.j as i64]).collect();
     let ij = numpy::ndarray::Array2::from_shape_vec((x.len(), 2), flat).expect("shape matches");
