@@ -57,8 +57,11 @@ def test_lengths_match_numpy_and_closed_forms():
     assert _core.polyline_length(c) == pytest.approx(2000 * 2.0 * np.sin(np.pi / 1000), rel=1e-12)
     assert _core.signed_area(c) == pytest.approx(500 * 4.0 * np.sin(2 * np.pi / 1000), rel=1e-12)
     assert _core.signed_area(c[::-1].copy()) < 0
-    # A repeated closing point changes nothing.
+    # A repeated closing point changes no length; the arc lengths stay one per given point.
     assert _core.polyline_length(np.vstack([c, c[:1]])) == pytest.approx(_core.polyline_length(c), rel=1e-15)
+    sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]])
+    assert np.array_equal(_core.cumulative_length(sq), [0.0, 1.0, 2.0, 3.0, 4.0, 4.0])
+    assert _core.curvature(sq, 1.0).shape == (4,)  # per distinct vertex
 
 
 def test_resampling_is_even_on_the_input_and_carries_values():

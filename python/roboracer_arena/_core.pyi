@@ -127,7 +127,8 @@ def polyline_length(xy: npt.NDArray[np.float64], closed: bool = True) -> float:
     """Length (m), counting the closing edge when ``closed``."""
 
 def cumulative_length(xy: npt.NDArray[np.float64], closed: bool = True) -> npt.NDArray[np.float64]:
-    """Arc length (m) at each vertex from point 0: (N,) open, (N + 1,) closed (last = lap length)."""
+    """Arc length (m) at each vertex from point 0: (N,) open, (N + 1,) closed (last = lap length);
+    a repeated closing point is kept here, so the output always matches the input."""
 
 def signed_area(xy: npt.NDArray[np.float64]) -> float:
     """Signed area (m²) of a closed polyline: positive when counter-clockwise."""
@@ -142,8 +143,8 @@ def resample_closed_values(
     N + 1 values: the last is the value on returning to point 0 (an unwrapped parameter)."""
 
 def curvature(xy: npt.NDArray[np.float64], span_m: float) -> npt.NDArray[np.float64]:
-    """Signed curvature (1/m, + = left) per vertex: the circle through the vertex and its
-    neighbours ~``span_m`` of arc either side."""
+    """Signed curvature (1/m, + = left) per distinct vertex (a repeated closing point is
+    dropped): the circle through the vertex and its neighbours ~``span_m`` of arc either side."""
 
 def min_radius(xy: npt.NDArray[np.float64], span_m: float) -> float:
     """Smallest three-point circumradius (m) over chords of ~``span_m``; ``inf`` if straight."""

@@ -1,7 +1,8 @@
 //! Bindings for `arena_core::geometry::polyline`, the one polyline toolbox: numpy in,
 //! numbers and arrays out. Every call goes through `boundary::call` (GIL released,
 //! panics caught); the core's `check_*` doors refuse bad input as `InvalidArgumentError`.
-//! Closed polylines may repeat their first point at the end; it is dropped.
+//! Closed polylines may repeat their first point at the end; it is dropped (except by
+//! `cumulative_length`, whose output is one value per given point).
 
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -46,7 +47,8 @@ fn polyline_length(py: Python<'_>, xy: PyReadonlyArray2<'_, f64>, closed: bool) 
 }
 
 /// Arc length (m) at each vertex from point 0: (N,) for an open polyline, (N + 1,) for a
-/// closed one (the last value is the lap length).
+/// closed one (the last value is the lap length). One value per given point: a repeated
+/// closing point is kept (its closing edge has length 0).
 #[pyfunction]
 #[pyo3(signature = (xy, closed=true))]
 fn cumulative_length<'py>(
@@ -54,7 +56,7 @@ fn cumulative_length<'py>(
     xy: PyReadonlyArray2<'py, f64>,
     closed: bool,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let cum = on_points(py, "cumulative_length", &xy, 2, closed, move |p| {
+    let cum = on_points(py, "cumulative_length", &xy, 2, false, move |p| {
         Ok(pl::cumulative_length(&p, closed))
     })?;
     Ok(PyArray1::from_vec(py, cum))
