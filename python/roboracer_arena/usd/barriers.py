@@ -12,8 +12,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _core
-
 DUCT_TEXTURE_TILE_M = 0.5  # metres of duct per texture tile (16 ribs → 3 cm rib pitch)
 
 
@@ -26,7 +24,8 @@ def duct_st(ducts: list[np.ndarray], segments: int) -> tuple[np.ndarray, np.ndar
         n = len(d)
         if n < 3:
             continue
-        u = _core.cumulative_length(d, closed=True) / DUCT_TEXTURE_TILE_M  # n + 1 rows (seam row)
+        seg_len = np.hypot(*(np.roll(d, -1, axis=0) - d).T)
+        u = np.r_[0.0, np.cumsum(seg_len)] / DUCT_TEXTURE_TILE_M  # n + 1 rows (seam row)
         v = np.arange(s + 1) / s  # s + 1 columns (seam column)
         st_blocks.append(np.stack(np.meshgrid(u, v, indexing="ij"), axis=-1).reshape(-1, 2))
         idx_blocks.append(_quads(n, s, s + 1, wrap_rows=False, wrap_cols=False).reshape(-1) + base)
