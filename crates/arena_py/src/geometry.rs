@@ -1,8 +1,8 @@
 //! Bindings for `arena_core::geometry::polyline`, the one polyline toolbox: numpy in,
 //! numbers and arrays out. Every call goes through `boundary::call` (GIL released,
 //! panics caught); the core's `check_*` doors refuse bad input as `InvalidArgumentError`.
-//! Closed polylines may repeat their first point at the end; it is dropped (except by
-//! `cumulative_length`, whose output is one value per given point).
+//! Closed polylines may repeat their first point at the end; it is dropped (lengths keep
+//! it: it adds a zero-length edge, and `cumulative_length` returns one value per point).
 
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -41,7 +41,8 @@ fn points_to_py<'py>(py: Python<'py>, p: &[[f64; 2]]) -> Bound<'py, PyArray2<f64
 #[pyfunction]
 #[pyo3(signature = (xy, closed=true))]
 fn polyline_length(py: Python<'_>, xy: PyReadonlyArray2<'_, f64>, closed: bool) -> PyResult<f64> {
-    on_points(py, "polyline_length", &xy, 2, closed, move |p| {
+    // A repeated closing point adds a zero-length edge: nothing to drop.
+    on_points(py, "polyline_length", &xy, 2, false, move |p| {
         Ok(pl::polyline_length(&p, closed))
     })
 }
