@@ -22,6 +22,12 @@ def _ellipse(n: int, a: float, b: float) -> np.ndarray:
     return np.column_stack([a * np.cos(t), b * np.sin(t)])
 
 
+def _zigzag(n: int) -> np.ndarray:
+    """A loop running back and forth over the same metre n / 4 times (hostile input)."""
+    x = np.abs(((np.arange(n) / 4.0) % 2.0) - 1.0)
+    return np.column_stack([x, np.zeros(n)])
+
+
 def _crossings_reference(p: np.ndarray) -> set[tuple[int, int]]:
     """O(n²) segment-pair test, half-open segments, written independently of the core."""
     n, out = len(p), set()
@@ -145,6 +151,7 @@ def test_a_long_loop_is_handled_whole():
         (lambda: _core.resample_closed_values(_circle(10, 1.0), np.ones(7), 0.1), "one entry per point of xy (10)"),
         (lambda: _core.resample_closed_values(_circle(10, 1.0), np.r_[np.ones(9), np.nan], 0.1), "values[9]"),
         (lambda: _core.polyline_length(np.zeros((5, 3))), "shape (N, 2)"),
+        (lambda: _core.self_intersections(_zigzag(16_000)), "folded onto itself"),
     ],
 )
 def test_bad_input_is_refused_with_a_one_line_message(call, needle):

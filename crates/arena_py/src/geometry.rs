@@ -156,7 +156,7 @@ fn self_intersections<'py>(
     xy: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<(Bound<'py, PyArray2<i64>>, Bound<'py, PyArray2<f64>>)> {
     let x = on_points(py, "self_intersections", &xy, 3, true, |p| {
-        Ok(pl::self_intersections_closed(&p))
+        pl::self_intersections_closed(&p)
     })?;
     let flat: Vec<i64> = x.iter().flat_map(|c| [c.i as i64, c.j as i64]).collect();
     let ij = numpy::ndarray::Array2::from_shape_vec((x.len(), 2), flat).expect("shape matches");

@@ -229,17 +229,22 @@ fn adjacent(i: usize, j: usize, n: usize) -> bool {
     j == i + 1 || (i == 0 && j == n - 1)
 }
 
+/// Most candidate segment pairs [`self_intersections_closed`] tests: a loop folded onto
+/// itself thousands of times (or a hostile one) is refused instead of taking O(n²).
+pub const MAX_CANDIDATE_PAIRS: usize = crate::limits::MAX_DERIVED_COUNT as usize;
+
 /// Every crossing of a closed polyline with itself, sorted by `(i, j)`.
 ///
 /// Uniform-grid broad phase: segments are cut into pieces no longer than the cell (the
 /// mean edge length, so the pieces number at most about 2n) and each piece is entered
 /// in the cells its bounding box touches; only segments sharing a cell are tested.
 /// Near-linear for the evenly spaced loops of real tracks, where O(n²) pair tests are not.
-pub fn self_intersections_closed(p: &[[f64; 2]]) -> Vec<Crossing> {
+/// Refuses (`InvalidArgument`) when more than [`MAX_CANDIDATE_PAIRS`] pairs share cells.
+pub fn self_intersections_closed(p: &[[f64; 2]]) -> Result<Vec<Crossing>> {
     let n = p.len();
     let total = polyline_length(p, true);
     if n < 4 || !total.is_finite() || total <= 0.0 {
-        return Vec::new();
+        return Ok(Vec::new());
     }
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for q in p {
@@ -279,7 +284,17 @@ pub fn self_intersections_closed(p: &[[f64; 2]]) -> Vec<Crossing> {
     }
     entries.sort_unstable();
     entries.dedup();
-    let mut pairs = Vec::new();
+    let candidates: usize = entries
+        .chunk_by(|a, b| (a.0, a.1) == (b.0, b.1))
+        .map(|g| g.len() * (g.len() - 1) / 2)
+        .fold(0usize, usize::saturating_add);
+    if candidates > MAX_CANDIDATE_PAIRS {
+        return Err(ArenaError::invalid(format!(
+            "self_intersections: {candidates} segment pairs of the {n}-point polyline lie \
+             close together (at most {MAX_CANDIDATE_PAIRS}); is it folded onto itself?"
+        )));
+    }
+    let mut pairs = Vec::with_capacity(candidates);
     for group in entries.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1)) {
         for (x, ea) in group.iter().enumerate() {
             for eb in &group[x + 1..] {
@@ -292,10 +307,10 @@ pub fn self_intersections_closed(p: &[[f64; 2]]) -> Vec<Crossing> {
     }
     pairs.sort_unstable();
     pairs.dedup();
-    pairs
+    Ok(pairs
         .into_iter()
         .filter_map(|(i, j)| segment_crossing(p, i, j).map(|point| Crossing { i, j, point }))
-        .collect()
+        .collect())
 }
 
 /// Most points a polyline handed to the toolbox may have.

@@ -101,13 +101,17 @@ fn min_radius_finds_the_tight_end_of_a_stadium() {
 #[test]
 fn figure_eight_crosses_once_at_the_origin() {
     let p = figure_eight(1000, 5.0);
-    let x = self_intersections_closed(&p);
+    let x = self_intersections_closed(&p).unwrap();
     assert_eq!(x.len(), 1, "{x:?}");
     assert!(x[0].point[0].abs() < 1e-3 && x[0].point[1].abs() < 1e-3);
     assert_eq!((x[0].i, x[0].j), (499, 999));
-    assert!(self_intersections_closed(&test_circle(1000, 5.0)).is_empty());
+    assert!(self_intersections_closed(&test_circle(1000, 5.0))
+        .unwrap()
+        .is_empty());
     // Too few points or no length: nothing to cross.
-    assert!(self_intersections_closed(&[[0.0, 0.0]; 10]).is_empty());
+    assert!(self_intersections_closed(&[[0.0, 0.0]; 10])
+        .unwrap()
+        .is_empty());
 }
 
 #[test]
@@ -122,7 +126,7 @@ fn a_crossing_through_a_vertex_counts_once() {
         [2.0, 2.0],
         [1.0, -1.0],
     ];
-    let x = self_intersections_closed(&p);
+    let x = self_intersections_closed(&p).unwrap();
     assert_eq!(x, brute_force_crossings(&p));
     assert!(!x.is_empty());
 }
@@ -137,8 +141,30 @@ fn long_closing_segment_is_found() {
         })
         .collect();
     p.push([-50.0, 0.0]);
-    assert_eq!(self_intersections_closed(&p), brute_force_crossings(&p));
-    assert!(!self_intersections_closed(&p).is_empty());
+    assert_eq!(
+        self_intersections_closed(&p).unwrap(),
+        brute_force_crossings(&p)
+    );
+    assert!(!self_intersections_closed(&p).unwrap().is_empty());
+}
+
+#[test]
+fn a_loop_folded_onto_itself_is_refused_not_ground_through() {
+    // 4000 passes back and forth over the same 1 m: every segment shares every cell.
+    let p: Vec<[f64; 2]> = (0..16_000)
+        .map(|i| {
+            [
+                if (i / 4) % 2 == 0 {
+                    (i % 4) as f64 / 4.0
+                } else {
+                    1.0 - (i % 4) as f64 / 4.0
+                },
+                0.0,
+            ]
+        })
+        .collect();
+    let e = self_intersections_closed(&p).unwrap_err().to_string();
+    assert!(e.contains("folded onto itself"), "{e}");
 }
 
 #[test]
@@ -183,7 +209,7 @@ proptest! {
         pts in prop::collection::vec((-10.0f64..10.0, -10.0f64..10.0), 4..60),
     ) {
         let p: Vec<[f64; 2]> = pts.into_iter().map(|(x, y)| [x, y]).collect();
-        prop_assert_eq!(self_intersections_closed(&p), brute_force_crossings(&p));
+        prop_assert_eq!(self_intersections_closed(&p).unwrap(), brute_force_crossings(&p));
     }
 
     #[test]
@@ -192,7 +218,7 @@ proptest! {
     ) {
         // Large wobbles fold the loop over itself: many crossings, all found.
         let p = wobbly_loop(n, wobble, lobes.round());
-        prop_assert_eq!(self_intersections_closed(&p), brute_force_crossings(&p));
+        prop_assert_eq!(self_intersections_closed(&p).unwrap(), brute_force_crossings(&p));
     }
 
     #[test]
