@@ -28,6 +28,14 @@ __all__ = [
     "construct_lattice",
     "validate_map",
     "analyse_curve",
+    "polyline_length",
+    "cumulative_length",
+    "signed_area",
+    "resample_closed",
+    "resample_closed_values",
+    "curvature",
+    "min_radius",
+    "self_intersections",
     "load_map",
     "save_map",
     "build_geometry",
@@ -292,3 +300,40 @@ def stadium_track(
 
 def _boundary_self_test() -> None:
     """Panics inside the boundary on purpose (tests): raises InternalError."""
+
+# --- geometry (the one polyline toolbox: arena_core::geometry::polyline) -------------
+# xy is (N, 2) float64 in metres. Closed polylines need N ≥ 3 (open ones N ≥ 2); one
+# repeated closing point is dropped (cumulative_length keeps it). Non-finite points,
+# N > 5e6, a spacing or span that is not a finite length > 0, or a spacing giving > 5e6
+# points: InvalidArgumentError.
+def polyline_length(xy: npt.NDArray[np.float64], closed: bool = True) -> float:
+    """Length (m), counting the closing edge when ``closed``."""
+
+def cumulative_length(xy: npt.NDArray[np.float64], closed: bool = True) -> npt.NDArray[np.float64]:
+    """Arc length (m) at each vertex from point 0: (N,) open, (N + 1,) closed (last = lap length);
+    a repeated closing point is kept here, so the output always matches the input."""
+
+def signed_area(xy: npt.NDArray[np.float64]) -> float:
+    """Signed area (m²) of a closed polyline: positive when counter-clockwise."""
+
+def resample_closed(xy: npt.NDArray[np.float64], spacing: float) -> npt.NDArray[np.float64]:
+    """(M, 2) points evenly spaced by arc length (~``spacing`` m, M ≥ 3) from point 0."""
+
+def resample_closed_values(
+    xy: npt.NDArray[np.float64], values: npt.NDArray[np.float64], spacing: float
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """:func:`resample_closed` plus one finite value per point (N,) interpolated in arc length;
+    N + 1 values: the last is the value on returning to point 0 (an unwrapped parameter)."""
+
+def curvature(xy: npt.NDArray[np.float64], span_m: float) -> npt.NDArray[np.float64]:
+    """Signed curvature (1/m, + = left) per distinct vertex (a repeated closing point is
+    dropped): the circle through the vertex and its neighbours ~``span_m`` of arc either side."""
+
+def min_radius(xy: npt.NDArray[np.float64], span_m: float) -> float:
+    """Smallest three-point circumradius (m) over chords of ~``span_m``; ``inf`` if straight."""
+
+def self_intersections(
+    xy: npt.NDArray[np.float64],
+) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
+    """Crossings of a closed polyline: ``(segments (K, 2) as i < j, points (K, 2))``,
+    segment i running from point i to i + 1, sorted by (i, j)."""

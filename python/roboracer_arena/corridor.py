@@ -88,8 +88,7 @@ class CorridorGeometry:
     @property
     def centreline_length(self) -> float:
         """Length (m) of the closed centreline."""
-        c = self.centreline
-        return float(np.linalg.norm(np.diff(np.vstack([c, c[:1]]), axis=0), axis=1).sum())
+        return _core.polyline_length(self.centreline)
 
 
 def extract_corridor(

@@ -33,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from . import _core
 from .errors import InvalidArgumentError, MapFormatError
 from .fileio import read_text
 
@@ -89,9 +90,7 @@ def _ring(line: Any) -> tuple[np.ndarray, bool]:
 
 def signed_area(line: Any) -> float:
     """Shoelace area of a closed polyline ((N, 2); positive = counter-clockwise)."""
-    c, _ = _ring(line)
-    x, y = c[:, 0], c[:, 1]
-    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    return _core.signed_area(_ring(line)[0])
 
 
 def direction_of(line: Any) -> str:

@@ -21,6 +21,8 @@ from typing import Any
 
 import numpy as np
 
+from . import _core
+
 __all__ = ["DriveResult", "EnvPurePursuit", "PurePursuitDriver", "PurePursuitParams", "drive_laps"]
 
 
@@ -48,9 +50,12 @@ class PurePursuitDriver:
 
     def __init__(self, centreline: Any, params: PurePursuitParams | None = None) -> None:
         self.params = p = params or PurePursuitParams()
-        self.points, self.length = _resample_closed(np.asarray(centreline, dtype=np.float64), p.spacing)
+        line = np.asarray(centreline, dtype=np.float64)
+        self.points = _core.resample_closed(line, p.spacing)
+        self.length = _core.polyline_length(line)
         self.ds = self.length / len(self.points)
-        self.curvature = _smoothed_curvature(self.points, self.ds, max(1, round(p.curvature_window / self.ds)))
+        # Signed three-point curvature over chords of ±curvature_window (a smoothed estimate).
+        self.curvature = _core.curvature(self.points, p.curvature_window)
         self.speed_profile = _speed_profile(self.curvature, self.ds, p)
         self._idx: int | None = None
 
@@ -114,28 +119,6 @@ class PurePursuitDriver:
         steer = np.clip(np.arctan2(2.0 * p.wheelbase * ly, lx * lx + ly * ly), -p.max_steer, p.max_steer)
         ahead = (i[..., None] + np.arange(max(1, round(0.6 / self.ds)))) % n
         return np.asarray(steer, dtype=np.float64), self.speed_profile[ahead].min(axis=-1)
-
-
-def _resample_closed(c: np.ndarray, spacing: float) -> tuple[np.ndarray, float]:
-    if len(c) > 3 and np.allclose(c[0], c[-1]):
-        c = c[:-1]
-    ring = np.vstack([c, c[:1]])
-    seg = np.linalg.norm(np.diff(ring, axis=0), axis=1)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    length = float(s[-1])
-    n = max(8, int(round(length / spacing)))
-    t = np.linspace(0.0, length, n, endpoint=False)
-    pts = np.column_stack([np.interp(t, s, ring[:, 0]), np.interp(t, s, ring[:, 1])])
-    return pts, length
-
-
-def _smoothed_curvature(pts: np.ndarray, ds: float, half: int) -> np.ndarray:
-    """Signed curvature from heading change over ±``half`` points (a smoothed estimate)."""
-    fwd = np.roll(pts, -half, axis=0) - pts
-    back = pts - np.roll(pts, half, axis=0)
-    dh = np.arctan2(fwd[:, 1], fwd[:, 0]) - np.arctan2(back[:, 1], back[:, 0])
-    dh = (dh + np.pi) % (2 * np.pi) - np.pi
-    return dh / (half * ds)
 
 
 def _speed_profile(curv: np.ndarray, ds: float, p: PurePursuitParams) -> np.ndarray:

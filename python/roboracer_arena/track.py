@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from . import _core
 from .corridor import DEFAULT_PARAMS
 from .direction import TrackDirection, direction_for_map, direction_of, orient_to
 from .direction import reverse as reverse_line
@@ -96,8 +97,7 @@ class Track:
     @cached_property
     def arclength(self) -> np.ndarray:
         """Cumulative arc length at each :attr:`loop` vertex, (M+1,) ending with the lap length."""
-        seg = np.linalg.norm(np.diff(np.vstack([self.loop, self.loop[:1]]), axis=0), axis=1)
-        return np.concatenate([[0.0], np.cumsum(seg)])
+        return _core.cumulative_length(self.loop, closed=True)
 
     @property
     def length(self) -> float:

@@ -1,4 +1,5 @@
-"""Spline resampling, crossings and the width reduction on a synthetic near-touching loop."""
+"""Spline resampling and the width reduction on a synthetic near-touching loop (crossings and
+lengths from the core toolbox, see tests/test_polyline.py)."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 
 from roboracer_arena import _core
-from roboracer_arena.circuits.geometry import loop_length, reduce_widths, self_intersections, smooth_resample
+from roboracer_arena.circuits.geometry import reduce_widths, smooth_resample
 from roboracer_arena.errors import CorridorError
 
 SPACING, WALL, RES = 0.1, 0.15, 0.05
@@ -42,7 +43,7 @@ def test_resampling_is_uniform_and_keeps_length():
     xy, w = smooth_resample(ring, np.full(50, 1.0), 0.1, 0.0)
     steps = np.hypot(*np.diff(np.vstack([xy, xy[:1]]), axis=0).T)
     assert steps.std() < 1e-3 and steps.mean() == pytest.approx(0.1, rel=0.01)
-    assert loop_length(xy) == pytest.approx(2 * np.pi * 5, rel=1e-4)
+    assert _core.polyline_length(xy) == pytest.approx(2 * np.pi * 5, rel=1e-4)
     assert np.allclose(w, 1.0)
 
 
@@ -86,12 +87,13 @@ def test_figure_eight_has_one_crossing_and_keeps_its_width_there():
     t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
     eight = np.column_stack([10 * np.sin(t), 5 * np.sin(2 * t)])
     xy, w = smooth_resample(eight, np.full(len(t), 1.0), SPACING, 0.0)
-    crossings = self_intersections(xy, step=10)
-    assert len(crossings) == 1
-    assert np.allclose(crossings[0][2], 0.0, atol=0.05)
-    assert self_intersections(_pinched_stadium(2.0)) == []
-    nar = reduce_widths(xy, w, WALL, SPACING, crossings)
+    segments, points = _core.self_intersections(xy)
+    assert segments.shape == (1, 2) and np.allclose(points[0], 0.0, atol=0.05)
+    assert len(_core.self_intersections(_pinched_stadium(2.0))[0]) == 0
+    nar = reduce_widths(xy, w, WALL, SPACING, segments)
     assert nar.narrowed_fraction == 0
+    # Without the crossing the two sections through the middle would be narrowed.
+    assert reduce_widths(xy, w, WALL, SPACING).narrowed_fraction > 0
 
 
 def test_measure_map_reads_any_memory_layout():

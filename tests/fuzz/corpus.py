@@ -277,6 +277,33 @@ CORPUS: list[dict] = [
         "args": {"points": [[0, 0], [1, 0], [float("nan"), 1]]},
         "codes": [2],
     },
+    # the polyline toolbox: budgets and hostile coordinates
+    {
+        "id": "resample-spacing-1e-300",
+        "api": "polyline",
+        "args": {"fn": "resample_closed", "points": [[0, 0], [1, 0], [0, 1]], "args": [1e-300]},
+        "codes": [2],
+        "says": ["spacing"],
+    },
+    {
+        "id": "self-intersections-1e300",
+        "api": "polyline",
+        "args": {"fn": "self_intersections", "points": [[-1e300, 0], [1e300, 1], [1e300, -1e300], [0, 1e300]]},
+        "codes": [0],
+    },
+    {
+        "id": "self-intersections-all-on-one-point",
+        "api": "polyline",
+        "args": {"fn": "self_intersections", "points": [[1, 1]] * 1000},
+        "codes": [0],
+    },
+    {
+        "id": "min-radius-span-nan",
+        "api": "polyline",
+        "args": {"fn": "min_radius", "points": [[0, 0], [1, 0], [0, 1]], "args": [float("nan")]},
+        "codes": [2],
+        "says": ["span_m"],
+    },
     {
         "id": "distance-transform-huge",
         "api": "distance_transform",

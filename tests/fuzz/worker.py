@@ -35,6 +35,12 @@ def _api_analyse_curve(points, corner_radius=1.0, exclude_m=1.0):
     _core.analyse_curve(np.asarray(points, dtype=np.float64).reshape(-1, 2), corner_radius, exclude_m)
 
 
+def _api_polyline(fn, points, args=()):
+    from roboracer_arena import _core
+
+    getattr(_core, fn)(np.asarray(points, dtype=np.float64).reshape(-1, 2), *args)
+
+
 def _api_distance_transform(h, w):
     from roboracer_arena import _core
 
@@ -66,6 +72,7 @@ API = {
     "extract_corridor": _api_extract_corridor,
     "load_map": _api_load_map,
     "measure_map": _api_measure,
+    "polyline": _api_polyline,
 }
 
 

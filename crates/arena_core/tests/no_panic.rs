@@ -214,6 +214,15 @@ fn geometry_building_blocks_never_panic() {
                 tube::sweep_closed_tube(&pts, s, 0.0, 3 + b % 10)
             });
         }
+        no_panic(("polyline", &pts, a), || {
+            use arena_core::geometry::polyline as pl;
+            (
+                pl::cumulative_length(&pts, true),
+                pl::curvature_closed(&pts, a),
+                pl::min_radius_closed(&pts, a),
+                pl::self_intersections_closed(&pts),
+            )
+        });
         let (w, h) = ((rng.next_u32() % 9) as usize, (rng.next_u32() % 9) as usize);
         let f: Vec<f32> = (0..w * h).map(|_| num(&mut rng) as f32).collect();
         no_panic(("marching", w, h), || {

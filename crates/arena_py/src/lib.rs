@@ -8,6 +8,7 @@ mod boundary;
 mod config;
 mod errors;
 mod generate;
+mod geometry;
 mod grid;
 mod sim;
 mod track;
@@ -20,6 +21,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     boundary::register(m)?;
     grid::register(m)?;
     generate::register(m)?;
+    geometry::register(m)?;
     track::register(m)?;
     config::register(m)?;
     sim::register(m)?;

@@ -6,7 +6,7 @@ reduction where sections would merge, rasterisation and accuracy measurement.
 """
 
 from .build import CircuitConfig, build_all, build_circuit
-from .geometry import reduce_widths, self_intersections, smooth_resample
+from .geometry import reduce_widths, smooth_resample
 from .projection import geodesic_distance, geodesic_length, project_local
 from .sources import CircuitInput, circuit_inputs, read_geojson, read_tum_csv
 
@@ -22,6 +22,5 @@ __all__ = [
     "read_geojson",
     "read_tum_csv",
     "reduce_widths",
-    "self_intersections",
     "smooth_resample",
 ]

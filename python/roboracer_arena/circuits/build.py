@@ -23,7 +23,7 @@ from ..direction import direction_of
 from ..errors import CorridorError
 from ..fileio import atomic_write_text
 from ..maps import OccupancyMap
-from .geometry import loop_length, reduce_widths, self_intersections, smooth_resample
+from .geometry import MIN_RADIUS_SPAN_M, reduce_widths, smooth_resample
 from .sources import CircuitInput, circuit_inputs
 
 
@@ -59,14 +59,13 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
     # The source lists its points in the racing direction from the start line: keep that
     # order (and the first point) all the way to centreline.csv, which the env drives.
     xy = xy - xy.mean(axis=0)
-    coarse_step = max(1, int(round(1.0 / cfg.spacing)))  # crossings on a 1 m loop
-    crossings = self_intersections(xy, step=coarse_step)
-    nar = reduce_widths(xy, w_nom, cfg.wall_thickness, cfg.spacing, crossings)
+    crossing_segments, crossing_points = _core.self_intersections(xy)
+    nar = reduce_widths(xy, w_nom, cfg.wall_thickness, cfg.spacing, crossing_segments)
     data, origin = _core.rasterise_centreline(xy, nar.widths, cfg.resolution, cfg.wall_thickness, cfg.margin)
     t_raster = time.perf_counter() - t0
-    ref_len = loop_length(xy)
-    raw_len = loop_length(raw)
-    grade_separated = len(crossings) > 0
+    ref_len = _core.polyline_length(xy)
+    raw_len = _core.polyline_length(raw)
+    grade_separated = len(crossing_points) > 0
     measured: dict = {}
     try:
         info_json, line, local_w = _core.measure_map(data, cfg.resolution, origin)
@@ -87,12 +86,7 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
     if not grade_separated:
         one_corridor = one_corridor and measured.get("infields") == 1
     # Minimum radius of the smoothed centreline (three-point circumradius over ±0.5 m).
-    k = max(1, int(round(0.5 / cfg.spacing)))
-    a, b, cc = np.roll(xy, k, axis=0), xy, np.roll(xy, -k, axis=0)
-    cross = np.abs((b[:, 0] - a[:, 0]) * (cc[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (cc[:, 0] - a[:, 0]))
-    la, lb, lc = (np.hypot(*(b - a).T), np.hypot(*(cc - b).T), np.hypot(*(cc - a).T))
-    with np.errstate(divide="ignore"):
-        radius = np.where(cross > 1e-12, la * lb * lc / (2 * cross), np.inf)
+    min_radius = _core.min_radius(xy, MIN_RADIUS_SPAN_M)
 
     out = Path(outdir) / c.id
     out.mkdir(parents=True, exist_ok=True)
@@ -116,14 +110,14 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
         "nominal_width_min_m": round(float(w_nom.min()), 4),
         "width_mean_m": round(float(nar.widths.mean()), 4),
         "width_min_m": round(float(nar.widths.min()), 4),
-        "min_radius_m": round(float(radius.min()), 3),
+        "min_radius_m": round(min_radius, 3),
         "narrowed_fraction": round(nar.narrowed_fraction, 4),
         "unresolved_fraction": round(nar.unresolved_fraction, 4),
         "min_separation_m": round(nar.min_separation_m, 3) if np.isfinite(nar.min_separation_m) else None,
         "direction": direction_of(xy),
         "direction_source": "point order of the source centreline",
         "grade_separated": grade_separated,
-        "crossings": [[round(float(p[0]), 2), round(float(p[1]), 2)] for _, _, p in crossings],
+        "crossings": [[round(float(p[0]), 2), round(float(p[1]), 2)] for p in crossing_points],
         "raster": {"width_px": wpx, "height_px": h, "origin": [round(v, 4) for v in origin]},
         "measured": measured,
         "length_error": None if err is None else round(err, 6),

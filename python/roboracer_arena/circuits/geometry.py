@@ -1,10 +1,10 @@
-"""Closed-loop geometry for the circuits: periodic cubic spline smoothing and uniform
-resampling, self-intersections (grade-separated crossings), and the local width
-reduction where non-local sections of the loop would merge after rasterisation."""
+"""Closed-loop geometry for the circuits: periodic cubic spline smoothing with uniform
+resampling, and the local width reduction where non-local sections of the loop would
+merge after rasterisation. Lengths, resampling stations, crossings and radii come from
+the core's polyline toolbox (``_core.polyline_length`` etc.)."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -12,14 +12,13 @@ from scipy.interpolate import splev, splprep
 from scipy.ndimage import minimum_filter1d, uniform_filter1d
 from scipy.spatial import cKDTree
 
+from .. import _core
+
 #: Narrowing never goes below this fraction of the nominal width (the paper's 60 %).
 MIN_WIDTH_FRACTION = 0.6
-
-
-def loop_length(xy: np.ndarray) -> float:
-    """Length of a closed polyline (no repeated end point)."""
-    d = np.diff(np.vstack([xy, xy[:1]]), axis=0)
-    return float(np.hypot(d[:, 0], d[:, 1]).sum())
+#: Chord half-span (m) of the three-point circumradius (``_core.min_radius``) behind every
+#: catalog ``min_radius_m`` (circuits and recorded maps alike).
+MIN_RADIUS_SPAN_M = 0.5
 
 
 def smooth_resample(
@@ -30,48 +29,20 @@ def smooth_resample(
     may keep from the input vertices (``s = N · tolerance²``). Widths are interpolated
     periodically along the same parameter. Returns ``(xy (M, 2), widths (M,))``."""
     xy = np.asarray(xy, float)
-    n = len(xy)
     closed = np.vstack([xy, xy[:1]])
     seg = np.hypot(*np.diff(closed, axis=0).T)
     keep = np.concatenate([[True], seg[:-1] > 1e-9])  # drop repeated vertices
     xy, widths, closed = xy[keep], np.asarray(widths, float)[keep], np.vstack([xy[keep], xy[keep][:1]])
     n = len(xy)
     tck, u = splprep([closed[:, 0], closed[:, 1]], s=n * tolerance**2, per=1, k=3, quiet=2)
-    # Arc length of the spline by dense sampling, then invert for uniform spacing.
+    # The spline's arc length by dense sampling; the core places the stations along it and
+    # carries the (unwrapped) spline parameter, at which the spline is then evaluated.
     dense_u = np.linspace(0.0, 1.0, 20 * n + 1)
-    dx, dy = splev(dense_u, tck)
-    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(dx), np.diff(dy)))])
-    m = max(8, int(round(s[-1] / spacing)))
-    target = np.linspace(0.0, s[-1], m, endpoint=False)
-    uu = np.interp(target, s, dense_u)
+    dense = np.column_stack(splev(dense_u[:-1], tck))
+    _, uu = _core.resample_closed_values(dense, dense_u, spacing)
     x, y = splev(uu, tck)
-    w_closed = np.concatenate([widths, widths[:1]])
-    w = np.interp(uu, u, w_closed)
+    w = np.interp(uu, u, np.concatenate([widths, widths[:1]]))
     return np.column_stack([x, y]), w
-
-
-def self_intersections(xy: np.ndarray, step: int = 1) -> list[tuple[int, int, np.ndarray]]:
-    """Crossings of a closed polyline with itself: ``(i, j, point)`` for segments i < j
-    that are not neighbours. Vectorised O(N²); pass a coarse loop (a few hundred vertices)."""
-    p = np.asarray(xy, float)[::step]
-    a, b = p, np.roll(p, -1, axis=0)
-    n = len(p)
-    d = b - a
-    out = []
-    for i in range(n - 2):
-        j = np.arange(i + 2, n if i else n - 1)
-        if len(j) == 0:
-            continue
-        r, s = d[i], d[j]
-        denom = r[0] * s[:, 1] - r[1] * s[:, 0]
-        qp = a[j] - a[i]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (qp[:, 0] * s[:, 1] - qp[:, 1] * s[:, 0]) / denom
-            uu = (qp[:, 0] * r[1] - qp[:, 1] * r[0]) / denom
-        hit = (np.abs(denom) > 1e-12) & (t >= 0) & (t < 1) & (uu >= 0) & (uu < 1)
-        for k in np.nonzero(hit)[0]:
-            out.append((i * step, int(j[k]) * step, a[i] + t[k] * r))
-    return out
 
 
 @dataclass
@@ -90,7 +61,7 @@ def reduce_widths(
     widths: np.ndarray,
     wall_thickness: float,
     spacing: float,
-    crossings: Sequence[tuple[int, int, np.ndarray]] = (),
+    crossings: np.ndarray | None = None,
     min_fraction: float = MIN_WIDTH_FRACTION,
 ) -> Narrowing:
     """Narrow the corridor where two non-local sections would merge.
@@ -101,8 +72,9 @@ def reduce_widths(
     wall strip must stay between the two corridors. Both widths are then scaled by
     ``(d − wall) / ((w_i + w_j)/2)``, clamped to ``[min_fraction, 1]``; the factor is
     eased in and out over ±1 m of arc (a minimum then a mean filter, which never raises
-    it above the required value). Near grade-separated crossings (``crossings``) the
-    overlap is intended and the width is kept.
+    it above the required value). Near grade-separated crossings (``crossings``: the
+    (K, 2) segment pairs of ``_core.self_intersections``) the overlap is intended and the
+    width is kept.
     """
     xy = np.asarray(xy, float)
     w = np.asarray(widths, float)
@@ -119,12 +91,11 @@ def reduce_widths(
         arc = np.minimum(gap, n - gap) * spacing
         wsum = (w[i] + w[j]) / 2
         nonlocal_ = arc > 3 * wsum + wall_thickness
-        if len(crossings):
+        if crossings is not None and len(crossings):
             near = np.zeros(n, bool)
             win = int(np.ceil(2 * reach / spacing))
-            for ci, cj, _ in crossings:
-                for c in (ci, cj):
-                    near[(np.arange(c - win, c + win + 1)) % n] = True
+            for c in np.asarray(crossings, np.int64).ravel():
+                near[(np.arange(c - win, c + win + 1)) % n] = True
             nonlocal_ &= ~(near[i] & near[j])
         i, j, wsum = i[nonlocal_], j[nonlocal_], wsum[nonlocal_]
         d = np.hypot(*(xy[i] - xy[j]).T)

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import _core
 from ..errors import MapFormatError, MapIOError
 from ..fileio import read_json
 from ..paths import sources_dir
@@ -98,8 +99,8 @@ class CircuitInput:
 
     @property
     def length_m(self) -> float:
-        d = np.diff(np.vstack([self.xy, self.xy[:1]]), axis=0)
-        return float(np.hypot(d[:, 0], d[:, 1]).sum())
+        """Full-scale lap length (m) of the closed centreline."""
+        return _core.polyline_length(self.xy)
 
 
 def slug(text: str) -> str:

@@ -180,26 +180,6 @@ def _raw(seq: list[str], x: np.ndarray, sense: float) -> np.ndarray:
     return pts[:-1] if np.hypot(*(pts[-1] - pts[0])) < 1e-9 else pts
 
 
-def _self_intersects(pts: np.ndarray) -> bool:
-    """Coarse test: two non-adjacent sub-sampled segments cross."""
-    q = pts[:: max(1, int(round(0.3 / STEP_M)))]
-    a, b = q, np.roll(q, -1, axis=0)
-    n = len(q)
-    for i in range(n):
-        j = np.arange(i + 2, n if i > 0 else n - 1)
-        if len(j) == 0:
-            continue
-        p, r = a[i], b[i] - a[i]
-        qq, sv = a[j], b[j] - a[j]
-        den = r[0] * sv[:, 1] - r[1] * sv[:, 0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = ((qq[:, 0] - p[0]) * sv[:, 1] - (qq[:, 1] - p[1]) * sv[:, 0]) / den
-            u = ((qq[:, 0] - p[0]) * r[1] - (qq[:, 1] - p[1]) * r[0]) / den
-        if np.any((np.abs(den) > 1e-9) & (t >= 0) & (t <= 1) & (u >= 0) & (u <= 1)):
-            return True
-    return False
-
-
 def _penalty(pts: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> float:
     r_min, p, rc = _geometry(spec, config)
     L = spec.lap_length_m
@@ -247,6 +227,6 @@ def construct_baseline(spec: TrackSpec, config: ConstructorConfig, seed: int, ki
         init="sobol",
     )
     pts = _project(seq, n_links, res.x, sense, spec.lap_length_m / 2)
-    if _self_intersects(pts):
+    if len(_core.self_intersections(pts)[0]):  # a crossing curve is not a track
         return None
     return _orient(pts, spec)

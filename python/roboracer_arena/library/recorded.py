@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
+from ..circuits.geometry import MIN_RADIUS_SPAN_M
 from ..corridor import extract_corridor
 from ..errors import ArenaError
 from ..maps import load_map
@@ -109,7 +110,7 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
         lap_length_m=round(lap, 3),
         width_mean_m=round(float(info["mean_width_m"]), 3),
         width_min_m=round(float(np.percentile(widths, 0.5)), 3),
-        min_radius_m=round(min_radius(np.asarray(line)), 3),
+        min_radius_m=round(_core.min_radius(line, MIN_RADIUS_SPAN_M), 3),
         infields=int(info["infields"]),
     )
     if lap < MIN_LAP_M:
@@ -127,20 +128,6 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
     else:
         rec.update(usable=True, reason=None)
     return rec
-
-
-def min_radius(line: np.ndarray, span_m: float = 0.5) -> float:
-    """Smallest three-point circumradius of a closed polyline over chords of ~``span_m``."""
-    if len(line) < 5:
-        return float("nan")
-    step = np.median(np.hypot(*np.diff(line, axis=0).T))
-    k = max(1, int(round(span_m / max(step, 1e-9))))
-    a, b, c = np.roll(line, k, axis=0), line, np.roll(line, -k, axis=0)
-    cross = np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
-    la, lb, lc = np.hypot(*(b - a).T), np.hypot(*(c - b).T), np.hypot(*(c - a).T)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r = np.where(cross > 1e-12, la * lb * lc / (2 * cross), np.inf)
-    return float(np.min(r))
 
 
 def assess_all(sources: Path, jobs: int = 1, progress=None) -> list[dict]:

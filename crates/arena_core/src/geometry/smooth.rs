@@ -1,6 +1,8 @@
 //! Simplification, smoothing and resampling of closed polylines (no repeated end point).
 
 use super::dist;
+// Resampling lives with the other polyline measures; kept reachable here for callers.
+pub use super::polyline::resample_closed;
 
 /// Distance from `p` to the segment `a`–`b`.
 fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -77,39 +79,6 @@ pub fn smooth_closed(p: &[[f64; 2]], iterations: usize) -> Vec<[f64; 2]> {
         }
     }
     cur
-}
-
-/// Points evenly spaced by arc length along a closed polyline, about `spacing` apart
-/// (at least 3), starting at point 0.
-pub fn resample_closed(p: &[[f64; 2]], spacing: f64) -> Vec<[f64; 2]> {
-    let n = p.len();
-    if n < 2 || spacing <= 0.0 {
-        return p.to_vec();
-    }
-    let mut cum = Vec::with_capacity(n + 1);
-    cum.push(0.0);
-    for i in 0..n {
-        cum.push(cum[i] + dist(p[i], p[(i + 1) % n]));
-    }
-    let total = cum[n];
-    if total <= 0.0 {
-        return p.to_vec();
-    }
-    let m = ((total / spacing).round() as usize).max(3);
-    let step = total / m as f64;
-    let mut out = Vec::with_capacity(m);
-    let mut seg = 0;
-    for k in 0..m {
-        let s = k as f64 * step;
-        while seg + 1 < n && cum[seg + 1] < s {
-            seg += 1;
-        }
-        let (a, b) = (p[seg], p[(seg + 1) % n]);
-        let len = cum[seg + 1] - cum[seg];
-        let t = if len > 0.0 { (s - cum[seg]) / len } else { 0.0 };
-        out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
-    }
-    out
 }
 
 /// Largest distance from any point of `fine` to the closed polyline `coarse` (for

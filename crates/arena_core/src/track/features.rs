@@ -18,6 +18,7 @@
 
 use crate::error::{ArenaError, Result};
 use crate::geometry::dist;
+use crate::geometry::polyline::resample_closed;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -76,36 +77,6 @@ impl CurveAnalysis {
     pub fn order(&self) -> Vec<FeatureKind> {
         self.features.iter().map(|f| f.kind).collect()
     }
-}
-
-/// Uniformly resample a closed polyline (no repeated end point) at spacing ≈ `ds`.
-pub fn resample_closed(p: &[[f64; 2]], ds: f64) -> Vec<[f64; 2]> {
-    let n = p.len();
-    let total = crate::geometry::polyline_length(p, true);
-    if n < 3 || total <= 0.0 {
-        return p.to_vec();
-    }
-    let m = ((total / ds).round() as usize).max(8);
-    let step = total / m as f64;
-    let mut out = Vec::with_capacity(m);
-    let (mut seg, mut seg_start) = (0usize, 0.0f64);
-    let mut seg_len = dist(p[0], p[1 % n]);
-    for k in 0..m {
-        let s = k as f64 * step;
-        while s > seg_start + seg_len && seg < n - 1 {
-            seg_start += seg_len;
-            seg += 1;
-            seg_len = dist(p[seg], p[(seg + 1) % n]);
-        }
-        let t = if seg_len > 0.0 {
-            ((s - seg_start) / seg_len).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let (a, b) = (p[seg], p[(seg + 1) % n]);
-        out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
-    }
-    out
 }
 
 /// Periodic moving average with half-window `h` samples.
