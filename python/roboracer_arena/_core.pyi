@@ -42,6 +42,7 @@ __all__ = [
     "config_defaults",
     "check_config",
     "measure_map",
+    "RasterMeasurement",
     "Simulator",
     "stadium_track",
     "STATE_FIELDS",
@@ -158,12 +159,38 @@ def build_geometry(
     """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
 
 # --- track (track.rs): raster measurement for the library ---------------------------
+@final
+class RasterMeasurement:
+    """What :func:`measure_map` found (read-only)."""
+
+    @property
+    def corridor_components(self) -> int:
+        """Free components holding at least 0.5 % of the largest one's cells."""
+    @property
+    def infields(self) -> int:
+        """Enclosed regions inside the corridor (1 for a plain ring)."""
+    @property
+    def mean_width_m(self) -> float:
+        """Mean free width of the corridor (m)."""
+    @property
+    def extent_m(self) -> tuple[float, float]:
+        """Extent (x, y) of the known (walls and free) cells (m)."""
+    @property
+    def centreline_length_m(self) -> float:
+        """Length of the closed medial centreline (m)."""
+    @property
+    def centreline(self) -> npt.NDArray[np.float64]:
+        """The closed medial centreline, counter-clockwise, map metres (N, 2)."""
+    @property
+    def widths(self) -> npt.NDArray[np.float64]:
+        """Local free width at each centreline vertex (N,)."""
+
 def measure_map(
     data: npt.NDArray[np.uint8],
     resolution: float,
     origin: tuple[float, float, float],
-) -> tuple[str, npt.NDArray[np.float64], npt.NDArray[np.float64]]:
-    """(info_json, closed CCW medial centreline (N, 2), local free widths (N,)); CorridorError if no loop."""
+) -> RasterMeasurement:
+    """Measure a trinary grid as the validator does; CorridorError if it holds no closed corridor."""
 
 # --- sim (batched vehicle simulation) -------------------------------------------------
 STATE_FIELDS: tuple[str, ...]

@@ -3,8 +3,6 @@ lengths from the core toolbox, see tests/test_polyline.py)."""
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
 
@@ -63,11 +61,11 @@ def test_near_touching_sections_are_narrowed_and_stay_apart():
 def _infields(xy: np.ndarray, widths: np.ndarray) -> int:
     data, origin = _core.rasterise_centreline(xy, widths, RES, WALL, 0.3)
     try:
-        info = json.loads(_core.measure_map(data, RES, origin)[0])
+        mm = _core.measure_map(data, RES, origin)
     except CorridorError:
         return 0
-    assert info["corridor_components"] == 1
-    return info["infields"]
+    assert mm.corridor_components == 1
+    return mm.infields
 
 
 def test_narrowing_never_goes_below_sixty_percent():
@@ -108,6 +106,8 @@ def test_measure_map_reads_any_memory_layout():
     wide[:, ::2] = a
     for view in (np.asfortranarray(a), wide[:, ::2]):
         got = _core.measure_map(view, 0.05, (0.0, 0.0, 0.0))
-        assert got[0] == ref[0]
-        assert np.array_equal(got[1], ref[1]) and np.array_equal(got[2], ref[2])
-    assert json.loads(ref[0])["infields"] == 1
+        for k in ("corridor_components", "infields", "mean_width_m", "extent_m", "centreline_length_m"):
+            assert getattr(got, k) == getattr(ref, k), k
+        assert np.array_equal(got.centreline, ref.centreline) and np.array_equal(got.widths, ref.widths)
+    assert ref.infields == 1 and ref.centreline.shape == (len(ref.widths), 2)
+    assert ref.extent_m == pytest.approx((2.5, 1.5)) and ref.mean_width_m > 0

@@ -93,41 +93,51 @@ fn build_geometry<'py>(
     Ok(d)
 }
 
+/// What `measure_map` found on a trinary grid, as the validator measures it: plain
+/// numbers and arrays (read-only attributes).
+#[pyclass(module = "roboracer_arena._core", frozen, get_all)]
+pub struct RasterMeasurement {
+    /// Free components holding at least 0.5 % of the largest one's cells.
+    corridor_components: usize,
+    /// Enclosed regions inside the corridor (1 for a plain ring).
+    infields: usize,
+    /// Mean free width of the corridor (m).
+    mean_width_m: f64,
+    /// Extent (x, y) of the known (walls and free) cells (m).
+    extent_m: (f64, f64),
+    /// Length of the closed medial centreline (m).
+    centreline_length_m: f64,
+    /// The closed medial centreline, counter-clockwise, map metres (N, 2).
+    centreline: Py<PyArray2<f64>>,
+    /// Local free width at each centreline vertex (N,).
+    widths: Py<PyArray1<f64>>,
+}
+
 /// Measure a trinary grid (254 free / 0 occupied / 205 unknown) as the validator does.
-/// Returns ``(info_json, centreline (N, 2), widths (N,))``: the corridor/infield counts,
-/// the mean free width and the known extent in ``info_json``; the closed medial
-/// centreline (counter-clockwise, map metres) and the local free width at each vertex.
 /// Raises ``CorridorError`` when the grid has no closed corridor.
 #[pyfunction]
-#[allow(clippy::type_complexity)]
 fn measure_map<'py>(
     py: Python<'py>,
     data: PyReadonlyArray2<'py, u8>,
     resolution: f64,
     origin: (f64, f64, f64),
-) -> PyResult<(String, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
+) -> PyResult<RasterMeasurement> {
     let grid = crate::grid::grid_from_py(py, &data, resolution, origin)?;
     let t = boundary::call(py, "measure_map", move || metrics::measure_raster(&grid))?;
-    let length = arena_core::geometry::polyline_length(&t.centreline, true);
-    let info = serde_json::json!({
-        "corridor_components": t.corridor_components,
-        "infields": t.infields,
-        "mean_width_m": t.mean_width_m,
-        "extent_m": t.extent_m,
-        "centreline_length_m": length,
-    });
-    let flat: Vec<f64> = t.centreline.iter().flat_map(|p| [p[0], p[1]]).collect();
-    let line = numpy::ndarray::Array2::from_shape_vec((t.centreline.len(), 2), flat)
-        .expect("shape matches");
-    Ok((
-        info.to_string(),
-        PyArray2::from_owned_array(py, line),
-        PyArray1::from_vec(py, t.widths),
-    ))
+    Ok(RasterMeasurement {
+        corridor_components: t.corridor_components,
+        infields: t.infields,
+        mean_width_m: t.mean_width_m,
+        extent_m: (t.extent_m[0], t.extent_m[1]),
+        centreline_length_m: arena_core::geometry::polyline_length(&t.centreline, true),
+        centreline: line_to_py(py, &t.centreline).unbind(),
+        widths: PyArray1::from_vec(py, t.widths).unbind(),
+    })
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(build_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(measure_map, m)?)?;
+    m.add_class::<RasterMeasurement>()?;
     Ok(())
 }

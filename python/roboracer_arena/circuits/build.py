@@ -68,14 +68,13 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
     grade_separated = len(crossing_points) > 0
     measured: dict = {}
     try:
-        info_json, line, local_w = _core.measure_map(data, cfg.resolution, origin)
-        info = json.loads(info_json)
+        mm = _core.measure_map(data, cfg.resolution, origin)
         measured = {
-            "corridor_components": info["corridor_components"],
-            "infields": info["infields"],
-            "raster_centreline_m": round(info["centreline_length_m"], 4),
-            "mean_width_m": round(info["mean_width_m"], 4),
-            "min_width_m": round(float(np.percentile(local_w, 0.5)), 4),
+            "corridor_components": mm.corridor_components,
+            "infields": mm.infields,
+            "raster_centreline_m": round(mm.centreline_length_m, 4),
+            "mean_width_m": round(mm.mean_width_m, 4),
+            "min_width_m": round(float(np.percentile(mm.widths, 0.5)), 4),
         }
     except CorridorError as e:
         measured = {"corridor_components": 0, "infields": 0, "error": str(e)}

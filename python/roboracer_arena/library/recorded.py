@@ -10,7 +10,6 @@ statistics come from the raster measurement shared with the circuits (``_core.me
 from __future__ import annotations
 
 import hashlib
-import json
 from pathlib import Path
 
 import numpy as np
@@ -100,29 +99,26 @@ def assess_map(sources: Path, yaml_path: Path) -> dict:
         rec.update(usable=False, reason=why)
         return rec
     try:
-        info_json, line, widths = _core.measure_map(iso, float(m.resolution), m.origin)
+        mm = _core.measure_map(iso, float(m.resolution), m.origin)
     except ArenaError as e:
         rec.update(usable=False, reason=f"no closed corridor: {e}")
         return rec
-    info = json.loads(info_json)
-    lap = float(info["centreline_length_m"])
+    lap = mm.centreline_length_m
     rec.update(
         lap_length_m=round(lap, 3),
-        width_mean_m=round(float(info["mean_width_m"]), 3),
-        width_min_m=round(float(np.percentile(widths, 0.5)), 3),
-        min_radius_m=round(_core.min_radius(line, MIN_RADIUS_SPAN_M), 3),
-        infields=int(info["infields"]),
+        width_mean_m=round(mm.mean_width_m, 3),
+        width_min_m=round(float(np.percentile(mm.widths, 0.5)), 3),
+        min_radius_m=round(_core.min_radius(mm.centreline, MIN_RADIUS_SPAN_M), 3),
+        infields=mm.infields,
     )
     if lap < MIN_LAP_M:
         rec.update(usable=False, reason=f"corridor loop only {lap:.1f} m long (< {MIN_LAP_M} m)")
-    elif info["mean_width_m"] < MIN_MEAN_WIDTH_M:
-        rec.update(
-            usable=False, reason=f"corridor {info['mean_width_m']:.2f} m wide on average (< {MIN_MEAN_WIDTH_M} m)"
-        )
-    elif info["mean_width_m"] > MAX_MEAN_WIDTH_M:
+    elif mm.mean_width_m < MIN_MEAN_WIDTH_M:
+        rec.update(usable=False, reason=f"corridor {mm.mean_width_m:.2f} m wide on average (< {MIN_MEAN_WIDTH_M} m)")
+    elif mm.mean_width_m > MAX_MEAN_WIDTH_M:
         rec.update(
             usable=False,
-            reason=f"open area, not a corridor: {info['mean_width_m']:.1f} m wide on average "
+            reason=f"open area, not a corridor: {mm.mean_width_m:.1f} m wide on average "
             f"(> {MAX_MEAN_WIDTH_M} m) around a {lap:.1f} m loop",
         )
     else:

@@ -10,7 +10,6 @@ packages are not installed they report ``not run`` with the reason, never a pass
 
 from __future__ import annotations
 
-import json
 import tempfile
 import time
 from dataclasses import dataclass, field
@@ -79,22 +78,22 @@ def check_ring(entry: dict, m, yaml_path: Path) -> Check:
     if iso is None:
         return Check(FAIL, why)
     try:
-        info = json.loads(_core.measure_map(iso, float(m.resolution), tuple(m.origin))[0])
+        mm = _core.measure_map(iso, float(m.resolution), tuple(m.origin))
     except ArenaError as e:
         return Check(FAIL, f"no closed corridor: {e}")
-    lap = info["centreline_length_m"]
+    lap = mm.centreline_length_m
     if entry.get("grade_separated"):
         return Check(
             PASS,
-            f"one corridor with {info['infields']} enclosed regions (grade-separated crossing; "
+            f"one corridor with {mm.infields} enclosed regions (grade-separated crossing; "
             f"lap length not comparable on the planar raster)",
         )
-    if entry["kind"] != "recorded" and info["infields"] != 1:
-        return Check(FAIL, f"{info['infields']} enclosed regions, expected 1")
+    if entry["kind"] != "recorded" and mm.infields != 1:
+        return Check(FAIL, f"{mm.infields} enclosed regions, expected 1")
     ref = entry.get("lap_length_m")
     if ref and abs(lap - ref) / ref > LAP_TOLERANCE:
         return Check(FAIL, f"raster lap {lap:.2f} m vs catalog {ref:.2f} m (> {100 * LAP_TOLERANCE:g} %)")
-    return Check(PASS, f"one closed ring, raster lap {lap:.2f} m, mean width {info['mean_width_m']:.2f} m")
+    return Check(PASS, f"one closed ring, raster lap {lap:.2f} m, mean width {mm.mean_width_m:.2f} m")
 
 
 def check_usd(entry: dict, yaml_path: Path) -> Check:

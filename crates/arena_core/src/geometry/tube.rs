@@ -45,12 +45,8 @@ pub fn closed_tube_st(path: &[[f64; 2]], segments: usize) -> (Vec<[f32; 2]>, Vec
     }
     let cols = s + 1; // seam column
     let mut st = Vec::with_capacity((n + 1) * cols);
-    let mut u = 0.0;
-    for i in 0..=n {
-        if i > 0 {
-            u += dist(path[i - 1], path[i % n]);
-        }
-        st.extend((0..cols).map(|k| [u as f32, k as f32 / s as f32]));
+    for u in super::polyline::cumulative_length(path, true) {
+        st.extend((0..cols).map(|k| [u as f32, k as f32 / s as f32])); // n + 1 rows: seam
     }
     let mut idx = Vec::with_capacity(6 * n * s);
     for i in 0..n {
