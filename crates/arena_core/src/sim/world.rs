@@ -115,8 +115,9 @@ impl World {
         // two or more wall triangles) to the deepest point plus the points within this
         // distance: with a shorter one, a flat-on hit kept one speculative corner and the
         // whole impact went through it, spinning the car at up to 10 rad/s (issue 13).
-        // The chassis' ground contacts this brings in are speculative (30 mm away) and
-        // carry no impulse.
+        // It brings no ground contacts to a car driving level 30 mm above the ground:
+        // with soft CCD rapier drops a pair whose tight boxes, one swept over the step,
+        // do not meet (measured: same cost per pipeline step as with 5 mm).
         pw.integration_parameters.normalized_prediction_distance =
             PREDICTION_DISTANCE.max(model.contact_lookahead(dt) as f32);
         // Rapier re-uses a contact-free pair's (empty) manifold until it has moved the
