@@ -191,7 +191,7 @@ fn head_on(walls: &[Vec<[f64; 2]>], half: f64, y: f64, lead: f64, dt: f64) -> (f
 /// wall (across the triangles' internal diagonals) and every timing within a step, at
 /// the default and the largest internal time step.
 ///
-/// Issue 13, defect 3: 118 of the 140 cases at dt = 5 ms spun at up to 11 rad/s. Rapier
+/// Issue 13, defect 3: 118 of the 280 cases at dt = 5 ms spun at up to 11 rad/s. Rapier
 /// reduced the chassis face's contact patch on two or more wall triangles to its deepest
 /// speculative corner (it keeps only points within the world's prediction distance,
 /// 5 mm, while soft CCD predicts 5 cm ahead), so the whole impact impulse went through

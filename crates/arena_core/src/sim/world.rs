@@ -117,7 +117,7 @@ impl World {
         // whole impact went through it, spinning the car at up to 10 rad/s (issue 13).
         // It brings no ground contacts to a car driving level 30 mm above the ground:
         // with soft CCD rapier drops a pair whose tight boxes, one swept over the step,
-        // do not meet (measured: same cost per pipeline step as with 5 mm).
+        // do not meet. Crash-heavy pipeline steps cost about 25 % more (BENCHMARKS.md).
         pw.integration_parameters.normalized_prediction_distance =
             PREDICTION_DISTANCE.max(model.contact_lookahead(dt) as f32);
         // Rapier re-uses a contact-free pair's (empty) manifold until it has moved the
