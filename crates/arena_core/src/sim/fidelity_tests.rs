@@ -188,8 +188,9 @@ fn head_on(walls: &[Vec<[f64; 2]>], half: f64, y: f64, lead: f64, dt: f64) -> (f
 }
 
 /// A head-on hit at 7 m/s keeps the car straight at every impact position along the
-/// wall (across the triangles' internal diagonals) and every timing within a step, at
-/// the default and the largest internal time step.
+/// wall (across the triangles' internal diagonals; walls of 2 triangles per side and
+/// subdivided every 31 and 7 cm) and every timing within a step, at dt 2.5 ms, the
+/// default and the largest internal time step.
 ///
 /// Issue 13, defect 3: 118 of the 280 cases at dt = 5 ms spun at up to 11 rad/s. Rapier
 /// reduced the chassis face's contact patch on two or more wall triangles to its deepest
@@ -203,10 +204,11 @@ fn head_on_wall_hit_does_not_spin() {
     let half = 10.0;
     let coarse = vec![square_room(half)];
     let fine = vec![subdivide(&square_room(half), 0.07)];
+    let mid = vec![subdivide(&square_room(half), 0.31)];
     let mut fails = Vec::new();
     let mut worst = (0.0f64, 0.0f64);
-    for dt in [SimParams::default().physics.dt, MAX_INTERNAL_DT] {
-        for (name, walls) in [("coarse", &coarse), ("fine", &fine)] {
+    for dt in [0.0025, SimParams::default().physics.dt, MAX_INTERNAL_DT] {
+        for (name, walls) in [("coarse", &coarse), ("fine", &fine), ("mid", &mid)] {
             for k in 0..35 {
                 let y = -8.5 + 0.5 * k as f64;
                 for q in 0..4 {
