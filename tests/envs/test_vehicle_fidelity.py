@@ -117,6 +117,11 @@ def test_quasi_static_model_reproduces_linear_theory():
         turn = fidelity_limit.steady_turn(v, d)
         assert turn is not None and max(turn.friction_use) < 0.5
         assert turn.yaw_rate == pytest.approx(fidelity.linear_theory(v, d), rel=0.01)
+    with pytest.raises(InvalidArgumentError, match="v must be"):
+        fidelity_limit.steady_turn(0.0, 0.1)
+    # Too little friction to hold speed: every wheel would spin up.
+    with pytest.raises(InvalidArgumentError, match="no steady turn"):
+        fidelity_limit.cornering_limit(6.0, VehicleConfig(tyre_friction=0.001))
 
 
 def test_steady_cornering_peak_is_the_quasi_static_limit():

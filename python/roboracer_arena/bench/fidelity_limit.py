@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
+from ..errors import InvalidArgumentError
 from ..sim_config import VehicleConfig
 
 AIR_DENSITY = 1.2  # kg/m^3, as in the simulator
@@ -132,6 +133,8 @@ def steady_turn(
     `steer` (rad), or None if the car has none there (a wheel would spin up, or the
     equations have no solution). `equal_split=False` gives every wheel drive force in
     proportion to its load instead of a quarter (ideal torque distribution)."""
+    if not (math.isfinite(v) and v > 0.0 and math.isfinite(steer)):
+        raise InvalidArgumentError(f"steady_turn: v must be a finite speed > 0 m/s and steer finite, got {v}, {steer}")
     vc = vc or VehicleConfig()
     model = _Model(vc, g, v, steer, equal_split)
     k = (1.0 / vc.cornering_stiffness_front - 1.0 / vc.cornering_stiffness_rear) / g
@@ -162,7 +165,8 @@ def steady_turn(
 def cornering_limit(v: float, vc: VehicleConfig | None = None, g: float = 9.81, equal_split: bool = True) -> SteadyTurn:
     """The steady turn of largest lateral acceleration at speed `v`: the best steering
     angle up to `max_steer` (the lateral force falls off past the front's saturation,
-    as the saturated front tyres' drag grows with their slip angle)."""
+    as the saturated front tyres' drag grows with their slip angle). Raises
+    InvalidArgumentError if the car has no steady turn at `v` at all."""
     vc = vc or VehicleConfig()
 
     def neg_acc(steer: float) -> float:
@@ -177,5 +181,8 @@ def cornering_limit(v: float, vc: VehicleConfig | None = None, g: float = 9.81, 
     turn = steady_turn(v, float(opt.x), vc, g, equal_split)
     if turn is None:  # the bounded search ended where no steady state exists
         turn = steady_turn(v, float(best), vc, g, equal_split)
-    assert turn is not None, f"no steady turn at {v} m/s"
+    if turn is None:
+        raise InvalidArgumentError(
+            f"cornering_limit: this vehicle has no steady turn at {v} m/s (a wheel spins up at every steering angle)"
+        )
     return turn
