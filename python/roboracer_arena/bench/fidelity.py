@@ -12,7 +12,10 @@ All runs use one car in an empty 300 m hall (no walls reached), the default
 * steady cornering at v = 1..6 m/s and several steering angles: yaw rate and lateral
   acceleration against linear single-track theory ``r = v delta / (L + K v^2)`` with
   ``K = (1/C_Sf - 1/C_Sr) / g`` (cornering stiffness per unit load), and against the
-  friction limit ``a <= mu g``;
+  friction limit ``a <= mu g``, and against the quasi-static steady state of the same
+  vehicle model solved from its equations (:mod:`roboracer_arena.bench.fidelity_limit`),
+  whose best steering angle gives the honest friction limit of this car (below mu g: the
+  drive force that holds speed against the saturated tyres' drag shares their friction);
 * whether the recorded envelope (6.66 m/s; 5.46 rad/s yaw rate) is reachable without
   sliding, and the largest transient yaw rate of a full-lock step steer;
 * dt sensitivity of a steady turn and of the braking stop.
@@ -31,6 +34,7 @@ import numpy as np
 from .. import _core
 from ..fileio import atomic_write_text
 from ..sim_config import PhysicsConfig, SimConfig, VehicleConfig
+from . import fidelity_limit
 from .f1tenth_st import GYM_PARAMS, SingleTrack
 
 HALL = 150.0
@@ -189,6 +193,7 @@ def run(quick: bool = False) -> dict[str, Any]:
         for d in STEERS:
             ours, gym = steady_turn(v, d), gym_turn(v, d)
             lin = linear_theory(v, d, vc)
+            qs = fidelity_limit.steady_turn(ours["speed"], d, vc)
             turns.append(
                 {
                     "v": v,
@@ -198,6 +203,7 @@ def run(quick: bool = False) -> dict[str, Any]:
                     "linear_yaw_rate": lin,
                     "limit_lat_acc": mu_g,
                     "linear_saturated": lin * v > mu_g,
+                    "qs_lat_acc": qs.lat_acc if qs else None,
                     "gym_yaw_rate": gym["yaw_rate"],
                     "gym_lat_acc": gym["lat_acc"],
                 }
@@ -212,6 +218,7 @@ def run(quick: bool = False) -> dict[str, Any]:
         for dt in dts
     ]
     return {
+        "limit": [cornering_limit(v, turns, vc) for v in speeds if v >= 4.0],
         "straight": straight_line(),
         "gym_straight": gym_straight(),
         "braking": braking(),
@@ -222,6 +229,22 @@ def run(quick: bool = False) -> dict[str, Any]:
         "dt_sensitivity": sens,
         "mu_g": mu_g,
         "gym_params": GYM_PARAMS,
+    }
+
+
+def cornering_limit(v: float, turns: list[dict[str, Any]], vc: VehicleConfig) -> dict[str, float]:
+    """At speed `v`: the largest steady lateral acceleration among our grid's turns, the
+    quasi-static limit of the same model (best steering angle), and that limit if the
+    drive force were shared in proportion to the wheel loads instead of a quarter each."""
+    qs = fidelity_limit.cornering_limit(v, vc)
+    return {
+        "v": v,
+        "ours_peak": max(t["lat_acc"] for t in turns if t["v"] == v),
+        "qs_limit": qs.lat_acc,
+        "qs_steer": qs.steer,
+        "qs_drive_force": qs.drive_force,
+        "qs_inner_front_load": qs.loads[0],
+        "qs_load_split_limit": fidelity_limit.cornering_limit(v, vc, equal_split=False).lat_acc,
     }
 
 
@@ -243,7 +266,7 @@ def print_table(res: dict[str, Any]) -> None:
     print(
         f"steady cornering (last 1 s of 6 s); linear theory r = v d / (L + K v^2); friction limit mu g = {res['mu_g']:.2f} m/s^2"
     )
-    head = f"{'v':>4} {'steer':>6} {'r ours':>8} {'r linear':>9} {'ours/lin':>9} {'a ours':>7} {'a/mu g':>7} {'r gym':>7} {'a gym':>7}"
+    head = f"{'v':>4} {'steer':>6} {'r ours':>8} {'r linear':>9} {'ours/lin':>9} {'a ours':>7} {'a/mu g':>7} {'a QS':>7} {'r gym':>7} {'a gym':>7}"
     print(head)
     print("-" * len(head))
     for t in res["turns"]:
@@ -251,7 +274,20 @@ def print_table(res: dict[str, Any]) -> None:
         sat = " (lin > mu g)" if t["linear_saturated"] else ""
         print(
             f"{t['v']:4.1f} {t['steer']:6.3f} {t['yaw_rate']:8.3f} {t['linear_yaw_rate']:9.3f} {ratio:9.3f} "
-            f"{t['lat_acc']:7.2f} {t['lat_acc'] / t['limit_lat_acc']:7.3f} {t['gym_yaw_rate']:7.3f} {t['gym_lat_acc']:7.2f}{sat}"
+            f"{t['lat_acc']:7.2f} {t['lat_acc'] / t['limit_lat_acc']:7.3f} {_f(t['qs_lat_acc']):>7} "
+            f"{t['gym_yaw_rate']:7.3f} {t['gym_lat_acc']:7.2f}{sat}"
+        )
+    print("a QS: the quasi-static steady state of our model at our measured speed (bench/fidelity_limit.py)")
+    print()
+    print("friction limit (quasi-static, best steering angle) vs mu g; why it is below mu g:")
+    for lim in res["limit"]:
+        mu_g = res["mu_g"]
+        print(
+            f"  {lim['v']:g} m/s: ours peak {lim['ours_peak']:.2f} m/s^2, QS limit {lim['qs_limit']:.2f} "
+            f"({lim['qs_limit'] / mu_g:.3f} mu g) at steer {lim['qs_steer']:.3f}; holding speed takes "
+            f"{lim['qs_drive_force']:.1f} N of drive, a quarter per wheel, on an inner front wheel loaded "
+            f"{lim['qs_inner_front_load']:.1f} N; drive shared by load instead: {lim['qs_load_split_limit']:.2f} "
+            f"({lim['qs_load_split_limit'] / mu_g:.3f} mu g)"
         )
     e = res["envelope"]
     print()

@@ -226,12 +226,18 @@ impl VehicleModel {
         )
     }
 
+    /// How far ahead (m) contacts are predicted for a step of `dt`: one step at top speed
+    /// with a 50 % margin.
+    pub fn contact_lookahead(&self, dt: f64) -> f64 {
+        self.p.max_speed.max(-self.p.min_speed) * dt * 1.5
+    }
+
     /// The chassis rigid body at rest at `(x, y, yaw)` (CoM at com_height, level).
     /// Soft CCD (predictive contacts along the path) covers one step at top speed, so a
     /// car meets a wall at the step it reaches it instead of one step into it.
     pub fn body(&self, pose: [f64; 3], ccd: bool, dt: f64) -> RigidBody {
         RigidBodyBuilder::dynamic()
-            .soft_ccd_prediction((self.p.max_speed.max(-self.p.min_speed) * dt * 1.5) as f32)
+            .soft_ccd_prediction(self.contact_lookahead(dt) as f32)
             .pose(self.spawn_pose(pose))
             .additional_mass_properties(self.mass_properties(self.p.mass))
             .can_sleep(false)

@@ -42,7 +42,8 @@ pub const EVENT_FAULT: u8 = 8;
 /// Half side of the ground cuboid (m): larger than any track.
 const GROUND_HALF_SIZE: f32 = 5000.0;
 
-/// Contact prediction distance (m); well below the chassis ground clearance.
+/// Contact margin (m) of the free-step shortcut and rapier's window for re-using a
+/// pair's contacts while it barely moves; well below the chassis ground clearance.
 const PREDICTION_DISTANCE: f32 = 0.005;
 
 struct Car {
@@ -109,9 +110,21 @@ impl World {
         pw.gravity = Vector::new(0.0, 0.0, -(physics.gravity as f32));
         pw.integration_parameters.dt = dt as f32;
         pw.integration_parameters.num_solver_iterations = physics.solver_iterations;
-        // Speculative-contact margin (rapier's default is 2 cm, as large as the chassis'
-        // ground clearance, which kept a chassis–ground contact in every step).
-        pw.integration_parameters.normalized_prediction_distance = PREDICTION_DISTANCE;
+        // Speculative contacts reach as far as the chassis' soft CCD (one step at top
+        // speed). Rapier reduces a contact patch of more than 4 points (a chassis face on
+        // two or more wall triangles) to the deepest point plus the points within this
+        // distance: with a shorter one, a flat-on hit kept one speculative corner and the
+        // whole impact went through it, spinning the car at up to 10 rad/s (issue 13).
+        // It brings no ground contacts to a car driving level 30 mm above the ground:
+        // with soft CCD rapier drops a pair whose tight boxes, one swept over the step,
+        // do not meet. Crash-heavy pipeline steps cost about 25 % more (BENCHMARKS.md).
+        pw.integration_parameters.normalized_prediction_distance =
+            PREDICTION_DISTANCE.max(model.contact_lookahead(dt) as f32);
+        // Rapier re-uses a contact-free pair's (empty) manifold until it has moved the
+        // prediction distance capped by this window; its 5 cm default let a car at 7 m/s
+        // cross a wall's first 3 cm unseen once the prediction distance is that long.
+        pw.integration_parameters
+            .normalized_contact_recycle_distance = PREDICTION_DISTANCE;
         // Ground: a big cuboid with its top face at z = 0 (not a half-space, whose
         // unbounded AABB would keep a chassis–ground contact pair alive in every step;
         // the chassis box rides above the ground on its wheels, so normally no pair exists).
@@ -327,8 +340,11 @@ impl World {
 
     /// True when no chassis can touch anything (walls, other chassis, ground) during the
     /// next step: every chassis box, grown by twice its travel in one step plus the
-    /// contact prediction distance, is clear of the wall segments (2D: the walls are
-    /// vertical extrusions of them), of the other boxes' bounding circles and of the ground.
+    /// contact margin, is clear of the wall segments (2D: the walls are vertical
+    /// extrusions of them), of the other boxes' bounding circles and of the ground.
+    /// Rapier may hold speculative contacts farther out (its prediction distance covers a
+    /// step at top speed), but one acts only when the step's approach closes its gap, so
+    /// skipping them is exact.
     fn free_of_contacts(&mut self, model: &VehicleModel) -> bool {
         let [hx, hy, hz] = model.half_extents;
         let [bx, by, bz] = model.box_centre;
