@@ -6,15 +6,9 @@ from pathlib import Path
 
 import pytest
 
+from shared_data import sources_dir
+
 REPO = Path(__file__).resolve().parent.parent
-
-
-def sources_dir() -> Path:
-    """The public track data: what the package resolves (``roboracer_arena.paths``), else
-    ../shared/track-sources beside this checkout (the tests may run against an installed wheel)."""
-    from roboracer_arena.paths import default_sources_dir
-
-    return default_sources_dir() or (REPO.parent / "shared" / "track-sources")
 
 
 @pytest.fixture(scope="session")

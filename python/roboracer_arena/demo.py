@@ -42,8 +42,8 @@ def _generate(request: str, seed: int, out: Path) -> Path | None:
     if not isinstance(outcome, Acceptance):
         return None
     paths = write_outputs(outcome, out / "track")
-    for c in outcome.report["checks"]:
-        print(f"  {'ok ' if c['passed'] else 'BAD'} {c['name']:<17} {c['measured']:<34} {c['bound']}")
+    for c in outcome.report.checks:
+        print(f"  {c.line()}")
     return Path(paths["map_yaml"])
 
 

@@ -9,10 +9,10 @@ import re
 
 import pytest
 
-from conftest import sources_dir  # tests/ is on sys.path (rootdir conftest)
 from roboracer_arena import build_environment
 from roboracer_arena.errors import ArenaError, CorridorError, MapFormatError
 from roboracer_arena.usd import validation_errors
+from shared_data import sources_dir  # tests/ is on sys.path (rootdir conftest)
 
 NO_LOOP = r"no closed corridor: no free region encloses an infield"
 LEAK = r"no closed corridor: the walls leak .* reaches the map border \(\d+ border cells, e\.g\. at \(-?\d+\.\d+, -?\d+\.\d+\) m\)"

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from conftest import sources_dir  # tests/ is on sys.path (rootdir conftest)
 from roboracer_arena import load_map
 from roboracer_arena.bench import build as bench
+from shared_data import sources_dir  # tests/ is on sys.path (rootdir conftest)
 
 
 def test_paper_table_and_interpolation():

@@ -133,4 +133,4 @@ def test_any_spec_gives_a_typed_outcome_or_a_typed_error(lap, width, hx, hy, h, 
         return
     assert isinstance(out, (Acceptance, Rejection, GenerationFailure))
     if isinstance(out, Acceptance):
-        assert out.report["valid"]
+        assert out.report.valid

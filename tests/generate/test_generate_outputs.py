@@ -51,7 +51,7 @@ def test_direction_is_honoured(tmp_path, direction, sign):
 def test_feature_order_is_honoured_in_the_driving_direction(direction):
     order = ["hairpin", "hairpin", "chicane", "sweeper"]
     spec = TrackSpec(lap_length_m=60, hairpins=2, chicanes=1, sweepers=1, feature_order=order, direction=direction)
-    got = [f["kind"] for f in _accept(spec).report["features"]]
+    got = [f.kind for f in _accept(spec).report.features]
     rotations = [order[i:] + order[:i] for i in range(len(order))]
     assert got in rotations
 
@@ -78,14 +78,14 @@ def test_every_check_reports_measured_bound_and_verdict(tmp_path):
     assert json.loads(paths["spec_json"].read_text()) == SMALL.model_dump()
     # The written map loads back and re-validates to the same verdict.
     again, _ = validate_map(load_map(paths["map_yaml"]), SMALL)
-    assert again["valid"] and [c["measured"] for c in again["checks"]] == [c["measured"] for c in report["checks"]]
+    assert again.valid and [c.measured for c in again.checks] == [c["measured"] for c in report["checks"]]
 
 
 def test_validator_fails_a_map_against_the_wrong_spec():
     acc = _accept(SMALL)
     report, _ = validate_map(acc.map, SMALL.model_copy(update={"lap_length_m": 50.0, "hairpins": 2}))
-    failed = {c["name"] for c in report["checks"] if not c["passed"]}
-    assert not report["valid"] and {"lap_length", "hairpins"} <= failed
+    failed = {c.name for c in report.failed()}
+    assert not report.valid and {"lap_length", "hairpins"} <= failed
 
 
 @pytest.mark.parametrize("resolution", [0.025, 0.1])

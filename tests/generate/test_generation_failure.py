@@ -11,7 +11,7 @@ IMPOSSIBLE = TrackSpec(name="twelve-hairpins-40m", lap_length_m=40, hairpins=12,
 
 
 def test_impossible_counts_pass_the_screen_then_fail_generation():
-    assert screen(IMPOSSIBLE)["passed"]
+    assert screen(IMPOSSIBLE).passed
     out = generate_track(IMPOSSIBLE, seed=0)
     assert isinstance(out, GenerationFailure)
     assert out.candidates_tried == 800
@@ -40,6 +40,6 @@ def test_baselines_never_return_an_invalid_map():
         out = generate_track(spec, seed=seed, constructor="random")
         if isinstance(out, GenerationFailure):
             assert out.candidates_tried == 1 and out.reasons
-            assert out.built_invalid_report is None or not out.built_invalid_report["valid"]
+            assert out.built_invalid_report is None or not out.built_invalid_report.valid
         else:
-            assert out.report["valid"]
+            assert out.report.valid

@@ -19,7 +19,7 @@ def _bench_specs() -> list[TrackSpec]:
     return [TrackSpec.from_dict(json.loads(s)) for s in lines if s.strip()]
 
 
-@pytest.mark.parametrize("spec", [s for s in _bench_specs() if screen(s)["passed"]], ids=lambda s: s.name)
+@pytest.mark.parametrize("spec", [s for s in _bench_specs() if screen(s).passed], ids=lambda s: s.name)
 def test_bench_specs_accepted_maps_remeasure(spec, tmp_path):
     out = generate_track(spec, seed=0)
     assert isinstance(out, Acceptance), out.summary()
@@ -46,10 +46,10 @@ specs = st.builds(
 )
 @given(spec=specs, seed=st.integers(0, 2**32 - 1))
 def test_every_accepted_map_passes_independent_remeasurement(spec, seed, tmp_path_factory):
-    assume(screen(spec)["passed"])
+    assume(screen(spec).passed)
     out = generate_track(spec, seed=seed)
     if isinstance(out, GenerationFailure):
         assert out.candidates_tried == 800 and sum(out.reasons.values()) == 800
         return
-    assert isinstance(out, Acceptance) and out.report["valid"]
+    assert isinstance(out, Acceptance) and out.report.valid
     assert_independently_valid(out, tmp_path_factory.mktemp("map"))

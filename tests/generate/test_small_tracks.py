@@ -17,7 +17,7 @@ ISSUE_CASE = TrackSpec(lap_length_m=30, corridor_width_m=1.0, hall_x_m=12, hall_
 def test_issue_case_30m_1m_12x9_one_sweeper_is_accepted(seed, tmp_path):
     out = generate_track(ISSUE_CASE, seed=seed)
     assert isinstance(out, Acceptance), out.summary()
-    assert [f["kind"] for f in out.report["features"]] == ["sweeper"]
+    assert [f.kind for f in out.report.features] == ["sweeper"]
     assert_independently_valid(out, tmp_path)
 
 
@@ -40,7 +40,7 @@ def test_issue_case_30m_1m_12x9_one_sweeper_is_accepted(seed, tmp_path):
     ids=lambda s: s.name,
 )
 def test_small_hall_specs_are_accepted_and_independently_valid(spec, tmp_path):
-    assert screen(spec)["passed"]
+    assert screen(spec).passed
     out = generate_track(spec, seed=0)
     assert isinstance(out, Acceptance), out.summary()
     assert_independently_valid(out, tmp_path)
@@ -50,7 +50,7 @@ def test_shipped_sweep_file_is_the_defined_sweep():
     shipped = load_sweep_file()
     assert len(shipped) >= 300, SWEEP_FILE
     assert [s.model_dump() for s in shipped] == [s.model_dump() for s in sweep_specs()]
-    assert all(screen(s)["passed"] for s in shipped[::17])
+    assert all(screen(s).passed for s in shipped[::17])
 
 
 def test_sweep_runner_counts_and_writes_remeasurable_maps(tmp_path):

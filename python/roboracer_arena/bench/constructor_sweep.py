@@ -58,7 +58,7 @@ def sweep_specs() -> list[TrackSpec]:
             sweepers=s,
             direction="clockwise" if i % 2 else "counterclockwise",
         )
-        if screen(spec)["passed"]:
+        if screen(spec).passed:
             grid.append(spec)
     step = max(1.0, len(grid) / TARGET_COUNT)
     return [grid[int(k * step)] for k in range(min(TARGET_COUNT, len(grid)))]

@@ -124,7 +124,7 @@ def run_trial(spec: TrackSpec, seed: int, constructor: str, config: ConstructorC
     else:
         yaml_path = m.save(workdir / f"{constructor}-{spec.name}-{seed}.yaml")
         report, _ = validate_map(load_map(yaml_path), spec, config)
-        row.update(valid=bool(report["valid"]), failed_checks=[c["name"] for c in report["checks"] if not c["passed"]])
+        row.update(valid=report.valid, failed_checks=[c.name for c in report.failed()])
     row["seconds"] = time.perf_counter() - t0
     return row
 
@@ -162,7 +162,7 @@ def run(
     admissible, rejections = [], []
     for s in specs:
         sr = screen(s, config)
-        (admissible.append(s) if sr["passed"] else rejections.append({"spec": s.name, "violations": sr["violations"]}))
+        (admissible.append(s) if sr.passed else rejections.append({"spec": s.name, "violations": list(sr.violations)}))
     jobs = [(s, seed, c) for c in constructors for s in admissible for seed in seeds]
     rows = []
     with tempfile.TemporaryDirectory(prefix="bench-constructors-") as tmp:

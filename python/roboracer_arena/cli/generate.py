@@ -89,14 +89,13 @@ def run(args: argparse.Namespace) -> int:
         summary.update(
             candidates_tried=outcome.candidates_tried,
             files=_write_folder(outcome, args),
-            checks=outcome.report["checks"],
-            features=outcome.report["features"],
+            **outcome.report.model_dump(mode="json", include={"checks", "features"}),
         )
         code = EXIT_OK
         if args.drive:
             code = _drive(Path(summary["files"]["map_yaml"]), args, summary)
     elif isinstance(outcome, Rejection):
-        summary.update(violations=outcome.violations, screen=outcome.screen)
+        summary.update(violations=outcome.violations, screen=outcome.screen.model_dump(mode="json"))
         code = EXIT_REJECTED
     else:
         summary.update(candidates_tried=outcome.candidates_tried, reasons=outcome.reasons, stopped=outcome.stopped)
@@ -106,8 +105,8 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(outcome.summary(), file=sys.stderr if code in (EXIT_REJECTED, EXIT_GENERATION_FAILURE) else sys.stdout)
         if isinstance(outcome, Acceptance):
-            for c in outcome.report["checks"]:
-                print(f"  {'ok ' if c['passed'] else 'BAD'} {c['name']:<17} {c['measured']:<34} {c['bound']}")
+            for c in outcome.report.checks:
+                print(f"  {c.line()}")
             print(f"wrote {args.out}/")
             if "drive" in summary:
                 d = summary["drive"]

@@ -27,9 +27,9 @@ def run(args: argparse.Namespace) -> int:
     m = load_map(args.map)
     report, _ = validate_map(m, spec)
     if args.json:
-        print_json({"map": str(args.map), **report})
+        print_json({"map": str(args.map), **report.model_dump(mode="json")})
     else:
-        for c in report["checks"]:
-            print(f"{'ok ' if c['passed'] else 'BAD'} {c['name']:<17} {c['measured']:<34} {c['bound']}")
-        print(f"{args.map}: {'valid' if report['valid'] else 'INVALID'}")
-    return EXIT_OK if report["valid"] else EXIT_GENERATION_FAILURE
+        for c in report.checks:
+            print(c.line())
+        print(f"{args.map}: {'valid' if report.valid else 'INVALID'}")
+    return EXIT_OK if report.valid else EXIT_GENERATION_FAILURE

@@ -5,10 +5,17 @@ baselines used by ``roboracer-arena bench constructors``."""
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
 from .outputs import write_outputs
 from .pipeline import CONSTRUCTORS, derived_geometry, generate_track, rasterise, screen, validate_map
+from .report import Check, DerivedGeometry, FeatureAt, Measurements, ScreenResult, ValidationReport
 
 __all__ = [
     "Acceptance",
     "CONSTRUCTORS",
+    "Check",
+    "DerivedGeometry",
+    "FeatureAt",
+    "Measurements",
+    "ScreenResult",
+    "ValidationReport",
     "GenerationFailure",
     "Outcome",
     "Rejection",

@@ -5,22 +5,22 @@ acceptance carrying a map that passed every raster-level check."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 
 from ..maps import OccupancyMap
 from ..spec import TrackSpec
+from .report import ScreenResult, ValidationReport
 
 
 @dataclass(frozen=True)
 class Acceptance:
-    """A validated map: every check in ``report['checks']`` passed."""
+    """A validated map: every check in ``report.checks`` passed."""
 
     spec: TrackSpec
     map: OccupancyMap
     centreline: np.ndarray  # (N, 2) metres, driving direction, constructor's curve
-    report: dict[str, Any]
+    report: ValidationReport
     constructor: str
     seed: int
     candidates_tried: int
@@ -41,7 +41,7 @@ class Acceptance:
         h, w = self.map.shape
         return (
             f"accepted '{self.spec.name}': {w}x{h} cells at {self.map.resolution} m, "
-            f"{len(self.report['checks'])} checks passed after {self.candidates_tried} candidate(s) "
+            f"{len(self.report.checks)} checks passed after {self.candidates_tried} candidate(s) "
             f"in {self.seconds:.2f} s"
         )
 
@@ -52,7 +52,7 @@ class Rejection:
 
     spec: TrackSpec
     violations: list[str]
-    screen: dict[str, Any]
+    screen: ScreenResult
     seconds: float
     kind: str = "rejected"
 
@@ -70,7 +70,7 @@ class GenerationFailure:
     candidates_tried: int
     reasons: dict[str, int] = field(default_factory=dict)
     seconds: float = 0.0
-    built_invalid_report: dict[str, Any] | None = None
+    built_invalid_report: ValidationReport | None = None
     stopped: str | None = None  # "timeout" when the time budget cut the search short
     kind: str = "failed"
 

@@ -50,14 +50,12 @@ def write_outputs(acc: Acceptance, outdir: str | Path, stem: str = "map") -> dic
     atomic_write_text(paths["centreline_csv"], centreline_csv(acc.centreline, acc.spec.corridor_width_m))
     atomic_write_text(paths["spec_json"], acc.spec.model_dump_json(indent=2) + "\n")
     report = {
-        "valid": acc.report["valid"],
+        "valid": acc.report.valid,
         "constructor": acc.constructor,
         "seed": acc.seed,
         "candidates_tried": acc.candidates_tried,
         "seconds": round(acc.seconds, 4),
-        "checks": acc.report["checks"],
-        "measurements": acc.report["measurements"],
-        "features": acc.report["features"],
+        **acc.report.model_dump(mode="json", include={"checks", "measurements", "features"}),
     }
     atomic_write_text(paths["report_json"], json.dumps(report, indent=2) + "\n")
     return paths

@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 import math
 import time
-from typing import Any, Literal
+from typing import Literal
 
 import numpy as np
 
@@ -17,6 +17,7 @@ from ..errors import InternalError, InvalidArgumentError
 from ..maps import OccupancyMap
 from ..spec import TrackSpec
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
+from .report import DerivedGeometry, ScreenResult, ValidationReport
 
 Constructor = Literal["lattice", "de", "random"]
 CONSTRUCTORS: tuple[str, ...] = ("lattice", "de", "random")
@@ -37,19 +38,19 @@ def _jsons(spec: TrackSpec, config: ConstructorConfig) -> tuple[str, str]:
     return spec.model_dump_json(), config.model_dump_json()
 
 
-def screen(spec: TrackSpec, config: ConstructorConfig | None = None) -> dict[str, Any]:
+def screen(spec: TrackSpec, config: ConstructorConfig | None = None) -> ScreenResult:
     """The admissibility screen (Eqs. 1–2): ``passed``, ``violations`` and every quantity."""
-    return json.loads(_core.screen(*_jsons(spec, config or ConstructorConfig())))
+    return ScreenResult.model_validate_json(_core.screen(*_jsons(spec, config or ConstructorConfig())))
 
 
-def derived_geometry(spec: TrackSpec, config: ConstructorConfig | None = None) -> dict[str, float]:
+def derived_geometry(spec: TrackSpec, config: ConstructorConfig | None = None) -> DerivedGeometry:
     """r_min, pitch p, L_max, lattice pitch bound s_min and corner radius r_c for a spec."""
-    return json.loads(_core.derived_geometry(*_jsons(spec, config or ConstructorConfig())))
+    return DerivedGeometry.model_validate_json(_core.derived_geometry(*_jsons(spec, config or ConstructorConfig())))
 
 
 def validate_map(
     m: OccupancyMap, spec: TrackSpec, config: ConstructorConfig | None = None
-) -> tuple[dict[str, Any], np.ndarray]:
+) -> tuple[ValidationReport, np.ndarray]:
     """Measure the raster against the spec; returns (report, measured centreline (N, 2))."""
     report, line = _core.validate_map(
         np.ascontiguousarray(m.data, np.uint8),
@@ -57,7 +58,7 @@ def validate_map(
         m.origin,
         *_jsons(spec, config or ConstructorConfig()),
     )
-    return json.loads(report), line
+    return ValidationReport.model_validate_json(report), line
 
 
 def rasterise(centreline: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> OccupancyMap:
@@ -98,8 +99,8 @@ def generate_track(
     config = config or ConstructorConfig()
     t0 = time.perf_counter()
     sr = screen(spec, config)
-    if not sr["passed"]:
-        return Rejection(spec, list(sr["violations"]), sr, time.perf_counter() - t0)
+    if not sr.passed:
+        return Rejection(spec, list(sr.violations), sr, time.perf_counter() - t0)
     if constructor == "lattice":
         kind, info, grid, line = _core.generate_lattice(*_jsons(spec, config), seed, timeout)
         info = json.loads(info)
@@ -111,7 +112,7 @@ def generate_track(
                 spec,
                 OccupancyMap(data, config.resolution_m, origin),
                 line,
-                info["report"],
+                ValidationReport.model_validate(info["report"]),
                 constructor,
                 seed,
                 info["tried"],
@@ -133,7 +134,7 @@ def generate_track(
         return GenerationFailure(spec, constructor, seed, 1, {"no curve emitted": 1}, time.perf_counter() - t0)
     m = rasterise(line, spec, config)
     report, _ = validate_map(m, spec, config)
-    if not report["valid"]:
-        failed = "+".join(c["name"] for c in report["checks"] if not c["passed"])
+    if not report.valid:
+        failed = "+".join(c.name for c in report.failed())
         return GenerationFailure(spec, constructor, seed, 1, {f"raster {failed}": 1}, time.perf_counter() - t0, report)
     return Acceptance(spec, m, line, report, constructor, seed, 1, time.perf_counter() - t0)
