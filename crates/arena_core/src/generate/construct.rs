@@ -3,13 +3,15 @@
 //!
 //! Candidate `k` of seed `σ` draws from its own ChaCha8 stream seeded with `(σ, k)`, so a
 //! candidate does not depend on how many came before it. Every third candidate
-//! (`k ≡ 1 mod 3`) comes from the ring constructor (`ring`), the rest from the lattice:
+//! (`k ≡ 1 mod 3`) comes from the ring constructor (`ring`), every sixth (`k ≡ 5 mod 6`)
+//! from the polygon constructor (`polygon`, short laps), the rest from the lattice:
 //! small halls, where the lattice's one-pitch loop cannot fit, get the rounded rectangle
-//! of free side lengths early, and large ones keep most of the budget for the lattice.
+//! of free side lengths early, and large ones keep half the budget for the lattice.
 //! The loop stops early when its [`Budget`] (deadline, cancellation flag) runs out.
 
 use super::budget::{check_limits, Budget, Stop};
 use super::lattice::{grow, Target};
+use super::polygon::polygon_candidate;
 use super::ring::ring_candidate;
 use super::rounding::{pitch_for_length, rounded_centreline};
 use super::screen::{screen, ScreenResult};
@@ -54,8 +56,28 @@ pub enum Outcome {
     },
 }
 
-/// Seed offset of the ring constructor's candidate streams (distinct from the lattice's).
+/// Seed offsets of the ring's and the polygon's candidate streams (distinct from the
+/// lattice's).
 const RING_STREAM: u64 = 0x5249_4E47;
+const POLYGON_STREAM: u64 = 0x504F_4C59;
+
+/// Which constructor candidate `k` comes from, and its index among that constructor's
+/// candidates (each draws its own stream, whatever the interleaving).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Source {
+    Lattice(u32),
+    Ring(u32),
+    Polygon(u32),
+}
+
+fn source(k: u32) -> Source {
+    match k % 6 {
+        1 | 4 => Source::Ring(k / 3),
+        5 => Source::Polygon(k / 6),
+        // 0, 2, 3: three lattice candidates in every six.
+        r => Source::Lattice(3 * (k / 6) + [0, 0, 1, 2][r as usize]),
+    }
+}
 
 /// Most lattice perimeters considered (the largest ones, which fit halls best).
 const MAX_PERIMETER_OPTIONS: u64 = 64;
@@ -105,8 +127,9 @@ fn boundary_order(spec: &Spec) -> Vec<FeatureKind> {
     order
 }
 
-/// Construct candidate `k`: the ring constructor for `k ≡ 1 (mod 3)`, else lattice
-/// growth + rounding; then the shared hall fit, direction and analytic pre-checks.
+/// Construct candidate `k`: the ring constructor for `k ≡ 1 (mod 3)`, the polygon
+/// constructor for `k ≡ 5 (mod 6)`, else lattice growth + rounding; then the shared hall
+/// fit, direction and analytic pre-checks.
 pub fn construct(
     spec: &Spec,
     cfg: &ConstructorConfig,
@@ -115,18 +138,28 @@ pub fn construct(
     budget: &Budget,
 ) -> Result<Candidate, &'static str> {
     let d = derive(spec, cfg);
-    let (line, pitch) = if k % 3 == 1 {
-        let mut rng = candidate_rng(seed ^ RING_STREAM, k / 3);
-        // Without a requested order the ring places the features in a drawn order.
-        let mut order = boundary_order(spec);
+    // Without a requested order the ring and the polygon place the features in a drawn
+    // order.
+    let ordered = |rng: &mut ChaCha8Rng| {
+        let order = boundary_order(spec);
         if order.is_empty() {
-            order = shuffled_features(spec, &mut rng);
+            shuffled_features(spec, rng)
+        } else {
+            order
         }
-        ring_candidate(spec, cfg, &d, &order, &mut rng)?
-    } else {
-        // The j-th lattice candidate draws stream j whatever the interleaving.
-        let j = k - k.div_ceil(3);
-        lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, budget)?
+    };
+    let (line, pitch) = match source(k) {
+        Source::Ring(i) => {
+            let mut rng = candidate_rng(seed ^ RING_STREAM, i);
+            let order = ordered(&mut rng);
+            ring_candidate(spec, cfg, &d, &order, &mut rng)?
+        }
+        Source::Polygon(i) => {
+            let mut rng = candidate_rng(seed ^ POLYGON_STREAM, i);
+            let order = ordered(&mut rng);
+            polygon_candidate(spec, &d, &order, &mut rng)?
+        }
+        Source::Lattice(j) => lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, budget)?,
     };
     finish(line, pitch, spec, cfg, &d)
 }

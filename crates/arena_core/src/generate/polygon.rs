@@ -1,0 +1,432 @@
+//! The polygon constructor: a convex loop of free corner angles with the features as
+//! short turn groups, for laps too short for the ring's rectangle (issue 15: "smaller
+//! feature templates when the lap is short").
+//!
+//! The ring needs four 90° corners, each ≥ 3.5 r_c from the next same-sense turn (below
+//! that the detector merges them into a hairpin; measured on a rounded rectangle), plus
+//! that spacing around every feature. Here the loop turns through 360° at 2–6 corners of
+//! any angle in [55°, 125°], and the features are turn groups joined by short links:
+//!
+//! * hairpin: two 90° turns one short link apart (the detector merges them, ≥ 135°);
+//! * chicane: two opposite 60–75° turns one short link apart;
+//! * sweeper: a corner cut by the rounding's chamfer (peak radius 2 r_c).
+//!
+//! Every other pair of neighbouring turns is a *long* link (≥ [`LONG_STRAIGHT`] of
+//! straight between the fillets). Segment lengths get the spare length at random, and
+//! three long segments absorb the closure and keep the length exact (a 3 × 3 linear
+//! solve: the heading of every segment is fixed, so the end point and the length are
+//! linear in the segment lengths). Hall fit (any rotation), direction and the analytic
+//! checks are the caller's, as for the ring.
+
+use super::rounding::{round_polygon, SWEEPER_CHAMFER, SWEEPER_RADIUS};
+use super::spec::{Derived, Spec};
+use crate::track::features::FeatureKind;
+use rand_chacha::rand_core::Rng;
+use rand_chacha::ChaCha8Rng;
+use std::f64::consts::PI;
+
+/// Straight (in r_c) kept between the fillets of neighbouring turns that must stay apart,
+/// drawn per candidate in this range: the detector merges same-sense turns closer than
+/// 0.8 r_c after smoothing, which a rounded rectangle shows at a side of 3.5 r_c
+/// (1.5 r_c of straight); the raster validator judges the margin.
+pub const LONG_STRAIGHT: (f64, f64) = (1.55, 1.85);
+/// Straight (in r_c) inside a hairpin or chicane: its two turns must read as one group.
+const SHORT_STRAIGHT: f64 = 0.1;
+/// Corner angles of the convex loop (degrees): a sweeper must read as 45–135°.
+const CORNER_DEG: (f64, f64) = (55.0, 125.0);
+/// Largest sweeper corner (degrees): its chamfer (legs 1.5 r_c) must hold two fillets of
+/// radius 2 r_c turning half the angle each.
+const SWEEPER_MAX_DEG: f64 = 100.0;
+/// Largest amount each hairpin half turns less than 90° (rad, 14°: the merged turn
+/// stays ≥ 152°, clear of the detector's 135°).
+const HAIRPIN_NARROW: f64 = 0.25;
+/// Turn sequences drawn before a candidate gives up on closing.
+const CLOSURE_DRAWS: usize = 24;
+
+/// One turn of the polygon: signed angle (rad, + = left), sweeper flag, and whether the
+/// link to the next turn is short (inside a feature).
+#[derive(Debug, Clone, Copy)]
+struct Turn {
+    angle: f64,
+    sweeper: bool,
+    short_next: bool,
+}
+
+/// Length a turn's rounding takes from each adjacent segment (m).
+fn tangent(t: &Turn, rc: f64) -> f64 {
+    let a = t.angle.abs();
+    if t.sweeper {
+        SWEEPER_CHAMFER * rc + SWEEPER_RADIUS * rc * (a / 4.0).tan()
+    } else {
+        rc * (a / 2.0).tan()
+    }
+}
+
+/// Length the rounding removes from the polygon at one turn (m).
+fn saving(t: &Turn, rc: f64) -> f64 {
+    let a = t.angle.abs();
+    if t.sweeper {
+        let (c, r) = (SWEEPER_CHAMFER * rc, SWEEPER_RADIUS * rc);
+        2.0 * c * (1.0 - (a / 2.0).cos()) + 2.0 * (2.0 * r * (a / 4.0).tan() - r * a / 2.0)
+    } else {
+        2.0 * rc * (a / 2.0).tan() - rc * a
+    }
+}
+
+fn uniform(rng: &mut ChaCha8Rng) -> f64 {
+    (rng.next_u32() as f64) / (u32::MAX as f64)
+}
+
+/// The turn sequence: features in `order` (counter-clockwise boundary order) with plain
+/// corners between them, the corners sharing what the hairpins leave of 360°.
+fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
+    let h = order.iter().filter(|&&k| k == FeatureKind::Hairpin).count();
+    let s = order.iter().filter(|&&k| k == FeatureKind::Sweeper).count();
+    if h > 2 {
+        return None;
+    }
+    // Each hairpin turns 180° less 2δ, so the legs open away from it (a lone hairpin
+    // with two plain corners is a trapezoid; at 180° it would be a rectangle whose other
+    // end is a second hairpin).
+    let narrow: Vec<f64> = (0..h).map(|_| HAIRPIN_NARROW * uniform(rng)).collect();
+    let budget = 2.0 * PI - h as f64 * PI + 2.0 * narrow.iter().sum::<f64>();
+    let (lo, hi) = (CORNER_DEG.0.to_radians(), CORNER_DEG.1.to_radians());
+    // Corners k (sweepers among them) with budget / k inside the corner band.
+    let ks: Vec<usize> = (s.max(1)..=6)
+        .filter(|&k| budget / k as f64 >= lo && budget / k as f64 <= hi)
+        .collect();
+    let k = if budget <= 1e-9 {
+        if s > 0 {
+            return None;
+        }
+        0
+    } else {
+        *ks.get((rng.next_u32() as usize) % ks.len().max(1))?
+    };
+    // Corner angles: equal shares, perturbed pairwise (sum kept) within the band.
+    let mut angles = vec![budget / k.max(1) as f64; k];
+    for _ in 0..k {
+        let (i, j) = ((rng.next_u32() as usize) % k, (rng.next_u32() as usize) % k);
+        let d = (uniform(rng) - 0.5) * 0.5;
+        if i != j && (lo..=hi).contains(&(angles[i] + d)) && (lo..=hi).contains(&(angles[j] - d)) {
+            angles[i] += d;
+            angles[j] -= d;
+        }
+    }
+    // Slots: the features in order, the plain corners spread between them at random.
+    let plain = k - s;
+    let mut items: Vec<Option<FeatureKind>> = order.iter().map(|&f| Some(f)).collect();
+    for _ in 0..plain {
+        let at = (rng.next_u32() as usize) % (items.len() + 1);
+        items.insert(at, None);
+    }
+    let mut out = Vec::new();
+    let mut corner = angles.into_iter();
+    let mut narrow = narrow.into_iter();
+    for it in items {
+        match it {
+            Some(FeatureKind::Hairpin) => {
+                let d = narrow.next()?;
+                out.push(Turn {
+                    angle: PI / 2.0 - d,
+                    sweeper: false,
+                    short_next: true,
+                });
+                out.push(Turn {
+                    angle: PI / 2.0 - d,
+                    sweeper: false,
+                    short_next: false,
+                });
+            }
+            Some(FeatureKind::Chicane) => {
+                let a = (60.0 + 15.0 * uniform(rng)).to_radians();
+                let sgn = if rng.next_u32() % 2 == 0 { 1.0 } else { -1.0 };
+                out.push(Turn {
+                    angle: sgn * a,
+                    sweeper: false,
+                    short_next: true,
+                });
+                out.push(Turn {
+                    angle: -sgn * a,
+                    sweeper: false,
+                    short_next: false,
+                });
+            }
+            Some(FeatureKind::Sweeper) | None => out.push(Turn {
+                angle: corner.next()?,
+                sweeper: it.is_some(),
+                short_next: false,
+            }),
+        }
+    }
+    // A chicane turn and the plain corner beyond it turn opposite ways: the link between
+    // them may be short too (the detector pairs the chicane's own turns first, so the
+    // count stays one), which is what lets a chicane into a 20 m lap.
+    let n = out.len();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        if !out[i].short_next && out[i].angle * out[j].angle < 0.0 && rng.next_u32() % 2 == 0 {
+            out[i].short_next = true;
+        }
+    }
+    // The sweeper's chamfer holds its two fillets only up to ~100° (see `rounding`).
+    let chamfer_ok = out
+        .iter()
+        .all(|x| !x.sweeper || x.angle <= SWEEPER_MAX_DEG.to_radians());
+    (n >= 3 && chamfer_ok).then_some(out)
+}
+
+/// Solve the 3 × 3 system `m x = r` (Cramer); `None` when `m` is near singular.
+fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
+    let det = |m: &[[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(&m);
+    if d.abs() < 1e-9 {
+        return None;
+    }
+    let mut x = [0.0; 3];
+    for (col, xc) in x.iter_mut().enumerate() {
+        let mut mc = m;
+        for row in 0..3 {
+            mc[row][col] = r[row];
+        }
+        *xc = det(&mc) / d;
+    }
+    Some(x)
+}
+
+/// Close the loop and fix its length: project `len` onto `Σ len_i (u_i, 1) = (0, 0,
+/// total)` by least-norm corrections of the free (long) segments; a segment pushed below
+/// its least length is pinned there and the rest corrected again. `None` when fewer than
+/// three free segments are left or their directions cannot span the correction.
+fn close(
+    len: &mut [f64],
+    min_len: &[f64],
+    free: &[usize],
+    total: f64,
+    dir: &dyn Fn(usize) -> [f64; 2],
+) -> Option<()> {
+    let mut free = free.to_vec();
+    for _ in 0..=len.len() {
+        let mut r = [0.0, 0.0, total];
+        for (i, l) in len.iter().enumerate() {
+            let u = dir(i);
+            r[0] -= l * u[0];
+            r[1] -= l * u[1];
+            r[2] -= l;
+        }
+        if r.iter().all(|x| x.abs() < 1e-9) {
+            return Some(());
+        }
+        if free.len() < 3 {
+            return None;
+        }
+        let col = |i: usize| {
+            let u = dir(i);
+            [u[0], u[1], 1.0]
+        };
+        let mut m = [[0.0; 3]; 3];
+        for &i in &free {
+            let c = col(i);
+            for a in 0..3 {
+                for b in 0..3 {
+                    m[a][b] += c[a] * c[b];
+                }
+            }
+        }
+        let y = solve3(m, r)?;
+        let mut pinned = false;
+        for &i in &free {
+            let c = col(i);
+            len[i] += c[0] * y[0] + c[1] * y[1] + c[2] * y[2];
+            if len[i] < min_len[i] {
+                len[i] = min_len[i];
+                pinned = true;
+            }
+        }
+        if pinned {
+            free.retain(|&i| len[i] > min_len[i]);
+        }
+    }
+    None
+}
+
+/// Segment headings and lengths for turn sequence `t`: every segment at least its least
+/// length, the loop closed and `lap` long once rounded.
+fn lengths(
+    t: &[Turn],
+    lap: f64,
+    rc: f64,
+    rng: &mut ChaCha8Rng,
+) -> Result<(Vec<f64>, Vec<f64>), &'static str> {
+    let n = t.len();
+    // Segment i runs from turn i to turn i + 1; its least length and its heading.
+    let mut heading = Vec::with_capacity(n);
+    let mut h = 0.0f64;
+    for ti in t {
+        h += ti.angle;
+        heading.push(h);
+    }
+    let long_gap = LONG_STRAIGHT.0 + (LONG_STRAIGHT.1 - LONG_STRAIGHT.0) * uniform(rng);
+    let min_len: Vec<f64> = (0..n)
+        .map(|i| {
+            let gap = if t[i].short_next {
+                SHORT_STRAIGHT
+            } else {
+                long_gap
+            };
+            tangent(&t[i], rc) + tangent(&t[(i + 1) % n], rc) + gap * rc
+        })
+        .collect();
+    let target = lap + t.iter().map(|x| saving(x, rc)).sum::<f64>();
+    let spare = target - min_len.iter().sum::<f64>();
+    if spare < 0.0 {
+        return Err("polygon: lap too short for the turns");
+    }
+    let long: Vec<usize> = (0..n).filter(|&i| !t[i].short_next).collect();
+    let dir = |i: usize| [heading[i].cos(), heading[i].sin()];
+    let mut len = min_len.clone();
+    let w: Vec<f64> = long.iter().map(|_| 0.2 + uniform(rng)).collect();
+    let wsum: f64 = w.iter().sum();
+    for (j, &i) in long.iter().enumerate() {
+        len[i] += spare * w[j] / wsum;
+    }
+    close(&mut len, &min_len, &long, target, &dir)
+        .ok_or("polygon: no segment choice closes the loop")?;
+    Ok((heading, len))
+}
+
+/// Candidate of the polygon constructor: a closed, rounded, counter-clockwise centreline
+/// of length `spec.lap_length_m`. Hall fit, direction and the analytic checks are the
+/// caller's.
+pub fn polygon_candidate(
+    spec: &Spec,
+    d: &Derived,
+    order: &[FeatureKind],
+    rng: &mut ChaCha8Rng,
+) -> Result<(Vec<[f64; 2]>, f64), &'static str> {
+    let rc = d.corner_radius;
+    // Each draw takes new corner angles, hairpin widening and spare shares: the closure
+    // of a loop with long legs holds only for some of them.
+    let mut why = "polygon: features do not fit a convex loop";
+    let mut found = None;
+    for _ in 0..CLOSURE_DRAWS {
+        let Some(t) = turns(order, rng) else {
+            continue;
+        };
+        match lengths(&t, spec.lap_length_m, rc, rng) {
+            Ok((heading, len)) => {
+                found = Some((t, heading, len));
+                break;
+            }
+            Err(e) => why = e,
+        }
+    }
+    let (t, heading, len) = found.ok_or(why)?;
+    let n = t.len();
+    let dir = |i: usize| [heading[i].cos(), heading[i].sin()];
+    // Turtle: vertex i is where turn i happens; segment i leaves it.
+    let mut verts = Vec::with_capacity(n);
+    let mut p = [0.0f64, 0.0];
+    for i in 0..n {
+        verts.push(p);
+        p = [p[0] + len[i] * dir(i)[0], p[1] + len[i] * dir(i)[1]];
+    }
+    if p[0].hypot(p[1]) > 1e-6 {
+        return Err("polygon: loop does not close");
+    }
+    let flags: Vec<bool> = t.iter().map(|x| x.sweeper).collect();
+    let line = round_polygon(&verts, &flags, rc, 0.02).ok_or("fillets overlap")?;
+    Ok((best_fit_rotation(&line, spec), d.s_min))
+}
+
+/// Rotate the loop to the angle (3° steps over 90°) whose bounding box leaves the most
+/// room in the hall, long side along the hall's long side.
+fn best_fit_rotation(line: &[[f64; 2]], spec: &Spec) -> Vec<[f64; 2]> {
+    let (hl, hs) = (
+        spec.hall_x_m.max(spec.hall_y_m),
+        spec.hall_x_m.min(spec.hall_y_m),
+    );
+    let rot = |a: f64| -> Vec<[f64; 2]> {
+        let (s, c) = a.sin_cos();
+        line.iter()
+            .map(|q| [c * q[0] - s * q[1], s * q[0] + c * q[1]])
+            .collect()
+    };
+    let slack = |a: f64| {
+        let e = super::construct::extent(&rot(a));
+        let (l, s) = (e[0].max(e[1]), e[0].min(e[1]));
+        (hl - l).min(hs - s)
+    };
+    let best = (0..30)
+        .map(|i| (i as f64 * 3.0).to_radians())
+        .max_by(|a, b| slack(*a).total_cmp(&slack(*b)))
+        .unwrap_or(0.0);
+    rot(best)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::spec::{derive, ConstructorConfig};
+    use rand_chacha::rand_core::SeedableRng;
+
+    fn spec(l: f64, w: f64, h: u32, c: u32, s: u32) -> Spec {
+        Spec {
+            name: "p".into(),
+            lap_length_m: l,
+            corridor_width_m: w,
+            hall_x_m: 20.0,
+            hall_y_m: 15.0,
+            direction: "counterclockwise".into(),
+            hairpins: h,
+            chicanes: c,
+            sweepers: s,
+            feature_order: vec![],
+            min_radius_m: 0.0,
+            longest_straight_m: 0.0,
+        }
+    }
+
+    #[test]
+    fn loops_close_at_the_lap_length_with_the_requested_turns() {
+        use crate::geometry::{polyline_length, signed_area};
+        let cases = [
+            (30.0, 1.5, vec![FeatureKind::Chicane]),
+            (20.0, 1.5, vec![FeatureKind::Chicane]),
+            (30.0, 2.0, vec![FeatureKind::Hairpin]),
+            (40.0, 1.0, vec![FeatureKind::Sweeper, FeatureKind::Hairpin]),
+            (40.0, 1.5, vec![]),
+        ];
+        for (l, w, order) in cases {
+            let s = spec(l, w, 0, 0, 0);
+            let d = derive(&s, &ConstructorConfig::default());
+            let mut built = 0;
+            for k in 0..20 {
+                let mut rng = ChaCha8Rng::seed_from_u64(k);
+                if let Ok((line, _)) = polygon_candidate(&s, &d, &order, &mut rng) {
+                    let got = polyline_length(&line, true);
+                    assert!((got - l).abs() < 0.02, "{l} m {order:?}: {got}");
+                    assert!(signed_area(&line) > 0.0, "counter-clockwise");
+                    built += 1;
+                }
+            }
+            assert!(built > 0, "{l} m, w {w}, {order:?}: no loop in 20 draws");
+        }
+    }
+
+    #[test]
+    fn three_hairpins_or_a_sweeper_without_a_corner_are_refused() {
+        let mut rng = ChaCha8Rng::seed_from_u64(0);
+        assert!(turns(&[FeatureKind::Hairpin; 3], &mut rng).is_none());
+        let two_and_sweeper = [
+            FeatureKind::Hairpin,
+            FeatureKind::Hairpin,
+            FeatureKind::Sweeper,
+        ];
+        assert!(turns(&two_and_sweeper, &mut rng).is_none());
+    }
+}
