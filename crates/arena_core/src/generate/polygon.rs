@@ -105,7 +105,10 @@ fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
     };
     // Corner angles: equal shares, perturbed pairwise (sum kept) within the band.
     let mut angles = vec![budget / k.max(1) as f64; k];
-    for _ in 0..k {
+    // Half the time the corners keep equal angles: four 90° corners make a rectangle,
+    // the shape that holds the most lap in a rectangular hall.
+    let perturb = if rng.next_u32() % 2 == 0 { k } else { 0 };
+    for _ in 0..perturb {
         let (i, j) = ((rng.next_u32() as usize) % k, (rng.next_u32() as usize) % k);
         let d = (uniform(rng) - 0.5) * 0.5;
         if i != j && (lo..=hi).contains(&(angles[i] + d)) && (lo..=hi).contains(&(angles[j] - d)) {
@@ -260,6 +263,7 @@ fn lengths(
     t: &[Turn],
     lap: f64,
     rc: f64,
+    hall: [f64; 2],
     rng: &mut ChaCha8Rng,
 ) -> Result<(Vec<f64>, Vec<f64>), &'static str> {
     let n = t.len();
@@ -289,7 +293,15 @@ fn lengths(
     let long: Vec<usize> = (0..n).filter(|&i| !t[i].short_next).collect();
     let dir = |i: usize| [heading[i].cos(), heading[i].sin()];
     let mut len = min_len.clone();
-    let w: Vec<f64> = long.iter().map(|_| 0.2 + uniform(rng)).collect();
+    // Spare shares follow the hall's aspect (segments along x get more in a long hall),
+    // scattered at random; the rotation to the hall comes later.
+    let w: Vec<f64> = long
+        .iter()
+        .map(|&i| {
+            let u = dir(i);
+            (u[0].abs() * hall[0] + u[1].abs() * hall[1]) * (0.3 + uniform(rng))
+        })
+        .collect();
     let wsum: f64 = w.iter().sum();
     for (j, &i) in long.iter().enumerate() {
         len[i] += spare * w[j] / wsum;
@@ -317,7 +329,11 @@ pub fn polygon_candidate(
         let Some(t) = turns(order, rng) else {
             continue;
         };
-        match lengths(&t, spec.lap_length_m, rc, rng) {
+        let hall = [
+            spec.hall_x_m.max(spec.hall_y_m),
+            spec.hall_x_m.min(spec.hall_y_m),
+        ];
+        match lengths(&t, spec.lap_length_m, rc, hall, rng) {
             Ok((heading, len)) => {
                 found = Some((t, heading, len));
                 break;
