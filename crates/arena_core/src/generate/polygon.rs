@@ -30,8 +30,14 @@ use std::f64::consts::PI;
 /// 0.8 r_c after smoothing, which a rounded rectangle shows at a side of 3.5 r_c
 /// (1.5 r_c of straight); the raster validator judges the margin.
 pub const LONG_STRAIGHT: (f64, f64) = (1.55, 1.85);
-/// Straight (in r_c) inside a hairpin or chicane: its two turns must read as one group.
-const SHORT_STRAIGHT: f64 = 0.1;
+/// Straight (in r_c) inside a hairpin: its two halves must merge into one turn.
+const HAIRPIN_LINK: f64 = 0.1;
+/// Straight (in r_c) between a chicane's two turns: under the detector's 0.8 r_c pairing
+/// gap, but long enough that smoothing does not cancel the opposite curvatures.
+const CHICANE_LINK: f64 = 0.3;
+/// Chicane turn range (degrees), nominal; each must read ≥ 45° after smoothing (at a
+/// 0.1 r_c link two 65° turns read as 37° and 49°).
+const CHICANE_DEG: (f64, f64) = (60.0, 75.0);
 /// Corner angles of the convex loop (degrees): a sweeper must read as 45–135°.
 const CORNER_DEG: (f64, f64) = (55.0, 125.0);
 /// Largest sweeper corner (degrees): its chamfer (legs 1.5 r_c) must hold two fillets of
@@ -41,15 +47,15 @@ const SWEEPER_MAX_DEG: f64 = 100.0;
 /// stays ≥ 152°, clear of the detector's 135°).
 const HAIRPIN_NARROW: f64 = 0.25;
 /// Turn sequences drawn before a candidate gives up on closing.
-const CLOSURE_DRAWS: usize = 24;
+const CLOSURE_DRAWS: usize = 256;
 
-/// One turn of the polygon: signed angle (rad, + = left), sweeper flag, and whether the
-/// link to the next turn is short (inside a feature).
+/// One turn of the polygon: signed angle (rad, + = left), sweeper flag, and the straight
+/// (in r_c) of a short link to the next turn (inside a feature), `None` for a long link.
 #[derive(Debug, Clone, Copy)]
 struct Turn {
     angle: f64,
     sweeper: bool,
-    short_next: bool,
+    short_next: Option<f64>,
 }
 
 /// Length a turn's rounding takes from each adjacent segment (m).
@@ -101,7 +107,11 @@ fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
         }
         0
     } else {
-        *ks.get((rng.next_u32() as usize) % ks.len().max(1))?
+        // Fewer corners leave more of a short lap to the features: the least of two
+        // draws favours them.
+        let m = ks.len().max(1);
+        let pick = ((rng.next_u32() as usize) % m).min((rng.next_u32() as usize) % m);
+        *ks.get(pick)?
     };
     // Corner angles: equal shares, perturbed pairwise (sum kept) within the band.
     let mut angles = vec![budget / k.max(1) as f64; k];
@@ -133,32 +143,33 @@ fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
                 out.push(Turn {
                     angle: PI / 2.0 - d,
                     sweeper: false,
-                    short_next: true,
+                    short_next: Some(HAIRPIN_LINK),
                 });
                 out.push(Turn {
                     angle: PI / 2.0 - d,
                     sweeper: false,
-                    short_next: false,
+                    short_next: None,
                 });
             }
             Some(FeatureKind::Chicane) => {
-                let a = (60.0 + 15.0 * uniform(rng)).to_radians();
+                let a =
+                    (CHICANE_DEG.0 + (CHICANE_DEG.1 - CHICANE_DEG.0) * uniform(rng)).to_radians();
                 let sgn = if rng.next_u32() % 2 == 0 { 1.0 } else { -1.0 };
                 out.push(Turn {
                     angle: sgn * a,
                     sweeper: false,
-                    short_next: true,
+                    short_next: Some(CHICANE_LINK),
                 });
                 out.push(Turn {
                     angle: -sgn * a,
                     sweeper: false,
-                    short_next: false,
+                    short_next: None,
                 });
             }
             Some(FeatureKind::Sweeper) | None => out.push(Turn {
                 angle: corner.next()?,
                 sweeper: it.is_some(),
-                short_next: false,
+                short_next: None,
             }),
         }
     }
@@ -168,8 +179,11 @@ fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
     let n = out.len();
     for i in 0..n {
         let j = (i + 1) % n;
-        if !out[i].short_next && out[i].angle * out[j].angle < 0.0 && rng.next_u32() % 2 == 0 {
-            out[i].short_next = true;
+        if out[i].short_next.is_none()
+            && out[i].angle * out[j].angle < 0.0
+            && rng.next_u32() % 4 != 0
+        {
+            out[i].short_next = Some(CHICANE_LINK);
         }
     }
     // The sweeper's chamfer holds its two fillets only up to ~100° (see `rounding`).
@@ -179,82 +193,37 @@ fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
     (n >= 3 && chamfer_ok).then_some(out)
 }
 
-/// Solve the 3 × 3 system `m x = r` (Cramer); `None` when `m` is near singular.
-fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
-    let det = |m: &[[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(&m);
-    if d.abs() < 1e-9 {
-        return None;
-    }
-    let mut x = [0.0; 3];
-    for (col, xc) in x.iter_mut().enumerate() {
-        let mut mc = m;
-        for row in 0..3 {
-            mc[row][col] = r[row];
-        }
-        *xc = det(&mc) / d;
-    }
-    Some(x)
-}
-
-/// Close the loop and fix its length: project `len` onto `Σ len_i (u_i, 1) = (0, 0,
-/// total)` by least-norm corrections of the free (long) segments; a segment pushed below
-/// its least length is pinned there and the rest corrected again. `None` when fewer than
-/// three free segments are left or their directions cannot span the correction.
-fn close(
-    len: &mut [f64],
-    min_len: &[f64],
-    free: &[usize],
-    total: f64,
-    dir: &dyn Fn(usize) -> [f64; 2],
-) -> Option<()> {
-    let mut free = free.to_vec();
-    for _ in 0..=len.len() {
-        let mut r = [0.0, 0.0, total];
-        for (i, l) in len.iter().enumerate() {
-            let u = dir(i);
-            r[0] -= l * u[0];
-            r[1] -= l * u[1];
-            r[2] -= l;
-        }
-        if r.iter().all(|x| x.abs() < 1e-9) {
-            return Some(());
-        }
-        if free.len() < 3 {
-            return None;
-        }
-        let col = |i: usize| {
-            let u = dir(i);
-            [u[0], u[1], 1.0]
-        };
-        let mut m = [[0.0; 3]; 3];
-        for &i in &free {
-            let c = col(i);
-            for a in 0..3 {
-                for b in 0..3 {
-                    m[a][b] += c[a] * c[b];
+/// Share of the spare length per long segment that closes the loop: weights `λ ≥ 0`,
+/// `Σ λ = 1`, `Σ λ_i u_i = c` (the closing direction `c`, |c| ≤ 1). Every triangle of
+/// segment directions that contains `c` gives one solution (its barycentric weights);
+/// a random convex mix of them is another. `None` if no triangle contains `c`.
+fn spare_shares(u: &[[f64; 2]], c: [f64; 2], rng: &mut ChaCha8Rng) -> Option<Vec<f64>> {
+    let n = u.len();
+    let mut mix = vec![0.0; n];
+    let mut total = 0.0;
+    for a in 0..n {
+        for b in a + 1..n {
+            for k in b + 1..n {
+                let (p, q, r) = (u[a], u[b], u[k]);
+                let det = (q[0] - p[0]) * (r[1] - p[1]) - (r[0] - p[0]) * (q[1] - p[1]);
+                if det.abs() < 1e-9 {
+                    continue;
                 }
+                let lb = ((c[0] - p[0]) * (r[1] - p[1]) - (r[0] - p[0]) * (c[1] - p[1])) / det;
+                let lk = ((q[0] - p[0]) * (c[1] - p[1]) - (c[0] - p[0]) * (q[1] - p[1])) / det;
+                let la = 1.0 - lb - lk;
+                if la < 0.0 || lb < 0.0 || lk < 0.0 {
+                    continue;
+                }
+                let w = 0.05 + uniform(rng);
+                mix[a] += w * la;
+                mix[b] += w * lb;
+                mix[k] += w * lk;
+                total += w;
             }
-        }
-        let y = solve3(m, r)?;
-        let mut pinned = false;
-        for &i in &free {
-            let c = col(i);
-            len[i] += c[0] * y[0] + c[1] * y[1] + c[2] * y[2];
-            if len[i] < min_len[i] {
-                len[i] = min_len[i];
-                pinned = true;
-            }
-        }
-        if pinned {
-            free.retain(|&i| len[i] > min_len[i]);
         }
     }
-    None
+    (total > 0.0).then(|| mix.iter().map(|x| x / total).collect())
 }
 
 /// Segment headings and lengths for turn sequence `t`: every segment at least its least
@@ -263,7 +232,6 @@ fn lengths(
     t: &[Turn],
     lap: f64,
     rc: f64,
-    hall: [f64; 2],
     rng: &mut ChaCha8Rng,
 ) -> Result<(Vec<f64>, Vec<f64>), &'static str> {
     let n = t.len();
@@ -277,11 +245,7 @@ fn lengths(
     let long_gap = LONG_STRAIGHT.0 + (LONG_STRAIGHT.1 - LONG_STRAIGHT.0) * uniform(rng);
     let min_len: Vec<f64> = (0..n)
         .map(|i| {
-            let gap = if t[i].short_next {
-                SHORT_STRAIGHT
-            } else {
-                long_gap
-            };
+            let gap = t[i].short_next.unwrap_or(long_gap);
             tangent(&t[i], rc) + tangent(&t[(i + 1) % n], rc) + gap * rc
         })
         .collect();
@@ -290,24 +254,26 @@ fn lengths(
     if spare < 0.0 {
         return Err("polygon: lap too short for the turns");
     }
-    let long: Vec<usize> = (0..n).filter(|&i| !t[i].short_next).collect();
+    let long: Vec<usize> = (0..n).filter(|&i| t[i].short_next.is_none()).collect();
     let dir = |i: usize| [heading[i].cos(), heading[i].sin()];
-    let mut len = min_len.clone();
-    // Spare shares follow the hall's aspect (segments along x get more in a long hall),
-    // scattered at random; the rotation to the hall comes later.
-    let w: Vec<f64> = long
-        .iter()
-        .map(|&i| {
-            let u = dir(i);
-            (u[0].abs() * hall[0] + u[1].abs() * hall[1]) * (0.3 + uniform(rng))
-        })
-        .collect();
-    let wsum: f64 = w.iter().sum();
-    for (j, &i) in long.iter().enumerate() {
-        len[i] += spare * w[j] / wsum;
+    // At least lengths the loop ends at `end`; the spare length, shared over the long
+    // segments, must bring it back: Σ x_i u_i = −end with Σ x_i = spare, x ≥ 0.
+    let mut end = [0.0f64; 2];
+    for (i, l) in min_len.iter().enumerate() {
+        end[0] += l * dir(i)[0];
+        end[1] += l * dir(i)[1];
     }
-    close(&mut len, &min_len, &long, target, &dir)
-        .ok_or("polygon: no segment choice closes the loop")?;
+    if spare <= 1e-9 {
+        return Err("polygon: lap too short for the turns");
+    }
+    let c = [-end[0] / spare, -end[1] / spare];
+    let u: Vec<[f64; 2]> = long.iter().map(|&i| dir(i)).collect();
+    let shares =
+        spare_shares(&u, c, rng).ok_or("polygon: the spare length cannot close the loop")?;
+    let mut len = min_len;
+    for (j, &i) in long.iter().enumerate() {
+        len[i] += spare * shares[j];
+    }
     Ok((heading, len))
 }
 
@@ -329,11 +295,7 @@ pub fn polygon_candidate(
         let Some(t) = turns(order, rng) else {
             continue;
         };
-        let hall = [
-            spec.hall_x_m.max(spec.hall_y_m),
-            spec.hall_x_m.min(spec.hall_y_m),
-        ];
-        match lengths(&t, spec.lap_length_m, rc, hall, rng) {
+        match lengths(&t, spec.lap_length_m, rc, rng) {
             Ok((heading, len)) => {
                 found = Some((t, heading, len));
                 break;
