@@ -546,6 +546,58 @@ mod tests {
     }
 
     #[test]
+    fn a_lap_just_above_the_halls_rectangle_takes_the_whole_rectangle() {
+        // 30 m at w = 1.2 m with a sweeper: the largest rounded rectangle in 12 × 9 m is
+        // 29.8 m, within the ring's 1 % slack; the validator's 3 % accepts it.
+        let s = small(30.0, 1.2, 12.0, 9.0, 0, 0, 1);
+        match gen(&s, 0) {
+            Outcome::Accepted { candidate, .. } => {
+                let l = crate::geometry::polyline_length(&candidate.centreline, true);
+                assert!((29.7..30.0).contains(&l), "{l}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn short_laps_with_a_chicane_or_a_wide_hairpin_are_accepted() {
+        // Too short for the ring's four spaced corners; the polygon builds them.
+        for (s, seed) in [
+            (small(20.0, 1.5, 20.0, 15.0, 0, 1, 0), 0),
+            (small(20.0, 1.5, 12.0, 9.0, 1, 1, 1), 1),
+            (small(20.0, 2.0, 16.0, 12.0, 1, 0, 0), 2),
+        ] {
+            match gen(&s, seed) {
+                Outcome::Accepted { report, .. } => assert!(report.valid),
+                other => panic!("{} m, w {}: {other:?}", s.lap_length_m, s.corridor_width_m),
+            }
+        }
+    }
+
+    #[test]
+    fn candidates_interleave_the_three_constructors() {
+        let got: Vec<Source> = (0..12).map(source).collect();
+        use Source::*;
+        assert_eq!(
+            got,
+            [
+                Lattice(0),
+                Ring(0),
+                Lattice(1),
+                Lattice(2),
+                Ring(1),
+                Polygon(0),
+                Lattice(3),
+                Ring(2),
+                Lattice(4),
+                Lattice(5),
+                Ring(3),
+                Polygon(1)
+            ]
+        );
+    }
+
+    #[test]
     fn huge_specs_are_refused_or_bounded() {
         let cfg = ConstructorConfig::default();
         let s = small(1e12, 1.5, 1e12, 1e12, 0, 0, 0);

@@ -43,9 +43,9 @@ const CORNER_DEG: (f64, f64) = (55.0, 125.0);
 /// Largest sweeper corner (degrees): its chamfer (legs 1.5 r_c) must hold two fillets of
 /// radius 2 r_c turning half the angle each.
 const SWEEPER_MAX_DEG: f64 = 100.0;
-/// Largest amount each hairpin half turns less than 90° (rad, 14°: the merged turn
-/// stays ≥ 152°, clear of the detector's 135°).
-const HAIRPIN_NARROW: f64 = 0.25;
+/// Largest amount each hairpin half turns less than 90° (rad, 20°: the merged turn stays
+/// ≥ 140°, above the detector's 135°; the analytic check reads it as the validator does).
+const HAIRPIN_NARROW: f64 = 0.35;
 /// Turn sequences drawn before a candidate gives up on closing.
 const CLOSURE_DRAWS: usize = 256;
 
