@@ -4,9 +4,11 @@
 //! Candidate `k` of seed `σ` draws from its own ChaCha8 stream seeded with `(σ, k)`, so a
 //! candidate does not depend on how many came before it. Every third candidate
 //! (`k ≡ 1 mod 3`) comes from the ring constructor (`ring`), every sixth (`k ≡ 5 mod 6`)
-//! from the polygon constructor (`polygon`, short laps), the rest from the lattice:
+//! from the polygon constructor (`polygon`, short laps) when the lap can fit a convex
+//! loop in the hall, the rest from the lattice:
 //! small halls, where the lattice's one-pitch loop cannot fit, get the rounded rectangle
-//! of free side lengths early, and large ones keep half the budget for the lattice.
+//! of free side lengths early, and large ones keep half the budget for the lattice (two
+//! thirds when the lap is too long for the polygon).
 //! The loop stops early when its [`Budget`] (deadline, cancellation flag) runs out.
 
 use super::budget::{check_limits, Budget, Stop};
@@ -70,13 +72,26 @@ enum Source {
     Polygon(u32),
 }
 
-fn source(k: u32) -> Source {
-    match k % 6 {
-        1 | 4 => Source::Ring(k / 3),
-        5 => Source::Polygon(k / 6),
-        // 0, 2, 3: three lattice candidates in every six.
-        r => Source::Lattice(3 * (k / 6) + [0, 0, 1, 2][r as usize]),
+/// Candidate `k`'s constructor: the ring for `k ≡ 1 (mod 3)`; with `polygon` on, the
+/// polygon for `k ≡ 5 (mod 6)`; the lattice for the rest.
+fn source(k: u32, polygon: bool) -> Source {
+    match (k % 6, polygon) {
+        (1 | 4, _) => Source::Ring(k / 3),
+        (5, true) => Source::Polygon(k / 6),
+        // Three (four without the polygon) lattice candidates in every six.
+        (r, true) => Source::Lattice(3 * (k / 6) + [0, 0, 1, 2][r as usize]),
+        _ => Source::Lattice(k - k.div_ceil(3)),
     }
+}
+
+/// Whether the polygon constructor can hold the lap: its loop is convex but for the
+/// chicanes' steps, so it is no longer than the hall's centreline box (plus two steps
+/// per chicane). Longer laps leave its candidates to the lattice.
+fn polygon_fits(spec: &Spec, cfg: &ConstructorConfig, d: &Derived) -> bool {
+    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
+    let x = spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall;
+    let y = spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall;
+    spec.lap_length_m <= 2.0 * (x + y) + 2.0 * spec.chicanes as f64 * d.s_min
 }
 
 /// Most lattice perimeters considered (the largest ones, which fit halls best).
@@ -148,7 +163,7 @@ pub fn construct(
             order
         }
     };
-    let (line, pitch) = match source(k) {
+    let (line, pitch) = match source(k, polygon_fits(spec, cfg, &d)) {
         Source::Ring(i) => {
             let mut rng = candidate_rng(seed ^ RING_STREAM, i);
             let order = ordered(&mut rng);
@@ -576,7 +591,7 @@ mod tests {
 
     #[test]
     fn candidates_interleave_the_three_constructors() {
-        let got: Vec<Source> = (0..12).map(source).collect();
+        let got: Vec<Source> = (0..12).map(|k| source(k, true)).collect();
         use Source::*;
         assert_eq!(
             got,
@@ -593,6 +608,19 @@ mod tests {
                 Lattice(5),
                 Ring(3),
                 Polygon(1)
+            ]
+        );
+        // Without the polygon the lattice takes its slots back (the pre-polygon order).
+        let got: Vec<Source> = (0..6).map(|k| source(k, false)).collect();
+        assert_eq!(
+            got,
+            [
+                Lattice(0),
+                Ring(0),
+                Lattice(1),
+                Lattice(2),
+                Ring(1),
+                Lattice(3)
             ]
         );
     }
