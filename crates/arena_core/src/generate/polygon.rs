@@ -304,14 +304,12 @@ pub fn polygon_candidate(
         }
     }
     let (t, heading, len) = found.ok_or(why)?;
-    let n = t.len();
-    let dir = |i: usize| [heading[i].cos(), heading[i].sin()];
     // Turtle: vertex i is where turn i happens; segment i leaves it.
-    let mut verts = Vec::with_capacity(n);
+    let mut verts = Vec::with_capacity(t.len());
     let mut p = [0.0f64, 0.0];
-    for i in 0..n {
+    for (l, h) in len.iter().zip(&heading) {
         verts.push(p);
-        p = [p[0] + len[i] * dir(i)[0], p[1] + len[i] * dir(i)[1]];
+        p = [p[0] + l * h.cos(), p[1] + l * h.sin()];
     }
     if p[0].hypot(p[1]) > 1e-6 {
         return Err("polygon: loop does not close");
