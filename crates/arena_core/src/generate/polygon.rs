@@ -4,19 +4,22 @@
 //!
 //! The ring needs four 90° corners, each ≥ 3.5 r_c from the next same-sense turn (below
 //! that the detector merges them into a hairpin; measured on a rounded rectangle), plus
-//! that spacing around every feature. Here the loop turns through 360° at 2–6 corners of
-//! any angle in [55°, 125°], and the features are turn groups joined by short links:
+//! that spacing around every feature. Here the loop turns through 360° at 1–6 corners of
+//! any angle in [55°, 125°] (a rectangle half the time), and the features are turn groups
+//! joined by short links:
 //!
-//! * hairpin: two 90° turns one short link apart (the detector merges them, ≥ 135°);
+//! * hairpin: two 70–90° turns one short link apart (the detector merges them; below 90°
+//!   the legs open away from it, so one hairpin and two corners make a trapezoid);
 //! * chicane: two opposite 60–75° turns one short link apart;
 //! * sweeper: a corner cut by the rounding's chamfer (peak radius 2 r_c).
 //!
 //! Every other pair of neighbouring turns is a *long* link (≥ [`LONG_STRAIGHT`] of
-//! straight between the fillets). Segment lengths get the spare length at random, and
-//! three long segments absorb the closure and keep the length exact (a 3 × 3 linear
-//! solve: the heading of every segment is fixed, so the end point and the length are
-//! linear in the segment lengths). Hall fit (any rotation), direction and the analytic
-//! checks are the caller's, as for the ring.
+//! straight between the fillets), except that a chicane turn and an opposite-turning
+//! corner next to it may be short. With every heading fixed, the loop's end point and
+//! length are linear in the segment lengths: each segment gets its least length, and the
+//! spare length is shared over the long segments so that the loop closes exactly at
+//! length L ([`spare_shares`]). Hall fit (any rotation), direction and the analytic checks
+//! are the caller's, as for the ring.
 
 use super::rounding::{round_polygon, SWEEPER_CHAMFER, SWEEPER_RADIUS};
 use super::spec::{Derived, Spec};
@@ -48,6 +51,9 @@ const SWEEPER_MAX_DEG: f64 = 100.0;
 const HAIRPIN_NARROW: f64 = 0.35;
 /// Turn sequences drawn before a candidate gives up on closing.
 const CLOSURE_DRAWS: usize = 256;
+/// Most features the polygon places: it is for short laps, and the closure's triangle
+/// search is cubic in the number of segments (≤ 2 · 12 + 6 here).
+pub const MAX_FEATURES: usize = 12;
 
 /// One turn of the polygon: signed angle (rad, + = left), sweeper flag, and the straight
 /// (in r_c) of a short link to the next turn (inside a feature), `None` for a long link.
@@ -88,7 +94,7 @@ fn uniform(rng: &mut ChaCha8Rng) -> f64 {
 fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
     let h = order.iter().filter(|&&k| k == FeatureKind::Hairpin).count();
     let s = order.iter().filter(|&&k| k == FeatureKind::Sweeper).count();
-    if h > 2 {
+    if h > 2 || order.len() > MAX_FEATURES {
         return None;
     }
     // Each hairpin turns 180° less 2δ, so the legs open away from it (a lone hairpin
@@ -395,9 +401,10 @@ mod tests {
     }
 
     #[test]
-    fn three_hairpins_or_a_sweeper_without_a_corner_are_refused() {
+    fn three_hairpins_too_many_features_or_a_sweeper_without_a_corner_are_refused() {
         let mut rng = ChaCha8Rng::seed_from_u64(0);
         assert!(turns(&[FeatureKind::Hairpin; 3], &mut rng).is_none());
+        assert!(turns(&[FeatureKind::Chicane; MAX_FEATURES + 1], &mut rng).is_none());
         let two_and_sweeper = [
             FeatureKind::Hairpin,
             FeatureKind::Hairpin,
