@@ -11,7 +11,7 @@
 //! * hairpin: two 70–90° turns one short link apart (the detector merges them; below 90°
 //!   the legs open away from it, so one hairpin and two corners make a trapezoid);
 //! * chicane: two opposite 60–75° turns one short link apart;
-//! * sweeper: a corner cut by the rounding's chamfer (peak radius 2 r_c).
+//! * sweeper: a corner rounded with one arc of [`SWEEPER_ARC`] r_c.
 //!
 //! Every other pair of neighbouring turns is a *long* link (≥ [`LONG_STRAIGHT`] of
 //! straight between the fillets), except that a chicane turn and an opposite-turning
@@ -21,7 +21,7 @@
 //! length L ([`spare_shares`]). Hall fit (any rotation), direction and the analytic checks
 //! are the caller's, as for the ring.
 
-use super::rounding::{round_polygon, SWEEPER_CHAMFER, SWEEPER_RADIUS};
+use super::rounding::round_polygon_radii;
 use super::spec::{Derived, Spec};
 use crate::track::features::FeatureKind;
 use rand_chacha::rand_core::Rng;
@@ -31,8 +31,9 @@ use std::f64::consts::PI;
 /// Straight (in r_c) kept between the fillets of neighbouring turns that must stay apart,
 /// drawn per candidate in this range: the detector merges same-sense turns closer than
 /// 0.8 r_c after smoothing, which a rounded rectangle shows at a side of 3.5 r_c
-/// (1.5 r_c of straight); the raster validator judges the margin.
-pub const LONG_STRAIGHT: (f64, f64) = (1.55, 1.85);
+/// (1.5 r_c of straight, the lower end); the analytic check and the raster validator
+/// judge each candidate with the same detector.
+pub const LONG_STRAIGHT: (f64, f64) = (1.5, 1.85);
 /// Straight (in r_c) inside a hairpin: its two halves must merge into one turn.
 const HAIRPIN_LINK: f64 = 0.1;
 /// Straight (in r_c) between a chicane's two turns: under the detector's 0.8 r_c pairing
@@ -43,9 +44,10 @@ const CHICANE_LINK: f64 = 0.3;
 const CHICANE_DEG: (f64, f64) = (60.0, 75.0);
 /// Corner angles of the convex loop (degrees): a sweeper must read as 45–135°.
 const CORNER_DEG: (f64, f64) = (55.0, 125.0);
-/// Largest sweeper corner (degrees): its chamfer (legs 1.5 r_c) must hold two fillets of
-/// radius 2 r_c turning half the angle each.
-const SWEEPER_MAX_DEG: f64 = 100.0;
+/// Sweeper fillet radius (in r_c): one arc whose peak radius the detector reads ≥ 1.5 r_c
+/// (10 % margin for the raster), cheaper in a short lap than the ring's chamfer (two
+/// 45° arcs of 2 r_c on 1.5 r_c legs).
+const SWEEPER_ARC: f64 = 1.65;
 /// Largest amount each hairpin half turns less than 90° (rad, 20°: the merged turn stays
 /// ≥ 140°, above the detector's 135°; the analytic check reads it as the validator does).
 const HAIRPIN_NARROW: f64 = 0.35;
@@ -64,25 +66,24 @@ struct Turn {
     short_next: Option<f64>,
 }
 
-/// Length a turn's rounding takes from each adjacent segment (m).
-fn tangent(t: &Turn, rc: f64) -> f64 {
-    let a = t.angle.abs();
+/// Fillet radius of a turn (m): r_c, or [`SWEEPER_ARC`] r_c for a sweeper.
+fn radius(t: &Turn, rc: f64) -> f64 {
     if t.sweeper {
-        SWEEPER_CHAMFER * rc + SWEEPER_RADIUS * rc * (a / 4.0).tan()
+        SWEEPER_ARC * rc
     } else {
-        rc * (a / 2.0).tan()
+        rc
     }
 }
 
-/// Length the rounding removes from the polygon at one turn (m).
+/// Length a turn's fillet takes from each adjacent segment (m).
+fn tangent(t: &Turn, rc: f64) -> f64 {
+    radius(t, rc) * (t.angle.abs() / 2.0).tan()
+}
+
+/// Length the fillet removes from the polygon at one turn (m).
 fn saving(t: &Turn, rc: f64) -> f64 {
     let a = t.angle.abs();
-    if t.sweeper {
-        let (c, r) = (SWEEPER_CHAMFER * rc, SWEEPER_RADIUS * rc);
-        2.0 * c * (1.0 - (a / 2.0).cos()) + 2.0 * (2.0 * r * (a / 4.0).tan() - r * a / 2.0)
-    } else {
-        2.0 * rc * (a / 2.0).tan() - rc * a
-    }
+    radius(t, rc) * (2.0 * (a / 2.0).tan() - a)
 }
 
 fn uniform(rng: &mut ChaCha8Rng) -> f64 {
@@ -192,11 +193,7 @@ fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
             out[i].short_next = Some(CHICANE_LINK);
         }
     }
-    // The sweeper's chamfer holds its two fillets only up to ~100° (see `rounding`).
-    let chamfer_ok = out
-        .iter()
-        .all(|x| !x.sweeper || x.angle <= SWEEPER_MAX_DEG.to_radians());
-    (n >= 3 && chamfer_ok).then_some(out)
+    (n >= 3).then_some(out)
 }
 
 /// Share of the spare length per long segment that closes the loop: weights `λ ≥ 0`,
@@ -320,8 +317,8 @@ pub fn polygon_candidate(
     if p[0].hypot(p[1]) > 1e-6 {
         return Err("polygon: loop does not close");
     }
-    let flags: Vec<bool> = t.iter().map(|x| x.sweeper).collect();
-    let line = round_polygon(&verts, &flags, rc, 0.02).ok_or("fillets overlap")?;
+    let radii: Vec<f64> = t.iter().map(|x| radius(x, rc)).collect();
+    let line = round_polygon_radii(&verts, &radii, 0.02).ok_or("fillets overlap")?;
     Ok((best_fit_rotation(&line, spec), d.s_min))
 }
 

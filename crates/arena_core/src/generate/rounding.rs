@@ -88,6 +88,22 @@ pub fn round_polygon(
             verts.push(Vertex { p, radius: rc });
         }
     }
+    fillet(&verts, step)
+}
+
+/// Round a polygon (metres) with one fillet radius per vertex. `None` if some fillets
+/// would overlap on an edge.
+pub fn round_polygon_radii(pts: &[[f64; 2]], radii: &[f64], step: f64) -> Option<Vec<[f64; 2]>> {
+    let verts: Vec<Vertex> = pts
+        .iter()
+        .zip(radii)
+        .map(|(&p, &radius)| Vertex { p, radius })
+        .collect();
+    fillet(&verts, step)
+}
+
+/// Fillet every vertex with its radius, points at most `step` apart along the arcs.
+fn fillet(verts: &[Vertex], step: f64) -> Option<Vec<[f64; 2]>> {
     let n = verts.len();
     // Tangent lengths; every edge must hold both neighbours' tangents.
     let mut tan_len = vec![0.0; n];
