@@ -64,6 +64,9 @@ def test_small_hall_specs_are_accepted_and_independently_valid(spec, tmp_path):
         TrackSpec(
             name="wide-hairpin-in-20m", lap_length_m=20, corridor_width_m=2.0, hall_x_m=16, hall_y_m=12, hairpins=1
         ),
+        TrackSpec(
+            name="wide-sweeper-in-20m", lap_length_m=20, corridor_width_m=2.0, hall_x_m=12, hall_y_m=9, sweepers=1
+        ),
         # The largest rounded rectangle in the hall is 0.6 % short of L: the ring takes it.
         TrackSpec(
             name="sweeper-fills-12x9", lap_length_m=30, corridor_width_m=1.2, hall_x_m=12, hall_y_m=9, sweepers=1

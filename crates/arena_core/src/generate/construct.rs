@@ -581,6 +581,7 @@ mod tests {
             (small(20.0, 1.5, 20.0, 15.0, 0, 1, 0), 0),
             (small(20.0, 1.5, 12.0, 9.0, 1, 1, 1), 1),
             (small(20.0, 2.0, 16.0, 12.0, 1, 0, 0), 2),
+            (small(20.0, 2.0, 12.0, 9.0, 0, 0, 1), 0),
         ] {
             match gen(&s, seed) {
                 Outcome::Accepted { report, .. } => assert!(report.valid),
