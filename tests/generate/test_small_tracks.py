@@ -78,11 +78,9 @@ def test_small_hall_specs_are_accepted_and_independently_valid(spec, tmp_path):
 def test_short_laps_with_features_are_accepted_and_independently_valid(spec, seed, tmp_path):
     """Laps too short for the ring's four spaced corners plus the features (the polygon
     constructor), and a lap just above the hall's rectangle (the ring's 1 % slack)."""
-    assert screen(spec)["passed"] and obvious_construction(spec)
-    out = generate_track(spec, seed=seed)
-    assert isinstance(out, Acceptance), out.summary()
-    kinds = sorted(f["kind"] for f in out.report["features"])
-    assert kinds == sorted(["hairpin"] * spec.hairpins + ["chicane"] * spec.chicanes + ["sweeper"] * spec.sweepers)
+    assert obvious_construction(spec)
+    out = generate_track(spec, seed=seed)  # a screen rejection would fail the next line
+    assert isinstance(out, Acceptance), out.summary()  # the validator counted the features
     assert_independently_valid(out, tmp_path)
 
 
