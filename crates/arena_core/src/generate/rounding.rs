@@ -181,6 +181,17 @@ mod tests {
     }
 
     #[test]
+    fn per_vertex_radii_take_their_own_saving() {
+        // A 6 m square with radii 1, 1.5, 1, 0.5: each 90° fillet saves (2 − π/2) r.
+        let sq = [[0.0, 0.0], [6.0, 0.0], [6.0, 6.0], [0.0, 6.0]];
+        let radii = [1.0, 1.5, 1.0, 0.5];
+        let c = round_polygon_radii(&sq, &radii, 0.005).unwrap();
+        let want = 24.0 - (2.0 - PI / 2.0) * radii.iter().sum::<f64>();
+        assert!((polyline_length(&c, true) - want).abs() < 1e-3);
+        assert!(round_polygon_radii(&sq, &[3.5, 3.0, 1.0, 1.0], 0.05).is_none());
+    }
+
+    #[test]
     fn overlapping_fillets_are_refused() {
         assert!(rounded_centreline(&square(1), &[false; 4], 1.0, 0.6, 0.05).is_none());
     }
