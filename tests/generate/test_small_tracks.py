@@ -7,7 +7,7 @@ import pytest
 from independent_measure import assert_independently_valid
 
 from roboracer_arena import TrackSpec
-from roboracer_arena.bench.constructor_sweep import SWEEP_FILE, load_sweep_file, sweep_specs
+from roboracer_arena.bench.constructor_sweep import SWEEP_FILE, load_sweep_file, obvious_construction, sweep_specs
 from roboracer_arena.generate import Acceptance, generate_track, screen
 
 ISSUE_CASE = TrackSpec(lap_length_m=30, corridor_width_m=1.0, hall_x_m=12, hall_y_m=9, sweepers=1)
@@ -46,6 +46,53 @@ def test_small_hall_specs_are_accepted_and_independently_valid(spec, tmp_path):
     assert_independently_valid(out, tmp_path)
 
 
+@pytest.mark.parametrize(
+    "spec",
+    [
+        TrackSpec(name="chicane-in-20m", lap_length_m=20, corridor_width_m=1.5, hall_x_m=20, hall_y_m=15, chicanes=1),
+        TrackSpec(
+            name="three-features-in-20m",
+            lap_length_m=20,
+            corridor_width_m=1.5,
+            hall_x_m=12,
+            hall_y_m=9,
+            hairpins=1,
+            chicanes=1,
+            sweepers=1,
+            direction="clockwise",
+        ),
+        TrackSpec(
+            name="wide-hairpin-in-20m", lap_length_m=20, corridor_width_m=2.0, hall_x_m=16, hall_y_m=12, hairpins=1
+        ),
+        TrackSpec(
+            name="wide-sweeper-in-20m", lap_length_m=20, corridor_width_m=2.0, hall_x_m=12, hall_y_m=9, sweepers=1
+        ),
+        # The largest rounded rectangle in the hall is 0.6 % short of L: the ring takes it.
+        TrackSpec(
+            name="sweeper-fills-12x9", lap_length_m=30, corridor_width_m=1.2, hall_x_m=12, hall_y_m=9, sweepers=1
+        ),
+    ],
+    ids=lambda s: s.name,
+)
+@pytest.mark.parametrize("seed", [0, 1])
+def test_short_laps_with_features_are_accepted_and_independently_valid(spec, seed, tmp_path):
+    """Laps too short for the ring's four spaced corners plus the features (the polygon
+    constructor), and a lap just above the hall's rectangle (the ring's 1 % slack)."""
+    assert obvious_construction(spec)
+    out = generate_track(spec, seed=seed)  # a screen rejection would fail the next line
+    assert isinstance(out, Acceptance), out.summary()  # the validator counted the features
+    assert_independently_valid(out, tmp_path)
+
+
+def test_obvious_construction_is_a_rounded_rectangle_of_length_l_in_the_hall():
+    # 12 × 9 m hall less 2 × 0.5 m margins and a 1.3 m corridor (w + 2 t_w): a 9.7 × 6.7 m
+    # centreline box; r_c = 0.9 m → 2 (9.7 + 6.7) − 4 (2 − π/2) 0.9 = 31.25 m.
+    assert obvious_construction(ISSUE_CASE)
+    assert obvious_construction(ISSUE_CASE.model_copy(update={"lap_length_m": 31.2}))
+    assert not obvious_construction(ISSUE_CASE.model_copy(update={"lap_length_m": 31.3}))
+    assert not obvious_construction(TrackSpec(lap_length_m=200.0))
+
+
 def test_shipped_sweep_file_is_the_defined_sweep():
     shipped = load_sweep_file()
     assert len(shipped) >= 300, SWEEP_FILE
@@ -63,4 +110,5 @@ def test_sweep_runner_counts_and_writes_remeasurable_maps(tmp_path):
     assert result["specs"] == 2 and result["accepted"] == 1
     assert [m["spec"] for m in result["misses"]] == ["paper-200m"] and result["misses"][0]["outcome"] == "rejected"
     assert result["by_hall"] == {"12x9": "1/1", "20x15": "0/1"}
+    assert (result["obvious_accepted"], result["obvious_specs"]) == (1, 1)
     assert problems(ISSUE_CASE, tmp_path / "issue-case" / "map.yaml") == []

@@ -12,9 +12,13 @@ so :func:`sweep_specs` always returns the same list, and the shipped
 * features (hairpins, chicanes, sweepers) from none up to (3, 1, 0) and (2, 1, 1);
 * direction alternating; seed = index mod 3.
 
-Each spec runs once through ``generate_track`` (lattice + ring, 800-candidate cap,
-default time budget). With ``--maps DIR`` every accepted map is written there (one
-folder per spec, the ``generate`` outputs) for an independent re-measurement, e.g.
+Each spec runs once through ``generate_track`` (lattice + ring + polygon, 800-candidate
+cap, default time budget). A spec has an *obvious construction* (the issue's subset) when a
+rounded rectangle of length L (corner radius r_c) fits the hall: L ≤ 2 (X + Y) −
+4 (2 − π/2) r_c, with X × Y the hall less the margins and one wall-to-wall corridor width
+(:func:`obvious_construction`); the summary reports that subset on its own. With
+``--maps DIR`` every accepted map is written there (one folder per spec, the ``generate``
+outputs) for an independent re-measurement, e.g.
 ``python tests/generate/remeasure_dir.py DIR``.
 """
 
@@ -22,6 +26,7 @@ from __future__ import annotations
 
 import itertools
 import json
+import math
 import statistics
 import sys
 import time
@@ -32,6 +37,8 @@ from typing import Any
 
 from tqdm import tqdm
 
+from .. import _core
+from ..constructor_config import ConstructorConfig
 from ..generate import Acceptance, generate_track, screen, write_outputs
 from ..spec import TrackSpec
 
@@ -64,6 +71,17 @@ def sweep_specs() -> list[TrackSpec]:
     return [grid[int(k * step)] for k in range(min(TARGET_COUNT, len(grid)))]
 
 
+def obvious_construction(spec: TrackSpec, config: ConstructorConfig | None = None) -> bool:
+    """Whether a rounded rectangle (corners of radius r_c) of the spec's lap length fits
+    its hall: the lap is no longer than the largest such rectangle's centreline."""
+    cfg = config or ConstructorConfig()
+    rc = json.loads(_core.derived_geometry(spec.model_dump_json(), cfg.model_dump_json()))["corner_radius"]
+    wall = spec.corridor_width_m + 2 * cfg.wall_thickness_m
+    x = spec.hall_x_m - 2 * cfg.hall_margin_m - wall
+    y = spec.hall_y_m - 2 * cfg.hall_margin_m - wall
+    return x > 2 * rc and y > 2 * rc and spec.lap_length_m <= 2 * (x + y) - 4 * (2 - math.pi / 2) * rc
+
+
 def _trial(job: tuple[int, str, str | None]) -> dict[str, Any]:
     i, spec_json, maps = job
     spec = TrackSpec.model_validate_json(spec_json)
@@ -77,6 +95,7 @@ def _trial(job: tuple[int, str, str | None]) -> dict[str, Any]:
         "corridor_width_m": spec.corridor_width_m,
         "hall": f"{spec.hall_x_m:g}x{spec.hall_y_m:g}",
         "features": f"h{spec.hairpins}c{spec.chicanes}s{spec.sweepers}",
+        "obvious": obvious_construction(spec),
         "outcome": out.kind,
         "candidates": getattr(out, "candidates_tried", 0),
         "seconds": time.perf_counter() - t0,
@@ -114,10 +133,13 @@ def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, p
         return {k: f"{ok[k]}/{tot[k]}" for k in sorted(tot, key=lambda x: (len(x), x))}
 
     secs = [r["seconds"] for r in rows]
+    obvious = [r for r in rows if r["obvious"]]
     return {
         "specs": len(rows),
         "accepted": len(accepted),
         "acceptance": len(accepted) / len(rows) if rows else float("nan"),
+        "obvious_specs": len(obvious),
+        "obvious_accepted": sum(r["outcome"] == "accepted" for r in obvious),
         "seconds_median": statistics.median(secs) if secs else float("nan"),
         "seconds_max": max(secs) if secs else float("nan"),
         "candidates_median_accepted": statistics.median(r["candidates"] for r in accepted) if accepted else 0,
@@ -126,7 +148,8 @@ def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, p
         "by_hall": by("hall"),
         "by_features": by("features"),
         "misses": [
-            {k: r[k] for k in ("spec", "seed", "outcome", "candidates", "top_reasons") if k in r} for r in misses
+            {k: r[k] for k in ("spec", "seed", "obvious", "outcome", "candidates", "top_reasons") if k in r}
+            for r in misses
         ],
         "rows": rows,
     }
@@ -138,11 +161,14 @@ def print_sweep(result: dict[str, Any]) -> None:
         f"({100 * result['acceptance']:.1f} %), median {result['seconds_median']:.3f} s/spec, "
         f"max {result['seconds_max']:.2f} s, median candidates to acceptance {result['candidates_median_accepted']:g}"
     )
+    print(
+        f"  obvious construction (a rounded rectangle of length L fits): {result['obvious_accepted']}/{result['obvious_specs']}"
+    )
     for key in ("by_lap", "by_width", "by_hall", "by_features"):
         print(f"  {key[3:]:<9} " + "  ".join(f"{k}: {v}" for k, v in result[key].items()))
     for m in result["misses"]:
         print(
-            f"  miss {m['spec']} seed {m['seed']}: {m['outcome']} after {m['candidates']} ({json.dumps(m.get('top_reasons', {}))})"
+            f"  miss {m['spec']}{' (obvious)' if m.get('obvious') else ''} seed {m['seed']}: {m['outcome']} after {m['candidates']} ({json.dumps(m.get('top_reasons', {}))})"
         )
 
 

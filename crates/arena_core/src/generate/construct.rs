@@ -3,13 +3,17 @@
 //!
 //! Candidate `k` of seed `σ` draws from its own ChaCha8 stream seeded with `(σ, k)`, so a
 //! candidate does not depend on how many came before it. Every third candidate
-//! (`k ≡ 1 mod 3`) comes from the ring constructor (`ring`), the rest from the lattice:
+//! (`k ≡ 1 mod 3`) comes from the ring constructor (`ring`), every sixth (`k ≡ 5 mod 6`)
+//! from the polygon constructor (`polygon`, short laps) when the lap can fit a convex
+//! loop in the hall, the rest from the lattice:
 //! small halls, where the lattice's one-pitch loop cannot fit, get the rounded rectangle
-//! of free side lengths early, and large ones keep most of the budget for the lattice.
+//! of free side lengths early, and large ones keep half the budget for the lattice (two
+//! thirds when the lap is too long for the polygon).
 //! The loop stops early when its [`Budget`] (deadline, cancellation flag) runs out.
 
 use super::budget::{check_limits, Budget, Stop};
 use super::lattice::{grow, Target};
+use super::polygon::polygon_candidate;
 use super::ring::ring_candidate;
 use super::rounding::{pitch_for_length, rounded_centreline};
 use super::screen::{screen, ScreenResult};
@@ -54,8 +58,41 @@ pub enum Outcome {
     },
 }
 
-/// Seed offset of the ring constructor's candidate streams (distinct from the lattice's).
+/// Seed offsets of the ring's and the polygon's candidate streams (distinct from the
+/// lattice's).
 const RING_STREAM: u64 = 0x5249_4E47;
+const POLYGON_STREAM: u64 = 0x504F_4C59;
+
+/// Which constructor candidate `k` comes from, and its index among that constructor's
+/// candidates (each draws its own stream, whatever the interleaving).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Source {
+    Lattice(u32),
+    Ring(u32),
+    Polygon(u32),
+}
+
+/// Candidate `k`'s constructor: the ring for `k ≡ 1 (mod 3)`; with `polygon` on, the
+/// polygon for `k ≡ 5 (mod 6)`; the lattice for the rest.
+fn source(k: u32, polygon: bool) -> Source {
+    match (k % 6, polygon) {
+        (1 | 4, _) => Source::Ring(k / 3),
+        (5, true) => Source::Polygon(k / 6),
+        // Three (four without the polygon) lattice candidates in every six.
+        (r, true) => Source::Lattice(3 * (k / 6) + [0, 0, 1, 2][r as usize]),
+        _ => Source::Lattice(k - k.div_ceil(3)),
+    }
+}
+
+/// Whether the polygon constructor can hold the lap: its loop is convex but for the
+/// chicanes' steps, so it is no longer than the hall's centreline box (plus two steps
+/// per chicane). Longer laps leave its candidates to the lattice.
+fn polygon_fits(spec: &Spec, cfg: &ConstructorConfig, d: &Derived) -> bool {
+    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
+    let x = spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall;
+    let y = spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall;
+    spec.lap_length_m <= 2.0 * (x + y) + 2.0 * spec.chicanes as f64 * d.s_min
+}
 
 /// Most lattice perimeters considered (the largest ones, which fit halls best).
 const MAX_PERIMETER_OPTIONS: u64 = 64;
@@ -105,8 +142,9 @@ fn boundary_order(spec: &Spec) -> Vec<FeatureKind> {
     order
 }
 
-/// Construct candidate `k`: the ring constructor for `k ≡ 1 (mod 3)`, else lattice
-/// growth + rounding; then the shared hall fit, direction and analytic pre-checks.
+/// Construct candidate `k`: the ring constructor for `k ≡ 1 (mod 3)`, the polygon
+/// constructor for `k ≡ 5 (mod 6)`, else lattice growth + rounding; then the shared hall
+/// fit, direction and analytic pre-checks.
 pub fn construct(
     spec: &Spec,
     cfg: &ConstructorConfig,
@@ -115,18 +153,28 @@ pub fn construct(
     budget: &Budget,
 ) -> Result<Candidate, &'static str> {
     let d = derive(spec, cfg);
-    let (line, pitch) = if k % 3 == 1 {
-        let mut rng = candidate_rng(seed ^ RING_STREAM, k / 3);
-        // Without a requested order the ring places the features in a drawn order.
-        let mut order = boundary_order(spec);
+    // Without a requested order the ring and the polygon place the features in a drawn
+    // order.
+    let ordered = |rng: &mut ChaCha8Rng| {
+        let order = boundary_order(spec);
         if order.is_empty() {
-            order = shuffled_features(spec, &mut rng);
+            shuffled_features(spec, rng)
+        } else {
+            order
         }
-        ring_candidate(spec, cfg, &d, &order, &mut rng)?
-    } else {
-        // The j-th lattice candidate draws stream j whatever the interleaving.
-        let j = k - k.div_ceil(3);
-        lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, budget)?
+    };
+    let (line, pitch) = match source(k, polygon_fits(spec, cfg, &d)) {
+        Source::Ring(i) => {
+            let mut rng = candidate_rng(seed ^ RING_STREAM, i);
+            let order = ordered(&mut rng);
+            ring_candidate(spec, cfg, &d, &order, &mut rng)?
+        }
+        Source::Polygon(i) => {
+            let mut rng = candidate_rng(seed ^ POLYGON_STREAM, i);
+            let order = ordered(&mut rng);
+            polygon_candidate(spec, &d, &order, &mut rng)?
+        }
+        Source::Lattice(j) => lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, budget)?,
     };
     finish(line, pitch, spec, cfg, &d)
 }
@@ -510,6 +558,56 @@ mod tests {
             ok > 0,
             "no ring candidate passed the analytic checks: {why:?}"
         );
+    }
+
+    #[test]
+    fn a_lap_just_above_the_halls_rectangle_takes_the_whole_rectangle() {
+        // 30 m at w = 1.2 m with a sweeper: the largest rounded rectangle in 12 × 9 m is
+        // 29.8 m, within the ring's 1 % slack; the validator's 3 % accepts it.
+        let s = small(30.0, 1.2, 12.0, 9.0, 0, 0, 1);
+        match gen(&s, 0) {
+            Outcome::Accepted { candidate, .. } => {
+                let l = crate::geometry::polyline_length(&candidate.centreline, true);
+                assert!((29.7..30.0).contains(&l), "{l}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn short_laps_with_a_chicane_or_a_wide_hairpin_are_accepted() {
+        // Too short for the ring's four spaced corners; the polygon builds them.
+        for (s, seed) in [
+            (small(20.0, 1.5, 20.0, 15.0, 0, 1, 0), 0),
+            (small(20.0, 1.5, 12.0, 9.0, 1, 1, 1), 1),
+            (small(20.0, 2.0, 16.0, 12.0, 1, 0, 0), 2),
+            (small(20.0, 2.0, 12.0, 9.0, 0, 0, 1), 0),
+        ] {
+            match gen(&s, seed) {
+                Outcome::Accepted { report, .. } => assert!(report.valid),
+                other => panic!("{} m, w {}: {other:?}", s.lap_length_m, s.corridor_width_m),
+            }
+        }
+    }
+
+    #[test]
+    fn candidates_interleave_the_three_constructors() {
+        use Source::*;
+        let first_six = |polygon| (0..6).map(|k| source(k, polygon)).collect::<Vec<_>>();
+        let with = [
+            Lattice(0),
+            Ring(0),
+            Lattice(1),
+            Lattice(2),
+            Ring(1),
+            Polygon(0),
+        ];
+        assert_eq!(first_six(true), with);
+        assert_eq!(source(11, true), Polygon(1));
+        assert_eq!(source(12, true), Lattice(6));
+        // Without the polygon the lattice takes its slots back (the pre-polygon order).
+        assert_eq!(first_six(false)[5], Lattice(3));
+        assert_eq!(first_six(false)[..5], with[..5]);
     }
 
     #[test]

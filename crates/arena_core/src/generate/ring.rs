@@ -58,6 +58,10 @@ const MAX_PLAIN_NOTCHES: u32 = 8;
 /// detector's smoothing does not merge its corners into a hairpin or a chicane.
 const PLAIN_WIDTHS: [f64; 3] = [1.8, 2.1, 2.5];
 
+/// Largest relative shortfall of the lap the ring builds when the hall's rectangle
+/// cannot hold L: a third of the validator's 3 % tolerance, the rest left to the raster.
+pub const LAP_SLACK: f64 = 0.01;
+
 /// A ring layout: inserts per side (counter-clockwise from the bottom side) and which
 /// of the four corners (end of side i) are sweepers.
 #[derive(Debug, Clone, Default)]
@@ -257,7 +261,13 @@ pub fn ring_candidate(
     };
     let (a_lo, b_lo) = floors(&lay);
     // A + B for the plain ring (`length_for` is linear in A + B with slope 2).
-    let k_ab = (spec.lap_length_m - length_for(&lay, 0.0, 0.0)) / 2.0;
+    let mut k_ab = (spec.lap_length_m - length_for(&lay, 0.0, 0.0)) / 2.0;
+    // A lap just too long for the hall's rectangle takes the whole rectangle when that
+    // is within LAP_SLACK of L (the validator allows 3 %).
+    let k_short = (spec.lap_length_m * (1.0 - LAP_SLACK) - length_for(&lay, 0.0, 0.0)) / 2.0;
+    if k_ab > ux + uy && k_short <= ux + uy {
+        k_ab = ux + uy;
+    }
     let t = (rng.next_u32() % 1000) as f64 / 999.0;
     let (a, b) = if k_ab - uy.min(ux) <= ux {
         // The rounded rectangle holds the lap: draw B, biased towards the full height.

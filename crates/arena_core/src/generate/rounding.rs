@@ -88,6 +88,22 @@ pub fn round_polygon(
             verts.push(Vertex { p, radius: rc });
         }
     }
+    fillet(&verts, step)
+}
+
+/// Round a polygon (metres) with one fillet radius per vertex. `None` if some fillets
+/// would overlap on an edge.
+pub fn round_polygon_radii(pts: &[[f64; 2]], radii: &[f64], step: f64) -> Option<Vec<[f64; 2]>> {
+    let verts: Vec<Vertex> = pts
+        .iter()
+        .zip(radii)
+        .map(|(&p, &radius)| Vertex { p, radius })
+        .collect();
+    fillet(&verts, step)
+}
+
+/// Fillet every vertex with its radius, points at most `step` apart along the arcs.
+fn fillet(verts: &[Vertex], step: f64) -> Option<Vec<[f64; 2]>> {
     let n = verts.len();
     // Tangent lengths; every edge must hold both neighbours' tangents.
     let mut tan_len = vec![0.0; n];
@@ -162,6 +178,17 @@ mod tests {
             assert!((l - 40.0).abs() < 0.01, "sweepers {sweepers}: {l}");
             assert!(crate::geometry::signed_area(&c) > 0.0);
         }
+    }
+
+    #[test]
+    fn per_vertex_radii_take_their_own_saving() {
+        // A 6 m square with radii 1, 1.5, 1, 0.5: each 90° fillet saves (2 − π/2) r.
+        let sq = [[0.0, 0.0], [6.0, 0.0], [6.0, 6.0], [0.0, 6.0]];
+        let radii = [1.0, 1.5, 1.0, 0.5];
+        let c = round_polygon_radii(&sq, &radii, 0.005).unwrap();
+        let want = 24.0 - (2.0 - PI / 2.0) * radii.iter().sum::<f64>();
+        assert!((polyline_length(&c, true) - want).abs() < 1e-3);
+        assert!(round_polygon_radii(&sq, &[3.5, 3.0, 1.0, 1.0], 0.05).is_none());
     }
 
     #[test]
