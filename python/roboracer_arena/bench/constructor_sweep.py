@@ -37,9 +37,8 @@ from typing import Any
 
 from tqdm import tqdm
 
-from .. import _core
 from ..constructor_config import ConstructorConfig
-from ..generate import Acceptance, generate_track, screen, write_outputs
+from ..generate import Acceptance, derived_geometry, generate_track, screen, write_outputs
 from ..spec import TrackSpec
 
 LAPS = (20.0, 30.0, 45.0, 60.0, 80.0, 110.0)
@@ -75,7 +74,7 @@ def obvious_construction(spec: TrackSpec, config: ConstructorConfig | None = Non
     """Whether a rounded rectangle (corners of radius r_c) of the spec's lap length fits
     its hall: the lap is no longer than the largest such rectangle's centreline."""
     cfg = config or ConstructorConfig()
-    rc = json.loads(_core.derived_geometry(spec.model_dump_json(), cfg.model_dump_json()))["corner_radius"]
+    rc = derived_geometry(spec, cfg).corner_radius
     wall = spec.corridor_width_m + 2 * cfg.wall_thickness_m
     x = spec.hall_x_m - 2 * cfg.hall_margin_m - wall
     y = spec.hall_y_m - 2 * cfg.hall_margin_m - wall
