@@ -419,7 +419,15 @@ impl World {
         let np = &self.pw.narrow_phase;
         for car in &mut self.cars {
             for pair in np.contact_pairs_with(car.collider) {
-                if !pair.has_any_active_contact() {
+                // A contact event means touching: rapier also keeps speculative points out
+                // to the prediction distance (which covers a step at top speed), and a car
+                // passing a few cm from a wall is not a collision.
+                let touching = pair.has_any_active_contact()
+                    && pair
+                        .manifolds()
+                        .iter()
+                        .any(|m| m.points.iter().any(|c| c.dist <= PREDICTION_DISTANCE));
+                if !touching {
                     continue;
                 }
                 let other = if pair.collider1 == car.collider {
