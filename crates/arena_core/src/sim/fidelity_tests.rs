@@ -187,10 +187,49 @@ fn head_on(walls: &[Vec<[f64; 2]>], half: f64, y: f64, lead: f64, dt: f64) -> (f
     worst
 }
 
+/// Head-on hits at 7 m/s into the walls x = `half` of a square room (2 triangles per
+/// side, and subdivided every 31 and 7 cm), at `positions` lateral positions spread over
+/// y in [-8.5, 8.5] and `timings` impact timings within a step, at dt 2.5 ms, the default
+/// and the largest internal time step. Returns the failures (|yaw rate| >= 1 rad/s or
+/// sideways speed >= 0.3 m/s from contact through 0.3 s after) and the worst (yaw rate,
+/// sideways speed).
+fn head_on_grid(positions: usize, timings: usize) -> (Vec<String>, (f64, f64)) {
+    let half = 10.0;
+    let coarse = vec![square_room(half)];
+    let fine = vec![subdivide(&square_room(half), 0.07)];
+    let mid = vec![subdivide(&square_room(half), 0.31)];
+    let mut fails = Vec::new();
+    let mut worst = (0.0f64, 0.0f64);
+    for dt in [0.0025, SimParams::default().physics.dt, MAX_INTERNAL_DT] {
+        for (name, walls) in [("coarse", &coarse), ("fine", &fine), ("mid", &mid)] {
+            for k in 0..positions {
+                let y = -8.5 + 17.0 * k as f64 / (positions - 1) as f64;
+                for q in 0..timings {
+                    let lead = 0.3 + 7.0 * dt * q as f64 / timings as f64;
+                    let (yaw, side) = head_on(walls, half, y, lead, dt);
+                    worst = (worst.0.max(yaw), worst.1.max(side));
+                    if yaw >= 1.0 || side >= 0.3 {
+                        fails.push(format!(
+                            "dt {dt} {name} y={y:.3} lead={lead:.4}: yaw {yaw:.2} side {side:.2}"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "head-on at 7 m/s, {} hits: worst yaw rate {:.3} rad/s, sideways speed {:.3} m/s",
+        3 * 3 * positions * timings,
+        worst.0,
+        worst.1
+    );
+    (fails, worst)
+}
+
 /// A head-on hit at 7 m/s keeps the car straight at every impact position along the
 /// wall (across the triangles' internal diagonals; walls of 2 triangles per side and
 /// subdivided every 31 and 7 cm) and every timing within a step, at dt 2.5 ms, the
-/// default and the largest internal time step.
+/// default and the largest internal time step: 35 positions 0.5 m apart x 4 timings.
 ///
 /// Issue 13, defect 3: 118 of the 280 cases at dt = 5 ms spun at up to 11 rad/s. Rapier
 /// reduced the chassis face's contact patch on two or more wall triangles to its deepest
@@ -201,33 +240,22 @@ fn head_on(walls: &[Vec<[f64; 2]>], half: f64, y: f64, lead: f64, dt: f64) -> (f
 /// are solved as 2x2 blocks (`World::new`, rapier's `block-solver` feature).
 #[test]
 fn head_on_wall_hit_does_not_spin() {
-    let half = 10.0;
-    let coarse = vec![square_room(half)];
-    let fine = vec![subdivide(&square_room(half), 0.07)];
-    let mid = vec![subdivide(&square_room(half), 0.31)];
-    let mut fails = Vec::new();
-    let mut worst = (0.0f64, 0.0f64);
-    for dt in [0.0025, SimParams::default().physics.dt, MAX_INTERNAL_DT] {
-        for (name, walls) in [("coarse", &coarse), ("fine", &fine), ("mid", &mid)] {
-            for k in 0..35 {
-                let y = -8.5 + 0.5 * k as f64;
-                for q in 0..4 {
-                    let lead = 0.3 + 7.0 * dt * q as f64 / 4.0;
-                    let (yaw, side) = head_on(walls, half, y, lead, dt);
-                    worst = (worst.0.max(yaw), worst.1.max(side));
-                    if yaw >= 1.0 || side >= 0.3 {
-                        fails.push(format!(
-                            "dt {dt} {name} y={y:.2} lead={lead:.4}: yaw {yaw:.2} side {side:.2}"
-                        ));
-                    }
-                }
-            }
-        }
-    }
-    eprintln!(
-        "head-on at 7 m/s: worst yaw rate {:.3} rad/s, sideways speed {:.3} m/s",
-        worst.0, worst.1
+    let (fails, _) = head_on_grid(35, 4);
+    assert!(
+        fails.is_empty(),
+        "{} spins:\n{}",
+        fails.len(),
+        fails.join("\n")
     );
+}
+
+/// The same at a 44x denser grid (170 positions about 10 cm apart x 8 timings: 12,240
+/// hits, a few minutes): a stress test, run with
+/// `cargo test -p arena_core --release -- --ignored head_on_wall_hit_dense`.
+#[test]
+#[ignore = "stress test: 12,240 wall hits"]
+fn head_on_wall_hit_dense_grid() {
+    let (fails, _) = head_on_grid(170, 8);
     assert!(
         fails.is_empty(),
         "{} spins:\n{}",
