@@ -52,7 +52,8 @@ const PREDICTION_DISTANCE: f32 = 0.005;
 /// pass did not undo the penetration-recovery velocity of the biased pass: the car
 /// rebounded at about 0.5 m/s off a 7 m/s hit with a restitution of 0, rolling at 2.5 rad/s
 /// from the uneven split, drove back in slightly askew and spun at up to 1.2 rad/s on the
-/// second hit (issue 13, defect 3). Two passes leave no rebound.
+/// second hit (issue 13, defect 3). Two passes leave at most 0.1 m/s; crash-heavy
+/// pipeline steps cost about 9 % more (BENCHMARKS.md).
 const STABILIZATION_ITERATIONS: usize = 2;
 
 struct Car {
