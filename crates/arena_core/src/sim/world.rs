@@ -46,6 +46,16 @@ const GROUND_HALF_SIZE: f32 = 5000.0;
 /// pair's contacts while it barely moves; well below the chassis ground clearance.
 const PREDICTION_DISTANCE: f32 = 0.005;
 
+/// Unbiased velocity passes after each solver iteration's position update (rapier's
+/// default is 1). A chassis face hitting a wall flat-on touches several wall triangles,
+/// each its own manifold of up to 4 points, so the constraints are highly redundant; one
+/// pass did not undo the penetration-recovery velocity of the biased pass: the car
+/// rebounded at about 0.5 m/s off a 7 m/s hit with a restitution of 0, rolling at 2.5 rad/s
+/// from the uneven split, drove back in slightly askew and spun at up to 1.2 rad/s on the
+/// second hit (issue 13, defect 3). Two passes leave at most 0.1 m/s; crash-heavy
+/// pipeline steps cost about 9 % more (BENCHMARKS.md).
+const STABILIZATION_ITERATIONS: usize = 2;
+
 struct Car {
     body: RigidBodyHandle,
     collider: ColliderHandle,
@@ -110,6 +120,8 @@ impl World {
         pw.gravity = Vector::new(0.0, 0.0, -(physics.gravity as f32));
         pw.integration_parameters.dt = dt as f32;
         pw.integration_parameters.num_solver_iterations = physics.solver_iterations;
+        pw.integration_parameters
+            .num_internal_stabilization_iterations = STABILIZATION_ITERATIONS;
         // Speculative contacts reach as far as the chassis' soft CCD (one step at top
         // speed). Rapier reduces a contact patch of more than 4 points (a chassis face on
         // two or more wall triangles) to the deepest point plus the points within this
