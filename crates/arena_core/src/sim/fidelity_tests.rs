@@ -267,8 +267,8 @@ fn head_on_wall_hit_does_not_spin() {
 }
 
 /// The same at a 44x denser grid (170 positions about 10 cm apart x 8 timings: 12,240
-/// hits, about 10 s with optimised dependencies): a stress test, run with
-/// `cargo test -p arena_core --release -- --ignored head_on_wall_hit_dense`. With one
+/// hits, about 10 s with optimised dependencies): a stress test, left out of a plain
+/// `cargo test` and run by `make test` (and CI) through `--include-ignored`. With one
 /// stabilization pass 4 hits failed (yaw rate up to 1.21 rad/s after a 0.5 m/s rebound
 /// and a second, slightly askew hit); with two the worst is 0.81 rad/s.
 #[test]
