@@ -66,7 +66,7 @@ def distance_transform(feature: npt.NDArray[np.bool_]) -> npt.NDArray[np.float32
     """Exact Euclidean distance (cells) from every cell to the nearest True cell.
     InvalidArgumentError above the pixel budget (``ROBORACER_ARENA_MAX_PIXELS``)."""
 
-# --- generate (requirements → track): rasteriser, screen, lattice, validator ---------
+# --- requirements → track: generate.rs (screen, constructors), grid.rs (rasteriser), track.rs (validator, curve analysis)
 def rasterise_centreline(
     xy: npt.NDArray[np.float64],
     widths: npt.NDArray[np.float64],

@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 
 use crate::boundary::call;
-use crate::generate::points_from_py;
+use crate::convert::points_from_py;
 use arena_core::geometry::polyline as pl;
 
 type Points = Vec<[f64; 2]>;

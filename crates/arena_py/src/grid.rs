@@ -1,10 +1,12 @@
 //! Bindings for `arena_core::grid`: ROS map YAML + PGM/PNG reading and writing
-//! (`grid::mapfile`) and the distance transform; GIL released for heavy work.
+//! (`grid::mapfile`), the distance transform and the rasteriser (Eq. 3, `grid::rasterise`);
+//! GIL released for heavy work.
 
 use crate::boundary;
+use crate::convert::{grid_to_py, points_from_py, MapTuple};
 use arena_core::grid::mapfile::{self, ImageFormat};
 use arena_core::grid::OccupancyGrid;
-use numpy::{PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 /// A map from Python: `data` (H, W) uint8 (254 free, 0 occupied, 205 unknown, row 0 =
@@ -45,7 +47,7 @@ type LoadedMap<'py> = (Bound<'py, PyArray2<u8>>, f64, (f64, f64, f64), String);
 fn load_map<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<LoadedMap<'py>> {
     let (g, meta) = boundary::call(py, "load_map", move || mapfile::load_map(&path))?;
     let res = g.resolution;
-    let (data, origin) = crate::generate::grid_to_py(py, g);
+    let (data, origin) = grid_to_py(py, g);
     Ok((
         data,
         res,
@@ -91,9 +93,36 @@ fn distance_transform<'py>(
     Ok(PyArray2::from_owned_array(py, arr))
 }
 
+/// Rasterise a closed centreline with per-vertex full corridor widths (Eq. 3).
+/// Returns ``(data uint8 (H, W), origin (x, y, yaw))``, row 0 = top image row.
+#[pyfunction]
+#[pyo3(signature = (xy, widths, resolution=0.05, wall_thickness=0.15, margin=0.5))]
+fn rasterise_centreline<'py>(
+    py: Python<'py>,
+    xy: PyReadonlyArray2<'py, f64>,
+    widths: PyReadonlyArray1<'py, f64>,
+    resolution: f64,
+    wall_thickness: f64,
+    margin: f64,
+) -> PyResult<MapTuple<'py>> {
+    let pts = points_from_py(&xy, "xy")?;
+    let w: Vec<f64> = widths.as_array().iter().copied().collect();
+    let g = boundary::call(py, "rasterise_centreline", move || {
+        arena_core::grid::rasterise::rasterise_centreline(
+            &pts,
+            &w,
+            resolution,
+            wall_thickness,
+            margin,
+        )
+    })?;
+    Ok(grid_to_py(py, g))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_map, m)?)?;
     m.add_function(wrap_pyfunction!(save_map, m)?)?;
     m.add_function(wrap_pyfunction!(distance_transform, m)?)?;
+    m.add_function(wrap_pyfunction!(rasterise_centreline, m)?)?;
     Ok(())
 }

@@ -6,6 +6,7 @@ use pyo3::prelude::*;
 
 mod boundary;
 mod config;
+mod convert;
 mod errors;
 mod generate;
 mod geometry;

@@ -1,13 +1,16 @@
 //! Bindings for `arena_core::track`: the build (occupancy map → walls, ducts, centreline,
-//! meshes and the round-trip check, one call) and the raster measurements the track
-//! library uses (`track::metrics`); GIL released for the heavy work.
+//! meshes and the round-trip check, one call), the raster measurements the track library
+//! uses (`track::metrics`), the raster validator (`track::validate`) and the curve
+//! analysis (`track::features`); GIL released for the heavy work.
 
 use crate::boundary;
-use crate::generate::line_to_py;
+use crate::convert::{line_to_py, points_from_py, to_json};
+use crate::generate::parse;
 use arena_core::geometry::mesh::TriMesh;
 use arena_core::track::build;
 use arena_core::track::metrics;
 use arena_core::track::params::BuildParams;
+use arena_core::track::{features, validate};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -135,9 +138,54 @@ fn measure_map<'py>(
     })
 }
 
+/// Validate an occupancy grid against a spec, measuring the raster only. Returns
+/// ``(report_json, measured centreline (N, 2) in the driving direction)``.
+#[pyfunction]
+fn validate_map<'py>(
+    py: Python<'py>,
+    data: PyReadonlyArray2<'py, u8>,
+    resolution: f64,
+    origin: (f64, f64, f64),
+    spec_json: &str,
+    config_json: &str,
+) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
+    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    boundary::call(py, "validate_map", || {
+        validate::check_frame(resolution, [origin.0, origin.1, origin.2])
+    })?;
+    let grid = crate::grid::grid_from_py(py, &data, resolution, origin)?;
+    let report = boundary::call_ok(py, "validate_map", move || {
+        validate::validate_map(&grid, &spec, &cfg)
+    })?;
+    Ok((to_json(&report), line_to_py(py, &report.centreline)))
+}
+
+/// Curvature analysis of a closed curve (driving direction): turns, features, minimum
+/// radius, longest straight, total turn; plus its self-clearance outside `exclude_m`.
+#[pyfunction]
+#[pyo3(signature = (xy, corner_radius, exclude_m))]
+fn analyse_curve(
+    py: Python<'_>,
+    xy: PyReadonlyArray2<'_, f64>,
+    corner_radius: f64,
+    exclude_m: f64,
+) -> PyResult<String> {
+    let pts = points_from_py(&xy, "xy")?;
+    boundary::call(py, "analyse_curve", move || {
+        features::check_curve_args(&pts, corner_radius, exclude_m)?;
+        let a = features::analyse_closed_curve(&pts, corner_radius);
+        let c = features::self_clearance(&pts, exclude_m, 0.1);
+        let mut v = serde_json::to_value(&a).expect("plain data");
+        v["self_clearance_m"] = serde_json::json!(if c.is_finite() { c } else { -1.0 });
+        Ok(v.to_string())
+    })
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(build_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(measure_map, m)?)?;
+    m.add_function(wrap_pyfunction!(validate_map, m)?)?;
+    m.add_function(wrap_pyfunction!(analyse_curve, m)?)?;
     m.add_class::<RasterMeasurement>()?;
     Ok(())
 }
