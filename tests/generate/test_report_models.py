@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 from pydantic import ValidationError
 
@@ -12,6 +13,7 @@ from roboracer_arena import TrackSpec, _core
 from roboracer_arena.constructor_config import ConstructorConfig
 from roboracer_arena.generate import (
     Acceptance,
+    CurveAnalysis,
     DerivedGeometry,
     ScreenResult,
     ValidationReport,
@@ -51,3 +53,14 @@ def test_an_acceptance_carries_a_typed_report_whose_numbers_match_its_checks():
 def test_screen_and_derived_geometry_agree():
     s, d = screen(SPEC), derived_geometry(SPEC)
     assert s.passed and s.pitch_m == d.pitch and s.l_max_m == d.l_max and s.r_min_m == d.r_min
+
+
+def test_curve_analysis_of_an_ellipse():
+    t = np.linspace(0.0, 2 * np.pi, 2000, endpoint=False)
+    a, b = 10.0, 6.0
+    c = CurveAnalysis.of(np.c_[a * np.cos(t), b * np.sin(t)], corner_radius=1.1, exclude_m=3.0)
+    assert c.min_radius_m == pytest.approx(b * b / a, rel=0.02)  # at the ends of the major axis
+    assert c.total_turn_rad == pytest.approx(2 * np.pi, rel=1e-6)  # counter-clockwise
+    assert c.length_m == pytest.approx(51.05, abs=0.05) and c.features == ()
+    # nearest point more than exclude_m of arc away: on a smooth convex curve, a chord of about that length
+    assert c.self_clearance_m == pytest.approx(3.0, rel=0.02)

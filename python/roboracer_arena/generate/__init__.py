@@ -5,12 +5,13 @@ baselines used by ``roboracer-arena bench constructors``."""
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
 from .outputs import write_outputs
 from .pipeline import CONSTRUCTORS, derived_geometry, generate_track, rasterise, screen, validate_map
-from .report import Check, DerivedGeometry, FeatureAt, Measurements, ScreenResult, ValidationReport
+from .report import Check, CurveAnalysis, DerivedGeometry, FeatureAt, Measurements, ScreenResult, ValidationReport
 
 __all__ = [
     "Acceptance",
     "CONSTRUCTORS",
     "Check",
+    "CurveAnalysis",
     "DerivedGeometry",
     "FeatureAt",
     "Measurements",

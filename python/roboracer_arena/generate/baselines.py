@@ -31,7 +31,6 @@ The vector is integrated into a curvature profile (piecewise constant: 0 on stra
 
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
@@ -40,6 +39,7 @@ from scipy.optimize import differential_evolution
 from .. import _core
 from ..constructor_config import ConstructorConfig
 from ..spec import TrackSpec
+from .report import CurveAnalysis
 
 LINK_TURN_DEG = 137.0
 # Link radii stay below the detector's sweeper band (1.5 r_c): only feature blocks make sweepers.
@@ -183,17 +183,17 @@ def _raw(seq: list[str], x: np.ndarray, sense: float) -> np.ndarray:
 def _penalty(pts: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> float:
     r_min, p, rc = _geometry(spec, config)
     L = spec.lap_length_m
-    length = float(np.hypot(*np.diff(np.vstack([pts, pts[:1]]), axis=0).T).sum())
-    a = json.loads(_core.analyse_curve(np.ascontiguousarray(pts), rc, math.pi * p / 2))
-    clearance = a["self_clearance_m"] if a["self_clearance_m"] >= 0 else math.inf
+    a = CurveAnalysis.of(pts, rc, math.pi * p / 2)
+    length = _core.polyline_length(pts, True)
+    clearance = math.inf if a.self_clearance_m is None else a.self_clearance_m
     counts = {k: 0 for k in ("hairpin", "chicane", "sweeper")}
-    for f in a["features"]:
-        counts[f["kind"]] += 1
+    for f in a.features:
+        counts[f.kind] += 1
     feat = sum((counts[k] - getattr(spec, k + "s")) ** 2 for k in counts)
     # Each term is scaled so that reaching the validator's tolerance costs about as much
     # as one wrong feature count.
     pen = feat + ((length - L) / (0.02 * L)) ** 2
-    pen += (max(0.0, r_min - a["min_radius_m"]) / (0.05 * r_min)) ** 2
+    pen += (max(0.0, r_min - a.min_radius_m) / (0.05 * r_min)) ** 2
     pen += (max(0.0, p - clearance) / (0.05 * p)) ** 2
     wall = spec.corridor_width_m + 2 * config.wall_thickness_m
     ux, uy = spec.hall_x_m - 2 * config.hall_margin_m - wall, spec.hall_y_m - 2 * config.hall_margin_m - wall

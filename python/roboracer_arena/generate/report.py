@@ -5,9 +5,14 @@ fails loudly here instead of drifting (``tests/generate/test_report_models.py``)
 
 from __future__ import annotations
 
+import json
 from typing import Literal
 
+import numpy as np
+import numpy.typing as npt
 from pydantic import BaseModel, ConfigDict
+
+from .. import _core
 
 
 class _Result(BaseModel):
@@ -82,6 +87,39 @@ class ScreenResult(_Result):
     feature_budget_m: float
 
 
+class Turn(_Result):
+    """One turn of a closed curve: where it runs (m along the lap), by how much (signed,
+    + = left) and its tightest radius."""
+
+    start_m: float
+    end_m: float
+    angle_rad: float
+    peak_radius_m: float
+
+
+class CurveAnalysis(_Result):
+    """The core's curvature analysis of a closed curve in its driving direction
+    (``_core.analyse_curve``): turns, detected features, minimum radius, longest straight,
+    total turn, and the self-clearance outside the excluded arc (None when no other pass
+    comes near)."""
+
+    length_m: float
+    min_radius_m: float
+    turns: tuple[Turn, ...]
+    features: tuple[FeatureAt, ...]
+    longest_straight_m: float
+    total_turn_rad: float
+    self_clearance_m: float | None
+
+    @classmethod
+    def of(cls, xy: npt.ArrayLike, corner_radius: float, exclude_m: float) -> CurveAnalysis:
+        """Analyse the closed curve ``xy`` (N, 2) with the core."""
+        raw = json.loads(_core.analyse_curve(np.ascontiguousarray(xy, np.float64), corner_radius, exclude_m))
+        if raw["self_clearance_m"] < 0:  # the core's "no non-local pass"
+            raw["self_clearance_m"] = None
+        return cls.model_validate(raw)
+
+
 class DerivedGeometry(_Result):
     """Lengths derived from a spec (m): minimum radius, pitch, L_max, the lattice pitch
     bound and the corner radius."""
@@ -93,4 +131,13 @@ class DerivedGeometry(_Result):
     corner_radius: float
 
 
-__all__ = ["Check", "DerivedGeometry", "FeatureAt", "Measurements", "ScreenResult", "ValidationReport"]
+__all__ = [
+    "Check",
+    "CurveAnalysis",
+    "DerivedGeometry",
+    "Turn",
+    "FeatureAt",
+    "Measurements",
+    "ScreenResult",
+    "ValidationReport",
+]
