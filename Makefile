@@ -55,8 +55,8 @@ lint: develop
 	$(BIN)/pip install -q "ruff>=0.8" "mypy>=1.13"
 	cargo clippy -p arena_core -p arena_py --quiet -- -D warnings
 	cargo fmt --all -- --check
-	$(BIN)/ruff check python tests examples
-	$(BIN)/ruff format --check python tests examples
+	$(BIN)/ruff check --no-cache python tests examples
+	$(BIN)/ruff format --no-cache --check python tests examples
 	$(BIN)/mypy
 	$(BIN)/python -m mypy.stubtest roboracer_arena._core
 

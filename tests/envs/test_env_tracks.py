@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
-from synthetic_tracks import stadium
 
 from roboracer_arena.envs.tracks import resolve_tracks
 from roboracer_arena.errors import ConfigError
 from roboracer_arena.track import Track
+from synthetic_tracks import stadium
 
 
 def test_track_geometry_of_the_stadium(oval):

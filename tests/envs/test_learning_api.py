@@ -8,13 +8,13 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.vector import AutoresetMode
-from synthetic_tracks import stadium
 
 import roboracer_arena
 from roboracer_arena.envs.episode_limit import REGISTERED_MAX_EPISODE_STEPS
 from roboracer_arena.envs.single import RoboRacerEnv
 from roboracer_arena.envs.vector import RoboRacerVectorEnv
 from roboracer_arena.errors import ConfigError
+from synthetic_tracks import stadium
 
 SMALL = {"sim": {"lidar": {"num_beams": 61}}}
 GO = np.array([0.0, 2.0], np.float32)

@@ -5,10 +5,10 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.vector import AutoresetMode
-from synthetic_tracks import stadium
 
 import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
 from roboracer_arena.envs.vector import RoboRacerVectorEnv
+from synthetic_tracks import stadium
 
 SMALL = {"sim": {"lidar": {"num_beams": 109}}}
 
