@@ -88,10 +88,18 @@ fn source(k: u32, polygon: bool) -> Source {
 /// chicanes' steps, so it is no longer than the hall's centreline box (plus two steps
 /// per chicane). Longer laps leave its candidates to the lattice.
 fn polygon_fits(spec: &Spec, cfg: &ConstructorConfig, d: &Derived) -> bool {
-    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
-    let x = spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall;
-    let y = spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall;
+    let [x, y] = centreline_box(spec, cfg);
     spec.lap_length_m <= 2.0 * (x + y) + 2.0 * spec.chicanes as f64 * d.s_min
+}
+
+/// The box (x, y; m) the centreline must stay in: the hall less its margins and one
+/// wall-to-wall corridor width.
+pub(crate) fn centreline_box(spec: &Spec, cfg: &ConstructorConfig) -> [f64; 2] {
+    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
+    [
+        spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall,
+        spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall,
+    ]
 }
 
 /// Most lattice perimeters considered (the largest ones, which fit halls best).
@@ -276,12 +284,8 @@ fn finish(
     d: &Derived,
 ) -> Result<Candidate, &'static str> {
     let rc = d.corner_radius;
-    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
     let ext = extent(&line);
-    let (ux, uy) = (
-        spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall,
-        spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall,
-    );
+    let [ux, uy] = centreline_box(spec, cfg);
     if !(ext[0] <= ux && ext[1] <= uy) {
         if ext[1] <= ux && ext[0] <= uy {
             line = line.iter().map(|p| [-p[1], p[0]]).collect();

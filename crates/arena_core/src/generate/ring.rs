@@ -216,9 +216,8 @@ pub fn ring_candidate(
     let depth = e * if rng.next_u32() % 3 == 0 { 1.5 } else { 1.0 };
     let mut lay =
         layout(order, rng, 75, e, depth).ok_or("ring: features do not fit the ring's slots")?;
-    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
-    let ux = spec.hall_x_m.max(spec.hall_y_m) - 2.0 * cfg.hall_margin_m - wall;
-    let uy = spec.hall_x_m.min(spec.hall_y_m) - 2.0 * cfg.hall_margin_m - wall;
+    let [bx, by] = super::construct::centreline_box(spec, cfg);
+    let (ux, uy) = (bx.max(by), bx.min(by));
     let g_min = GAP_EDGES[(rng.next_u32() as usize) % GAP_EDGES.len()] * e;
     let (o, sw) = savings(rc);
     // Room a sweeper corner's chamfer takes from each adjacent side.
