@@ -111,7 +111,7 @@ def test_library_is_identical_on_one_and_two_processes_and_verifies(tmp_path):
     assert kept == sorted(kept) and len(kept) == 4
     assert not list((tmp_path / "j2" / "generated").glob(".*"))  # no temporaries left
     cat = load_catalog(tmp_path / "j2" / "catalog.json")
-    assert [e["id"] for e in cat.entries] == kept and all(e["direction"] for e in cat.entries)
+    assert [e.id for e in cat.entries] == kept and all(e.direction for e in cat.entries)
     assert (
         main(
             [

@@ -25,13 +25,13 @@ import json
 import os
 import statistics
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ..fileio import atomic_write_text
+from ..pool import pool_map
 
 PROJECT_WORKERS = (8, 32, 128)
 
@@ -56,10 +56,12 @@ def register(kinds) -> None:
 
 def _in_child(threads: int, fn, *args) -> Any:
     """``fn(*args)`` in a fresh spawned process whose native thread pool has ``threads`` threads."""
-    from multiprocessing import get_context
+    return pool_map(_apply, [(fn, args)], isolate=True, initializer=_set_threads, initargs=(threads,))[0]
 
-    with ProcessPoolExecutor(1, mp_context=get_context("spawn"), initializer=_set_threads, initargs=(threads,)) as pool:
-        return pool.submit(fn, *args).result()
+
+def _apply(call: tuple) -> Any:
+    fn, args = call
+    return fn(*args)
 
 
 def _set_threads(threads: int) -> None:

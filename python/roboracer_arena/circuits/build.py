@@ -11,8 +11,6 @@ import io
 import json
 import os
 import time
-from collections.abc import Callable, Iterator
-from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -23,6 +21,7 @@ from ..direction import direction_of
 from ..errors import CorridorError
 from ..fileio import atomic_write_text
 from ..maps import OccupancyMap
+from ..pool import Progress, pool_map
 from .geometry import MIN_RADIUS_SPAN_M, reduce_widths, smooth_resample
 from .sources import CircuitInput, circuit_inputs
 
@@ -160,7 +159,7 @@ def build_all(
     cfg: CircuitConfig = CircuitConfig(),
     jobs: int | None = None,
     only: list[str] | None = None,
-    progress: Callable[[Iterator[dict], int], Iterator[dict]] | None = None,
+    progress: Progress | None = None,
 ) -> dict:
     """Build every circuit (optionally ``only`` some ids) in ``jobs`` threads; write
     ``outdir/index.json`` and return the summary with per-circuit reports."""
@@ -173,17 +172,11 @@ def build_all(
     inputs.sort(key=lambda c: -c.length_m)
     tasks = [(c, str(outdir), cfg) for c in inputs]
     Path(outdir).mkdir(parents=True, exist_ok=True)
-    if jobs == 1:
-        it: Iterator[dict] = map(_work, tasks)
-        results = list(progress(it, len(tasks)) if progress else it)
-    else:
-        # Threads, not processes: the heavy steps (rasterise, measure, PNG) release the
-        # GIL, and threads skip each worker's interpreter start-up and imports.
+    if jobs > 1:
         _keep_freed_memory()
-        with ThreadPoolExecutor(jobs) as pool:
-            futs = [pool.submit(_work, t) for t in tasks]
-            it = (f.result() for f in as_completed(futs))
-            results = list(progress(it, len(tasks)) if progress else it)
+    # Threads, not processes: the heavy steps (rasterise, measure, PNG) release the
+    # GIL, and threads skip each worker's interpreter start-up and imports.
+    results = pool_map(_work, tasks, jobs, progress, threads=True)
     results.sort(key=lambda r: r["id"])
     errs = [r["length_error"] for r in results if r.get("length_error") is not None]
     summary = {

@@ -48,10 +48,9 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tqdm import tqdm
-
     from ..circuits import CircuitConfig, build_all
     from ..errors import InvalidArgumentError
+    from ..pool import tqdm_progress
 
     if not (args.resolution > 0):
         raise InvalidArgumentError(f"--resolution must be > 0, got {args.resolution}")
@@ -61,9 +60,7 @@ def run(args: argparse.Namespace) -> int:
 
         args.out = writable_tracks_dir(None, "-o/--out") / "circuits"
 
-    def progress(it, total):
-        return tqdm(it, total=total, desc="circuits", unit="circuit", disable=None)
-
+    progress = tqdm_progress("circuits", "circuit")
     s = build_all(args.sources, args.out, cfg, jobs=args.jobs, only=args.only, progress=progress)
     ok = s["built"] == s["circuits"] and s["one_corridor"] == s["circuits"]
     if args.json:

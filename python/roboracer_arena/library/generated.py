@@ -17,7 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from ..distributed.executor import Executor, LocalExecutor
+from ..distributed.executor import Executor
+from ..pool import LocalExecutor
 from ..fileio import atomic_write_dir, atomic_write_text
 from ..spec import TrackSpec
 

@@ -27,6 +27,7 @@ from .. import __version__
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
 from ..fileio import atomic_write_dir, atomic_write_text
+from ..pool import map_ordered
 from .catalog import Catalog
 from .directions import annotate_directions
 from .generated import generate_files
@@ -70,11 +71,7 @@ def generate_library(
         start = len(records)
         size = _wave_size(count - len(kept), start, n_acc, executor.workers, budget - start)
         tasks = sweep.requests(start, start + size)
-        results: list[Any] = [None] * size
-        it = executor.run(generate_files, tasks)
-        for i, res in progress(it, size) if progress else it:
-            results[i] = res
-        for k, (rec, files) in enumerate(results, start):
+        for k, (rec, files) in enumerate(map_ordered(executor, generate_files, tasks, progress), start):
             rec = {"k": k, **rec}
             n_acc += rec["outcome"] == "accepted"
             rec["kept"] = bool(files) and len(kept) < count
@@ -114,7 +111,7 @@ def _remove_stale(gen: Path, name: str, kept: set[str]) -> None:
 
 
 def _write_catalog(out: Path, kept: list[str], summary: dict[str, Any]) -> None:
-    by_id = {e["id"]: e for e in _generated_entries(out)}
+    by_id = {e.id: e for e in _generated_entries(out)}
     entries = [by_id[i] for i in kept]
     meta = {
         "schema": "roboracer-arena track catalog v1",
