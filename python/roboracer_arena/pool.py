@@ -16,6 +16,7 @@ Every batch job that starts a pool goes through :class:`LocalExecutor` (directly
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, ThreadPoolExecutor, wait
 from concurrent.futures import Executor as _FuturesExecutor
@@ -41,7 +42,7 @@ class WorkerLostError(ArenaError):
 def raise_named(exc: Exception, index: int, item: object) -> NoReturn:
     """Raise ``exc`` with the failing item in its message: a new exception of the same
     type (caused by ``exc``) when the type takes a plain message, else ``exc`` itself with
-    the item as a note."""
+    the item as a note (Python >= 3.11)."""
     text = repr(item)
     short = text if len(text) <= _ITEM_REPR else text[: _ITEM_REPR - 3] + "..."
     msg = f"item {index} {short}: {exc}"
@@ -50,7 +51,8 @@ def raise_named(exc: Exception, index: int, item: object) -> NoReturn:
     except Exception:
         new = None
     if new is None or str(new) != msg:
-        exc.add_note(f"while running item {index} {short}")
+        if sys.version_info >= (3, 11):  # notes are new in 3.11; before, the error goes as raised
+            exc.add_note(f"while running item {index} {short}")
         raise exc
     raise new from exc
 

@@ -19,8 +19,8 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from . import EXIT_BAD_INPUT, EXIT_OK
 from ..pool import Progress, tqdm_progress
+from . import EXIT_BAD_INPUT, EXIT_OK
 from ._common import add_json_flag, print_json
 
 if TYPE_CHECKING:

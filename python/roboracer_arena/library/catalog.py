@@ -14,15 +14,16 @@ import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
-from pydantic import ValidationError
+from pydantic import BaseModel, ValidationError
 
 from ..errors import InvalidArgumentError, MapIOError
 from ..fileio import read_json
 from ..paths import sources_dir, tracks_dir
 from .entry import LeftOut, TrackEntry
 
+M = TypeVar("M", bound=BaseModel)
 KINDS = ("recorded", "circuit", "generated")
 #: Selections accepted by :func:`resolve` besides single ids.
 SELECTIONS = {
@@ -129,20 +130,22 @@ def load_catalog(path: str | Path | None = None) -> Catalog:
     p = Path(path) if path else default_tracks_dir() / "catalog.json"
     doc = read_json(p, "track catalog", MapIOError, max_bytes=64 * 2**20)
     meta = {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count")}
-    entries, left_out = [], []
-    for where, model, raw, out in (
-        ("tracks", TrackEntry, doc.get("tracks", []), entries),
-        ("left_out", LeftOut, doc.get("left_out", []), left_out),
-    ):
-        for i, item in enumerate(raw):
-            try:
-                out.append(model.model_validate(item))
-            except ValidationError as e:
-                err = e.errors()[0]
-                field_name = ".".join(str(x) for x in err["loc"]) or "(entry)"
-                name = item.get("id", i) if isinstance(item, dict) else i
-                raise MapIOError(f"{p}: {where}[{name!r}].{field_name}: {err['msg']}") from None
+    entries = _parse(p, "tracks", TrackEntry, doc.get("tracks", []))
+    left_out = _parse(p, "left_out", LeftOut, doc.get("left_out", []))
     return Catalog(entries=entries, left_out=left_out, meta=meta, path=p)
+
+
+def _parse(path: Path, where: str, model: type[M], items: list[Any]) -> list[M]:
+    out = []
+    for i, item in enumerate(items):
+        try:
+            out.append(model.model_validate(item))
+        except ValidationError as e:
+            err = e.errors()[0]
+            field_name = ".".join(str(x) for x in err["loc"]) or "(entry)"
+            name = item.get("id", i) if isinstance(item, dict) else i
+            raise MapIOError(f"{path}: {where}[{name!r}].{field_name}: {err['msg']}") from None
+    return out
 
 
 def resolve(

@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 
 from ..distributed.executor import Executor
-from ..pool import LocalExecutor
 from ..fileio import atomic_write_dir, atomic_write_text
+from ..pool import LocalExecutor
 from ..spec import TrackSpec
 
 #: (lap length m, corridor width m, hall x m, hall y m): small to large venues.

@@ -7,6 +7,8 @@ from __future__ import annotations
 import json
 import time
 from pathlib import Path
+from typing import Any
+
 from .. import __version__
 from ..fileio import atomic_write_text
 from ..maps import load_map
@@ -153,7 +155,7 @@ def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress
     dup = {i for i in ids if ids.count(i) > 1}
     if dup:
         raise RuntimeError(f"duplicate catalog ids: {sorted(dup)}")
-    meta = {
+    meta: dict[str, Any] = {
         "schema": "roboracer-arena track catalog v1",
         "built_with": f"roboracer-arena {__version__}",
         "sources_note": "recorded maps: 'map' is relative to the sources directory (--sources / "

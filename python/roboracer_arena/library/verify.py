@@ -18,10 +18,9 @@ import numpy as np
 
 from .. import _core
 from ..distributed.executor import Executor
-from ..pool import LocalExecutor, map_ordered
 from ..errors import ArenaError
 from ..maps import OccupancyMap, load_map
-from ..pool import Progress
+from ..pool import LocalExecutor, Progress, map_ordered
 from .catalog import Catalog, sha256_file
 from .entry import LeftOut, TrackEntry
 from .tracks import entry_track
@@ -50,14 +49,14 @@ def check_ring(entry: TrackEntry, m: OccupancyMap, yaml_path: Path) -> Check:
     if iso is None:
         return Check(status=FAIL, detail=why)
     try:
-        mm = _core.measure_map(iso, float(m.resolution), tuple(m.origin))
+        mm = _core.measure_map(iso, float(m.resolution), m.origin)
     except ArenaError as e:
         return Check(status=FAIL, detail=f"no closed corridor: {e}")
     lap = mm.centreline_length_m
     if entry.grade_separated:
         return Check(
             status=PASS,
-            detail=            f"one corridor with {mm.infields} enclosed regions (grade-separated crossing; "
+            detail=f"one corridor with {mm.infields} enclosed regions (grade-separated crossing; "
             f"lap length not comparable on the planar raster)",
         )
     if entry.kind != "recorded" and mm.infields != 1:
@@ -82,7 +81,9 @@ def check_usd(yaml_path: Path) -> Check:
         errors = validation_errors(out)
         if errors:
             return Check(status=FAIL, detail=f"stage invalid: {'; '.join(map(str, errors[:3]))}")
-        return Check(status=PASS, detail=f"stage {report.usd_bytes // 1024} KiB, {report.walls} walls, IoU {report.iou:.4f}")
+        return Check(
+            status=PASS, detail=f"stage {report.usd_bytes // 1024} KiB, {report.walls} walls, IoU {report.iou:.4f}"
+        )
 
 
 #: The retry after a collision at the reference settings: slower, shorter lookahead.
@@ -120,7 +121,7 @@ def check_drive(cat: Catalog, entry: TrackEntry, sources: Path | None = None, re
     why = "collision" if r.collided else f"{r.laps_completed} lap(s) in {r.sim_time:.0f} s"
     return Check(
         status=FAIL,
-        detail=        f"lap not completed ({why} after {r.distance:.1f} of {r.track_length:.1f} m, {follows}, "
+        detail=f"lap not completed ({why} after {r.distance:.1f} of {r.track_length:.1f} m, {follows}, "
         f"also at {CAUTIOUS['max_speed']:g} m/s)",
     )
 

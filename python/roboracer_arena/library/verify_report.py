@@ -73,9 +73,7 @@ class VerifySummary(_Frozen):
                 r.id for r in results if r.status("drive") == PASS and "cautious" in r.checks["drive"].detail
             ],
             failed=[r.id for r in results if not r.passed],
-            per_check={
-                n: {s: sum(r.status(n) == s for r in results) for s in (PASS, FAIL, NOT_RUN)} for n in CHECKS
-            },
+            per_check={n: {s: sum(r.status(n) == s for r in results) for s in (PASS, FAIL, NOT_RUN)} for n in CHECKS},
             by_kind={
                 k: KindTally(
                     tracks=sum(r.kind == k for r in results), passed=sum(r.passed for r in results if r.kind == k)
