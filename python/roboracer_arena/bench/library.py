@@ -40,26 +40,24 @@ def run(sources: Path | None = None, jobs: int | None = None, resolution: float 
 
     with tempfile.TemporaryDirectory(prefix="rra-bench-library-") as tmp:
         s = build_all(sources, tmp, CircuitConfig(resolution=resolution), jobs=jobs or os.cpu_count() or 1)
-    errs = [r for r in s["results"] if r.get("length_error") is not None]
-    res = {
-        "circuits": s["circuits"],
-        "built": s["built"],
-        "one_corridor": s["one_corridor"],
-        "jobs": s["jobs"],
-        "seconds": s["seconds"],
-        "mean_error_pct": 100 * (s["mean_length_error"] or 0),
-        "max_error_pct": 100 * (s["max_length_error"] or 0),
-        "measured_circuits": len(errs),
-        "grade_separated": s["grade_separated"],
+    built = s.reports()
+    res: dict[str, Any] = {
+        "circuits": s.circuits,
+        "built": s.built,
+        "one_corridor": s.one_corridor,
+        "jobs": s.jobs,
+        "seconds": s.seconds,
+        "mean_error_pct": 100 * (s.mean_length_error or 0),
+        "max_error_pct": 100 * (s.max_length_error or 0),
+        "measured_circuits": sum(r.length_error is not None for r in built),
+        "grade_separated": s.grade_separated,
         "cpu_seconds_per_circuit": {
-            "median": sorted(r["seconds"] for r in s["results"] if "seconds" in r)[len(s["results"]) // 2],
-            "raster_median": sorted(r["seconds_raster"] for r in s["results"] if "seconds_raster" in r)[
-                len(s["results"]) // 2
-            ],
+            "median": sorted(r.seconds for r in built)[len(s.results) // 2],
+            "raster_median": sorted(r.seconds_raster for r in built)[len(s.results) // 2],
         },
         "per_circuit": [
             {
-                k: r.get(k)
+                k: r.to_json_dict().get(k)
                 for k in (
                     "id",
                     "source",
@@ -73,7 +71,7 @@ def run(sources: Path | None = None, jobs: int | None = None, resolution: float 
                     "seconds",
                 )
             }
-            for r in s["results"]
+            for r in s.results
         ],
         "paper": PAPER,
     }

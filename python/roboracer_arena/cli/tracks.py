@@ -277,7 +277,7 @@ def run_verify(args) -> int:
         if not args.json:
             print(f"updated {cat.path}: {len(moved)} recorded map(s) moved to left_out: {', '.join(moved) or '-'}")
     if args.json:
-        print_json(s.to_json_dict())
+        print_json(s)
     else:
         print(f"{'id':<42}{'kind':<10}{'load':<9}{'ring':<9}{'usd':<9}{'drive':<9}  detail")
         for r in s.results:

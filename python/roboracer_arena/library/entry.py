@@ -10,21 +10,13 @@ from __future__ import annotations
 
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict
+from ..frozen_model import FrozenModel
 
 Kind = Literal["recorded", "circuit", "generated"]
 Status = Literal["pass", "FAIL", "not run"]
 
 
-class _Frozen(BaseModel):
-    model_config = ConfigDict(frozen=True, extra="forbid")
-
-    def to_json_dict(self) -> dict[str, Any]:
-        """The JSON object the catalog holds for this model (only the fields it was given)."""
-        return self.model_dump(mode="json", exclude_unset=True)
-
-
-class Source(_Frozen):
+class Source(FrozenModel):
     """Where a track comes from: repository, commit and licence of its source data, the
     source file's path, and how the project derived the map from it (if it did)."""
 
@@ -35,14 +27,14 @@ class Source(_Frozen):
     derived: str | None = None
 
 
-class Raster(_Frozen):
+class Raster(FrozenModel):
     """Size of the map image in cells."""
 
     width_px: int
     height_px: int
 
 
-class LeftOut(_Frozen):
+class LeftOut(FrozenModel):
     """A recorded map the catalog does not offer, with the reason."""
 
     id: str
@@ -50,7 +42,7 @@ class LeftOut(_Frozen):
     reason: str
 
 
-class TrackEntry(_Frozen):
+class TrackEntry(FrozenModel):
     """One catalog track. Lengths in metres; ``map`` (and ``centreline``, ``spec``) are
     relative to the sources directory for recorded maps, else to the catalog's directory.
     ``direction``, ``start`` and ``direction_source`` come from

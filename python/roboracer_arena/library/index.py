@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import __version__
+from ..circuits.report import CircuitReport
 from ..fileio import atomic_write_text
 from ..maps import load_map
 from ..pool import Progress
@@ -24,45 +25,45 @@ PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
 def _circuit_entries(tracks: Path, sources: Path) -> list[TrackEntry]:
     out = []
     for f in sorted((tracks / "circuits").glob("*/circuit.json")):
-        r = json.loads(f.read_text(encoding="utf-8"))
-        folder = r["source_file"].split("/")[0]
+        r = CircuitReport.model_validate_json(f.read_bytes())
+        folder = r.source_file.split("/")[0]
         prov = provenance(sources, folder)
-        notes = [f"width: {r['width_note']}"]
-        if r["grade_separated"]:
+        notes = [f"width: {r.width_note}"]
+        if r.grade_separated:
             notes.append(
                 "grade-separated crossing: the centreline crosses itself (a bridge); the planar map "
                 "overlaps there and the raster length check does not apply"
             )
-        if r["narrowed_fraction"] > 0:
+        if r.narrowed_fraction > 0:
             notes.append(
-                f"narrowed where sections would merge: {100 * r['narrowed_fraction']:.1f} % of the lap "
+                f"narrowed where sections would merge: {100 * r.narrowed_fraction:.1f} % of the lap "
                 f"(never below 60 % of nominal)"
             )
-        if r.get("meta", {}).get("differs_from"):
-            notes.append(f"layout differs from TUM '{r['meta']['differs_from']['tum']}'")
+        if r.meta.get("differs_from"):
+            notes.append(f"layout differs from TUM '{r.meta['differs_from']['tum']}'")
         out.append(
             TrackEntry(
-                id=r["id"],
-                name=r["name"],
+                id=r.id,
+                name=r.name,
                 kind="circuit",
                 source=Source(
                     **prov,
-                    path=r["source_file"],
+                    path=r.source_file,
                     derived="scaled 1:10, periodic cubic spline, rasterised by roboracer-arena",
                 ),
-                scale=r["scale"],
-                resolution_m=r["resolution_m"],
-                lap_length_m=r["lap_length_m"],
-                width_mean_m=r["width_mean_m"],
-                width_min_m=r["width_min_m"],
-                min_radius_m=r["min_radius_m"],
-                raster=Raster(width_px=r["raster"]["width_px"], height_px=r["raster"]["height_px"]),
-                sha256=r["map_sha256"],
-                map=f"circuits/{r['map_yaml']}",
-                centreline=f"circuits/{r['id']}/centreline.csv",
-                grade_separated=r["grade_separated"],
-                narrowed_fraction=r["narrowed_fraction"],
-                length_error=r["length_error"],
+                scale=r.scale,
+                resolution_m=r.resolution_m,
+                lap_length_m=r.lap_length_m,
+                width_mean_m=r.width_mean_m,
+                width_min_m=r.width_min_m,
+                min_radius_m=r.min_radius_m,
+                raster=Raster(width_px=r.raster.width_px, height_px=r.raster.height_px),
+                sha256=r.map_sha256,
+                map=f"circuits/{r.map_yaml}",
+                centreline=f"circuits/{r.id}/centreline.csv",
+                grade_separated=r.grade_separated,
+                narrowed_fraction=r.narrowed_fraction,
+                length_error=r.length_error,
                 notes=notes,
             )
         )

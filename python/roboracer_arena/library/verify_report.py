@@ -4,7 +4,8 @@ and the run's :class:`VerifySummary`. Frozen, ``extra="forbid"``; their JSON
 
 from __future__ import annotations
 
-from .entry import Kind, Status, _Frozen
+from ..frozen_model import FrozenModel
+from .entry import Kind, Status
 
 PASS: Status = "pass"
 FAIL: Status = "FAIL"
@@ -13,14 +14,14 @@ NOT_RUN: Status = "not run"
 CHECKS = ("load", "ring", "usd", "drive")
 
 
-class Check(_Frozen):
+class Check(FrozenModel):
     """One check's verdict (``pass`` | ``FAIL`` | ``not run``) and what it found."""
 
     status: Status
     detail: str = ""
 
 
-class TrackResult(_Frozen):
+class TrackResult(FrozenModel):
     """Every check of one track; ``passed``: no check failed (checks that could not run
     are reported, not counted as passes)."""
 
@@ -40,14 +41,14 @@ class TrackResult(_Frozen):
         return [f"{k}: {c.detail}" for k, c in self.checks.items() if c.status == FAIL]
 
 
-class KindTally(_Frozen):
+class KindTally(FrozenModel):
     """Tracks of one kind, and how many of them passed."""
 
     tracks: int
     passed: int
 
 
-class VerifySummary(_Frozen):
+class VerifySummary(FrozenModel):
     """A verify run: counts, the ids that failed or needed the cautious retry, per-check
     and per-kind tallies, and every track's result in entry order."""
 
