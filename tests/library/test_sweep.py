@@ -101,13 +101,14 @@ def test_library_is_identical_on_one_and_two_processes_and_verifies(tmp_path):
     for jobs in (1, 2):
         with LocalExecutor(jobs) as ex:
             s = generate_library(sw, 4, tmp_path / f"j{jobs}", ex)
-        assert s["kept"] == 4 and s["workers"] == jobs
+        assert s.kept == 4 and s.workers == jobs
         runs[jobs] = (s, tree(tmp_path / f"j{jobs}"))
     (s1, t1), (s2, t2) = runs[1], runs[2]
     assert t1 == t2 and len(t1) == 4 * 4  # map.yaml, map.png, centreline.csv, spec.json per track
-    strip = [{k: v for k, v in r.items() if k != "seconds"} for r in s1["records"]]
-    assert strip == [{k: v for k, v in r.items() if k != "seconds"} for r in s2["records"]]
-    kept = [r["id"] for r in s1["records"] if r["kept"]]
+    strip = [r.model_copy(update={"seconds": 0.0}) for r in s1.records]
+    assert strip == [r.model_copy(update={"seconds": 0.0}) for r in s2.records]
+    assert [r.k for r in s1.records] == list(range(len(s1.records)))
+    kept = [r.id for r in s1.records if r.kept]
     assert kept == sorted(kept) and len(kept) == 4
     assert not list((tmp_path / "j2" / "generated").glob(".*"))  # no temporaries left
     cat = load_catalog(tmp_path / "j2" / "catalog.json")
@@ -164,3 +165,13 @@ def test_packaged_example_sweep_is_the_examples_file():
     from roboracer_arena.library.sweep import EXAMPLE_SWEEP
 
     assert json.loads(EXAMPLE.read_text()) == EXAMPLE_SWEEP
+
+
+def test_packaged_sweep_summary_loads_typed_and_round_trips():
+    from roboracer_arena.library.sweep_report import GeneratedSweepSummary
+    from roboracer_arena.paths import tracks_dir
+
+    text = (tracks_dir() / "generated" / "sweep.json").read_text(encoding="utf-8")
+    s = GeneratedSweepSummary.model_validate_json(text)
+    assert s.kept == sum(bool(r.kept) for r in s.records) and s.specs_tried == len(s.records)
+    assert json.dumps(s.to_json_dict(), indent=2) + "\n" == text

@@ -75,7 +75,7 @@ def _strip(results: list) -> list:
         files = {
             k: (v if k != "report.json" else json.dumps({**json.loads(v), "seconds": 0})) for k, v in files.items()
         }
-        out.append(({k: v for k, v in rec.items() if k != "seconds"}, files))
+        out.append((rec.model_copy(update={"seconds": 0.0}), files))
     return out
 
 

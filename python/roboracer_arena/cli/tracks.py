@@ -325,8 +325,8 @@ def run_catalog(args) -> int:
         g = build_generated(tracks / "generated", count=args.count, jobs=jobs, progress=_progress("generate"))
         if not args.json:
             print(
-                f"generated sweep: {g['specs_tried']} specs, {g['accepted']} accepted, {g['failed']} failed, "
-                f"{g['rejected']} rejected; kept {g['kept']} ({g['seconds']:.1f} s)"
+                f"generated sweep: {g.specs_tried} specs, {g.accepted} accepted, {g.failed} failed, "
+                f"{g.rejected} rejected; kept {g.kept} ({g.seconds:.1f} s)"
             )
     cat = build_catalog(Path(sources), Path(tracks), jobs=jobs, progress=_progress("recorded maps"))
     if args.json:
@@ -351,17 +351,17 @@ def run_generate(args) -> int:
             sweep, args.count, args.out, ex, max_requests=args.max_requests, progress=_progress("generate")
         )
     if args.json:
-        print_json({k: v for k, v in s.items() if k != "records"})
+        print_json(s.model_dump(mode="json", exclude={"records"}))
     else:
         print(
-            f"{s['kept']}/{s['count']} tracks in {args.out / 'generated'} from {s['requests']} requests "
-            f"({s['accepted']} accepted, {s['rejected']} rejected, {s['failed']} failed) in {s['seconds']:.1f} s "
-            f"on {s['workers']} worker(s) ({s['executor']}); catalog {args.out / 'catalog.json'}"
+            f"{s.kept}/{s.count} tracks in {args.out / 'generated'} from {s.requests} requests "
+            f"({s.accepted} accepted, {s.rejected} rejected, {s.failed} failed) in {s.seconds:.1f} s "
+            f"on {s.workers} worker(s) ({s.executor}); catalog {args.out / 'catalog.json'}"
         )
-    if s["kept"] < s["count"]:
+    if s.kept < s.count:
         print(
-            f"roboracer-arena tracks: error: only {s['kept']} of {s['count']} tracks within --max-requests "
-            f"{s['requests']}; widen the sweep ranges or raise --max-requests",
+            f"roboracer-arena tracks: error: only {s.kept} of {s.count} tracks within --max-requests "
+            f"{s.requests}; widen the sweep ranges or raise --max-requests",
             file=sys.stderr,
         )
         return EXIT_GENERATION_FAILURE
