@@ -9,29 +9,22 @@ raster (the accuracy check) and writing every map; pool start-up is included."""
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import tempfile
 from pathlib import Path
 from typing import Any
 
-from ..fileio import atomic_write_text
+from .output import add_bench_parser, write_json
 
 PAPER = {"circuits": 44, "seconds": 43.72, "mean_error_pct": 0.253, "max_error_pct": 0.924}
 TARGET_SECONDS = 10.0
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "library",
-        help="circuit library build time and raster accuracy",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    p = add_bench_parser(kinds, "library", "circuit library build time and raster accuracy", __doc__)
     p.add_argument("--sources", type=Path, default=None, help="track-sources directory")
     p.add_argument("--jobs", type=int, default=None, help="threads (default: all cores)")
     p.add_argument("--resolution", type=float, default=0.05, help="m per cell (default 0.05)")
-    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
 
@@ -95,7 +88,5 @@ def run_quick() -> dict[str, Any]:
 
 def _run_cli(args: argparse.Namespace) -> int:
     res = run(args.sources, args.jobs, args.resolution)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(res, indent=2))
-        print(f"wrote {args.json}")
+    write_json(args.json, res)
     return 0

@@ -30,19 +30,14 @@ from typing import Any
 
 import numpy as np
 
-from ..fileio import atomic_write_text
 from ..pool import pool_map
+from .output import add_bench_parser, write_json
 
 PROJECT_WORKERS = (8, 32, 128)
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "ray",
-        help="Ray executors and RayVectorEnv vs local, 1 -> 2 workers, projection",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    p = add_bench_parser(kinds, "ray", "Ray executors and RayVectorEnv vs local, 1 -> 2 workers, projection", __doc__)
     p.add_argument("--requests", type=int, default=24, help="sweep requests per generation run (default 24)")
     p.add_argument("--repeats", type=int, default=3, help="runs per configuration; the median is reported (default 3)")
     p.add_argument("--envs-per-actor", type=int, default=64, help="environments per actor / local batch (default 64)")
@@ -50,7 +45,6 @@ def register(kinds) -> None:
     p.add_argument("--beams", type=int, default=1081, help="lidar beams (default 1081)")
     p.add_argument("--map", type=Path, default=None, help="map YAML (default: f1tenth-gym berlin from the sources)")
     p.add_argument("--only", choices=["generation", "rollouts"], help="run one half only (no projection)")
-    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
 
@@ -411,7 +405,5 @@ def run_quick() -> dict[str, Any]:
 
 def _run_cli(args: argparse.Namespace) -> int:
     res = run(args.requests, args.repeats, args.envs_per_actor, args.steps, args.beams, args.map, args.only)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(res, indent=2))
-        print(f"wrote {args.json}")
+    write_json(args.json, res)
     return 0
