@@ -176,19 +176,12 @@ def _select(cat: Catalog, args: argparse.Namespace) -> list[TrackEntry]:
         entries = [cat.get(i) for i in args.ids]
     if getattr(args, "kind", None):
         entries = [e for e in entries if e.kind == args.kind]
-    if getattr(args, "limit", None) is not None:
-        out: list[TrackEntry] = []
-        seen: dict[str, int] = {}
-        for e in entries:  # spread over the kinds: every n-th entry of each kind
-            seen[e.kind] = seen.get(e.kind, 0) + 1
-        step = {k: max(1, n // args.limit) for k, n in seen.items()}
-        count: dict[str, int] = {}
-        for e in entries:
-            i = count.get(e.kind, 0)
-            count[e.kind] = i + 1
-            if i % step[e.kind] == 0 and sum(1 for o in out if o.kind == e.kind) < args.limit:
-                out.append(e)
-        entries = out
+    if getattr(args, "limit", None) is not None:  # spread over each kind: every n-th entry, at most limit
+        by_kind: dict[str, list[int]] = {}
+        for i, e in enumerate(entries):
+            by_kind.setdefault(e.kind, []).append(i)
+        keep = {i for idx in by_kind.values() for i in idx[:: max(1, len(idx) // args.limit)][: args.limit]}
+        entries = [e for i, e in enumerate(entries) if i in keep]
     return entries
 
 

@@ -97,6 +97,11 @@ class Catalog:
             return [e for e in self.entries if e.kind in kinds]
         return [self.get(selection)]
 
+    def select_many(self, selections: str | list[str]) -> list[TrackEntry]:
+        """Entries of one selection or id, or of each in a list, in that order."""
+        items = [selections] if isinstance(selections, str) else selections
+        return [e for item in items for e in self.select(item)]
+
     def file_path(self, entry: TrackEntry, rel: str, sources: Path | None = None, tracks: Path | None = None) -> Path:
         """Absolute path of a file ``rel`` of ``entry`` (its map, centreline, spec): under the
         sources directory for a recorded map, else under the catalog's directory."""
@@ -155,8 +160,4 @@ def resolve(
     ``"generated"``, ``"recorded"``, ``"all"``). Raises ``InvalidArgumentError`` for an
     unknown id."""
     cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)
-    items = [id_or_selection] if isinstance(id_or_selection, str) else list(id_or_selection)
-    out: list[Path] = []
-    for item in items:
-        out.extend(cat.map_path(e, Path(sources) if sources else None) for e in cat.select(item))
-    return out
+    return [cat.map_path(e, Path(sources) if sources else None) for e in cat.select_many(id_or_selection)]

@@ -44,6 +44,4 @@ def resolve_tracks(
     """Tracks (named by catalog id, each in the direction the catalog records) for an id,
     a list of ids, or a selection (``"circuits"``, ``"recorded"``, ``"generated"``, ``"all"``)."""
     cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)
-    items = [selection] if isinstance(selection, str) else list(selection)
-    src = Path(sources) if sources else None
-    return [entry_track(cat, e, src)[0] for item in items for e in cat.select(item)]
+    return [entry_track(cat, e, Path(sources) if sources else None)[0] for e in cat.select_many(selection)]
