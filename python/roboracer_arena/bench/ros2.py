@@ -43,8 +43,9 @@ def register(kinds) -> None:
 
 
 def _default_map() -> Path:
-    base = Path(os.environ.get("ROBORACER_ARENA_SOURCES", Path.cwd().parent / "shared" / "track-sources"))
-    return base / DEFAULT_MAP
+    from ..paths import sources_dir
+
+    return sources_dir(None, "bench ros2 (its default map is f1tenth-gym berlin; or pass --map)") / DEFAULT_MAP
 
 
 def follow_the_gap(ranges: np.ndarray, fov: float, speed: float = 2.0, max_steer: float = 0.4) -> tuple[float, float]:
