@@ -50,3 +50,23 @@ def test_wrong_kind_and_bad_left_out_are_refused(tmp_path):
         load_catalog(_tamper(tmp_path, lambda d: d["tracks"][0].update(kind="oval")))
     with pytest.raises(MapIOError, match=r"left_out\[.*\]\.reason: Field required"):
         load_catalog(_tamper(tmp_path, lambda d: d["left_out"][0].pop("reason")))
+
+
+@pytest.mark.slow
+def test_catalog_builder_reproduces_every_shipped_entry(tmp_path, sources):
+    """``build_catalog`` (typed end to end) writes each shipped entry as shipped, field for
+    field and in the same key order; only ``tracks verify --update-catalog``'s results
+    (``verified``, ``drive``, and the recorded maps it moved to ``left_out``) are not its."""
+    from roboracer_arena.library.index import build_catalog
+    from roboracer_arena.paths import tracks_dir
+
+    for part in ("circuits", "generated"):
+        (tmp_path / part).symlink_to(tracks_dir() / part)
+    build_catalog(sources, tmp_path, jobs=2)
+    built = {e["id"]: e for e in json.loads((tmp_path / "catalog.json").read_text())["tracks"]}
+    shipped = json.loads(load_catalog().to_json())
+    for e in shipped["tracks"]:
+        want = {k: v for k, v in e.items() if k not in ("verified", "drive")}
+        assert list(built[e["id"]].items()) == list(want.items()), e["id"]
+    assessed = [lo for lo in shipped["left_out"] if not lo["reason"].startswith("verify failed")]
+    assert all(lo in json.loads((tmp_path / "catalog.json").read_text())["left_out"] for lo in assessed)

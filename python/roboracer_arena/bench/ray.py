@@ -43,7 +43,12 @@ def register(kinds) -> None:
     p.add_argument("--envs-per-actor", type=int, default=64, help="environments per actor / local batch (default 64)")
     p.add_argument("--steps", type=int, default=300, help="timed steps per rollout configuration (default 300)")
     p.add_argument("--beams", type=int, default=1081, help="lidar beams (default 1081)")
-    p.add_argument("--map", type=Path, default=None, help="map YAML (default: bench env's, f1tenth-racetracks Spielberg from the sources)")
+    p.add_argument(
+        "--map",
+        type=Path,
+        default=None,
+        help="map YAML (default: bench env's, f1tenth-racetracks Spielberg from the sources)",
+    )
     p.add_argument("--only", choices=["generation", "rollouts"], help="run one half only (no projection)")
     p.set_defaults(func=_run_cli)
 

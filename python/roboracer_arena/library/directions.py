@@ -5,7 +5,6 @@ the map frame, or None), derived from the source data beside each map."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 from ..direction import TrackDirection, direction_for_map
 from .catalog import Catalog
@@ -20,8 +19,8 @@ def entry_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = None
     return direction_for_map(cat.map_path(entry, sources))
 
 
-def derive_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = None) -> dict[str, Any]:
-    """The catalog fields for ``entry``'s direction, from the data beside its map."""
+def derive_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = None) -> TrackEntry:
+    """``entry`` with its direction fields derived from the data beside its map."""
     yaml_path = cat.map_path(entry, sources)
     how = direction_for_map(yaml_path)
     if entry.kind == "circuit":
@@ -33,9 +32,10 @@ def derive_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = Non
     else:
         rel = Path(entry.map).parent / how.source
         what = f"point order of the source file {rel.as_posix()}"
-    return {**how.to_dict(), "direction_source": what}
+    start = None if how.start is None else (round(how.start[0], 3), round(how.start[1], 3))
+    return entry.with_fields(direction=how.direction, start=start, direction_source=what)
 
 
 def annotate_directions(cat: Catalog, sources: Path | None = None) -> None:
     """Set ``direction``, ``direction_source`` and ``start`` on every entry."""
-    cat.entries = [e.with_fields(**derive_direction(cat, e, sources)) for e in cat.entries]
+    cat.entries = [derive_direction(cat, e, sources) for e in cat.entries]
