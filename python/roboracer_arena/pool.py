@@ -21,6 +21,7 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, ThreadPoolExecutor, wait
 from concurrent.futures import Executor as _FuturesExecutor
 from concurrent.futures.process import BrokenProcessPool
+from contextlib import contextmanager
 from typing import Any, NoReturn, TypeVar
 
 from .errors import ArenaError
@@ -160,6 +161,17 @@ def map_ordered(executor: Any, fn: Callable[[T], R], items: Sequence[T], progres
     for i, r in progress(it, len(items)) if progress else it:
         out[i] = r
     return out
+
+
+@contextmanager
+def local_unless(executor: Any, jobs: int) -> Iterator[Any]:
+    """``executor`` as given (the caller owns it), or a :class:`LocalExecutor` of ``jobs``
+    workers that is closed on exit."""
+    if executor is not None:
+        yield executor
+    else:
+        with LocalExecutor(jobs) as ex:
+            yield ex
 
 
 def tqdm_progress(desc: str, unit: str = "it", **options: Any) -> Progress:

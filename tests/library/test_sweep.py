@@ -175,3 +175,19 @@ def test_packaged_sweep_summary_loads_typed_and_round_trips():
     s = GeneratedSweepSummary.model_validate_json(text)
     assert s.kept == sum(bool(r.kept) for r in s.records) and s.specs_tried == len(s.records)
     assert json.dumps(s.to_json_dict(), indent=2) + "\n" == text
+
+
+def test_packaged_generated_library_is_what_the_sweep_builds(tmp_path):
+    """``build_generated`` (``tracks catalog --generate``) on two processes rebuilds the
+    packaged ``tracks/generated``: the same 60 tracks, byte for byte (bar the generator's
+    wall-clock timings), and the same records."""
+    from roboracer_arena.library.generated import build_generated
+    from roboracer_arena.paths import tracks_dir
+
+    shipped = tracks_dir() / "generated"
+    s = build_generated(tmp_path, count=60, jobs=2)
+    assert tree(tmp_path) == tree(shipped) and s.kept == 60
+    old = json.loads((shipped / "sweep.json").read_text())["records"]
+    assert [r.model_copy(update={"seconds": 0.0}).to_json_dict() for r in s.records] == [
+        {**r, "seconds": 0.0} for r in old
+    ]

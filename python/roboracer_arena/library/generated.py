@@ -20,7 +20,7 @@ import numpy as np
 
 from ..distributed.executor import Executor
 from ..fileio import atomic_write_dir, atomic_write_text
-from ..pool import LocalExecutor, Progress
+from ..pool import Progress, local_unless, map_ordered
 from ..spec import TrackSpec
 from .sweep_report import GeneratedSweepSummary, SweepRecord, count_outcome
 
@@ -118,24 +118,17 @@ def build_generated(
     t0 = time.perf_counter()
     tasks = list(sweep())
     Path(outdir).mkdir(parents=True, exist_ok=True)
-    done: list[SweepRecord | None] = [None] * len(tasks)
-    ex = executor or LocalExecutor(jobs)
-    try:
-        it = ex.run(generate_files, tasks)
-        for i, (rec, files) in progress(it, len(tasks)) if progress else it:
-            if files:  # written as they come: a long sweep keeps what it has if stopped
-                atomic_write_dir(Path(outdir) / rec.id, files)
-            done[i] = rec
-    finally:
-        if executor is None:
-            ex.close()
-    recs = [r for r in done if r is not None]
+    with local_unless(executor, jobs) as ex:
+        results = map_ordered(ex, generate_files, tasks, progress)
     # Every seed-0 acceptance first (one per spec: the widest spread), then seed 1.
-    accepted = sorted((r for r in recs if r.outcome == "accepted"), key=lambda r: r.seed)
+    accepted = sorted((r for r, _ in results if r.outcome == "accepted"), key=lambda r: r.seed)
     kept = {r.id for r in accepted[:count]}
-    for r in accepted[count:]:
-        shutil.rmtree(Path(outdir) / r.id, ignore_errors=True)
-    recs = [r.with_fields(kept=r.id in kept) for r in recs]
+    for rec, files in results:  # a dropped acceptance leaves no directory, not even an old one
+        if rec.id in kept:
+            atomic_write_dir(Path(outdir) / rec.id, files)
+        elif rec.outcome == "accepted":
+            shutil.rmtree(Path(outdir) / rec.id, ignore_errors=True)
+    recs = [r.with_fields(kept=r.id in kept) for r, _ in results]
     summary = GeneratedSweepSummary(
         sweep={"venues": VENUES, "features": FEATURES, "seeds": list(SEEDS)},
         specs_tried=len(recs),

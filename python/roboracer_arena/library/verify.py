@@ -20,7 +20,7 @@ from .. import _core
 from ..distributed.executor import Executor
 from ..errors import ArenaError
 from ..maps import OccupancyMap, load_map
-from ..pool import LocalExecutor, Progress, map_ordered
+from ..pool import Progress, local_unless, map_ordered
 from .catalog import Catalog, sha256_file
 from .entry import LeftOut, TrackEntry
 from .tracks import entry_track
@@ -179,12 +179,8 @@ def verify(
     and a summary. On a Ray cluster every node must see the same catalog and sources paths."""
     t0 = time.perf_counter()
     tasks = [(cat, e, sources, usd, drive, reverse) for e in entries]
-    ex = executor or LocalExecutor(jobs)
-    try:
+    with local_unless(executor, jobs) as ex:
         results = map_ordered(ex, _work, tasks, progress)
-    finally:
-        if executor is None:
-            ex.close()
     return VerifySummary.tally(results, time.perf_counter() - t0, ex.workers)
 
 
