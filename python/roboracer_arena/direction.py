@@ -58,13 +58,6 @@ class TrackDirection:
     start: tuple[float, float] | None = None
     source: str = "default"
 
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "direction": self.direction,
-            "start": None if self.start is None else [round(v, 3) for v in self.start],
-            "direction_source": self.source,
-        }
-
 
 def check_direction(value: Any, what: str = "direction") -> str:
     """``value`` as one of :data:`DIRECTIONS` (``"ccw"``/``"cw"`` and dashes accepted);

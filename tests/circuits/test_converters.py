@@ -89,11 +89,24 @@ def test_build_circuit_end_to_end_on_a_tiny_ring(tmp_path):
     f = tmp_path / "Ring.csv"
     _write_tum(f, _circle(100.0, 120), wr=6.0, wl=6.0)
     rep = build_circuit(read_tum_csv(f), tmp_path / "out", CircuitConfig())
-    assert rep["one_corridor"] and not rep["grade_separated"]
-    assert rep["lap_length_m"] == pytest.approx(2 * np.pi * 10.0, rel=1e-3)
-    assert rep["length_error"] < 0.005
-    assert rep["width_mean_m"] == pytest.approx(1.2)
-    assert rep["narrowed_fraction"] == 0.0
+    assert rep.one_corridor and not rep.grade_separated
+    assert rep.lap_length_m == pytest.approx(2 * np.pi * 10.0, rel=1e-3)
+    assert rep.length_error < 0.005
+    assert rep.width_mean_m == pytest.approx(1.2)
+    assert rep.narrowed_fraction == 0.0
     for name in ("map.png", "map.yaml", "centreline.csv", "circuit.json"):
         assert (tmp_path / "out" / "ring" / name).is_file()
-    assert json.loads((tmp_path / "out" / "ring" / "circuit.json").read_text())["map_sha256"] == rep["map_sha256"]
+    assert json.loads((tmp_path / "out" / "ring" / "circuit.json").read_text())["map_sha256"] == rep.map_sha256
+
+
+def test_shipped_circuit_reports_load_typed_and_round_trip():
+    """Every committed ``circuit.json`` is a :class:`CircuitReport` and writes back as it is."""
+    from roboracer_arena.circuits.report import CircuitReport
+    from roboracer_arena.paths import tracks_dir
+
+    files = sorted((tracks_dir() / "circuits").glob("*/circuit.json"))
+    assert len(files) >= 44
+    for f in files:
+        text = f.read_text(encoding="utf-8")
+        rep = CircuitReport.model_validate_json(text)
+        assert json.dumps(rep.to_json_dict(), indent=2) + "\n" == text, f

@@ -41,8 +41,8 @@ def _sign(path) -> int:
 
 def _circuit_source(sources, track_id: str):
     e = load_catalog().get(track_id)
-    assert e["kind"] == "circuit"
-    return sources / e["source"]["path"]
+    assert e.kind == "circuit"
+    return sources / e.source.path
 
 
 @pytest.mark.parametrize("track_id,real", [("monza", -1), ("sao-paulo", 1)])
@@ -84,21 +84,22 @@ def test_every_catalog_circuit_is_driven_in_its_source_direction(sources):
     """46 laps (no lidar): each circuit's driven area has the sign of its source centreline."""
     wrong = []
     for e in load_catalog().select("circuits"):
-        src = sources / e["source"]["path"]
-        if _sign(driven_lap(e["id"])) != source_sign(src):
-            wrong.append(e["id"])
+        src = sources / e.source.path
+        if _sign(driven_lap(e.id)) != source_sign(src):
+            wrong.append(e.id)
     assert not wrong, f"driven against the source direction: {wrong}"
 
 
 def test_catalog_records_every_circuit_in_its_source_direction(sources):
     cat = load_catalog()
     for e in cat.select("circuits"):
-        want = source_sign(sources / e["source"]["path"])
-        assert (1 if e["direction"] == COUNTERCLOCKWISE else -1) == want, e["id"]
-        assert "point order" in e["direction_source"]
+        want = source_sign(sources / e.source.path)
+        assert (1 if e.direction == COUNTERCLOCKWISE else -1) == want, e.id
+        assert e.direction_source and "point order" in e.direction_source
     for e in cat.select("generated"):
-        spec = json.loads((tracks_dir() / e["spec"]).read_text())
-        assert e["direction"] == spec["direction"], e["id"]
+        assert e.spec is not None
+        spec = json.loads((tracks_dir() / e.spec).read_text())
+        assert e.direction == spec["direction"], e.id
 
 
 def test_generated_outcome_and_its_map_plug_in_everywhere(tmp_path):

@@ -35,24 +35,24 @@ def cat() -> Catalog:
 
 
 def test_catalog_has_every_kind_and_at_least_130_tracks(cat):
-    kinds = {k: sum(e["kind"] == k for e in cat.entries) for k in ("circuit", "recorded", "generated")}
+    kinds = cat.counts()
     assert len(cat.entries) >= 130
     assert kinds["circuit"] >= 44 and kinds["generated"] >= 50 and kinds["recorded"] > 0
-    assert len({e["id"] for e in cat.entries}) == len(cat.entries)
+    assert len({e.id for e in cat.entries}) == len(cat.entries)
     for e in cat.entries:
-        missing = [k for k in REQUIRED if k not in e]
-        assert not missing, (e["id"], missing)
-        assert e["source"]["licence"] and e["source"]["repository"]
-    ids = {e["id"] for e in cat.entries}
+        missing = [k for k in REQUIRED if k not in e.model_fields_set]
+        assert not missing, (e.id, missing)
+        assert e.source.licence and e.source.repository
+    ids = {e.id for e in cat.entries}
     assert {"monaco", "baku", "suzuka"} <= ids
-    assert cat.get("suzuka")["grade_separated"] is True
-    assert any("grade-separated" in n for n in cat.get("suzuka")["notes"])
+    assert cat.get("suzuka").grade_separated is True
+    assert any("grade-separated" in n for n in cat.get("suzuka").notes)
 
 
 def test_left_out_maps_carry_a_reason(cat):
     assert cat.left_out
-    assert all(lo["reason"] and lo["source_path"] for lo in cat.left_out)
-    assert any("porto.yaml" in lo["source_path"] for lo in cat.left_out)  # names a missing image
+    assert all(lo.reason and lo.source_path for lo in cat.left_out)
+    assert any("porto.yaml" in lo.source_path for lo in cat.left_out)  # names a missing image
 
 
 def test_round_trip(cat, tmp_path):
@@ -65,18 +65,18 @@ def test_round_trip(cat, tmp_path):
 def test_project_maps_match_their_checksums(cat):
     for e in cat.select("circuits")[:5] + cat.select("generated")[:5]:
         png = cat.map_path(e).with_suffix(".png")
-        assert sha256_file(png) == e["sha256"], e["id"]
+        assert sha256_file(png) == e.sha256, e.id
 
 
 def test_recorded_maps_are_referenced_not_copied(cat, sources):
     for e in cat.select("recorded"):
-        assert not e["map"].startswith("/") and (sources / e["map"]).is_file(), e["id"]
+        assert not e.map.startswith("/") and (sources / e.map).is_file(), e.id
     assert not (cat.path.parent / "recorded").exists()
 
 
 def test_resolve_ids_and_selections(cat, sources):
     assert resolve("monaco", cat)[0].name == "map.yaml" and resolve("monaco", cat)[0].is_file()
-    assert len(resolve("circuits", cat)) == sum(e["kind"] == "circuit" for e in cat.entries)
+    assert len(resolve("circuits", cat)) == cat.counts()["circuit"]
     assert len(resolve("all", cat, sources=sources)) == len(cat.entries)
     assert len(resolve(["monaco", "generated"], cat)) == 1 + len(cat.select("generated"))
     tracks = resolve_tracks(["monaco", "suzuka"], cat)

@@ -101,17 +101,18 @@ def test_library_is_identical_on_one_and_two_processes_and_verifies(tmp_path):
     for jobs in (1, 2):
         with LocalExecutor(jobs) as ex:
             s = generate_library(sw, 4, tmp_path / f"j{jobs}", ex)
-        assert s["kept"] == 4 and s["workers"] == jobs
+        assert s.kept == 4 and s.workers == jobs
         runs[jobs] = (s, tree(tmp_path / f"j{jobs}"))
     (s1, t1), (s2, t2) = runs[1], runs[2]
     assert t1 == t2 and len(t1) == 4 * 4  # map.yaml, map.png, centreline.csv, spec.json per track
-    strip = [{k: v for k, v in r.items() if k != "seconds"} for r in s1["records"]]
-    assert strip == [{k: v for k, v in r.items() if k != "seconds"} for r in s2["records"]]
-    kept = [r["id"] for r in s1["records"] if r["kept"]]
+    strip = [r.model_copy(update={"seconds": 0.0}) for r in s1.records]
+    assert strip == [r.model_copy(update={"seconds": 0.0}) for r in s2.records]
+    assert [r.k for r in s1.records] == list(range(len(s1.records)))
+    kept = [r.id for r in s1.records if r.kept]
     assert kept == sorted(kept) and len(kept) == 4
     assert not list((tmp_path / "j2" / "generated").glob(".*"))  # no temporaries left
     cat = load_catalog(tmp_path / "j2" / "catalog.json")
-    assert [e["id"] for e in cat.entries] == kept and all(e["direction"] for e in cat.entries)
+    assert [e.id for e in cat.entries] == kept and all(e.direction for e in cat.entries)
     assert (
         main(
             [
@@ -164,3 +165,29 @@ def test_packaged_example_sweep_is_the_examples_file():
     from roboracer_arena.library.sweep import EXAMPLE_SWEEP
 
     assert json.loads(EXAMPLE.read_text()) == EXAMPLE_SWEEP
+
+
+def test_packaged_sweep_summary_loads_typed_and_round_trips():
+    from roboracer_arena.library.sweep_report import GeneratedSweepSummary
+    from roboracer_arena.paths import tracks_dir
+
+    text = (tracks_dir() / "generated" / "sweep.json").read_text(encoding="utf-8")
+    s = GeneratedSweepSummary.model_validate_json(text)
+    assert s.kept == sum(bool(r.kept) for r in s.records) and s.specs_tried == len(s.records)
+    assert json.dumps(s.to_json_dict(), indent=2) + "\n" == text
+
+
+def test_packaged_generated_library_is_what_the_sweep_builds(tmp_path):
+    """``build_generated`` (``tracks catalog --generate``) on two processes rebuilds the
+    packaged ``tracks/generated``: the same 60 tracks, byte for byte (bar the generator's
+    wall-clock timings), and the same records."""
+    from roboracer_arena.library.generated import build_generated
+    from roboracer_arena.paths import tracks_dir
+
+    shipped = tracks_dir() / "generated"
+    s = build_generated(tmp_path, count=60, jobs=2)
+    assert tree(tmp_path) == tree(shipped) and s.kept == 60
+    old = json.loads((shipped / "sweep.json").read_text())["records"]
+    assert [r.model_copy(update={"seconds": 0.0}).to_json_dict() for r in s.records] == [
+        {**r, "seconds": 0.0} for r in old
+    ]

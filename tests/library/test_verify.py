@@ -15,9 +15,9 @@ def test_verify_one_track_of_each_kind():
     cat = load_catalog()
     picks = [cat.get("norisring"), cat.select("generated")[0], cat.get("gym-berlin")]
     s = verify(cat, picks, jobs=1)
-    assert s["tracks"] == 3 and s["passed"] == 3, s["failed"]
-    for r in s["results"]:
-        assert {k: v["status"] for k, v in r["checks"].items()} == {
+    assert s.tracks == 3 and s.passed == 3, s.failed
+    for r in s.results:
+        assert {k: v.status for k, v in r.checks.items()} == {
             "load": "pass",
             "ring": "pass",
             "usd": "pass",
@@ -27,10 +27,10 @@ def test_verify_one_track_of_each_kind():
 
 def test_verify_catches_a_tampered_map(tmp_path):
     cat = load_catalog()
-    e = dict(cat.select("generated")[0], sha256="0" * 64)
+    e = cat.select("generated")[0].with_fields(sha256="0" * 64)
     s = verify(cat, [e], jobs=1, usd=False, drive=False)
-    assert s["failed"] == [e["id"]]
-    assert "checksum" in s["results"][0]["checks"]["load"]["detail"]
+    assert s.failed == [e.id]
+    assert "checksum" in s.results[0].checks["load"].detail
 
 
 @pytest.mark.slow
@@ -52,19 +52,19 @@ def test_sheet(tmp_path):
 
 def test_prune_moves_failed_recorded_maps_only():
     from roboracer_arena.library.verify import prune_catalog
+    from roboracer_arena.library.verify_report import Check, TrackResult, VerifySummary
 
     cat = load_catalog()
     rec, gen = cat.select("recorded")[0], cat.select("generated")[0]
-    bad = {"status": "FAIL", "detail": "lap not completed"}
-    ok = {"status": "pass", "detail": "fine"}
-    summary = {
-        "results": [
-            {"id": rec["id"], "kind": "recorded", "passed": False, "checks": {"load": ok, "drive": bad}},
-            {"id": gen["id"], "kind": "generated", "passed": False, "checks": {"load": ok, "drive": bad}},
-        ]
-    }
+    bad = Check(status="FAIL", detail="lap not completed")
+    ok = Check(status="pass", detail="fine")
+    results = [
+        TrackResult(id=e.id, kind=e.kind, passed=False, seconds=0.0, checks={"load": ok, "drive": bad})
+        for e in (rec, gen)
+    ]
     n = len(cat.entries)
-    assert prune_catalog(cat, summary) == [rec["id"]]
-    assert len(cat.entries) == n - 1 and cat.left_out[-1]["id"] == rec["id"]
-    assert "drive: lap not completed" in cat.left_out[-1]["reason"]
-    assert cat.get(gen["id"])["verified"]["drive"] == "FAIL"
+    assert prune_catalog(cat, VerifySummary.tally(results, 0.0, 1)) == [rec.id]
+    assert len(cat.entries) == n - 1 and cat.left_out[-1].id == rec.id
+    assert "drive: lap not completed" in cat.left_out[-1].reason
+    assert cat.get(gen.id).verified == {"load": "pass", "drive": "FAIL"}
+    assert cat.meta["counts"] == cat.counts()

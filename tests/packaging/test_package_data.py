@@ -24,21 +24,22 @@ def test_catalog_maps_of_circuits_and_generated_tracks_ship_in_the_package():
     cat = load_catalog()
     assert cat.path == paths.tracks_dir() / "catalog.json"
     assert paths.tracks_dir().is_relative_to(paths.PACKAGE_DIR)
-    shipped = [e for e in cat.entries if e["kind"] in ("circuit", "generated")]
+    shipped = [e for e in cat.entries if e.kind in ("circuit", "generated")]
     assert len(shipped) >= 100
     for e in shipped:
-        for key in ("map", "centreline"):
-            f = cat.map_path({**e, "map": e[key]})
+        for rel in (e.map, e.centreline):
+            assert rel is not None, e.id
+            f = cat.file_path(e, rel)
             assert f.is_file() and f.is_relative_to(paths.PACKAGE_DIR), f
     assert paths.bench_data("requests.jsonl").is_file() and paths.bench_data("specs.jsonl").is_file()
 
 
 def test_recorded_maps_need_the_sources_setting(monkeypatch):
-    rec = next(e for e in load_catalog().entries if e["kind"] == "recorded")
+    rec = next(e for e in load_catalog().entries if e.kind == "recorded")
     monkeypatch.delenv(paths.SOURCES_ENV, raising=False)
     monkeypatch.setattr(paths, "checkout_dir", lambda: None)  # as an installed wheel
     assert paths.default_sources_dir() is None
-    with pytest.raises(MapIOError, match=f"recorded map '{rec['id']}'.*set ROBORACER_ARENA_SOURCES"):
+    with pytest.raises(MapIOError, match=f"recorded map '{rec.id}'.*set ROBORACER_ARENA_SOURCES"):
         load_catalog().map_path(rec)
     monkeypatch.setenv(paths.SOURCES_ENV, "/nonexistent/track-sources")
     with pytest.raises(

@@ -1,61 +1,62 @@
 //! Maps `arena_core::ArenaError` variants onto Python exception classes. The classes
-//! live in `roboracer_arena._core` and are re-exported by `roboracer_arena.errors`.
+//! live in `roboracer_arena._core` (their `__module__`, so they pickle across process
+//! pools) and are re-exported by `roboracer_arena.errors`.
 
 use arena_core::ArenaError as CoreError;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     ArenaError,
     PyException,
     "Base class of every RoboRacer Arena error."
 );
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     MapIOError,
     ArenaError,
     "A map or output file could not be read or written."
 );
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     MapFormatError,
     ArenaError,
     "A map YAML or image is malformed."
 );
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     CorridorError,
     ArenaError,
     "The map has no usable closed corridor."
 );
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     InvalidArgumentError,
     ArenaError,
     "An argument is outside its domain."
 );
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     ConfigError,
     ArenaError,
     "A configuration file or value (BuildConfig, SimConfig, ...) is invalid."
 );
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     SpecError,
     ArenaError,
     "A track specification is malformed."
 );
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     SimulationError,
     ArenaError,
     "The simulator refused a track, config or call."
 );
 
 pyo3::create_exception!(
-    _core,
+    roboracer_arena._core,
     InternalError,
     ArenaError,
     "The core failed on an input it should have refused (a caught panic); please report it."

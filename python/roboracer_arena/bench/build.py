@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from ..fileio import atomic_write_text
+from .output import add_bench_parser
 
 # The paper's Table tab:map2usd: (map, raster MP, single-core seconds, USD MB).
 PAPER = [
@@ -283,13 +284,12 @@ def format_markdown(result: dict[str, Any]) -> str:
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("build", help="map → USD build time and size vs the paper", description=__doc__)
+    p = add_bench_parser(kinds, "build", "map → USD build time and size vs the paper", __doc__)
     p.add_argument(
         "--sizes", nargs="+", metavar="LABEL", choices=[s[0] for s in SIZES], help="subset of sizes (default: all)"
     )
     p.add_argument("--repeat", type=int, default=3, help="builds per size; the median is reported (default 3)")
     p.add_argument("--no-textures", action="store_true", help="build without PNG textures")
-    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.add_argument("--markdown", metavar="FILE", type=Path, help="write the tables to FILE as Markdown")
     p.set_defaults(func=_cli)
 

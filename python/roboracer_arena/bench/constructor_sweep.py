@@ -31,14 +31,12 @@ import statistics
 import sys
 import time
 from collections import Counter
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-from tqdm import tqdm
-
 from ..constructor_config import ConstructorConfig
 from ..generate import Acceptance, derived_geometry, generate_track, screen, write_outputs
+from ..pool import pool_map, tqdm_progress
 from ..spec import TrackSpec
 
 LAPS = (20.0, 30.0, 45.0, 60.0, 80.0, 110.0)
@@ -111,18 +109,8 @@ def _trial(job: tuple[int, str, str | None]) -> dict[str, Any]:
 def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, progress: bool = True) -> dict[str, Any]:
     """One ``generate_track`` per spec; rows, acceptance rate and the misses by stratum."""
     work = [(i, s.model_dump_json(), str(maps) if maps else None) for i, s in enumerate(specs)]
-    bar = tqdm(total=len(work), desc="sweep specs", unit="spec", file=sys.stderr, disable=not progress)
-    rows: list[dict[str, Any]] = []
-    if jobs > 1:
-        with ProcessPoolExecutor(jobs) as pool:
-            for r in pool.map(_trial, work, chunksize=4):
-                rows.append(r)
-                bar.update()
-    else:
-        for w in work:
-            rows.append(_trial(w))
-            bar.update()
-    bar.close()
+    bar = tqdm_progress("sweep specs", "spec", file=sys.stderr, disable=not progress)
+    rows: list[dict[str, Any]] = pool_map(_trial, work, jobs, bar)
     accepted = [r for r in rows if r["outcome"] == "accepted"]
     misses = [r for r in rows if r["outcome"] != "accepted"]
 

@@ -26,7 +26,6 @@ one 1081-beam scan alone, median over centreline poses around the lap.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import time
 from collections.abc import Callable
@@ -35,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ..fileio import atomic_write_text
+from .output import add_bench_parser, write_json
 
 F1TENTH_GYM = (5264.0, 5476.0)  # env-steps/s, constant action, Spielberg, 1080 beams, 0.01 s (issue 14)
 #: Targets (issue 14): single env µs per step; vector env env-steps/s per workload.
@@ -47,11 +46,8 @@ WORKLOADS = ("constant", "lap", "random")
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "env",
-        help="gymnasium step throughput, full lidar every 0.01 s step, three workloads",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+    p = add_bench_parser(
+        kinds, "env", "gymnasium step throughput, full lidar every 0.01 s step, three workloads", __doc__
     )
     p.add_argument(
         "--num-envs", type=int, nargs="+", default=[1, 256], help="env counts (default 1 256; 1 = single env)"
@@ -68,7 +64,6 @@ def register(kinds) -> None:
         default=list(WORKLOADS),
         help="workloads to run (default: all three)",
     )
-    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
 
@@ -375,7 +370,5 @@ def run_quick() -> dict[str, Any]:
 
 def _run_cli(args: argparse.Namespace) -> int:
     res = run(args.map, args.num_envs, args.seconds, args.beams, args.workloads)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(res, indent=2))
-        print(f"wrote {args.json}")
+    write_json(args.json, res)
     return 0

@@ -24,18 +24,16 @@ All runs use one car in an empty 300 m hall (no walls reached), the default
 from __future__ import annotations
 
 import argparse
-import json
 import math
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .. import _core
-from ..fileio import atomic_write_text
 from ..sim_config import PhysicsConfig, SimConfig, VehicleConfig
 from . import fidelity_limit
 from .f1tenth_st import GYM_PARAMS, SingleTrack
+from .output import add_bench_parser, write_json
 
 HALL = 150.0
 RECORDED_SPEED = 6.66  # paper: observed maximum (m/s)
@@ -310,18 +308,13 @@ def print_table(res: dict[str, Any]) -> None:
 def _cli(args: argparse.Namespace) -> int:
     res = run(quick=args.quick)
     print_table(res)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(res, indent=2, default=str))
-        print(f"wrote {args.json}")
+    write_json(args.json, res)
     return 0
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "fidelity", help="vehicle model vs physics and F1TENTH Gym's single-track model", description=__doc__
-    )
+    p = add_bench_parser(kinds, "fidelity", "vehicle model vs physics and F1TENTH Gym's single-track model", __doc__)
     p.add_argument("--quick", action="store_true", help="fewer speeds (1, 3, 5 m/s)")
-    p.add_argument("--json", type=Path, metavar="FILE", help="write the results to FILE as JSON")
     p.set_defaults(func=_cli)
 
 

@@ -19,13 +19,11 @@ with other work); raise ``--generations`` / ``--pairs`` for stronger policies.
 from __future__ import annotations
 
 import argparse
-import json
 import time
 from dataclasses import replace
-from pathlib import Path
 from typing import Any
 
-from ..fileio import atomic_write_text
+from .output import add_bench_parser, write_json
 
 SINGLE = "gym-berlin"
 POOL = {"generated": 1.0, "circuits": 1.0}
@@ -34,19 +32,13 @@ HELD_OUT = ("gym-skirk", "gym-vegas", "gym-example", "cps-torino-redraw", "cps-c
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "generalisation",
-        help="ES on one track vs on a track pool, laps on held-out maps",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    p = add_bench_parser(kinds, "generalisation", "ES on one track vs on a track pool, laps on held-out maps", __doc__)
     p.add_argument("--seeds", type=int, default=3, help="training seeds per condition (default 3)")
     p.add_argument("--generations", type=int, default=40, help="ES generations per run (default 40)")
     p.add_argument("--pairs", type=int, default=16, help="antithetic pairs per generation (default 16)")
     p.add_argument("--episode-steps", type=int, default=200, help="steps per training episode (default 200)")
     p.add_argument("--single", default=SINGLE, help=f"the one training track (default {SINGLE})")
     p.add_argument("--held-out", nargs="+", default=list(HELD_OUT), help="evaluation tracks (catalog ids)")
-    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
 
@@ -148,9 +140,7 @@ def print_table(res: dict[str, Any]) -> None:
 def _run_cli(args: argparse.Namespace) -> int:
     res = run(args.seeds, args.generations, args.pairs, args.episode_steps, args.single, args.held_out)
     print_table(res)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(res, indent=2) + "\n")
-        print(f"wrote {args.json}")
+    write_json(args.json, res)
     return 0
 
 

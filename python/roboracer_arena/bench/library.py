@@ -9,29 +9,22 @@ raster (the accuracy check) and writing every map; pool start-up is included."""
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import tempfile
 from pathlib import Path
 from typing import Any
 
-from ..fileio import atomic_write_text
+from .output import add_bench_parser, write_json
 
 PAPER = {"circuits": 44, "seconds": 43.72, "mean_error_pct": 0.253, "max_error_pct": 0.924}
 TARGET_SECONDS = 10.0
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "library",
-        help="circuit library build time and raster accuracy",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    p = add_bench_parser(kinds, "library", "circuit library build time and raster accuracy", __doc__)
     p.add_argument("--sources", type=Path, default=None, help="track-sources directory")
     p.add_argument("--jobs", type=int, default=None, help="threads (default: all cores)")
     p.add_argument("--resolution", type=float, default=0.05, help="m per cell (default 0.05)")
-    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
 
@@ -40,26 +33,24 @@ def run(sources: Path | None = None, jobs: int | None = None, resolution: float 
 
     with tempfile.TemporaryDirectory(prefix="rra-bench-library-") as tmp:
         s = build_all(sources, tmp, CircuitConfig(resolution=resolution), jobs=jobs or os.cpu_count() or 1)
-    errs = [r for r in s["results"] if r.get("length_error") is not None]
-    res = {
-        "circuits": s["circuits"],
-        "built": s["built"],
-        "one_corridor": s["one_corridor"],
-        "jobs": s["jobs"],
-        "seconds": s["seconds"],
-        "mean_error_pct": 100 * (s["mean_length_error"] or 0),
-        "max_error_pct": 100 * (s["max_length_error"] or 0),
-        "measured_circuits": len(errs),
-        "grade_separated": s["grade_separated"],
+    built = s.reports()
+    res: dict[str, Any] = {
+        "circuits": s.circuits,
+        "built": s.built,
+        "one_corridor": s.one_corridor,
+        "jobs": s.jobs,
+        "seconds": s.seconds,
+        "mean_error_pct": 100 * (s.mean_length_error or 0),
+        "max_error_pct": 100 * (s.max_length_error or 0),
+        "measured_circuits": sum(r.length_error is not None for r in built),
+        "grade_separated": s.grade_separated,
         "cpu_seconds_per_circuit": {
-            "median": sorted(r["seconds"] for r in s["results"] if "seconds" in r)[len(s["results"]) // 2],
-            "raster_median": sorted(r["seconds_raster"] for r in s["results"] if "seconds_raster" in r)[
-                len(s["results"]) // 2
-            ],
+            "median": sorted(r.seconds for r in built)[len(s.results) // 2],
+            "raster_median": sorted(r.seconds_raster for r in built)[len(s.results) // 2],
         },
         "per_circuit": [
             {
-                k: r.get(k)
+                k: r.to_json_dict().get(k)
                 for k in (
                     "id",
                     "source",
@@ -73,7 +64,7 @@ def run(sources: Path | None = None, jobs: int | None = None, resolution: float 
                     "seconds",
                 )
             }
-            for r in s["results"]
+            for r in s.results
         ],
         "paper": PAPER,
     }
@@ -97,7 +88,5 @@ def run_quick() -> dict[str, Any]:
 
 def _run_cli(args: argparse.Namespace) -> int:
     res = run(args.sources, args.jobs, args.resolution)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(res, indent=2))
-        print(f"wrote {args.json}")
+    write_json(args.json, res)
     return 0

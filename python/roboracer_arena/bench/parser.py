@@ -28,9 +28,9 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ArenaError, InvalidArgumentError
-from ..fileio import atomic_write_text
 from ..parse.result import DEFAULTS
 from ..paths import bench_data
+from .output import add_bench_parser, write_json
 
 REPO_REQUESTS = bench_data("requests.jsonl")  # shipped in the package (bench/data)
 #: (label, file, batch or None) of every shipped request set, in report order.
@@ -266,7 +266,7 @@ def run_quick() -> dict[str, Any]:
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("parser", help="parser evaluation (the paper's Table 2)", description=__doc__)
+    p = add_bench_parser(kinds, "parser", "parser evaluation (the paper's Table 2)", __doc__)
     p.add_argument(
         "--requests", type=Path, metavar="FILE.jsonl",
         help="request set (default: the shipped Table 2 set, then the rules over every shipped set)",
@@ -276,7 +276,6 @@ def register(kinds) -> None:
     p.add_argument("--ollama-host", metavar="URL", help="Ollama server (default $OLLAMA_HOST)")
     p.add_argument("--model", default="gemma4:31b", help="Ollama model (default gemma4:31b)")
     p.add_argument("--timeout", type=float, default=120.0, help="seconds per model call")
-    p.add_argument("--json", type=Path, metavar="FILE", help="write the results as JSON")
     p.set_defaults(func=_cli)
 
 
@@ -288,7 +287,5 @@ def _cli(args: argparse.Namespace) -> int:
     )
     if args.requests is None:
         results.update(run_sets())
-    if args.json:
-        atomic_write_text(args.json, json.dumps(results, indent=2))
-        print(f"wrote {args.json}")
+    write_json(args.json, results)
     return 0

@@ -12,19 +12,17 @@ steps per ``Simulator.step`` call (10 = a 20 Hz control loop at dt = 5 ms).
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import platform
 import time
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .. import _core
 from ..drivers import PurePursuitDriver, PurePursuitParams
-from ..fileio import atomic_write_text
 from ..sim_config import PhysicsConfig, SimConfig
+from .output import add_bench_parser, write_json
 
 # Paper (Isaac Sim, AMD EPYC 9654 + RTX PRO 6000): vehicle-steps/s by vehicle count.
 PAPER = {1: 28.1, 256: 8707.0, 1024: 8368.0, 2048: 6818.0}
@@ -156,14 +154,12 @@ def print_table(result: dict[str, Any]) -> None:
 def _cli(args: argparse.Namespace) -> int:
     result = run(args.vehicles, args.per_env, args.seconds, args.substeps, args.dt, not args.no_shortcut)
     print_table(result)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(result, indent=2))
-        print(f"wrote {args.json}")
+    write_json(args.json, result)
     return 0
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser("physics", help="vehicle-steps/s of the native simulator (lidar off)", description=__doc__)
+    p = add_bench_parser(kinds, "physics", "vehicle-steps/s of the native simulator (lidar off)", __doc__)
     p.add_argument(
         "--vehicles",
         type=int,
@@ -185,7 +181,6 @@ def register(kinds) -> None:
         action="store_true",
         help="run the rapier pipeline in every step (physics.shortcut_free_steps=False)",
     )
-    p.add_argument("--json", type=Path, metavar="FILE", help="write the results to FILE as JSON")
     p.set_defaults(func=_cli)
 
 

@@ -25,41 +25,42 @@ import json
 import os
 import statistics
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..fileio import atomic_write_text
+from ..pool import pool_map
+from .output import add_bench_parser, write_json
 
 PROJECT_WORKERS = (8, 32, 128)
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "ray",
-        help="Ray executors and RayVectorEnv vs local, 1 -> 2 workers, projection",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    p = add_bench_parser(kinds, "ray", "Ray executors and RayVectorEnv vs local, 1 -> 2 workers, projection", __doc__)
     p.add_argument("--requests", type=int, default=24, help="sweep requests per generation run (default 24)")
     p.add_argument("--repeats", type=int, default=3, help="runs per configuration; the median is reported (default 3)")
     p.add_argument("--envs-per-actor", type=int, default=64, help="environments per actor / local batch (default 64)")
     p.add_argument("--steps", type=int, default=300, help="timed steps per rollout configuration (default 300)")
     p.add_argument("--beams", type=int, default=1081, help="lidar beams (default 1081)")
-    p.add_argument("--map", type=Path, default=None, help="map YAML (default: f1tenth-gym berlin from the sources)")
+    p.add_argument(
+        "--map",
+        type=Path,
+        default=None,
+        help="map YAML (default: bench env's, f1tenth-racetracks Spielberg from the sources)",
+    )
     p.add_argument("--only", choices=["generation", "rollouts"], help="run one half only (no projection)")
-    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
 
 def _in_child(threads: int, fn, *args) -> Any:
     """``fn(*args)`` in a fresh spawned process whose native thread pool has ``threads`` threads."""
-    from multiprocessing import get_context
+    return pool_map(_apply, [(fn, args)], isolate=True, initializer=_set_threads, initargs=(threads,))[0]
 
-    with ProcessPoolExecutor(1, mp_context=get_context("spawn"), initializer=_set_threads, initargs=(threads,)) as pool:
-        return pool.submit(fn, *args).result()
+
+def _apply(call: tuple) -> Any:
+    fn, args = call
+    return fn(*args)
 
 
 def _set_threads(threads: int) -> None:
@@ -73,7 +74,7 @@ def _strip(results: list) -> list:
         files = {
             k: (v if k != "report.json" else json.dumps({**json.loads(v), "seconds": 0})) for k, v in files.items()
         }
-        out.append(({k: v for k, v in rec.items() if k != "seconds"}, files))
+        out.append((rec.model_copy(update={"seconds": 0.0}), files))
     return out
 
 
@@ -409,7 +410,5 @@ def run_quick() -> dict[str, Any]:
 
 def _run_cli(args: argparse.Namespace) -> int:
     res = run(args.requests, args.repeats, args.envs_per_actor, args.steps, args.beams, args.map, args.only)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(res, indent=2))
-        print(f"wrote {args.json}")
+    write_json(args.json, res)
     return 0

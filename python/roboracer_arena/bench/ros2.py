@@ -27,28 +27,25 @@ from typing import Any
 
 import numpy as np
 
-from ..fileio import atomic_write_text
+from .output import add_bench_parser, write_json
 
 DEFAULT_MAP = Path("f1tenth-gym") / "maps" / "berlin.yaml"
 TARGET_RTF, TARGET_LATENCY_MS = 20.0, 50.0
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "ros2",
-        help="ROS 2 bridge: message rate at --rate max, /drive latency in real time",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+    p = add_bench_parser(
+        kinds, "ros2", "ROS 2 bridge: message rate at --rate max, /drive latency in real time", __doc__
     )
     p.add_argument("--map", type=Path, default=None, help="map YAML (default: f1tenth-gym berlin from the sources)")
     p.add_argument("--seconds", type=float, default=8.0, help="wall seconds per mode (default 8)")
-    p.add_argument("--json", metavar="FILE", type=Path, help="write the results to FILE as JSON")
     p.set_defaults(func=_run_cli)
 
 
 def _default_map() -> Path:
-    base = Path(os.environ.get("ROBORACER_ARENA_SOURCES", Path.cwd().parent / "shared" / "track-sources"))
-    return base / DEFAULT_MAP
+    from ..paths import sources_dir
+
+    return sources_dir(None, "bench ros2 (its default map is f1tenth-gym berlin; or pass --map)") / DEFAULT_MAP
 
 
 def follow_the_gap(ranges: np.ndarray, fov: float, speed: float = 2.0, max_steer: float = 0.4) -> tuple[float, float]:
@@ -214,7 +211,5 @@ def run_quick() -> dict[str, Any]:
 
 def _run_cli(args: argparse.Namespace) -> int:
     res = run(args.map, args.seconds)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(res, indent=2))
-        print(f"wrote {args.json}")
+    write_json(args.json, res)
     return 0

@@ -11,8 +11,6 @@ import io
 import json
 import os
 import time
-from collections.abc import Callable, Iterator
-from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -23,7 +21,9 @@ from ..direction import direction_of
 from ..errors import CorridorError
 from ..fileio import atomic_write_text
 from ..maps import OccupancyMap
+from ..pool import Progress, pool_map
 from .geometry import MIN_RADIUS_SPAN_M, reduce_widths, smooth_resample
+from .report import CircuitBuildSummary, CircuitFailure, CircuitRaster, CircuitReport, RasterMeasurement
 from .sources import CircuitInput, circuit_inputs
 
 
@@ -49,7 +49,7 @@ def _csv(xy: np.ndarray, widths: np.ndarray) -> str:
     return buf.getvalue()
 
 
-def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = CircuitConfig()) -> dict:
+def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = CircuitConfig()) -> CircuitReport:
     """Build one circuit into ``outdir/<id>/`` and return its report (also written as
     ``circuit.json``). Raises :class:`CorridorError` if the raster has no closed corridor."""
     t0 = time.perf_counter()
@@ -66,24 +66,23 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
     ref_len = _core.polyline_length(xy)
     raw_len = _core.polyline_length(raw)
     grade_separated = len(crossing_points) > 0
-    measured: dict = {}
     try:
         mm = _core.measure_map(data, cfg.resolution, origin)
-        measured = {
-            "corridor_components": mm.corridor_components,
-            "infields": mm.infields,
-            "raster_centreline_m": round(mm.centreline_length_m, 4),
-            "mean_width_m": round(mm.mean_width_m, 4),
-            "min_width_m": round(float(np.percentile(mm.widths, 0.5)), 4),
-        }
+        measured = RasterMeasurement(
+            corridor_components=mm.corridor_components,
+            infields=mm.infields,
+            raster_centreline_m=round(mm.centreline_length_m, 4),
+            mean_width_m=round(mm.mean_width_m, 4),
+            min_width_m=round(float(np.percentile(mm.widths, 0.5)), 4),
+        )
     except CorridorError as e:
-        measured = {"corridor_components": 0, "infields": 0, "error": str(e)}
+        measured = RasterMeasurement(corridor_components=0, infields=0, error=str(e))
     err = None
-    if "raster_centreline_m" in measured and not grade_separated:
-        err = abs(measured["raster_centreline_m"] - ref_len) / ref_len
-    one_corridor = measured.get("corridor_components") == 1 and measured.get("infields", 0) >= 1
+    if measured.raster_centreline_m is not None and not grade_separated:
+        err = abs(measured.raster_centreline_m - ref_len) / ref_len
+    one_corridor = measured.corridor_components == 1 and measured.infields >= 1
     if not grade_separated:
-        one_corridor = one_corridor and measured.get("infields") == 1
+        one_corridor = one_corridor and measured.infields == 1
     # Minimum radius of the smoothed centreline (three-point circumradius over ±0.5 m).
     min_radius = _core.min_radius(xy, MIN_RADIUS_SPAN_M)
 
@@ -94,40 +93,41 @@ def build_circuit(c: CircuitInput, outdir: str | Path, cfg: CircuitConfig = Circ
     every = max(1, int(round(cfg.csv_spacing / cfg.spacing)))
     atomic_write_text(out / "centreline.csv", _csv(xy[::every], nar.widths[::every]))
     h, wpx = data.shape
-    report = {
-        "id": c.id,
-        "name": c.name,
-        "source": c.source,
-        "source_file": f"{c.path.parent.parent.name}/{c.path.parent.name}/{c.path.name}",
-        "scale": cfg.scale,
-        "resolution_m": cfg.resolution,
-        "width_note": c.width_note,
-        "full_scale_length_m": round(c.length_m, 2),
-        "input_length_m": round(raw_len, 4),
-        "lap_length_m": round(ref_len, 4),
-        "nominal_width_mean_m": round(float(w_nom.mean()), 4),
-        "nominal_width_min_m": round(float(w_nom.min()), 4),
-        "width_mean_m": round(float(nar.widths.mean()), 4),
-        "width_min_m": round(float(nar.widths.min()), 4),
-        "min_radius_m": round(min_radius, 3),
-        "narrowed_fraction": round(nar.narrowed_fraction, 4),
-        "unresolved_fraction": round(nar.unresolved_fraction, 4),
-        "min_separation_m": round(nar.min_separation_m, 3) if np.isfinite(nar.min_separation_m) else None,
-        "direction": direction_of(xy),
-        "direction_source": "point order of the source centreline",
-        "grade_separated": grade_separated,
-        "crossings": [[round(float(p[0]), 2), round(float(p[1]), 2)] for p in crossing_points],
-        "raster": {"width_px": wpx, "height_px": h, "origin": [round(v, 4) for v in origin]},
-        "measured": measured,
-        "length_error": None if err is None else round(err, 6),
-        "one_corridor": bool(one_corridor),
-        "map_sha256": hashlib.sha256(png).hexdigest(),
-        "map_yaml": f"{c.id}/{yaml_path.name}",
-        "seconds": round(time.perf_counter() - t0, 3),
-        "seconds_raster": round(t_raster, 3),
-        "meta": c.meta,
-    }
-    atomic_write_text(out / "circuit.json", json.dumps(report, indent=2) + "\n")
+    ox, oy, oyaw = origin
+    report = CircuitReport(
+        id=c.id,
+        name=c.name,
+        source=c.source,
+        source_file=f"{c.path.parent.parent.name}/{c.path.parent.name}/{c.path.name}",
+        scale=cfg.scale,
+        resolution_m=cfg.resolution,
+        width_note=c.width_note,
+        full_scale_length_m=round(c.length_m, 2),
+        input_length_m=round(raw_len, 4),
+        lap_length_m=round(ref_len, 4),
+        nominal_width_mean_m=round(float(w_nom.mean()), 4),
+        nominal_width_min_m=round(float(w_nom.min()), 4),
+        width_mean_m=round(float(nar.widths.mean()), 4),
+        width_min_m=round(float(nar.widths.min()), 4),
+        min_radius_m=round(min_radius, 3),
+        narrowed_fraction=round(nar.narrowed_fraction, 4),
+        unresolved_fraction=round(nar.unresolved_fraction, 4),
+        min_separation_m=round(nar.min_separation_m, 3) if np.isfinite(nar.min_separation_m) else None,
+        direction=direction_of(xy),
+        direction_source="point order of the source centreline",
+        grade_separated=grade_separated,
+        crossings=[(round(float(p[0]), 2), round(float(p[1]), 2)) for p in crossing_points],
+        raster=CircuitRaster(width_px=wpx, height_px=h, origin=(round(ox, 4), round(oy, 4), round(oyaw, 4))),
+        measured=measured,
+        length_error=None if err is None else round(err, 6),
+        one_corridor=bool(one_corridor),
+        map_sha256=hashlib.sha256(png).hexdigest(),
+        map_yaml=f"{c.id}/{yaml_path.name}",
+        seconds=round(time.perf_counter() - t0, 3),
+        seconds_raster=round(t_raster, 3),
+        meta=c.meta,
+    )
+    atomic_write_text(out / "circuit.json", json.dumps(report.to_json_dict(), indent=2) + "\n")
     return report
 
 
@@ -146,12 +146,12 @@ def _keep_freed_memory() -> None:
     mallopt(m_top_pad, 1 << 27)
 
 
-def _work(args: tuple[CircuitInput, str, CircuitConfig]) -> dict:
+def _work(args: tuple[CircuitInput, str, CircuitConfig]) -> CircuitReport | CircuitFailure:
     c, outdir, cfg = args
     try:
         return build_circuit(c, outdir, cfg)
     except Exception as e:  # reported per circuit, never kills the batch
-        return {"id": c.id, "name": c.name, "source": c.source, "error": f"{type(e).__name__}: {e}"}
+        return CircuitFailure(id=c.id, name=c.name, source=c.source, error=f"{type(e).__name__}: {e}")
 
 
 def build_all(
@@ -160,8 +160,8 @@ def build_all(
     cfg: CircuitConfig = CircuitConfig(),
     jobs: int | None = None,
     only: list[str] | None = None,
-    progress: Callable[[Iterator[dict], int], Iterator[dict]] | None = None,
-) -> dict:
+    progress: Progress | None = None,
+) -> CircuitBuildSummary:
     """Build every circuit (optionally ``only`` some ids) in ``jobs`` threads; write
     ``outdir/index.json`` and return the summary with per-circuit reports."""
     t0 = time.perf_counter()
@@ -173,33 +173,30 @@ def build_all(
     inputs.sort(key=lambda c: -c.length_m)
     tasks = [(c, str(outdir), cfg) for c in inputs]
     Path(outdir).mkdir(parents=True, exist_ok=True)
-    if jobs == 1:
-        it: Iterator[dict] = map(_work, tasks)
-        results = list(progress(it, len(tasks)) if progress else it)
-    else:
-        # Threads, not processes: the heavy steps (rasterise, measure, PNG) release the
-        # GIL, and threads skip each worker's interpreter start-up and imports.
+    if jobs > 1:
         _keep_freed_memory()
-        with ThreadPoolExecutor(jobs) as pool:
-            futs = [pool.submit(_work, t) for t in tasks]
-            it = (f.result() for f in as_completed(futs))
-            results = list(progress(it, len(tasks)) if progress else it)
-    results.sort(key=lambda r: r["id"])
-    errs = [r["length_error"] for r in results if r.get("length_error") is not None]
-    summary = {
-        "circuits": len(results),
-        "built": sum(1 for r in results if "error" not in r),
-        "one_corridor": sum(1 for r in results if r.get("one_corridor")),
-        "grade_separated": [r["id"] for r in results if r.get("grade_separated")],
-        "mean_length_error": float(np.mean(errs)) if errs else None,
-        "max_length_error": float(np.max(errs)) if errs else None,
-        "seconds": round(time.perf_counter() - t0, 3),
-        "jobs": jobs,
-        "config": asdict(cfg),
-        "skipped_as_covered": skipped,
-        "results": results,
-    }
-    index = {k: v for k, v in summary.items() if k not in ("results", "seconds", "jobs")}
-    index["ids"] = [r["id"] for r in results]
+    # Threads, not processes: the heavy steps (rasterise, measure, PNG) release the
+    # GIL, and threads skip each worker's interpreter start-up and imports.
+    results = pool_map(_work, tasks, jobs, progress, threads=True)
+    results.sort(key=lambda r: r.id)
+    built = [r for r in results if isinstance(r, CircuitReport)]
+    errs = [r.length_error for r in built if r.length_error is not None]
+    summary = CircuitBuildSummary(
+        circuits=len(results),
+        built=len(built),
+        one_corridor=sum(r.one_corridor for r in built),
+        grade_separated=[r.id for r in built if r.grade_separated],
+        mean_length_error=float(np.mean(errs)) if errs else None,
+        max_length_error=float(np.max(errs)) if errs else None,
+        seconds=round(time.perf_counter() - t0, 3),
+        jobs=jobs,
+        config=asdict(cfg),
+        skipped_as_covered=skipped,
+        results=results,
+    )
+    index = summary.to_json_dict()
+    for k in ("results", "seconds", "jobs"):
+        del index[k]
+    index["ids"] = [r.id for r in results]
     atomic_write_text(Path(outdir) / "index.json", json.dumps(index, indent=2) + "\n")
     return summary

@@ -12,6 +12,9 @@ def add_json_flag(parser) -> None:
 
 
 def print_json(obj: Any) -> None:
+    """``obj`` (JSON types, or a typed report with ``to_json_dict``) as indented JSON on stdout."""
+    if hasattr(obj, "to_json_dict"):
+        obj = obj.to_json_dict()
     json.dump(obj, sys.stdout, indent=2, default=str)
     sys.stdout.write("\n")
 

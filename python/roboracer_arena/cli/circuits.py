@@ -48,10 +48,10 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tqdm import tqdm
-
     from ..circuits import CircuitConfig, build_all
+    from ..circuits.report import CircuitFailure
     from ..errors import InvalidArgumentError
+    from ..pool import tqdm_progress
 
     if not (args.resolution > 0):
         raise InvalidArgumentError(f"--resolution must be > 0, got {args.resolution}")
@@ -61,37 +61,35 @@ def run(args: argparse.Namespace) -> int:
 
         args.out = writable_tracks_dir(None, "-o/--out") / "circuits"
 
-    def progress(it, total):
-        return tqdm(it, total=total, desc="circuits", unit="circuit", disable=None)
-
+    progress = tqdm_progress("circuits", "circuit")
     s = build_all(args.sources, args.out, cfg, jobs=args.jobs, only=args.only, progress=progress)
-    ok = s["built"] == s["circuits"] and s["one_corridor"] == s["circuits"]
+    ok = s.built == s.circuits and s.one_corridor == s.circuits
     if args.json:
         print_json(s)
         return EXIT_OK if ok else EXIT_BAD_INPUT
     print(f"{'id':<26}{'src':<9}{'lap m':>9}{'err %':>8}{'w mean':>8}{'w min':>7}{'narrow':>8}{'raster':>12}  notes")
-    for r in s["results"]:
-        if "error" in r:
-            print(f"{r['id']:<26}{r['source']:<9}  FAILED: {r['error']}")
+    for r in s.results:
+        if isinstance(r, CircuitFailure):
+            print(f"{r.id:<26}{r.source:<9}  FAILED: {r.error}")
             continue
-        err = "n/a" if r["length_error"] is None else f"{100 * r['length_error']:.3f}"
+        err = "n/a" if r.length_error is None else f"{100 * r.length_error:.3f}"
         notes = []
-        if r["grade_separated"]:
+        if r.grade_separated:
             notes.append("grade-separated crossing")
-        if not r["one_corridor"]:
+        if not r.one_corridor:
             notes.append("NOT one corridor")
-        if r["unresolved_fraction"] > 0:
-            notes.append(f"unresolved {100 * r['unresolved_fraction']:.1f} %")
-        raster = f"{r['raster']['width_px']}x{r['raster']['height_px']}"
+        if r.unresolved_fraction > 0:
+            notes.append(f"unresolved {100 * r.unresolved_fraction:.1f} %")
+        raster = f"{r.raster.width_px}x{r.raster.height_px}"
         print(
-            f"{r['id']:<26}{r['source']:<9}{r['lap_length_m']:>9.1f}{err:>8}{r['width_mean_m']:>8.2f}"
-            f"{r['width_min_m']:>7.2f}{100 * r['narrowed_fraction']:>7.1f}%{raster:>12}  {'; '.join(notes)}"
+            f"{r.id:<26}{r.source:<9}{r.lap_length_m:>9.1f}{err:>8}{r.width_mean_m:>8.2f}"
+            f"{r.width_min_m:>7.2f}{100 * r.narrowed_fraction:>7.1f}%{raster:>12}  {'; '.join(notes)}"
         )
-    me, mx = s["mean_length_error"], s["max_length_error"]
+    me, mx = s.mean_length_error, s.max_length_error
     print(
-        f"\n{s['built']}/{s['circuits']} built, {s['one_corridor']} with one closed corridor; "
+        f"\n{s.built}/{s.circuits} built, {s.one_corridor} with one closed corridor; "
         f"length error mean {100 * (me or 0):.3f} %, max {100 * (mx or 0):.3f} % (paper 0.253 %, 0.924 %); "
-        f"{s['seconds']:.2f} s with {s['jobs']} thread(s) (paper 43.72 s for 44)"
+        f"{s.seconds:.2f} s with {s.jobs} thread(s) (paper 43.72 s for 44)"
     )
-    print(f"{len(s['skipped_as_covered'])} bacinger circuits skipped as covered by TUM; wrote {args.out}/index.json")
+    print(f"{len(s.skipped_as_covered)} bacinger circuits skipped as covered by TUM; wrote {args.out}/index.json")
     return EXIT_OK if ok else EXIT_BAD_INPUT

@@ -17,10 +17,15 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
+from ..pool import Progress, tqdm_progress
 from . import EXIT_BAD_INPUT, EXIT_OK
 from ._common import add_json_flag, print_json
+
+if TYPE_CHECKING:
+    from ..library.catalog import Catalog
+    from ..library.entry import TrackEntry
 
 
 def _common(p: argparse.ArgumentParser) -> None:
@@ -155,10 +160,8 @@ def _executor(args):
     return make_executor(args.jobs, args.ray)
 
 
-def _progress(desc: str):
-    from tqdm import tqdm
-
-    return lambda it, total: tqdm(it, total=total, desc=desc, unit="track", disable=None)
+def _progress(desc: str) -> Progress:
+    return tqdm_progress(desc, "track")
 
 
 def _load(args):
@@ -167,53 +170,36 @@ def _load(args):
     return load_catalog(args.catalog)
 
 
-def _select(cat, args) -> list[dict]:
+def _select(cat: Catalog, args: argparse.Namespace) -> list[TrackEntry]:
     entries = cat.entries
     if getattr(args, "ids", None):
         entries = [cat.get(i) for i in args.ids]
     if getattr(args, "kind", None):
-        entries = [e for e in entries if e["kind"] == args.kind]
-    if getattr(args, "limit", None) is not None:
-        out: list[dict[str, Any]] = []
-        seen: dict[str, int] = {}
-        for e in entries:  # spread over the kinds: every n-th entry of each kind
-            seen[e["kind"]] = seen.get(e["kind"], 0) + 1
-        step = {k: max(1, n // args.limit) for k, n in seen.items()}
-        count: dict[str, int] = {}
-        for e in entries:
-            i = count.get(e["kind"], 0)
-            count[e["kind"]] = i + 1
-            if i % step[e["kind"]] == 0 and sum(1 for o in out if o["kind"] == e["kind"]) < args.limit:
-                out.append(e)
-        entries = out
+        entries = [e for e in entries if e.kind == args.kind]
+    if getattr(args, "limit", None) is not None:  # spread over each kind: every n-th entry, at most limit
+        by_kind: dict[str, list[int]] = {}
+        for i, e in enumerate(entries):
+            by_kind.setdefault(e.kind, []).append(i)
+        keep = {i for idx in by_kind.values() for i in idx[:: max(1, len(idx) // args.limit)][: args.limit]}
+        entries = [e for i, e in enumerate(entries) if i in keep]
     return entries
-
-
-def _fmt(v, spec: str) -> str:
-    return format(v, spec) if isinstance(v, (int, float)) else "-"
 
 
 def run_list(args) -> int:
     cat = _load(args)
     entries = _select(cat, args)
     if args.json:
-        print_json(
-            [
-                {k: e.get(k) for k in ("id", "name", "kind", "direction", "lap_length_m", "width_mean_m", "map")}
-                for e in entries
-            ]
-        )
+        keys = ("id", "name", "kind", "direction", "lap_length_m", "width_mean_m", "map")
+        print_json([{k: getattr(e, k) for k in keys} for e in entries])
         return EXIT_OK
     print(f"{'id':<42}{'kind':<10}{'dir':<5}{'lap m':>9}{'w mean':>8}{'w min':>7}{'r min':>7}{'raster':>11}  source")
     for e in entries:
-        r = e.get("raster") or {}
-        d = {"clockwise": "cw", "counterclockwise": "ccw"}.get(e.get("direction", ""), "-")
+        d = {"clockwise": "cw", "counterclockwise": "ccw"}.get(e.direction or "", "-")
         print(
-            f"{e['id']:<42}{e['kind']:<10}{d:<5}{_fmt(e.get('lap_length_m'), '9.1f')}{_fmt(e.get('width_mean_m'), '8.2f')}"
-            f"{_fmt(e.get('width_min_m'), '7.2f')}{_fmt(e.get('min_radius_m'), '7.2f')}"
-            f"{str(r.get('width_px', '')) + 'x' + str(r.get('height_px', '')):>11}  {e['source'].get('licence', '')[:24]}"
+            f"{e.id:<42}{e.kind:<10}{d:<5}{e.lap_length_m:9.1f}{e.width_mean_m:8.2f}{e.width_min_m:7.2f}"
+            f"{e.min_radius_m:7.2f}{f'{e.raster.width_px}x{e.raster.height_px}':>11}  {e.source.licence[:24]}"
         )
-    counts = {k: sum(e["kind"] == k for e in entries) for k in ("circuit", "recorded", "generated")}
+    counts = {k: sum(e.kind == k for e in entries) for k in ("circuit", "recorded", "generated")}
     print(
         f"\n{len(entries)} tracks: "
         + ", ".join(f"{n} {k}" for k, n in counts.items())
@@ -227,9 +213,9 @@ def run_show(args) -> int:
     e = cat.get(args.id)
     path = cat.map_path(e, args.sources)
     if args.json:
-        print_json({**e, "map_path": str(path)})
+        print_json({**e.to_json_dict(), "map_path": str(path)})
         return EXIT_OK
-    for k, v in e.items():
+    for k, v in e.to_json_dict().items():
         if k == "notes":
             for n in v:
                 print(f"{'note':<19}{n}")
@@ -248,15 +234,16 @@ def run_build(args) -> int:
     e = cat.get(args.id)
     report = build_environment(cat.map_path(e, args.sources), args.out)
     if args.json:
-        print_json({"id": e["id"], "out": str(args.out), "report": getattr(report, "__dict__", str(report))})
+        print_json({"id": e.id, "out": str(args.out), "report": getattr(report, "__dict__", str(report))})
     else:
-        print(f"built {e['id']} -> {args.out}")
+        print(f"built {e.id} -> {args.out}")
     return EXIT_OK
 
 
 def run_verify(args) -> int:
     from ..errors import InvalidArgumentError
     from ..library.verify import verify
+    from ..library.verify_report import CHECKS
 
     if args.reverse and args.update_catalog:
         raise InvalidArgumentError("--reverse and --update-catalog: the catalog records laps in the racing direction")
@@ -279,32 +266,29 @@ def run_verify(args) -> int:
 
         moved = prune_catalog(cat, s)
         atomic_write_text(cat.path, cat.to_json())
-        s["moved_to_left_out"] = moved
+        s = s.model_copy(update={"moved_to_left_out": moved})
         if not args.json:
             print(f"updated {cat.path}: {len(moved)} recorded map(s) moved to left_out: {', '.join(moved) or '-'}")
     if args.json:
         print_json(s)
     else:
         print(f"{'id':<42}{'kind':<10}{'load':<9}{'ring':<9}{'usd':<9}{'drive':<9}  detail")
-        for r in s["results"]:
-            c = r["checks"]
-            st = [c.get(n, {}).get("status", "-") for n in ("load", "ring", "usd", "drive")]
-            bad = [f"{n}: {v['detail']}" for n, v in c.items() if v["status"] == "FAIL"]
-            print(f"{r['id']:<42}{r['kind']:<10}" + "".join(f"{x:<9}" for x in st) + "  " + "; ".join(bad))
+        for r in s.results:
+            st = [r.status(n) or "-" for n in CHECKS]
+            print(f"{r.id:<42}{r.kind:<10}" + "".join(f"{x:<9}" for x in st) + "  " + "; ".join(r.failures()))
         print()
-        for n, d in s["per_check"].items():
+        for n, d in s.per_check.items():
             print(f"{n:<6} pass {d['pass']:>4}  FAIL {d['FAIL']:>4}  not run {d['not run']:>4}")
-        reasons = {v["detail"] for r in s["results"] for v in r["checks"].values() if v["status"] == "not run"}
+        reasons = {c.detail for r in s.results for c in r.checks.values() if c.status == "not run"}
         for why in sorted(reasons):
             print(f"  ({why})")
-        if s["drive_cautious"]:
-            print(f"  {len(s['drive_cautious'])} lap(s) needed the cautious retry: {', '.join(s['drive_cautious'])}")
+        if s.drive_cautious:
+            print(f"  {len(s.drive_cautious)} lap(s) needed the cautious retry: {', '.join(s.drive_cautious)}")
         print(
-            f"{s['passed']}/{s['tracks']} tracks without a failed check in {s['seconds']:.1f} s "
-            f"({s['jobs']} worker(s)); by kind: "
-            + ", ".join(f"{k} {v['passed']}/{v['tracks']}" for k, v in s["by_kind"].items())
+            f"{s.passed}/{s.tracks} tracks without a failed check in {s.seconds:.1f} s "
+            f"({s.jobs} worker(s)); by kind: " + ", ".join(f"{k} {v.passed}/{v.tracks}" for k, v in s.by_kind.items())
         )
-    return EXIT_OK if not s["failed"] else EXIT_BAD_INPUT
+    return EXIT_OK if not s.failed else EXIT_BAD_INPUT
 
 
 def run_sheet(args) -> int:
@@ -334,18 +318,18 @@ def run_catalog(args) -> int:
         g = build_generated(tracks / "generated", count=args.count, jobs=jobs, progress=_progress("generate"))
         if not args.json:
             print(
-                f"generated sweep: {g['specs_tried']} specs, {g['accepted']} accepted, {g['failed']} failed, "
-                f"{g['rejected']} rejected; kept {g['kept']} ({g['seconds']:.1f} s)"
+                f"generated sweep: {g.specs_tried} specs, {g.accepted} accepted, {g.failed} failed, "
+                f"{g.rejected} rejected; kept {g.kept} ({g.seconds:.1f} s)"
             )
     cat = build_catalog(Path(sources), Path(tracks), jobs=jobs, progress=_progress("recorded maps"))
     if args.json:
-        print_json({**cat.meta, "count": len(cat.entries), "left_out": cat.left_out})
+        print_json({**cat.meta, "count": len(cat.entries), "left_out": [lo.to_json_dict() for lo in cat.left_out]})
     else:
         print(
             f"wrote {cat.path}: {len(cat.entries)} tracks {cat.meta['counts']}; {len(cat.left_out)} recorded maps left out:"
         )
         for lo in cat.left_out:
-            print(f"  {lo['source_path']}: {lo['reason']}")
+            print(f"  {lo.source_path}: {lo.reason}")
     return EXIT_OK
 
 
@@ -360,17 +344,17 @@ def run_generate(args) -> int:
             sweep, args.count, args.out, ex, max_requests=args.max_requests, progress=_progress("generate")
         )
     if args.json:
-        print_json({k: v for k, v in s.items() if k != "records"})
+        print_json(s.model_dump(mode="json", exclude={"records"}))
     else:
         print(
-            f"{s['kept']}/{s['count']} tracks in {args.out / 'generated'} from {s['requests']} requests "
-            f"({s['accepted']} accepted, {s['rejected']} rejected, {s['failed']} failed) in {s['seconds']:.1f} s "
-            f"on {s['workers']} worker(s) ({s['executor']}); catalog {args.out / 'catalog.json'}"
+            f"{s.kept}/{s.count} tracks in {args.out / 'generated'} from {s.requests} requests "
+            f"({s.accepted} accepted, {s.rejected} rejected, {s.failed} failed) in {s.seconds:.1f} s "
+            f"on {s.workers} worker(s) ({s.executor}); catalog {args.out / 'catalog.json'}"
         )
-    if s["kept"] < s["count"]:
+    if s.kept < s.count:
         print(
-            f"roboracer-arena tracks: error: only {s['kept']} of {s['count']} tracks within --max-requests "
-            f"{s['requests']}; widen the sweep ranges or raise --max-requests",
+            f"roboracer-arena tracks: error: only {s.kept} of {s.count} tracks within --max-requests "
+            f"{s.requests}; widen the sweep ranges or raise --max-requests",
             file=sys.stderr,
         )
         return EXIT_GENERATION_FAILURE

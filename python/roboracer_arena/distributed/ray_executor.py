@@ -8,7 +8,7 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Any, TypeVar
 
 from ..errors import InvalidArgumentError
-from .executor import DEFAULT_RETRIES, WorkerLostError
+from ..pool import DEFAULT_RETRIES, WorkerLostError, raise_named
 from .ray_cluster import cluster_cpus, connect, import_ray
 
 T = TypeVar("T")
@@ -79,7 +79,7 @@ class RayExecutor:
                             f"task {i}: its worker died more than {self.max_retries} times ({e})"
                         ) from None
                     except ray.exceptions.RayTaskError as e:
-                        raise e.as_instanceof_cause() from None  # the task's own exception, as raised
+                        raise_named(e.as_instanceof_cause(), i, items[i])  # the task's own exception type
                     yield i, r
                 submit()
         finally:

@@ -74,9 +74,7 @@ def _expand(item: Any) -> Any:
         raise ConfigError(f"track pattern {item!r}: unknown kind {kind!r}; use one of {sorted(_KINDS)}")
     want = _KINDS[kind]
     ids = [
-        e["id"]
-        for e in load_catalog().entries
-        if (want is None or e["kind"] == want) and fnmatch.fnmatchcase(e["id"], pattern)
+        e.id for e in load_catalog().entries if (want is None or e.kind == want) and fnmatch.fnmatchcase(e.id, pattern)
     ]
     if not ids:
         raise ConfigError(f"track pattern {item!r} matched no catalog track")

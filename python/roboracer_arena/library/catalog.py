@@ -14,12 +14,16 @@ import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
+
+from pydantic import BaseModel, ValidationError
 
 from ..errors import InvalidArgumentError, MapIOError
 from ..fileio import read_json
 from ..paths import sources_dir, tracks_dir
+from .entry import LeftOut, TrackEntry
 
+M = TypeVar("M", bound=BaseModel)
 KINDS = ("recorded", "circuit", "generated")
 #: Selections accepted by :func:`resolve` besides single ids.
 SELECTIONS = {
@@ -70,50 +74,83 @@ def sha256_file(path: Path) -> str:
 
 @dataclass
 class Catalog:
-    """The loaded catalog. ``entries`` keeps file order; ``path`` is where it was read."""
+    """The loaded catalog. ``entries`` keeps file order; ``path`` is where it was read.
+    ``meta`` is the file's header (schema, counts, how it was built)."""
 
-    entries: list[dict[str, Any]]
-    left_out: list[dict[str, Any]] = field(default_factory=list)
+    entries: list[TrackEntry]
+    left_out: list[LeftOut] = field(default_factory=list)
     meta: dict[str, Any] = field(default_factory=dict)
     path: Path | None = None
 
-    def get(self, track_id: str) -> dict[str, Any]:
+    def get(self, track_id: str) -> TrackEntry:
         for e in self.entries:
-            if e["id"] == track_id:
+            if e.id == track_id:
                 return e
-        close = [e["id"] for e in self.entries if track_id.lower() in e["id"]][:5]
+        close = [e.id for e in self.entries if track_id.lower() in e.id][:5]
         hint = f"; did you mean {', '.join(close)}?" if close else "; see 'roboracer-arena tracks list'"
         raise InvalidArgumentError(f"unknown track id {track_id!r}{hint}")
 
-    def select(self, selection: str) -> list[dict[str, Any]]:
+    def select(self, selection: str) -> list[TrackEntry]:
         """Entries of a selection (``all``, ``circuits``, ``recorded``, ``generated``) or one id."""
         kinds = SELECTIONS.get(selection)
         if kinds is not None:
-            return [e for e in self.entries if e["kind"] in kinds]
+            return [e for e in self.entries if e.kind in kinds]
         return [self.get(selection)]
 
-    def map_path(self, entry: dict[str, Any], sources: Path | None = None, tracks: Path | None = None) -> Path:
-        """Absolute path of an entry's map YAML."""
-        if entry["kind"] == "recorded":
-            return sources_dir(sources, f"recorded map {entry['id']!r}") / entry["map"]
+    def select_many(self, selections: str | list[str]) -> list[TrackEntry]:
+        """Entries of one selection or id, or of each in a list, in that order."""
+        items = [selections] if isinstance(selections, str) else selections
+        return [e for item in items for e in self.select(item)]
+
+    def file_path(self, entry: TrackEntry, rel: str, sources: Path | None = None, tracks: Path | None = None) -> Path:
+        """Absolute path of a file ``rel`` of ``entry`` (its map, centreline, spec): under the
+        sources directory for a recorded map, else under the catalog's directory."""
+        if entry.kind == "recorded":
+            return sources_dir(sources, f"recorded map {entry.id!r}") / rel
         base = Path(tracks) if tracks else (self.path.parent if self.path else default_tracks_dir())
-        return base / entry["map"]
+        return base / rel
+
+    def map_path(self, entry: TrackEntry, sources: Path | None = None, tracks: Path | None = None) -> Path:
+        """Absolute path of an entry's map YAML."""
+        return self.file_path(entry, entry.map, sources, tracks)
+
+    def counts(self) -> dict[str, int]:
+        """Entries per kind, in the catalog's order of kinds."""
+        return {k: sum(e.kind == k for e in self.entries) for k in ("circuit", "recorded", "generated")}
 
     def to_json(self) -> str:
-        return (
-            json.dumps(
-                {**self.meta, "count": len(self.entries), "tracks": self.entries, "left_out": self.left_out}, indent=2
-            )
-            + "\n"
-        )
+        """The catalog file's text (header, count, tracks, left-out maps)."""
+        doc = {
+            **self.meta,
+            "count": len(self.entries),
+            "tracks": [e.to_json_dict() for e in self.entries],
+            "left_out": [lo.to_json_dict() for lo in self.left_out],
+        }
+        return json.dumps(doc, indent=2) + "\n"
 
 
 def load_catalog(path: str | Path | None = None) -> Catalog:
-    """Read ``tracks/catalog.json`` (or ``path``)."""
+    """Read ``tracks/catalog.json`` (or ``path``); an entry that does not fit
+    :class:`TrackEntry` is a :class:`MapIOError` naming the file and the entry."""
     p = Path(path) if path else default_tracks_dir() / "catalog.json"
     doc = read_json(p, "track catalog", MapIOError, max_bytes=64 * 2**20)
     meta = {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count")}
-    return Catalog(entries=list(doc.get("tracks", [])), left_out=list(doc.get("left_out", [])), meta=meta, path=p)
+    entries = _parse(p, "tracks", TrackEntry, doc.get("tracks", []))
+    left_out = _parse(p, "left_out", LeftOut, doc.get("left_out", []))
+    return Catalog(entries=entries, left_out=left_out, meta=meta, path=p)
+
+
+def _parse(path: Path, where: str, model: type[M], items: list[Any]) -> list[M]:
+    out = []
+    for i, item in enumerate(items):
+        try:
+            out.append(model.model_validate(item))
+        except ValidationError as e:
+            err = e.errors()[0]
+            field_name = ".".join(str(x) for x in err["loc"]) or "(entry)"
+            name = item.get("id", i) if isinstance(item, dict) else i
+            raise MapIOError(f"{path}: {where}[{name!r}].{field_name}: {err['msg']}") from None
+    return out
 
 
 def resolve(
@@ -123,8 +160,4 @@ def resolve(
     ``"generated"``, ``"recorded"``, ``"all"``). Raises ``InvalidArgumentError`` for an
     unknown id."""
     cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)
-    items = [id_or_selection] if isinstance(id_or_selection, str) else list(id_or_selection)
-    out: list[Path] = []
-    for item in items:
-        out.extend(cat.map_path(e, Path(sources) if sources else None) for e in cat.select(item))
-    return out
+    return [cat.map_path(e, Path(sources) if sources else None) for e in cat.select_many(id_or_selection)]

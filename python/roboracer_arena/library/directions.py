@@ -5,42 +5,37 @@ the map frame, or None), derived from the source data beside each map."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
-from ..direction import TrackDirection, check_direction, direction_for_map
+from ..direction import TrackDirection, direction_for_map
 from .catalog import Catalog
+from .entry import TrackEntry
 
 
-def entry_direction(cat: Catalog, entry: dict[str, Any], sources: Path | None = None) -> TrackDirection:
+def entry_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = None) -> TrackDirection:
     """The direction the catalog records for ``entry``; for an entry without one (an old
     catalog), the one found beside its map."""
-    if entry.get("direction"):
-        start = entry.get("start")
-        return TrackDirection(
-            check_direction(entry["direction"], f"catalog entry {entry['id']!r} direction"),
-            None if start is None else (float(start[0]), float(start[1])),
-            entry.get("direction_source", "catalog"),
-        )
+    if entry.direction:
+        return TrackDirection(entry.direction, entry.start, entry.direction_source or "catalog")
     return direction_for_map(cat.map_path(entry, sources))
 
 
-def derive_direction(cat: Catalog, entry: dict[str, Any], sources: Path | None = None) -> dict[str, Any]:
-    """The catalog fields for ``entry``'s direction, from the data beside its map."""
+def derive_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = None) -> TrackEntry:
+    """``entry`` with its direction fields derived from the data beside its map."""
     yaml_path = cat.map_path(entry, sources)
     how = direction_for_map(yaml_path)
-    if entry["kind"] == "circuit":
-        what = f"point order of the source centreline {entry['source']['path']} (kept in {how.source})"
-    elif entry["kind"] == "generated":
+    if entry.kind == "circuit":
+        what = f"point order of the source centreline {entry.source.path} (kept in {how.source})"
+    elif entry.kind == "generated":
         what = f"requested direction (spec.json), as written in {how.source}"
     elif how.source == "default":
         what = "default: counter-clockwise (the source has no centreline or raceline for this map)"
     else:
-        rel = Path(entry["map"]).parent / how.source
+        rel = Path(entry.map).parent / how.source
         what = f"point order of the source file {rel.as_posix()}"
-    return {**how.to_dict(), "direction_source": what}
+    start = None if how.start is None else (round(how.start[0], 3), round(how.start[1], 3))
+    return entry.with_fields(direction=how.direction, start=start, direction_source=what)
 
 
 def annotate_directions(cat: Catalog, sources: Path | None = None) -> None:
-    """Set ``direction``, ``direction_source`` and ``start`` on every entry (in place)."""
-    for e in cat.entries:
-        e.update(derive_direction(cat, e, sources))
+    """Set ``direction``, ``direction_source`` and ``start`` on every entry."""
+    cat.entries = [derive_direction(cat, e, sources) for e in cat.entries]

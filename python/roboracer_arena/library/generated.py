@@ -10,16 +10,19 @@ from __future__ import annotations
 
 import itertools
 import json
+import shutil
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..distributed.executor import Executor, LocalExecutor
+from ..distributed.executor import Executor
 from ..fileio import atomic_write_dir, atomic_write_text
+from ..pool import Progress, local_unless, map_ordered
 from ..spec import TrackSpec
+from .sweep_report import GeneratedSweepSummary, SweepRecord, count_outcome
 
 #: (lap length m, corridor width m, hall x m, hall y m): small to large venues.
 VENUES = [
@@ -66,7 +69,7 @@ def sweep() -> Iterator[tuple[str, TrackSpec, int]]:
         yield tid, spec, seed
 
 
-def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, bytes]]:
+def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[SweepRecord, dict[str, bytes]]:
     """Worker side of one request ``(id, spec, seed)``: run :func:`generate_track` and return
     its record and, for an acceptance, its files (name -> bytes: map, centreline, spec,
     report). Files go back to the caller, which alone writes them (no shared disk needed,
@@ -79,7 +82,7 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, by
 
     tid, spec, seed = task
     out = generate_track(spec, seed)
-    rec = {
+    rec: dict[str, Any] = {
         "id": tid,
         "seed": seed,
         "outcome": out.kind,
@@ -99,52 +102,42 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[dict, dict[str, by
         rec["candidates_tried"] = out.candidates_tried
     elif isinstance(out, Rejection):
         rec["violations"] = out.violations
-    return rec, files
+    return SweepRecord(**rec), files
 
 
 def build_generated(
     outdir: str | Path,
     count: int = 60,
     jobs: int = 1,
-    progress: Callable[[Iterator[Any], int], Iterator[Any]] | None = None,
+    progress: Progress | None = None,
     executor: Executor | None = None,
-) -> dict:
+) -> GeneratedSweepSummary:
     """Run the whole sweep (on ``executor``, default a local pool of ``jobs`` processes), keep
     the first ``count`` acceptances (outputs of dropped acceptances are removed), write
     ``outdir/sweep.json`` with every outcome, and return it."""
-    import shutil
-
     t0 = time.perf_counter()
     tasks = list(sweep())
     Path(outdir).mkdir(parents=True, exist_ok=True)
-    recs: list[dict] = [{}] * len(tasks)
-    ex = executor or LocalExecutor(jobs)
-    try:
-        it = ex.run(generate_files, tasks)
-        for i, (rec, files) in progress(it, len(tasks)) if progress else it:
-            if files:
-                atomic_write_dir(Path(outdir) / rec["id"], files)
-            recs[i] = rec
-    finally:
-        if executor is None:
-            ex.close()
+    with local_unless(executor, jobs) as ex:
+        results = map_ordered(ex, generate_files, tasks, progress)
     # Every seed-0 acceptance first (one per spec: the widest spread), then seed 1.
-    accepted = sorted((r for r in recs if r["outcome"] == "accepted"), key=lambda r: r["seed"])
-    kept = {r["id"] for r in accepted[:count]}
-    for r in accepted[count:]:
-        shutil.rmtree(Path(outdir) / r["id"], ignore_errors=True)
-        r["kept"] = False
-    for r in recs:
-        r.setdefault("kept", r["id"] in kept)
-    summary = {
-        "sweep": {"venues": VENUES, "features": FEATURES, "seeds": list(SEEDS)},
-        "specs_tried": len(recs),
-        "accepted": len(accepted),
-        "rejected": sum(r["outcome"] == "rejected" for r in recs),
-        "failed": sum(r["outcome"] == "failed" for r in recs),
-        "kept": len(kept),
-        "seconds": round(time.perf_counter() - t0, 2),
-        "records": recs,
-    }
-    atomic_write_text(Path(outdir) / "sweep.json", json.dumps(summary, indent=2) + "\n")
+    accepted = sorted((r for r, _ in results if r.outcome == "accepted"), key=lambda r: r.seed)
+    kept = {r.id for r in accepted[:count]}
+    for rec, files in results:  # a dropped acceptance leaves no directory, not even an old one
+        if rec.id in kept:
+            atomic_write_dir(Path(outdir) / rec.id, files)
+        elif rec.outcome == "accepted":
+            shutil.rmtree(Path(outdir) / rec.id, ignore_errors=True)
+    recs = [r.with_fields(kept=r.id in kept) for r, _ in results]
+    summary = GeneratedSweepSummary(
+        sweep={"venues": VENUES, "features": FEATURES, "seeds": list(SEEDS)},
+        specs_tried=len(recs),
+        accepted=len(accepted),
+        rejected=count_outcome(recs, "rejected"),
+        failed=count_outcome(recs, "failed"),
+        kept=len(kept),
+        seconds=round(time.perf_counter() - t0, 2),
+        records=recs,
+    )
+    atomic_write_text(Path(outdir) / "sweep.json", json.dumps(summary.to_json_dict(), indent=2) + "\n")
     return summary

@@ -130,11 +130,9 @@ def assess_all(sources: Path, jobs: int = 1, progress=None) -> list[dict]:
     """Assess every recorded map; identical grids after the first are marked duplicates."""
     from functools import partial
 
-    from ..distributed.executor import LocalExecutor, map_ordered
+    from ..pool import pool_map
 
-    yamls = find_map_yamls(sources)
-    with LocalExecutor(jobs) as ex:
-        recs = map_ordered(ex, partial(assess_map, sources), yamls, progress)
+    recs = pool_map(partial(assess_map, sources), find_map_yamls(sources), jobs, progress)
     seen: dict[str, str] = {}
     ids: set[str] = set()
     for r in recs:

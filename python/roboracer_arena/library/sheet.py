@@ -10,6 +10,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from .catalog import Catalog
+from .entry import TrackEntry
 
 KIND_COLOUR = {"circuit": (200, 40, 40), "recorded": (40, 90, 200), "generated": (30, 140, 60)}
 
@@ -49,7 +50,7 @@ def thumbnail(yaml_path: Path, size: tuple[int, int]) -> tuple[Image.Image, tupl
 
 def contact_sheet(
     cat: Catalog,
-    entries: list[dict],
+    entries: list[TrackEntry],
     out: Path,
     sources: Path | None = None,
     columns: int = 12,
@@ -78,11 +79,10 @@ def contact_sheet(
             _scale_bar(draw, x0 + 6, y0 + cell[1] - 12, th.width / extent[0], cell[0] // 2, font)
         except Exception as ex:  # a broken map still gets its cell, with the error
             draw.text((x0 + 4, y0 + cell[1] // 2), f"cannot load: {type(ex).__name__}", fill=(200, 0, 0), font=font)
-        colour = KIND_COLOUR.get(e["kind"], (0, 0, 0))
+        colour = KIND_COLOUR.get(e.kind, (0, 0, 0))
         draw.rectangle([x0 + 1, y0 + 1, x0 + cell[0] - 2, y0 + cell[1] + label_h - 2], outline=colour)
-        lap = e.get("lap_length_m")
-        draw.text((x0 + 4, y0 + cell[1]), e["id"][:28], fill=(0, 0, 0), font=font)
-        kind = f"{e['kind']}, lap {lap:.1f} m" if lap else e["kind"]
+        draw.text((x0 + 4, y0 + cell[1]), e.id[:28], fill=(0, 0, 0), font=font)
+        kind = f"{e.kind}, lap {e.lap_length_m:.1f} m"
         draw.text((x0 + 4, y0 + cell[1] + 13), kind, fill=colour, font=font)
         if extent is not None:
             draw.text(

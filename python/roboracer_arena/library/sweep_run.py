@@ -19,19 +19,19 @@ import math
 import re
 import shutil
 import time
-from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any
 
 from .. import __version__
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
 from ..fileio import atomic_write_dir, atomic_write_text
+from ..pool import Progress, map_ordered
 from .catalog import Catalog
 from .directions import annotate_directions
 from .generated import generate_files
 from .index import _generated_entries
 from .sweep import SweepFile
+from .sweep_report import LibrarySummary, SweepRecord, count_outcome
 
 #: Most requests held in memory at once (their files wait until the wave is complete).
 MAX_WAVE = 256
@@ -50,8 +50,8 @@ def generate_library(
     outdir: str | Path,
     executor: Executor,
     max_requests: int | None = None,
-    progress: Callable[[Iterator[Any], int], Iterator[Any]] | None = None,
-) -> dict[str, Any]:
+    progress: Progress | None = None,
+) -> LibrarySummary:
     """Generate ``count`` accepted tracks from ``sweep`` into ``outdir`` (see module doc),
     trying at most ``max_requests`` requests (default ``10 * count``). Returns the summary
     written to ``sweep.json``; ``kept < count`` means the budget ran out."""
@@ -63,43 +63,37 @@ def generate_library(
     t0 = time.perf_counter()
     out = Path(outdir)
     gen = out / "generated"
-    records: list[dict[str, Any]] = []
+    records: list[SweepRecord] = []
     kept: list[str] = []
-    n_acc = 0
     while len(kept) < count and len(records) < budget:
         start = len(records)
+        n_acc = count_outcome(records, "accepted")
         size = _wave_size(count - len(kept), start, n_acc, executor.workers, budget - start)
         tasks = sweep.requests(start, start + size)
-        results: list[Any] = [None] * size
-        it = executor.run(generate_files, tasks)
-        for i, res in progress(it, size) if progress else it:
-            results[i] = res
-        for k, (rec, files) in enumerate(results, start):
-            rec = {"k": k, **rec}
-            n_acc += rec["outcome"] == "accepted"
-            rec["kept"] = bool(files) and len(kept) < count
-            if rec["kept"]:
-                atomic_write_dir(gen / rec["id"], files)
-                kept.append(rec["id"])
-            records.append(rec)
+        for k, (rec, files) in enumerate(map_ordered(executor, generate_files, tasks, progress), start):
+            keep = bool(files) and len(kept) < count
+            if keep:
+                atomic_write_dir(gen / rec.id, files)
+                kept.append(rec.id)
+            records.append(rec.with_fields(k=k, kept=keep))
     if kept:  # requests after the last kept one depend on the wave size: leave them out
-        last = next(r["k"] for r in records if r["id"] == kept[-1])
-        records = records[: last + 1]
+        last = next(r.k for r in records if r.id == kept[-1])
+        records = records[: (last or 0) + 1]
     _remove_stale(gen, sweep.name, set(kept))
-    summary = {
-        "sweep": sweep.model_dump(mode="json"),
-        "count": count,
-        "kept": len(kept),
-        "requests": len(records),
-        "accepted": sum(r["outcome"] == "accepted" for r in records),
-        "rejected": sum(r["outcome"] == "rejected" for r in records),
-        "failed": sum(r["outcome"] == "failed" for r in records),
-        "workers": executor.workers,
-        "executor": type(executor).__name__,
-        "seconds": round(time.perf_counter() - t0, 2),
-        "records": records,
-    }
-    atomic_write_text(out / "sweep.json", json.dumps(summary, indent=2) + "\n")
+    summary = LibrarySummary(
+        sweep=sweep.model_dump(mode="json"),
+        count=count,
+        kept=len(kept),
+        requests=len(records),
+        accepted=count_outcome(records, "accepted"),
+        rejected=count_outcome(records, "rejected"),
+        failed=count_outcome(records, "failed"),
+        workers=executor.workers,
+        executor=type(executor).__name__,
+        seconds=round(time.perf_counter() - t0, 2),
+        records=records,
+    )
+    atomic_write_text(out / "sweep.json", json.dumps(summary.to_json_dict(), indent=2) + "\n")
     _write_catalog(out, kept, summary)
     return summary
 
@@ -113,15 +107,17 @@ def _remove_stale(gen: Path, name: str, kept: set[str]) -> None:
             shutil.rmtree(d, ignore_errors=True)
 
 
-def _write_catalog(out: Path, kept: list[str], summary: dict[str, Any]) -> None:
-    by_id = {e["id"]: e for e in _generated_entries(out)}
+def _write_catalog(out: Path, kept: list[str], summary: LibrarySummary) -> None:
+    by_id = {e.id: e for e in _generated_entries(out)}
     entries = [by_id[i] for i in kept]
     meta = {
         "schema": "roboracer-arena track catalog v1",
         "built_with": f"roboracer-arena {__version__} tracks generate",
         "sources_note": "generated tracks: 'map' is relative to this file's directory",
         "counts": {"circuit": 0, "recorded": 0, "generated": len(entries)},
-        "sweep": {k: summary[k] for k in ("sweep", "count", "requests", "accepted", "rejected", "failed")},
+        "sweep": summary.model_dump(
+            mode="json", include={"sweep", "count", "requests", "accepted", "rejected", "failed"}
+        ),
     }
     cat = Catalog(entries=entries, meta=meta, path=out / "catalog.json")
     annotate_directions(cat)

@@ -10,41 +10,38 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
+from ..track import Track, track_from_map_path
 from .catalog import Catalog, load_catalog
 from .directions import entry_direction
+from .entry import TrackEntry
 
 
-def centreline_path(cat: Catalog, entry: dict[str, Any], sources: Path | None = None) -> Path | None:
+def centreline_path(cat: Catalog, entry: TrackEntry, sources: Path | None = None) -> Path | None:
     """The entry's own centreline CSV (circuits and generated tracks), if it has one."""
-    return cat.map_path({**entry, "map": entry["centreline"]}, sources) if entry.get("centreline") else None
+    return cat.file_path(entry, entry.centreline, sources) if entry.centreline else None
 
 
-def entry_track(cat: Catalog, entry: dict[str, Any], sources: Path | None = None) -> tuple[Any, str]:
+def entry_track(cat: Catalog, entry: TrackEntry, sources: Path | None = None) -> tuple[Track, str]:
     """``(Track, what its centreline is)`` for one catalog entry."""
-    from ..track import Track, track_from_map_path
-
     yaml_path = cat.map_path(entry, sources)
     line_csv = centreline_path(cat, entry, sources)
     how = entry_direction(cat, entry, sources)
-    if entry.get("grade_separated") and line_csv is not None and line_csv.is_file():
+    if entry.grade_separated and line_csv is not None and line_csv.is_file():
         line = np.loadtxt(line_csv, delimiter=",", comments="#", ndmin=2)[:, :2]
         base = track_from_map_path(yaml_path)
-        t = Track.from_polylines(base.walls, line, name=entry["id"], wall_height=base.wall_height)
+        t = Track.from_polylines(base.walls, line, name=entry.id, wall_height=base.wall_height)
         return t.oriented(how), "circuit centreline"
     t = track_from_map_path(yaml_path, direction=how)
-    return dataclasses.replace(t, name=entry["id"]), "corridor centreline"
+    return dataclasses.replace(t, name=entry.id), "corridor centreline"
 
 
 def resolve_tracks(
     selection: str | list[str], catalog: str | Path | Catalog | None = None, sources: str | Path | None = None
-) -> list[Any]:
+) -> list[Track]:
     """Tracks (named by catalog id, each in the direction the catalog records) for an id,
     a list of ids, or a selection (``"circuits"``, ``"recorded"``, ``"generated"``, ``"all"``)."""
     cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)
-    items = [selection] if isinstance(selection, str) else list(selection)
-    src = Path(sources) if sources else None
-    return [entry_track(cat, e, src)[0] for item in items for e in cat.select(item)]
+    return [entry_track(cat, e, Path(sources) if sources else None)[0] for e in cat.select_many(selection)]

@@ -24,9 +24,6 @@ TENS: dict[str, int] = {
 }  # fmt: skip
 DIGIT_WORDS = {w: v for w, v in UNITS.items() if v < 10}
 
-#: Words that are numbers on their own or start one (used by the grounding guard too).
-NUMBER_WORDS = set(UNITS) | set(TENS) | {"hundred", "thousand", "dozen", "half", "pair", "couple"}
-
 
 def _below_hundred(words: Sequence[str], i: int) -> tuple[int, int] | None:
     """``twenty five`` / ``twenty`` / ``seven`` at ``i`` -> (value, words used)."""
@@ -133,11 +130,3 @@ def read_number(words: Sequence[str], i: int) -> tuple[float, int] | None:
     if j < n and words[j] == "dozen":
         return value * 12, used + 1
     return value, used
-
-
-def parse_digits(token: str) -> float | None:
-    """``"15"``, ``"1.5"``, ``".5"`` -> float; anything else -> ``None``."""
-    try:
-        return float(token)
-    except ValueError:
-        return None

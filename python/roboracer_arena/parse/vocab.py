@@ -25,12 +25,10 @@ LAP_NOUNS = (
     "raceway",
 )  # fmt: skip
 CORRIDOR_NOUNS = ("corridor", "corridors", "lane", "lanes", "passage", "road", "roadway", "lane")
-TURN_NOUNS = ("turn", "turns", "corner", "corners", "bend", "bends", "curve", "curves")
 
 HALL = alt(*HALL_NOUNS)
 LAP = alt(*LAP_NOUNS)
 CORR = alt(*CORRIDOR_NOUNS)
-TURN = alt(*TURN_NOUNS)
 
 #: Connecting words allowed between a field noun and its number ("lap of about 45 m").
 FILL_WORDS = (

@@ -215,11 +215,6 @@ class TopDown:
 
     # --- output ----------------------------------------------------------------------
 
-    def png_bytes(self) -> bytes:
-        buf = io.BytesIO()
-        self.image.save(buf, format="PNG")
-        return buf.getvalue()
-
     def save(self, path: str | Path) -> Path:
         """Write the picture atomically, as PNG or JPEG by the extension of ``path``."""
         return save_image(self.image, path)

@@ -12,6 +12,7 @@ use rapier3d::prelude::{SharedShape, Vector};
 use super::lidar::SegmentGrid;
 use crate::error::{ArenaError, Result};
 use crate::geometry::mesh::extrude_walls;
+use crate::geometry::polyline::cumulative_length;
 
 /// Closed polyline with cumulative arc length, for projection and interpolation.
 #[derive(Debug, Clone)]
@@ -33,13 +34,7 @@ impl Centreline {
         if pts.iter().flatten().any(|v| !v.is_finite()) {
             return Err(ArenaError::invalid("centreline has non-finite coordinates"));
         }
-        let n = pts.len();
-        let mut cum = Vec::with_capacity(n + 1);
-        cum.push(0.0);
-        for i in 0..n {
-            let (a, b) = (pts[i], pts[(i + 1) % n]);
-            cum.push(cum[i] + (b[0] - a[0]).hypot(b[1] - a[1]));
-        }
+        let cum = cumulative_length(&pts, true);
         Ok(Centreline { pts, cum })
     }
 

@@ -1,0 +1,20 @@
+"""The base of the package's typed reports and records (catalog entries, verify results,
+circuit reports): a frozen pydantic model that refuses unknown keys and writes JSON with
+only the fields it was given, so a report written, read back and written again is the
+same text."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict
+
+
+class FrozenModel(BaseModel):
+    """Immutable, ``extra="forbid"``; see the module doc."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    def to_json_dict(self) -> dict[str, Any]:
+        """The JSON object for this model: fields in declaration order, only those set."""
+        return self.model_dump(mode="json", exclude_unset=True)

@@ -1,0 +1,80 @@
+"""One track of the catalog (``tracks/catalog.json``) as a typed, frozen model.
+
+The fields are declared in the order the catalog writes them, and an entry is written
+with only the fields it was given (``exclude_unset``), so the shipped catalog loads and
+writes back byte for byte (``tests/library/test_entry.py``). An unknown key is refused:
+a field added to the catalog is added here first.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from ..frozen_model import FrozenModel
+
+Kind = Literal["recorded", "circuit", "generated"]
+Status = Literal["pass", "FAIL", "not run"]
+
+
+class Source(FrozenModel):
+    """Where a track comes from: repository, commit and licence of its source data, the
+    source file's path, and how the project derived the map from it (if it did)."""
+
+    repository: str
+    commit: str = ""
+    licence: str
+    path: str
+    derived: str | None = None
+
+
+class Raster(FrozenModel):
+    """Size of the map image in cells."""
+
+    width_px: int
+    height_px: int
+
+
+class LeftOut(FrozenModel):
+    """A recorded map the catalog does not offer, with the reason."""
+
+    id: str
+    source_path: str
+    reason: str
+
+
+class TrackEntry(FrozenModel):
+    """One catalog track. Lengths in metres; ``map`` (and ``centreline``, ``spec``) are
+    relative to the sources directory for recorded maps, else to the catalog's directory.
+    ``direction``, ``start`` and ``direction_source`` come from
+    :mod:`~roboracer_arena.library.directions`; ``verified`` and ``drive`` from
+    ``tracks verify --update-catalog``."""
+
+    id: str
+    name: str
+    kind: Kind
+    source: Source
+    scale: float | None
+    resolution_m: float
+    lap_length_m: float
+    width_mean_m: float
+    width_min_m: float
+    min_radius_m: float
+    raster: Raster
+    sha256: str
+    map: str
+    centreline: str | None = None
+    spec: str | None = None
+    seed: int | None = None
+    grade_separated: bool = False
+    narrowed_fraction: float | None = None
+    length_error: float | None = None
+    notes: list[str] = []
+    direction: Literal["clockwise", "counterclockwise"] | None = None
+    start: tuple[float, float] | None = None
+    direction_source: str | None = None
+    verified: dict[str, Status] | None = None
+    drive: str | None = None
+
+    def with_fields(self, **fields: Any) -> TrackEntry:
+        """A copy with ``fields`` set (validated, and written to the catalog)."""
+        return TrackEntry.model_validate({**self.to_json_dict(), **fields})
