@@ -23,6 +23,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
 import numpy as np
 
 from ..builder import MeshCount
@@ -234,9 +235,7 @@ def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
 # --- driver ------------------------------------------------------------------------
 
 
-def run(
-    labels: list[str] | None = None, repeat: int = 3, textures: bool = True, progress: bool = True
-) -> BuildResult:
+def run(labels: list[str] | None = None, repeat: int = 3, textures: bool = True, progress: bool = True) -> BuildResult:
     """Measure the chosen sizes; returns every row beside the paper's table and the targets."""
     from tqdm import tqdm
 

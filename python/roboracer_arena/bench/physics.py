@@ -15,6 +15,7 @@ import argparse
 import os
 import platform
 import time
+
 import numpy as np
 
 from .. import _core
