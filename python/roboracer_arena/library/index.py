@@ -7,16 +7,15 @@ from __future__ import annotations
 import json
 import time
 from pathlib import Path
-from typing import Any
 
 from .. import __version__
 from ..circuits.report import CircuitReport
 from ..fileio import atomic_write_text
 from ..maps import load_map
 from ..pool import Progress
-from .catalog import Catalog, provenance, sha256_file
+from .catalog import SCHEMA, Catalog, count_kinds, provenance, sha256_file
 from .directions import annotate_directions
-from .entry import LeftOut, Raster, Source, TrackEntry
+from .entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
 from .recorded import assess_all
 
 PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
@@ -156,15 +155,16 @@ def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress
     dup = {i for i in ids if ids.count(i) > 1}
     if dup:
         raise RuntimeError(f"duplicate catalog ids: {sorted(dup)}")
-    meta: dict[str, Any] = {
-        "schema": "roboracer-arena track catalog v1",
-        "built_with": f"roboracer-arena {__version__}",
-        "sources_note": "recorded maps: 'map' is relative to the sources directory (--sources / "
+    meta = CatalogMeta(
+        catalog_schema=SCHEMA,
+        built_with=f"roboracer-arena {__version__}",
+        sources_note="recorded maps: 'map' is relative to the sources directory (--sources / "
         "$ROBORACER_ARENA_SOURCES, default ../shared/track-sources); circuits and generated: "
         "relative to this file's directory",
-    }
+        counts=count_kinds(entries),
+        seconds=round(time.perf_counter() - t0, 2),
+    )
     cat = Catalog(entries=entries, left_out=left_out, meta=meta, path=tracks / "catalog.json")
-    meta.update(counts=cat.counts(), seconds=round(time.perf_counter() - t0, 2))
     annotate_directions(cat, sources)
     atomic_write_text(tracks / "catalog.json", cat.to_json())
     return cat
