@@ -101,7 +101,3 @@ class TrackEntry(FrozenModel):
     direction_source: str | None = None
     verified: dict[str, Status] | None = None
     drive: str | None = None
-
-    def with_fields(self, **fields: Any) -> TrackEntry:
-        """A copy with ``fields`` set (validated, and written to the catalog)."""
-        return TrackEntry.model_validate({**self.to_json_dict(), **fields})
