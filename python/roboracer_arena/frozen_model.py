@@ -5,9 +5,11 @@ same text."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, TypeVar
 
 from pydantic import BaseModel, ConfigDict
+
+M = TypeVar("M", bound="FrozenModel")
 
 
 class FrozenModel(BaseModel):
@@ -18,3 +20,7 @@ class FrozenModel(BaseModel):
     def to_json_dict(self) -> dict[str, Any]:
         """The JSON object for this model: fields in declaration order, only those set."""
         return self.model_dump(mode="json", exclude_unset=True)
+
+    def with_fields(self: M, **fields: Any) -> M:
+        """A copy with ``fields`` set (validated, and written to its JSON)."""
+        return type(self).model_validate({**self.to_json_dict(), **fields})

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+from roboracer_arena.bench.output import json_text
+from roboracer_arena.bench.physics import PhysicsResult
 from roboracer_arena.cli import main
 
 
@@ -13,6 +15,7 @@ def test_bench_physics_cli_writes_json(tmp_path, capsys):
     assert code == 0
     text = capsys.readouterr().out
     assert "28.1" in text and "lidar scan" in text
+    assert json_text(PhysicsResult.model_validate_json(out.read_text())) == out.read_text()
     result = json.loads(out.read_text())
     rows = result["rows"]
     assert [(r["envs"], r["per_env"]) for r in rows] == [(1, 1), (2, 2)]

@@ -6,6 +6,7 @@ import pytest
 
 from roboracer_arena import load_map
 from roboracer_arena.bench import build as bench
+from roboracer_arena.bench.output import json_text
 from shared_data import sources_dir  # tests/ is on sys.path (rootdir conftest)
 
 
@@ -31,9 +32,12 @@ def test_resampled_map_keeps_extent(tmp_path):
 @pytest.mark.slow
 def test_one_size_runs_in_a_single_threaded_subprocess():
     result = bench.run(["generated 3h1c"], repeat=1, textures=False, progress=False)
-    (row,) = result["rows"]
-    assert "error" not in row, row
-    assert row["iou"] >= 0.97 and row["usd_bytes"] > 0 and row["peak_rss_gb"] > 0
-    assert {"load", "geometry", "usd_author", "usd_write", "total"} <= set(row["stages"])
+    (row,) = result.rows
+    assert isinstance(row, bench.BuildRow), row
+    assert row.iou >= 0.97 and row.usd_bytes > 0 and row.peak_rss_gb > 0
+    assert {"load", "geometry", "usd_author", "usd_write", "total"} <= set(row.stages)
+    assert row.paper_seconds == bench.paper_at(row.raster_mp)[0] and row.speedup == row.paper_seconds / row.seconds
+    text = json_text(result)
+    assert json_text(bench.BuildResult.model_validate_json(text)) == text
     assert "generated 3h1c" in bench.format_table(result)
     assert bench.format_markdown(result).startswith("| map | raster MP |")

@@ -2,6 +2,8 @@
 
 import json
 
+from roboracer_arena.bench.env import EnvResult
+from roboracer_arena.bench.output import json_text
 from roboracer_arena.cli import main
 
 
@@ -28,6 +30,7 @@ def test_bench_env_smoke(sources, tmp_path, capsys):
     assert code == 0
     text = capsys.readouterr().out
     assert "F1TENTH Gym" in text and "physics" in text and "python" in text
+    assert json_text(EnvResult.model_validate_json(out.read_text())) == out.read_text()
     res = json.loads(out.read_text())
     assert [(r["workload"], r["num_envs"]) for r in res["rows"]] == [
         (w, n) for w in ("constant", "lap", "random") for n in (1, 2)

@@ -106,8 +106,8 @@ def test_recorded_yaw_envelope_bound():
     """Steady, non-sliding yaw rate is at most min(v tan(d_max) / L, mu g / v): the paper's
     car (L 0.3275 m, d_max 0.524 rad, mu 0.83) peaks at sqrt(mu g tan(d_max) / L)."""
     e = fidelity.envelope(VehicleConfig())
-    assert e["r_max"] == pytest.approx(math.sqrt(0.83 * 9.81 * math.tan(0.524) / 0.3275), rel=1e-9)
-    assert 3.7 < e["r_max"] < 3.9 and e["mu_needed_for_recorded"] == pytest.approx(1.72, abs=0.01)
+    assert e.r_max == pytest.approx(math.sqrt(0.83 * 9.81 * math.tan(0.524) / 0.3275), rel=1e-9)
+    assert 3.7 < e.r_max < 3.9 and e.mu_needed_for_recorded == pytest.approx(1.72, abs=0.01)
 
 
 def test_quasi_static_model_reproduces_linear_theory():

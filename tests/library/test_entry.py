@@ -52,6 +52,15 @@ def test_wrong_kind_and_bad_left_out_are_refused(tmp_path):
         load_catalog(_tamper(tmp_path, lambda d: d["left_out"][0].pop("reason")))
 
 
+def test_catalog_header_is_typed_and_checked(tmp_path):
+    meta = load_catalog().meta
+    assert meta.catalog_schema == "roboracer-arena track catalog v1" and sum(meta.counts.values()) > 100
+    with pytest.raises(MapIOError, match=r"catalog.json: header\.schem: Extra inputs"):
+        load_catalog(_tamper(tmp_path, lambda d: d.update(schem="v2")))
+    with pytest.raises(MapIOError, match=r"header\.counts\.oval\.\[key\]: Input should be .recorded"):
+        load_catalog(_tamper(tmp_path, lambda d: d["counts"].update(oval=1)))
+
+
 @pytest.mark.slow
 def test_catalog_builder_reproduces_every_shipped_entry(tmp_path, sources):
     """``build_catalog`` (typed end to end) writes each shipped entry as shipped, field for

@@ -35,14 +35,15 @@ def test_filled_and_thin_line_rings_are_usable(tmp_path):
     for name, thin in (("filled", False), ("thin", True)):
         y = _write(tmp_path, name, _ring(thin_line=thin))
         r = assess_map(tmp_path, y)
-        assert r["usable"], r
-        assert r["id"] == f"cps-{name}"
+        assert r.usable and r.reason is None, r
+        assert r.id == f"cps-{name}" and r.raster is not None and r.raster.width_px == 120
         mid_r = (21.5 + 43.5) / 2 * 0.05 if not thin else (20 + 45) / 2 * 0.05
-        assert abs(r["lap_length_m"] - 2 * np.pi * mid_r) / (2 * np.pi * mid_r) < 0.05
+        assert r.lap_length_m is not None and abs(r.lap_length_m - 2 * np.pi * mid_r) / (2 * np.pi * mid_r) < 0.05
 
 
 def test_open_and_broken_maps_are_left_out_with_a_reason(tmp_path):
     r = assess_map(tmp_path, _write(tmp_path, "blank", np.full((60, 60), 255, np.uint8)))
-    assert not r["usable"] and r["reason"]
+    assert not r.usable and r.reason and r.corridor_check == "corridor.extract_corridor"
     r = assess_map(tmp_path, _write(tmp_path, "broken", _ring(), image_name="missing.pgm"))
-    assert not r["usable"] and "broken YAML or image" in r["reason"] and str(tmp_path) not in r["reason"]
+    assert not r.usable and r.reason and "broken YAML or image" in r.reason and str(tmp_path) not in r.reason
+    assert r.raster is None and r.lap_length_m is None  # the assessment stopped at the load

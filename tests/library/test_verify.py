@@ -67,4 +67,4 @@ def test_prune_moves_failed_recorded_maps_only():
     assert len(cat.entries) == n - 1 and cat.left_out[-1].id == rec.id
     assert "drive: lap not completed" in cat.left_out[-1].reason
     assert cat.get(gen.id).verified == {"load": "pass", "drive": "FAIL"}
-    assert cat.meta["counts"] == cat.counts()
+    assert cat.meta.counts == cat.counts()

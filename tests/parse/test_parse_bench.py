@@ -7,7 +7,8 @@ from pathlib import Path
 
 from fake_ollama import Reply
 
-from roboracer_arena.bench.parser import REPO_REQUESTS, load_requests, run, run_sets, score
+from roboracer_arena.bench.output import json_text
+from roboracer_arena.bench.parser import REPO_REQUESTS, ParserResult, Unreachable, load_requests, run, run_sets, score
 from roboracer_arena.cli import EXIT_OK, main
 from roboracer_arena.parse.result import DEFAULTS
 from roboracer_arena.paths import bench_data
@@ -64,9 +65,12 @@ def test_unreachable_ollama_is_a_row_not_a_failure(tmp_path, dead_url, capsys):
             "--ollama-host", dead_url, "--json", str(out)]  # fmt: skip
     assert main(argv) == EXIT_OK
     assert "not reachable" in capsys.readouterr().out
-    d = json.loads(out.read_text())
-    assert d["rows"]["rules"]["parse"] == "1/1"
+    text = out.read_text()
+    assert json_text(ParserResult.model_validate_json(text)) == text
+    d = json.loads(text)
+    assert d["rows"]["rules"]["parse"] == "1/1" and "sets" not in d
     assert d["rows"]["ollama gemma4:31b"]["status"].startswith("not reachable")
+    assert isinstance(ParserResult.model_validate_json(text).rows["ollama gemma4:31b"], Unreachable)
 
 
 def test_refusal_rows_need_a_typed_error_naming_the_span(tmp_path):

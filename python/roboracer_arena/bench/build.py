@@ -23,12 +23,12 @@ import sys
 import tempfile
 import time
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
+from ..builder import MeshCount
 from ..fileio import atomic_write_text
-from .output import add_bench_parser
+from .output import BenchModel, add_bench_parser, json_text
 
 # The paper's Table tab:map2usd: (map, raster MP, single-core seconds, USD MB).
 PAPER = [
@@ -60,6 +60,59 @@ SIZES: list[tuple[str, str, float | None]] = [
     ("Spa x1.64", "f1tenth-racetracks/Spa/Spa_map.yaml", 10.77),
 ]
 QUICK = ["generated 3h1c", "columbia", "gbr"]
+
+
+class BuildRow(BenchModel):
+    """One size: measured in its child process (``map`` to ``peak_rss_gb``; seconds are the
+    in-process build), then labelled and set beside the paper at the same raster MP."""
+
+    map: str
+    raster_px: tuple[int, int]
+    raster_mp: float
+    seconds: float
+    seconds_min: float
+    seconds_first: float
+    cpu_seconds: float
+    stages: dict[str, float]
+    usd_bytes: int
+    meshes: dict[str, MeshCount]
+    iou: float
+    peak_rss_gb: float
+    label: str = ""
+    paper_seconds: float = 0.0
+    paper_usd_mb: float = 0.0
+    usd_mb: float = 0.0
+    speedup: float = 0.0
+    usd_fraction_of_paper: float = 0.0
+
+
+class BuildError(BenchModel):
+    """A size that could not be measured, with the last line of the reason."""
+
+    label: str
+    map: str
+    error: str
+
+
+class PaperSize(BenchModel):
+    """One row of the paper's Table map2usd."""
+
+    map: str
+    raster_mp: float
+    seconds: float
+    usd_mb: float
+
+
+class BuildResult(BenchModel):
+    """``bench build``: every size, the paper's table, the targets and the run's settings."""
+
+    rows: list[BuildRow | BuildError]
+    paper: list[PaperSize]
+    targets: dict[str, float]
+    threads: int
+    load_average: tuple[float, float, float]
+    repeat: int
+    textures: bool
 
 
 def sources_dir() -> Path:
@@ -115,8 +168,8 @@ def resampled_map(yaml_path: Path, target_mp: float, outdir: Path) -> Path:
     return outdir / f"{stem}.yaml"
 
 
-def run_size(label: str, yaml_path: Path, repeat: int, workdir: Path, textures: bool) -> dict[str, Any]:
-    """Build one map in a single-threaded subprocess; returns its measurements."""
+def run_size(label: str, yaml_path: Path, repeat: int, workdir: Path, textures: bool) -> BuildRow | BuildError:
+    """Build one map in a single-threaded subprocess; returns its measurements beside the paper's."""
     env = dict(os.environ, RAYON_NUM_THREADS="1", PXR_WORK_THREAD_LIMIT="1")
     cmd = [sys.executable, "-m", "roboracer_arena.bench.build", "--child", str(yaml_path), str(workdir), str(repeat)]
     if not textures:
@@ -124,10 +177,20 @@ def run_size(label: str, yaml_path: Path, repeat: int, workdir: Path, textures: 
     proc = subprocess.run(cmd, env=env, capture_output=True, text=True)
     if proc.returncode != 0:
         last = (proc.stderr.strip().splitlines() or ["(no output)"])[-1]
-        return {"label": label, "map": str(yaml_path), "error": last}
-    out = json.loads(proc.stdout.strip().splitlines()[-1])
-    out["label"] = label
-    return out
+        return BuildError(label=label, map=str(yaml_path), error=last)
+    out = BuildRow.model_validate_json(proc.stdout.strip().splitlines()[-1])
+    ps, pmb = paper_at(out.raster_mp)
+    usd_mb = out.usd_bytes / 1e6
+    return out.model_copy(
+        update={
+            "label": label,
+            "paper_seconds": ps,
+            "paper_usd_mb": pmb,
+            "usd_mb": usd_mb,
+            "speedup": ps / out.seconds if out.seconds > 0 else float("inf"),
+            "usd_fraction_of_paper": usd_mb / pmb,
+        }
+    )
 
 
 def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
@@ -148,49 +211,44 @@ def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
         c0 = time.process_time()
         reports.append(build_environment(yaml_path, Path(workdir) / f"build{i}.usdc", cfg))
         cpu.append(time.process_time() - c0)
-    rep = reports[-1].model_dump(mode="json")
+    rep = reports[-1]
     totals = [r.timings_s["total"] for r in reports]
     stages = {k: statistics.median(r.timings_s[k] for r in reports) for k in reports[0].timings_s}
     rss_kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    print(
-        json.dumps(
-            {
-                "map": yaml_path,
-                "raster_px": rep["raster_px"],
-                "raster_mp": rep["raster_mp"],
-                "seconds": statistics.median(totals),
-                "seconds_min": min(totals),
-                "seconds_first": totals[0],
-                "cpu_seconds": statistics.median(cpu),
-                "stages": stages,
-                "usd_bytes": rep["usd_bytes"],
-                "meshes": rep["meshes"],
-                "iou": rep["iou"],
-                "peak_rss_gb": rss_kb * 1024 / 1e9,
-            }
-        )
+    row = BuildRow(
+        map=yaml_path,
+        raster_px=rep.raster_px,
+        raster_mp=rep.raster_mp,
+        seconds=statistics.median(totals),
+        seconds_min=min(totals),
+        seconds_first=totals[0],
+        cpu_seconds=statistics.median(cpu),
+        stages=stages,
+        usd_bytes=rep.usd_bytes,
+        meshes=rep.meshes,
+        iou=rep.iou,
+        peak_rss_gb=rss_kb * 1024 / 1e9,
     )
+    print(json.dumps(row.to_json_dict()))
 
 
 # --- driver ------------------------------------------------------------------------
 
 
-def run(
-    labels: list[str] | None = None, repeat: int = 3, textures: bool = True, progress: bool = True
-) -> dict[str, Any]:
-    """Measure the chosen sizes; returns ``{"rows": [...], "paper": [...], "targets": {...}}``."""
+def run(labels: list[str] | None = None, repeat: int = 3, textures: bool = True, progress: bool = True) -> BuildResult:
+    """Measure the chosen sizes; returns every row beside the paper's table and the targets."""
     from tqdm import tqdm
 
     src = sources_dir()
     chosen = [s for s in SIZES if labels is None or s[0] in labels]
-    rows = []
+    rows: list[BuildRow | BuildError] = []
     with tempfile.TemporaryDirectory(prefix="rra-bench-build-") as tmp:
         tmpdir = Path(tmp)
         for label, rel, target in tqdm(chosen, desc="bench build", unit="map", disable=not progress, file=sys.stderr):
             yaml_path = generated_map(tmpdir) if rel == GENERATED else src / rel
             if not yaml_path.is_file():
                 rows.append(
-                    {"label": label, "map": str(yaml_path), "error": "map not found (set ROBORACER_ARENA_SOURCES)"}
+                    BuildError(label=label, map=str(yaml_path), error="map not found (set ROBORACER_ARENA_SOURCES)")
                 )
                 continue
             if target is not None:
@@ -198,43 +256,39 @@ def run(
             work = tmpdir / f"out-{len(rows)}"
             work.mkdir()
             rows.append(run_size(label, yaml_path, repeat, work, textures))
-    for r in rows:
-        if "error" in r:
-            continue
-        ps, pmb = paper_at(r["raster_mp"])
-        r["paper_seconds"], r["paper_usd_mb"] = ps, pmb
-        r["usd_mb"] = r["usd_bytes"] / 1e6
-        r["speedup"] = ps / r["seconds"] if r["seconds"] > 0 else float("inf")
-        r["usd_fraction_of_paper"] = r["usd_mb"] / pmb
-    return {
-        "rows": rows,
-        "paper": [dict(zip(("map", "raster_mp", "seconds", "usd_mb"), p)) for p in PAPER],
-        "targets": {
+    return BuildResult(
+        rows=rows,
+        paper=[PaperSize(map=m, raster_mp=mp, seconds=s, usd_mb=mb) for m, mp, s, mb in PAPER],
+        targets={
             "seconds_at_0.13MP": TARGET_S_SMALL,
             "seconds_at_10MP": TARGET_S_LARGE,
             "peak_rss_gb_at_10MP": TARGET_RSS_GB,
             "usd_fraction_of_paper": TARGET_USD_FRACTION,
         },
-        "threads": 1,
-        "load_average": os.getloadavg(),
-        "repeat": repeat,
-        "textures": textures,
-    }
+        threads=1,
+        load_average=os.getloadavg(),
+        repeat=repeat,
+        textures=textures,
+    )
 
 
-def format_table(result: dict[str, Any]) -> str:
+def _measured(result: BuildResult) -> list[BuildRow]:
+    return [r for r in result.rows if isinstance(r, BuildRow)]
+
+
+def format_table(result: BuildResult) -> str:
     lines = [
         f"{'map':<20} {'raster MP':>9} {'s':>7} {'USD MB':>7} | {'paper s':>7} {'paper MB':>8} | {'speedup':>7} {'USD/paper':>9} {'peak GB':>7} {'IoU':>6} {'1st s':>6} {'min s':>6} {'CPU s':>6}",
         "-" * 108,
     ]
-    for r in result["rows"]:
-        if "error" in r:
-            lines.append(f"{r['label']:<20} ERROR: {r['error']}")
+    for r in result.rows:
+        if isinstance(r, BuildError):
+            lines.append(f"{r.label:<20} ERROR: {r.error}")
             continue
         lines.append(
-            f"{r['label']:<20} {r['raster_mp']:>9.3f} {r['seconds']:>7.3f} {r['usd_mb']:>7.2f} | "
-            f"{r['paper_seconds']:>7.2f} {r['paper_usd_mb']:>8.1f} | {r['speedup']:>6.1f}x {r['usd_fraction_of_paper']:>9.3f} "
-            f"{r['peak_rss_gb']:>7.3f} {r['iou']:>6.4f} {r['seconds_first']:>6.3f} {r['seconds_min']:>6.3f} {r['cpu_seconds']:>6.3f}"
+            f"{r.label:<20} {r.raster_mp:>9.3f} {r.seconds:>7.3f} {r.usd_mb:>7.2f} | "
+            f"{r.paper_seconds:>7.2f} {r.paper_usd_mb:>8.1f} | {r.speedup:>6.1f}x {r.usd_fraction_of_paper:>9.3f} "
+            f"{r.peak_rss_gb:>7.3f} {r.iou:>6.4f} {r.seconds_first:>6.3f} {r.seconds_min:>6.3f} {r.cpu_seconds:>6.3f}"
         )
     lines.append(
         "s: median wall-clock in-process build (load + geometry + USD), 1 thread; 1st s: the first build in the"
@@ -243,43 +297,39 @@ def format_table(result: dict[str, Any]) -> str:
     lines.append(
         "paper columns: the paper's time and USD size linearly interpolated at the same raster MP (Table map2usd)."
     )
-    ok = [r for r in result["rows"] if "error" not in r]
+    ok = _measured(result)
     if ok:
-        keys = [k for k in ok[0]["stages"] if k not in ("total", "geometry.total")]
+        keys = [k for k in ok[0].stages if k not in ("total", "geometry.total")]
         short = [k.replace("geometry.", "g.")[:10] for k in keys]
         lines += ["", "per-stage median milliseconds (g.* = inside the Rust geometry stage):"]
         lines.append(f"{'map':<20} " + " ".join(f"{k:>10}" for k in short))
         for r in ok:
-            lines.append(
-                f"{r['label']:<20} " + " ".join(f"{1e3 * r['stages'].get(k, float('nan')):>10.1f}" for k in keys)
-            )
+            lines.append(f"{r.label:<20} " + " ".join(f"{1e3 * r.stages.get(k, float('nan')):>10.1f}" for k in keys))
     return "\n".join(lines)
 
 
-def format_markdown(result: dict[str, Any]) -> str:
+def format_markdown(result: BuildResult) -> str:
     """The same results as Markdown tables (for BENCHMARKS.md)."""
-    rows = sorted((r for r in result["rows"] if "error" not in r), key=lambda r: r["raster_mp"])
+    rows = sorted(_measured(result), key=lambda r: r.raster_mp)
     out = [
         "| map | raster MP | s (wall, median) | s (wall, min) | CPU s | 1st build s | USD MB | paper s | paper MB | USD / paper | peak RSS GB | IoU |",
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for r in rows:
         out.append(
-            f"| {r['label']} | {r['raster_mp']:.3f} | {r['seconds']:.3f} | {r['seconds_min']:.3f} | {r['cpu_seconds']:.3f} | {r['seconds_first']:.3f} "
-            f"| {r['usd_mb']:.2f} | {r['paper_seconds']:.2f} | {r['paper_usd_mb']:.1f} | {r['usd_fraction_of_paper']:.3f} "
-            f"| {r['peak_rss_gb']:.3f} | {r['iou']:.4f} |"
+            f"| {r.label} | {r.raster_mp:.3f} | {r.seconds:.3f} | {r.seconds_min:.3f} | {r.cpu_seconds:.3f} | {r.seconds_first:.3f} "
+            f"| {r.usd_mb:.2f} | {r.paper_seconds:.2f} | {r.paper_usd_mb:.1f} | {r.usd_fraction_of_paper:.3f} "
+            f"| {r.peak_rss_gb:.3f} | {r.iou:.4f} |"
         )
-    out += [f"| {r['label']} | error: {r['error']} |" for r in result["rows"] if "error" in r]
+    out += [f"| {r.label} | error: {r.error} |" for r in result.rows if isinstance(r, BuildError)]
     if rows:
-        keys = [
-            k for k in rows[0]["stages"] if k not in ("total", "geometry.total", "geometry.crop", "geometry.meshes")
-        ]
+        keys = [k for k in rows[0].stages if k not in ("total", "geometry.total", "geometry.crop", "geometry.meshes")]
         out += [
             "",
             "| map (ms) | " + " | ".join(k.replace("geometry.", "g.") for k in keys) + " |",
             "|---|" + "---:|" * len(keys),
         ]
-        out += [f"| {r['label']} | " + " | ".join(f"{1e3 * r['stages'][k]:.1f}" for k in keys) + " |" for r in rows]
+        out += [f"| {r.label} | " + " | ".join(f"{1e3 * r.stages[k]:.1f}" for k in keys) + " |" for r in rows]
     return "\n".join(out)
 
 
@@ -298,17 +348,17 @@ def _cli(args: argparse.Namespace) -> int:
     result = run(args.sizes, max(1, args.repeat), textures=not args.no_textures)
     # files first, so a closed stdout (e.g. `| head`) cannot lose them
     if args.json:
-        atomic_write_text(args.json, json.dumps(result, indent=2))
+        atomic_write_text(args.json, json_text(result))
     if args.markdown:
         atomic_write_text(args.markdown, format_markdown(result) + "\n")
     print(format_table(result))
     for f in (args.json, args.markdown):
         if f:
             print(f"wrote {f}")
-    return 0 if all("error" not in r for r in result["rows"]) else 1
+    return 0 if len(_measured(result)) == len(result.rows) else 1
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> BuildResult:
     """``bench all``: three small sizes, one build each."""
     result = run(QUICK, repeat=1)
     print(format_table(result))

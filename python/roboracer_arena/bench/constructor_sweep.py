@@ -32,12 +32,12 @@ import sys
 import time
 from collections import Counter
 from pathlib import Path
-from typing import Any
 
 from ..constructor_config import ConstructorConfig
 from ..generate import Acceptance, derived_geometry, generate_track, screen, write_outputs
 from ..pool import pool_map, tqdm_progress
 from ..spec import TrackSpec
+from .output import BenchModel
 
 LAPS = (20.0, 30.0, 45.0, 60.0, 80.0, 110.0)
 WIDTHS = (0.8, 1.0, 1.2, 1.5, 2.0)
@@ -45,6 +45,54 @@ HALLS = ((8.0, 6.0), (12.0, 9.0), (16.0, 12.0), (20.0, 15.0), (30.0, 20.0))
 FEATURES = ((0, 0, 0), (0, 0, 1), (1, 0, 0), (0, 1, 0), (1, 1, 0), (1, 1, 1), (2, 1, 1), (3, 1, 0))
 TARGET_COUNT = 360
 SWEEP_FILE = "sweep_specs.jsonl"
+
+
+class SweepRow(BenchModel):
+    """One spec of the sweep: its strata, whether it has an obvious construction, the
+    outcome, candidates tried, seconds, and for a miss the three commonest reasons."""
+
+    spec: str
+    seed: int
+    lap_length_m: float
+    corridor_width_m: float
+    hall: str
+    features: str
+    obvious: bool
+    outcome: str
+    candidates: int
+    seconds: float
+    top_reasons: dict[str, int] | None = None
+
+
+class SweepMiss(BenchModel):
+    """A spec the generator did not accept (the summary's short list)."""
+
+    spec: str
+    seed: int
+    obvious: bool
+    outcome: str
+    candidates: int
+    top_reasons: dict[str, int] | None = None
+
+
+class SweepResult(BenchModel):
+    """``bench constructors --sweep``: acceptance overall, on the obvious subset and by
+    stratum (``"accepted/specs"``), times, the misses and every row."""
+
+    specs: int
+    accepted: int
+    acceptance: float
+    obvious_specs: int
+    obvious_accepted: int
+    seconds_median: float
+    seconds_max: float
+    candidates_median_accepted: int | float
+    by_lap: dict[str, str]
+    by_width: dict[str, str]
+    by_hall: dict[str, str]
+    by_features: dict[str, str]
+    misses: list[SweepMiss]
+    rows: list[SweepRow]
 
 
 def sweep_specs() -> list[TrackSpec]:
@@ -79,83 +127,85 @@ def obvious_construction(spec: TrackSpec, config: ConstructorConfig | None = Non
     return x > 2 * rc and y > 2 * rc and spec.lap_length_m <= 2 * (x + y) - 4 * (2 - math.pi / 2) * rc
 
 
-def _trial(job: tuple[int, str, str | None]) -> dict[str, Any]:
+def _trial(job: tuple[int, str, str | None]) -> SweepRow:
     i, spec_json, maps = job
     spec = TrackSpec.model_validate_json(spec_json)
     seed = i % 3
     t0 = time.perf_counter()
     out = generate_track(spec, seed=seed)
-    row: dict[str, Any] = {
-        "spec": spec.name,
-        "seed": seed,
-        "lap_length_m": spec.lap_length_m,
-        "corridor_width_m": spec.corridor_width_m,
-        "hall": f"{spec.hall_x_m:g}x{spec.hall_y_m:g}",
-        "features": f"h{spec.hairpins}c{spec.chicanes}s{spec.sweepers}",
-        "obvious": obvious_construction(spec),
-        "outcome": out.kind,
-        "candidates": getattr(out, "candidates_tried", 0),
-        "seconds": time.perf_counter() - t0,
-    }
+    seconds = time.perf_counter() - t0
+    miss = {}
     if isinstance(out, Acceptance):
         if maps:
             write_outputs(out, Path(maps) / spec.name)
     else:
         reasons = getattr(out, "reasons", {}) or {}
-        row["top_reasons"] = dict(sorted(reasons.items(), key=lambda kv: -kv[1])[:3])
-    return row
+        miss["top_reasons"] = dict(sorted(reasons.items(), key=lambda kv: -kv[1])[:3])
+    return SweepRow(
+        spec=spec.name,
+        seed=seed,
+        lap_length_m=spec.lap_length_m,
+        corridor_width_m=spec.corridor_width_m,
+        hall=f"{spec.hall_x_m:g}x{spec.hall_y_m:g}",
+        features=f"h{spec.hairpins}c{spec.chicanes}s{spec.sweepers}",
+        obvious=obvious_construction(spec),
+        outcome=out.kind,
+        candidates=getattr(out, "candidates_tried", 0),
+        seconds=seconds,
+        **miss,
+    )
 
 
-def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, progress: bool = True) -> dict[str, Any]:
+def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, progress: bool = True) -> SweepResult:
     """One ``generate_track`` per spec; rows, acceptance rate and the misses by stratum."""
     work = [(i, s.model_dump_json(), str(maps) if maps else None) for i, s in enumerate(specs)]
     bar = tqdm_progress("sweep specs", "spec", file=sys.stderr, disable=not progress)
-    rows: list[dict[str, Any]] = pool_map(_trial, work, jobs, bar)
-    accepted = [r for r in rows if r["outcome"] == "accepted"]
-    misses = [r for r in rows if r["outcome"] != "accepted"]
+    rows: list[SweepRow] = pool_map(_trial, work, jobs, bar)
+    accepted = [r for r in rows if r.outcome == "accepted"]
 
     def by(key: str) -> dict[str, str]:
-        tot = Counter(str(r[key]) for r in rows)
-        ok = Counter(str(r[key]) for r in accepted)
+        tot = Counter(str(getattr(r, key)) for r in rows)
+        ok = Counter(str(getattr(r, key)) for r in accepted)
         return {k: f"{ok[k]}/{tot[k]}" for k in sorted(tot, key=lambda x: (len(x), x))}
 
-    secs = [r["seconds"] for r in rows]
-    obvious = [r for r in rows if r["obvious"]]
-    return {
-        "specs": len(rows),
-        "accepted": len(accepted),
-        "acceptance": len(accepted) / len(rows) if rows else float("nan"),
-        "obvious_specs": len(obvious),
-        "obvious_accepted": sum(r["outcome"] == "accepted" for r in obvious),
-        "seconds_median": statistics.median(secs) if secs else float("nan"),
-        "seconds_max": max(secs) if secs else float("nan"),
-        "candidates_median_accepted": statistics.median(r["candidates"] for r in accepted) if accepted else 0,
-        "by_lap": by("lap_length_m"),
-        "by_width": by("corridor_width_m"),
-        "by_hall": by("hall"),
-        "by_features": by("features"),
-        "misses": [
-            {k: r[k] for k in ("spec", "seed", "obvious", "outcome", "candidates", "top_reasons") if k in r}
-            for r in misses
+    secs = [r.seconds for r in rows]
+    obvious = [r for r in rows if r.obvious]
+    return SweepResult(
+        specs=len(rows),
+        accepted=len(accepted),
+        acceptance=len(accepted) / len(rows) if rows else float("nan"),
+        obvious_specs=len(obvious),
+        obvious_accepted=sum(r.outcome == "accepted" for r in obvious),
+        seconds_median=statistics.median(secs) if secs else float("nan"),
+        seconds_max=max(secs) if secs else float("nan"),
+        candidates_median_accepted=statistics.median(r.candidates for r in accepted) if accepted else 0,
+        by_lap=by("lap_length_m"),
+        by_width=by("corridor_width_m"),
+        by_hall=by("hall"),
+        by_features=by("features"),
+        misses=[
+            SweepMiss.model_validate(r.model_dump(include=set(SweepMiss.model_fields), exclude_unset=True))
+            for r in rows
+            if r.outcome != "accepted"
         ],
-        "rows": rows,
-    }
+        rows=rows,
+    )
 
 
-def print_sweep(result: dict[str, Any]) -> None:
+def print_sweep(result: SweepResult) -> None:
     print(
-        f"sweep: {result['accepted']}/{result['specs']} admissible specs accepted "
-        f"({100 * result['acceptance']:.1f} %), median {result['seconds_median']:.3f} s/spec, "
-        f"max {result['seconds_max']:.2f} s, median candidates to acceptance {result['candidates_median_accepted']:g}"
+        f"sweep: {result.accepted}/{result.specs} admissible specs accepted "
+        f"({100 * result.acceptance:.1f} %), median {result.seconds_median:.3f} s/spec, "
+        f"max {result.seconds_max:.2f} s, median candidates to acceptance {result.candidates_median_accepted:g}"
     )
     print(
-        f"  obvious construction (a rounded rectangle of length L fits): {result['obvious_accepted']}/{result['obvious_specs']}"
+        f"  obvious construction (a rounded rectangle of length L fits): {result.obvious_accepted}/{result.obvious_specs}"
     )
-    for key in ("by_lap", "by_width", "by_hall", "by_features"):
-        print(f"  {key[3:]:<9} " + "  ".join(f"{k}: {v}" for k, v in result[key].items()))
-    for m in result["misses"]:
+    for name in ("lap", "width", "hall", "features"):
+        print(f"  {name:<9} " + "  ".join(f"{k}: {v}" for k, v in getattr(result, f"by_{name}").items()))
+    for m in result.misses:
         print(
-            f"  miss {m['spec']}{' (obvious)' if m.get('obvious') else ''} seed {m['seed']}: {m['outcome']} after {m['candidates']} ({json.dumps(m.get('top_reasons', {}))})"
+            f"  miss {m.spec}{' (obvious)' if m.obvious else ''} seed {m.seed}: {m.outcome} after {m.candidates} ({json.dumps(m.top_reasons or {})})"
         )
 
 

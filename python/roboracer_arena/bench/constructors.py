@@ -47,16 +47,65 @@ from tqdm import tqdm
 from .. import _core
 from ..constructor_config import ConstructorConfig
 from ..errors import SpecError
-from ..fileio import atomic_write_text
 from ..generate import Acceptance, generate_track, rasterise, screen, validate_map
 from ..generate.baselines import construct_baseline
 from ..maps import load_map
 from ..spec import TrackSpec
+from .output import BenchModel, add_bench_parser, write_json
 
 CONSTRUCTOR_CHOICES = ("lattice", "lattice-raw", "de", "random")
 # The paper's Table "Constructor comparison": (valid, built, trials, seconds per trial).
 PAPER = {"lattice": (21, 21, 30, 3.7), "de": (15, 27, 30, 5.1), "random": (11, 30, 30, 11.2)}
 QUICK_SPECS = ("paper-teaser-3h1c-20x15", "paper-200m-in-20x15", "narrow-1.2m-small-hall")
+
+
+class Trial(BenchModel):
+    """One (spec, seed, constructor): built, candidates tried, valid and the failed checks
+    (or why nothing was built), and its seconds."""
+
+    spec: str
+    seed: int
+    constructor: str
+    built: bool
+    candidates: int
+    valid: bool
+    failed_checks: list[str]
+    not_built_reason: str | None = None
+    seconds: float
+
+
+class ConstructorSummary(BenchModel):
+    """One constructor over its trials."""
+
+    constructor: str
+    trials: int
+    built: int
+    valid: int
+    seconds_per_trial_mean: float
+    seconds_per_trial_median: float
+    candidates_median: int | float
+    candidates_max: int
+    failed_checks: dict[str, int]
+    not_built: dict[str, int]
+
+
+class ScreenRejection(BenchModel):
+    """A spec the admissibility screen rejected (not a trial), with its violations."""
+
+    spec: str
+    violations: list[str]
+
+
+class ConstructorsResult(BenchModel):
+    """``bench constructors``: spec counts, seeds, screen rejections, summaries, every trial."""
+
+    specs: int
+    admissible_specs: int
+    seeds: list[int]
+    screen_rejections: list[ScreenRejection]
+    summary: list[ConstructorSummary]
+    trials: list[Trial]
+    machine: str
 
 
 def default_specs_path() -> Path:
@@ -108,46 +157,45 @@ def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConf
     return rasterise(line, spec, config), "", 1
 
 
-def run_trial(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConfig, workdir: Path) -> dict[str, Any]:
+def run_trial(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConfig, workdir: Path) -> Trial:
     """One matched trial: build, write the map, read it back, validate it."""
     t0 = time.perf_counter()
     m, why, tried = _build(spec, seed, constructor, config)
-    row: dict[str, Any] = {
-        "spec": spec.name,
-        "seed": seed,
-        "constructor": constructor,
-        "built": m is not None,
-        "candidates": tried,
-    }
+    outcome: dict[str, Any]
     if m is None:
-        row.update(valid=False, failed_checks=[], not_built_reason=why)
+        outcome = {"valid": False, "failed_checks": [], "not_built_reason": why}
     else:
         yaml_path = m.save(workdir / f"{constructor}-{spec.name}-{seed}.yaml")
         report, _ = validate_map(load_map(yaml_path), spec, config)
-        row.update(valid=report.valid, failed_checks=[c.name for c in report.failed()])
-    row["seconds"] = time.perf_counter() - t0
-    return row
+        outcome = {"valid": report.valid, "failed_checks": [c.name for c in report.failed()]}
+    return Trial(
+        spec=spec.name,
+        seed=seed,
+        constructor=constructor,
+        built=m is not None,
+        candidates=tried,
+        **outcome,
+        seconds=time.perf_counter() - t0,
+    )
 
 
-def summarise(rows: list[dict[str, Any]], constructor: str) -> dict[str, Any]:
-    mine = [r for r in rows if r["constructor"] == constructor]
+def summarise(rows: list[Trial], constructor: str) -> ConstructorSummary:
+    mine = [r for r in rows if r.constructor == constructor]
     n = len(mine)
-    built = sum(r["built"] for r in mine)
-    valid = sum(r["valid"] for r in mine)
-    secs = sorted(r["seconds"] for r in mine)
-    cands = sorted(r["candidates"] for r in mine)
-    return {
-        "constructor": constructor,
-        "trials": n,
-        "built": built,
-        "valid": valid,
-        "seconds_per_trial_mean": sum(secs) / n if n else float("nan"),
-        "seconds_per_trial_median": statistics.median(secs) if n else float("nan"),
-        "candidates_median": statistics.median(cands) if n else 0,
-        "candidates_max": cands[-1] if n else 0,
-        "failed_checks": dict(Counter(c for r in mine for c in r["failed_checks"])),
-        "not_built": dict(Counter(r["not_built_reason"] for r in mine if not r["built"])),
-    }
+    secs = sorted(r.seconds for r in mine)
+    cands = sorted(r.candidates for r in mine)
+    return ConstructorSummary(
+        constructor=constructor,
+        trials=n,
+        built=sum(r.built for r in mine),
+        valid=sum(r.valid for r in mine),
+        seconds_per_trial_mean=sum(secs) / n if n else float("nan"),
+        seconds_per_trial_median=statistics.median(secs) if n else float("nan"),
+        candidates_median=statistics.median(cands) if n else 0,
+        candidates_max=cands[-1] if n else 0,
+        failed_checks=dict(Counter(c for r in mine for c in r.failed_checks)),
+        not_built=dict(Counter(r.not_built_reason or "" for r in mine if not r.built)),
+    )
 
 
 def run(
@@ -156,68 +204,65 @@ def run(
     constructors: list[str],
     config: ConstructorConfig | None = None,
     progress: bool = True,
-) -> dict[str, Any]:
+) -> ConstructorsResult:
     """Run every (admissible spec, seed, constructor) trial; returns rows and summaries."""
     config = config or ConstructorConfig()
     admissible, rejections = [], []
     for s in specs:
         sr = screen(s, config)
-        (admissible.append(s) if sr.passed else rejections.append({"spec": s.name, "violations": list(sr.violations)}))
+        if sr.passed:
+            admissible.append(s)
+        else:
+            rejections.append(ScreenRejection(spec=s.name, violations=list(sr.violations)))
     jobs = [(s, seed, c) for c in constructors for s in admissible for seed in seeds]
     rows = []
     with tempfile.TemporaryDirectory(prefix="bench-constructors-") as tmp:
         for s, seed, c in tqdm(jobs, desc="constructor trials", unit="trial", file=sys.stderr, disable=not progress):
             rows.append(run_trial(s, seed, c, config, Path(tmp)))
-    return {
-        "specs": len(specs),
-        "admissible_specs": len(admissible),
-        "seeds": seeds,
-        "screen_rejections": rejections,
-        "summary": [summarise(rows, c) for c in constructors],
-        "trials": rows,
-        "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
-    }
-
-
-def print_table(result: dict[str, Any]) -> None:
-    print(
-        f"{result['admissible_specs']} admissible specs × {len(result['seeds'])} seeds = trials per constructor; "
-        f"{len(result['screen_rejections'])} spec(s) rejected by the screen (not trials)"
+    return ConstructorsResult(
+        specs=len(specs),
+        admissible_specs=len(admissible),
+        seeds=seeds,
+        screen_rejections=rejections,
+        summary=[summarise(rows, c) for c in constructors],
+        trials=rows,
+        machine=f"{platform.machine()} {platform.processor() or ''}".strip(),
     )
-    for r in result["screen_rejections"][:5]:
-        print(f"  rejected {r['spec']}: {'; '.join(r['violations'])}")
-    if len(result["screen_rejections"]) > 5:
-        print(f"  … and {len(result['screen_rejections']) - 5} more (see --json)")
+
+
+def print_table(result: ConstructorsResult) -> None:
+    rejected = result.screen_rejections
+    print(
+        f"{result.admissible_specs} admissible specs × {len(result.seeds)} seeds = trials per constructor; "
+        f"{len(rejected)} spec(s) rejected by the screen (not trials)"
+    )
+    for r in rejected[:5]:
+        print(f"  rejected {r.spec}: {'; '.join(r.violations)}")
+    if len(rejected) > 5:
+        print(f"  … and {len(rejected) - 5} more (see --json)")
     head = (
         f"{'constructor':<12} {'valid trials':>12} {'valid/built':>11} {'s/trial':>8} {'median s':>8}   {'paper':>22}"
     )
     print(head)
     print("-" * len(head))
-    for s in result["summary"]:
-        paper = PAPER.get(s["constructor"])
+    for s in result.summary:
+        paper = PAPER.get(s.constructor)
         ptxt = f"{paper[0]}/{paper[2]}  {paper[0]}/{paper[1]}  {paper[3]:.1f} s" if paper else ""
         print(
-            f"{s['constructor']:<12} {s['valid']:>5}/{s['trials']:<6} {s['valid']:>5}/{s['built']:<5} "
-            f"{s['seconds_per_trial_mean']:>8.3f} {s['seconds_per_trial_median']:>8.3f}   {ptxt:>22}"
+            f"{s.constructor:<12} {s.valid:>5}/{s.trials:<6} {s.valid:>5}/{s.built:<5} "
+            f"{s.seconds_per_trial_mean:>8.3f} {s.seconds_per_trial_median:>8.3f}   {ptxt:>22}"
         )
-    for s in result["summary"]:
-        if s["constructor"].startswith("lattice"):
+    for s in result.summary:
+        if s.constructor.startswith("lattice"):
             print(
-                f"  {s['constructor']}: candidates per trial median {s['candidates_median']:g}, max {s['candidates_max']} (cap 800)"
+                f"  {s.constructor}: candidates per trial median {s.candidates_median:g}, max {s.candidates_max} (cap 800)"
             )
-        if s["failed_checks"] or s["not_built"]:
-            print(
-                f"  {s['constructor']}: failed checks {s['failed_checks'] or '{}'}; not built {s['not_built'] or '{}'}"
-            )
+        if s.failed_checks or s.not_built:
+            print(f"  {s.constructor}: failed checks {s.failed_checks or '{}'}; not built {s.not_built or '{}'}")
 
 
 def register(kinds) -> None:
-    p = kinds.add_parser(
-        "constructors",
-        help="lattice vs DE vs random sampling (the paper's Table 3)",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    p = add_bench_parser(kinds, "constructors", "lattice vs DE vs random sampling (the paper's Table 3)", __doc__)
     p.add_argument(
         "--specs",
         type=Path,
@@ -234,7 +279,6 @@ def register(kinds) -> None:
         metavar="C",
         help=f"subset of {', '.join(CONSTRUCTOR_CHOICES)} (default all)",
     )
-    p.add_argument("--json", type=Path, metavar="FILE", help="write the summary and every trial to FILE")
     p.add_argument(
         "--sweep",
         action="store_true",
@@ -251,24 +295,20 @@ def _cli(args: argparse.Namespace) -> int:
 
         if args.jobs < 1:
             raise SpecError(f"--jobs must be ≥ 1, got {args.jobs}")
-        result = run_sweep(load_sweep_file(), args.maps, args.jobs)
-        print_sweep(result)
-        if args.json:
-            atomic_write_text(args.json, json.dumps(result, indent=2) + "\n")
-            print(f"wrote {args.json}")
+        sweep = run_sweep(load_sweep_file(), args.maps, args.jobs)
+        print_sweep(sweep)
+        write_json(args.json, sweep)
         return 0
     if any(s < 0 for s in args.seeds):
         raise SpecError(f"--seeds must be ≥ 0, got {args.seeds}")
     specs = load_specs(args.specs or default_specs_path())
     result = run(specs, args.seeds, args.constructors)
     print_table(result)
-    if args.json:
-        atomic_write_text(args.json, json.dumps(result, indent=2) + "\n")
-        print(f"wrote {args.json}")
+    write_json(args.json, result)
     return 0
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> ConstructorsResult:
     """Three specs (one screen-rejected) × seed 0, every constructor: a smoke run."""
     specs = [s for s in load_specs(default_specs_path()) if s.name in QUICK_SPECS]
     result = run(specs, [0], list(CONSTRUCTOR_CHOICES))

@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from .output import add_bench_parser, write_json
+from .output import BenchModel, add_bench_parser, write_json
 
 F1TENTH_GYM = (5264.0, 5476.0)  # env-steps/s, constant action, Spielberg, 1080 beams, 0.01 s (issue 14)
 #: Targets (issue 14): single env µs per step; vector env env-steps/s per workload.
@@ -43,6 +43,54 @@ TARGET_SCAN_US = 15.0  # one 1081-beam scan, median over a lap
 TARGET_VECTOR = {"constant": 65_000.0, "random": 52_000.0}
 DEFAULT_MAP = Path("f1tenth-racetracks") / "Spielberg" / "Spielberg_map.yaml"
 WORKLOADS = ("constant", "lap", "random")
+
+
+class Breakdown(BenchModel):
+    """µs per ``step()`` call: the bare simulator's step, the scan's extra, the env's Python."""
+
+    physics: float
+    scan: float
+    python: float
+
+
+class EnvRow(BenchModel):
+    """One (workload, env count): steps and resets in the timed wall and CPU seconds,
+    env-steps/s, µs per call, the Python part of it, and the breakdown."""
+
+    workload: str
+    num_envs: int
+    steps: int
+    resets: int
+    seconds: float
+    cpu_seconds: float
+    env_steps_per_s: float
+    us_per_step: float
+    python_us_per_step: float
+    breakdown_us_per_call: Breakdown | None = None  # set by run() after the bare-simulator replays
+
+
+class ScanOverLap(BenchModel):
+    """One scan's cost (µs) over centreline poses around the lap."""
+
+    beams: int
+    poses: int
+    median_us: float
+    p90_us: float
+    max_us: float
+
+
+class EnvResult(BenchModel):
+    """``bench env``: the map and settings, the machine's load, the scan and every row."""
+
+    map: str
+    beams: int
+    physics_dt: float
+    threads: int | None
+    load_average_1min: list[float | None]
+    recorded_lap_steps: int
+    scan_over_lap: ScanOverLap
+    f1tenth_gym_env_steps_per_s: list[float]
+    rows: list[EnvRow]
 
 
 def register(kinds) -> None:
@@ -145,7 +193,7 @@ class _CoreTimer:
         return timed
 
 
-def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float) -> dict[str, Any]:
+def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float) -> EnvRow:
     """Env-steps/s of ``gymnasium.make`` (n = 1) or ``make_vec`` (n > 1) on a workload, and
     the µs per call spent outside the native simulator's calls (the Python)."""
     import gymnasium as gym
@@ -196,17 +244,17 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
     calls, dt, cpu = _timed(step, seconds, 64 if n == 1 else 4)
     env.close()
     steps = calls * n
-    return {
-        "workload": kind,
-        "num_envs": n,
-        "steps": steps,
-        "resets": counts["resets"],
-        "seconds": round(dt, 3),
-        "cpu_seconds": round(cpu, 3),
-        "env_steps_per_s": round(steps / dt, 1),
-        "us_per_step": round(dt / calls * 1e6, 2),
-        "python_us_per_step": round((core["step"] - core["seconds"]) / calls * 1e6, 2),
-    }
+    return EnvRow(
+        workload=kind,
+        num_envs=n,
+        steps=steps,
+        resets=counts["resets"],
+        seconds=round(dt, 3),
+        cpu_seconds=round(cpu, 3),
+        env_steps_per_s=round(steps / dt, 1),
+        us_per_step=round(dt / calls * 1e6, 2),
+        python_us_per_step=round((core["step"] - core["seconds"]) / calls * 1e6, 2),
+    )
 
 
 def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float, scan: bool) -> float:
@@ -240,7 +288,7 @@ def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seco
     return dt / calls * 1e6
 
 
-def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: int = 30) -> dict[str, float]:
+def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: int = 30) -> ScanOverLap:
     """One scan's cost (µs) at centreline poses every ``every_m`` around the lap: per pose
     the median of ``observe`` with the scan minus without it (one env, one car)."""
     from .._core import Simulator
@@ -265,13 +313,13 @@ def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: 
         sim.reset(mask, np.array(centreline_pose(track, s)).reshape(1, 1, 3))
         per.append(median_us(scans) - median_us(None))
     a = np.array(per)
-    return {
-        "beams": beams,
-        "poses": len(a),
-        "median_us": round(float(np.median(a)), 2),
-        "p90_us": round(float(np.percentile(a, 90)), 2),
-        "max_us": round(float(a.max()), 2),
-    }
+    return ScanOverLap(
+        beams=beams,
+        poses=len(a),
+        median_us=round(float(np.median(a)), 2),
+        p90_us=round(float(np.percentile(a, 90)), 2),
+        max_us=round(float(a.max()), 2),
+    )
 
 
 def run(
@@ -280,7 +328,7 @@ def run(
     seconds: float = 3.0,
     beams: int = 1080,
     workloads: list[str] | None = None,
-) -> dict[str, Any]:
+) -> EnvResult:
     """Measure and print the table; returns the results."""
     from .. import envs
     from ..envs.env_config import EnvConfig
@@ -299,47 +347,45 @@ def run(
             row = _time_env(track, beams, kind, acts, n, seconds)
             physics = _time_core(track, beams, kind, acts, n, seconds / 2, scan=False)
             core = _time_core(track, beams, kind, acts, n, seconds / 2, scan=True)
-            row["breakdown_us_per_call"] = {
-                "physics": round(physics, 2),
-                "scan": round(max(core - physics, 0.0), 2),
-                "python": row["python_us_per_step"],
-            }
-            rows.append(row)
+            breakdown = Breakdown(
+                physics=round(physics, 2), scan=round(max(core - physics, 0.0), 2), python=row.python_us_per_step
+            )
+            rows.append(row.model_copy(update={"breakdown_us_per_call": breakdown}))
     scan = scan_over_lap(track)
     load = _load()
     _print_table(track.name, beams, rows, threads=os.cpu_count() or 1, loads=(load_before, load))
     print(
-        f"one {scan['beams']}-beam scan at {scan['poses']} centreline poses around the lap: median "
-        f"{scan['median_us']:.1f} µs, p90 {scan['p90_us']:.1f}, max {scan['max_us']:.1f}  "
-        f"target ≤{TARGET_SCAN_US:.0f} µs {'ok' if scan['median_us'] <= TARGET_SCAN_US else 'MISS'}"
+        f"one {scan.beams}-beam scan at {scan.poses} centreline poses around the lap: median "
+        f"{scan.median_us:.1f} µs, p90 {scan.p90_us:.1f}, max {scan.max_us:.1f}  "
+        f"target ≤{TARGET_SCAN_US:.0f} µs {'ok' if scan.median_us <= TARGET_SCAN_US else 'MISS'}"
     )
-    return {
-        "map": track.name,
-        "beams": beams,
-        "physics_dt": 0.01,
-        "threads": os.cpu_count(),
-        "load_average_1min": [load_before, load],
-        "recorded_lap_steps": len(lap),
-        "scan_over_lap": scan,
-        "f1tenth_gym_env_steps_per_s": list(F1TENTH_GYM),
-        "rows": rows,
-    }
+    return EnvResult(
+        map=track.name,
+        beams=beams,
+        physics_dt=0.01,
+        threads=os.cpu_count(),
+        load_average_1min=[load_before, load],
+        recorded_lap_steps=len(lap),
+        scan_over_lap=scan,
+        f1tenth_gym_env_steps_per_s=list(F1TENTH_GYM),
+        rows=rows,
+    )
 
 
 def _load() -> float | None:
     return round(os.getloadavg()[0], 2) if hasattr(os, "getloadavg") else None
 
 
-def _verdict(r: dict[str, Any]) -> str:
-    if r["num_envs"] == 1:
+def _verdict(r: EnvRow) -> str:
+    if r.num_envs == 1:
         t = TARGET_SINGLE_US
-        return f"≤{t:.0f} µs {'ok' if r['us_per_step'] <= t else 'MISS'}" if r["workload"] == "constant" else ""
-    target = TARGET_VECTOR.get(r["workload"])
-    return f"≥{target:,.0f} {'ok' if r['env_steps_per_s'] >= target else 'MISS'}" if target else ""
+        return f"≤{t:.0f} µs {'ok' if r.us_per_step <= t else 'MISS'}" if r.workload == "constant" else ""
+    target = TARGET_VECTOR.get(r.workload)
+    return f"≥{target:,.0f} {'ok' if r.env_steps_per_s >= target else 'MISS'}" if target else ""
 
 
 def _print_table(
-    name: str, beams: int, rows: list[dict[str, Any]], threads: int, loads: tuple[float | None, float | None]
+    name: str, beams: int, rows: list[EnvRow], threads: int, loads: tuple[float | None, float | None]
 ) -> None:
     lo, hi = F1TENTH_GYM
     print(
@@ -352,10 +398,11 @@ def _print_table(
         f"{'physics':>9}{'scan':>8}{'python':>8}  target"
     )
     for r in rows:
-        b = r["breakdown_us_per_call"]
+        b = r.breakdown_us_per_call
+        assert b is not None  # run() sets it on every row
         print(
-            f"{r['workload']:<10}{r['num_envs']:>6}{r['env_steps_per_s']:>13,.0f}{r['us_per_step']:>10.1f}"
-            f"{r['resets']:>8}{b['physics']:>9.1f}{b['scan']:>8.1f}{b['python']:>8.1f}  {_verdict(r)}"
+            f"{r.workload:<10}{r.num_envs:>6}{r.env_steps_per_s:>13,.0f}{r.us_per_step:>10.1f}"
+            f"{r.resets:>8}{b.physics:>9.1f}{b.scan:>8.1f}{b.python:>8.1f}  {_verdict(r)}"
         )
     print(
         "(wall clock; µs per step() call, for the vector env per call over all envs; physics and scan replay the "
@@ -364,7 +411,7 @@ def _print_table(
     )
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> EnvResult:
     return run(num_envs=[1, 256], seconds=1.0)
 
 

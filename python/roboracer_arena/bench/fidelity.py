@@ -25,15 +25,15 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import Any
 
 import numpy as np
+from pydantic import ConfigDict, Field
 
 from .. import _core
 from ..sim_config import PhysicsConfig, SimConfig, VehicleConfig
 from . import fidelity_limit
 from .f1tenth_st import GYM_PARAMS, SingleTrack
-from .output import add_bench_parser, write_json
+from .output import BenchModel, add_bench_parser, write_json
 
 HALL = 150.0
 RECORDED_SPEED = 6.66  # paper: observed maximum (m/s)
@@ -42,6 +42,86 @@ SPEEDS = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
 # Multiples of the gym's steering step sv_max * dt = 0.032 rad: its bang-bang steering
 # dithers by one step around any other target.
 STEERS = [0.064, 0.128, 0.192, 0.288]
+
+
+class Straight(BenchModel):
+    """Top speed (m/s) and the time (s) and distance (m) to 6.66 m/s (None: never reached)."""
+
+    top_speed: float
+    t_0_to_6_66: float | None
+    d_0_to_6_66: float | None
+
+
+class Braking(BenchModel):
+    """Time (s) and distance (m) of a full stop; for ours also the ideal mu g stop."""
+
+    t: float
+    d: float
+    t_ideal: float | None = None
+    d_ideal: float | None = None
+
+
+class Turn(BenchModel):
+    """A steady turn at command (v, steer): ours, linear theory, the friction limit mu g,
+    the quasi-static model (None: no steady state) and the gym's single-track model."""
+
+    v: float
+    steer: float
+    yaw_rate: float
+    lat_acc: float
+    linear_yaw_rate: float
+    limit_lat_acc: float
+    linear_saturated: bool
+    qs_lat_acc: float | None
+    gym_yaw_rate: float
+    gym_lat_acc: float
+
+
+class CorneringLimit(BenchModel):
+    """See :func:`cornering_limit`."""
+
+    v: float
+    ours_peak: float
+    qs_limit: float
+    qs_steer: float
+    qs_drive_force: float
+    qs_inner_front_load: float
+    qs_load_split_limit: float
+
+
+class Envelope(BenchModel):
+    """See :func:`envelope`."""
+
+    r_max: float
+    v_at_r_max: float
+    mu_needed_for_recorded: float
+
+
+class DtSensitivity(BenchModel):
+    """At one physics step: the yaw rate of a 3 m/s, 0.2 rad turn and the 6 -> 0 stop."""
+
+    model_config = ConfigDict(serialize_by_alias=True, validate_by_name=True)
+
+    dt: float
+    yaw_rate_3ms: float = Field(alias="yaw_rate_3ms_0.2")
+    brake_t: float
+    brake_d: float
+
+
+class FidelityResult(BenchModel):
+    """``bench fidelity``: every manoeuvre, ours beside the gym's and the physics."""
+
+    limit: list[CorneringLimit]
+    straight: Straight
+    gym_straight: Straight
+    braking: Braking
+    gym_braking: Braking
+    turns: list[Turn]
+    envelope: Envelope
+    step_steer_peak_yaw: dict[float, float]
+    dt_sensitivity: list[DtSensitivity]
+    mu_g: float
+    gym_params: dict[str, float]
 
 
 class _Car:
@@ -78,7 +158,7 @@ def _config(dt: float = 0.005, **vehicle: float) -> SimConfig:
     return SimConfig(vehicle=VehicleConfig(**vehicle), physics=PhysicsConfig(dt=dt))
 
 
-def straight_line(dt: float = 0.005) -> dict[str, Any]:
+def straight_line(dt: float = 0.005) -> Straight:
     """Top speed and the 0 -> 6.66 m/s run (ours)."""
     car = _Car(_config(dt, max_speed=25.0))
     t_rec = d_rec = None
@@ -89,10 +169,10 @@ def straight_line(dt: float = 0.005) -> dict[str, Any]:
         top = max(top, v)
         if t_rec is None and v >= RECORDED_SPEED:
             t_rec, d_rec = car.t, car["x"] - x0
-    return {"top_speed": top, "t_0_to_6_66": t_rec, "d_0_to_6_66": d_rec}
+    return Straight(top_speed=top, t_0_to_6_66=t_rec, d_0_to_6_66=d_rec)
 
 
-def braking(dt: float = 0.005, v0: float = 6.0) -> dict[str, Any]:
+def braking(dt: float = 0.005, v0: float = 6.0) -> Braking:
     """Full stop from `v0` with a 0 m/s command (ours), and the ideal mu g stop."""
     cfg = _config(dt)
     car = _Car(cfg, speed=v0)
@@ -100,7 +180,7 @@ def braking(dt: float = 0.005, v0: float = 6.0) -> dict[str, Any]:
     while car["vx"] > 0.01 and car.t < 5.0:
         car.step(0.0, 0.0)
     mu_g = cfg.vehicle.tyre_friction * cfg.physics.gravity
-    return {"t": car.t, "d": car["x"] - x0, "t_ideal": v0 / mu_g, "d_ideal": v0**2 / (2 * mu_g)}
+    return Braking(t=car.t, d=car["x"] - x0, t_ideal=v0 / mu_g, d_ideal=v0**2 / (2 * mu_g))
 
 
 def steady_turn(v: float, steer: float, dt: float = 0.005, seconds: float = 6.0) -> dict[str, float]:
@@ -124,7 +204,7 @@ def linear_theory(v: float, steer: float, vc: VehicleConfig | None = None, g: fl
     return v * steer / (vc.wheelbase + k * v * v)
 
 
-def gym_straight() -> dict[str, Any]:
+def gym_straight() -> Straight:
     car = SingleTrack()
     t, top, t_rec, d_rec = 0.0, 0.0, None, None
     while t < 14.0:
@@ -133,17 +213,17 @@ def gym_straight() -> dict[str, Any]:
         top = max(top, car.speed)
         if t_rec is None and car.speed >= RECORDED_SPEED:
             t_rec, d_rec = t, car.position[0]
-    return {"top_speed": top, "t_0_to_6_66": t_rec, "d_0_to_6_66": d_rec}
+    return Straight(top_speed=top, t_0_to_6_66=t_rec, d_0_to_6_66=d_rec)
 
 
-def gym_braking(v0: float = 6.0) -> dict[str, Any]:
+def gym_braking(v0: float = 6.0) -> Braking:
     car = SingleTrack()
     car.reset(v0)
     t = 0.0
     while car.speed > 0.01 and t < 5.0:
         car.step(0.0, 0.0)
         t += car.dt
-    return {"t": t, "d": car.position[0]}
+    return Braking(t=t, d=car.position[0])
 
 
 def gym_turn(v: float, steer: float, seconds: float = 6.0) -> dict[str, float]:
@@ -170,19 +250,19 @@ def peak_step_yaw(v: float, dt: float = 0.005) -> float:
     return peak
 
 
-def envelope(vc: VehicleConfig, g: float = 9.81) -> dict[str, float]:
+def envelope(vc: VehicleConfig, g: float = 9.81) -> Envelope:
     """The steady, non-sliding yaw-rate bound min(v tan(dmax) / L, mu g / v): its
     maximum, the speed of it, and the friction needed for the recorded yaw rate."""
     tan = math.tan(vc.max_steer)
     v_star = math.sqrt(vc.tyre_friction * g * vc.wheelbase / tan)
-    return {
-        "r_max": v_star * tan / vc.wheelbase,
-        "v_at_r_max": v_star,
-        "mu_needed_for_recorded": RECORDED_YAW**2 * vc.wheelbase / (g * tan),
-    }
+    return Envelope(
+        r_max=v_star * tan / vc.wheelbase,
+        v_at_r_max=v_star,
+        mu_needed_for_recorded=RECORDED_YAW**2 * vc.wheelbase / (g * tan),
+    )
 
 
-def run(quick: bool = False) -> dict[str, Any]:
+def run(quick: bool = False) -> FidelityResult:
     vc = VehicleConfig()
     mu_g = vc.tyre_friction * 9.81
     speeds = [1.0, 3.0, 5.0] if quick else SPEEDS
@@ -193,116 +273,114 @@ def run(quick: bool = False) -> dict[str, Any]:
             lin = linear_theory(v, d, vc)
             qs = fidelity_limit.steady_turn(ours["speed"], d, vc)
             turns.append(
-                {
-                    "v": v,
-                    "steer": d,
-                    "yaw_rate": ours["yaw_rate"],
-                    "lat_acc": ours["lat_acc"],
-                    "linear_yaw_rate": lin,
-                    "limit_lat_acc": mu_g,
-                    "linear_saturated": lin * v > mu_g,
-                    "qs_lat_acc": qs.lat_acc if qs else None,
-                    "gym_yaw_rate": gym["yaw_rate"],
-                    "gym_lat_acc": gym["lat_acc"],
-                }
+                Turn(
+                    v=v,
+                    steer=d,
+                    yaw_rate=ours["yaw_rate"],
+                    lat_acc=ours["lat_acc"],
+                    linear_yaw_rate=lin,
+                    limit_lat_acc=mu_g,
+                    linear_saturated=lin * v > mu_g,
+                    qs_lat_acc=qs.lat_acc if qs else None,
+                    gym_yaw_rate=gym["yaw_rate"],
+                    gym_lat_acc=gym["lat_acc"],
+                )
             )
     dts = [0.0025, 0.005, 0.01, 0.02]
-    sens = [
-        {
-            "dt": dt,
-            "yaw_rate_3ms_0.2": steady_turn(3.0, 0.2, dt)["yaw_rate"],
-            **{f"brake_{k}": x for k, x in braking(dt).items() if k in ("t", "d")},
-        }
-        for dt in dts
-    ]
-    return {
-        "limit": [cornering_limit(v, turns, vc) for v in speeds if v >= 4.0],
-        "straight": straight_line(),
-        "gym_straight": gym_straight(),
-        "braking": braking(),
-        "gym_braking": gym_braking(),
-        "turns": turns,
-        "envelope": envelope(vc),
-        "step_steer_peak_yaw": {v: peak_step_yaw(v) for v in ([2.0, 4.0] if quick else [2.0, 3.0, 4.0, 5.0, 6.0])},
-        "dt_sensitivity": sens,
-        "mu_g": mu_g,
-        "gym_params": GYM_PARAMS,
-    }
+    sens = []
+    for dt in dts:
+        stop = braking(dt)
+        sens.append(
+            DtSensitivity(dt=dt, yaw_rate_3ms=steady_turn(3.0, 0.2, dt)["yaw_rate"], brake_t=stop.t, brake_d=stop.d)
+        )
+    return FidelityResult(
+        limit=[cornering_limit(v, turns, vc) for v in speeds if v >= 4.0],
+        straight=straight_line(),
+        gym_straight=gym_straight(),
+        braking=braking(),
+        gym_braking=gym_braking(),
+        turns=turns,
+        envelope=envelope(vc),
+        step_steer_peak_yaw={v: peak_step_yaw(v) for v in ([2.0, 4.0] if quick else [2.0, 3.0, 4.0, 5.0, 6.0])},
+        dt_sensitivity=sens,
+        mu_g=mu_g,
+        gym_params=GYM_PARAMS,
+    )
 
 
-def cornering_limit(v: float, turns: list[dict[str, Any]], vc: VehicleConfig) -> dict[str, float]:
+def cornering_limit(v: float, turns: list[Turn], vc: VehicleConfig) -> CorneringLimit:
     """At speed `v`: the largest steady lateral acceleration among our grid's turns, the
     quasi-static limit of the same model (best steering angle), and that limit if the
     drive force were shared in proportion to the wheel loads instead of a quarter each."""
     qs = fidelity_limit.cornering_limit(v, vc)
-    return {
-        "v": v,
-        "ours_peak": max(t["lat_acc"] for t in turns if t["v"] == v),
-        "qs_limit": qs.lat_acc,
-        "qs_steer": qs.steer,
-        "qs_drive_force": qs.drive_force,
-        "qs_inner_front_load": qs.loads[0],
-        "qs_load_split_limit": fidelity_limit.cornering_limit(v, vc, equal_split=False).lat_acc,
-    }
+    return CorneringLimit(
+        v=v,
+        ours_peak=max(t.lat_acc for t in turns if t.v == v),
+        qs_limit=qs.lat_acc,
+        qs_steer=qs.steer,
+        qs_drive_force=qs.drive_force,
+        qs_inner_front_load=qs.loads[0],
+        qs_load_split_limit=fidelity_limit.cornering_limit(v, vc, equal_split=False).lat_acc,
+    )
 
 
 def _f(x: float | None, spec: str = ".2f") -> str:
     return "-" if x is None else format(x, spec)
 
 
-def print_table(res: dict[str, Any]) -> None:
-    s, gs, b, gb = res["straight"], res["gym_straight"], res["braking"], res["gym_braking"]
+def print_table(res: FidelityResult) -> None:
+    s, gs, b, gb = res.straight, res.gym_straight, res.braking, res.gym_braking
     print("straight line and braking            ours     F1TENTH Gym ST   reference")
     print(
-        f"top speed (m/s)                   {s['top_speed']:7.2f}   {gs['top_speed']:14.2f}   Velineon 3500 kV on 3S, F1TENTH gearing: 16.8 no-load"
+        f"top speed (m/s)                   {s.top_speed:7.2f}   {gs.top_speed:14.2f}   Velineon 3500 kV on 3S, F1TENTH gearing: 16.8 no-load"
     )
-    print(f"0 -> 6.66 m/s time (s)            {_f(s['t_0_to_6_66']):>7}   {_f(gs['t_0_to_6_66']):>14}")
-    print(f"0 -> 6.66 m/s distance (m)        {_f(s['d_0_to_6_66']):>7}   {_f(gs['d_0_to_6_66']):>14}")
-    print(f"brake 6 -> 0 time (s)             {b['t']:7.2f}   {gb['t']:14.2f}   ideal mu g stop {b['t_ideal']:.2f}")
-    print(f"brake 6 -> 0 distance (m)         {b['d']:7.2f}   {gb['d']:14.2f}   ideal mu g stop {b['d_ideal']:.2f}")
+    print(f"0 -> 6.66 m/s time (s)            {_f(s.t_0_to_6_66):>7}   {_f(gs.t_0_to_6_66):>14}")
+    print(f"0 -> 6.66 m/s distance (m)        {_f(s.d_0_to_6_66):>7}   {_f(gs.d_0_to_6_66):>14}")
+    print(f"brake 6 -> 0 time (s)             {b.t:7.2f}   {gb.t:14.2f}   ideal mu g stop {b.t_ideal:.2f}")
+    print(f"brake 6 -> 0 distance (m)         {b.d:7.2f}   {gb.d:14.2f}   ideal mu g stop {b.d_ideal:.2f}")
     print()
     print(
-        f"steady cornering (last 1 s of 6 s); linear theory r = v d / (L + K v^2); friction limit mu g = {res['mu_g']:.2f} m/s^2"
+        f"steady cornering (last 1 s of 6 s); linear theory r = v d / (L + K v^2); friction limit mu g = {res.mu_g:.2f} m/s^2"
     )
     head = f"{'v':>4} {'steer':>6} {'r ours':>8} {'r linear':>9} {'ours/lin':>9} {'a ours':>7} {'a/mu g':>7} {'a QS':>7} {'r gym':>7} {'a gym':>7}"
     print(head)
     print("-" * len(head))
-    for t in res["turns"]:
-        ratio = t["yaw_rate"] / t["linear_yaw_rate"]
-        sat = " (lin > mu g)" if t["linear_saturated"] else ""
+    for t in res.turns:
+        ratio = t.yaw_rate / t.linear_yaw_rate
+        sat = " (lin > mu g)" if t.linear_saturated else ""
         print(
-            f"{t['v']:4.1f} {t['steer']:6.3f} {t['yaw_rate']:8.3f} {t['linear_yaw_rate']:9.3f} {ratio:9.3f} "
-            f"{t['lat_acc']:7.2f} {t['lat_acc'] / t['limit_lat_acc']:7.3f} {_f(t['qs_lat_acc']):>7} "
-            f"{t['gym_yaw_rate']:7.3f} {t['gym_lat_acc']:7.2f}{sat}"
+            f"{t.v:4.1f} {t.steer:6.3f} {t.yaw_rate:8.3f} {t.linear_yaw_rate:9.3f} {ratio:9.3f} "
+            f"{t.lat_acc:7.2f} {t.lat_acc / t.limit_lat_acc:7.3f} {_f(t.qs_lat_acc):>7} "
+            f"{t.gym_yaw_rate:7.3f} {t.gym_lat_acc:7.2f}{sat}"
         )
     print("a QS: the quasi-static steady state of our model at our measured speed (bench/fidelity_limit.py)")
     print()
     print("friction limit (quasi-static, best steering angle) vs mu g; why it is below mu g:")
-    for lim in res["limit"]:
-        mu_g = res["mu_g"]
+    for lim in res.limit:
+        mu_g = res.mu_g
         print(
-            f"  {lim['v']:g} m/s: ours peak {lim['ours_peak']:.2f} m/s^2, QS limit {lim['qs_limit']:.2f} "
-            f"({lim['qs_limit'] / mu_g:.3f} mu g) at steer {lim['qs_steer']:.3f}; holding speed takes "
-            f"{lim['qs_drive_force']:.1f} N of drive, a quarter per wheel, on an inner front wheel loaded "
-            f"{lim['qs_inner_front_load']:.1f} N; drive shared by load instead: {lim['qs_load_split_limit']:.2f} "
-            f"({lim['qs_load_split_limit'] / mu_g:.3f} mu g)"
+            f"  {lim.v:g} m/s: ours peak {lim.ours_peak:.2f} m/s^2, QS limit {lim.qs_limit:.2f} "
+            f"({lim.qs_limit / mu_g:.3f} mu g) at steer {lim.qs_steer:.3f}; holding speed takes "
+            f"{lim.qs_drive_force:.1f} N of drive, a quarter per wheel, on an inner front wheel loaded "
+            f"{lim.qs_inner_front_load:.1f} N; drive shared by load instead: {lim.qs_load_split_limit:.2f} "
+            f"({lim.qs_load_split_limit / mu_g:.3f} mu g)"
         )
-    e = res["envelope"]
+    e = res.envelope
     print()
     print(
-        f"recorded envelope: {RECORDED_SPEED} m/s reachable: {'yes' if s['top_speed'] >= RECORDED_SPEED else 'NO'} (top {s['top_speed']:.2f} m/s)"
+        f"recorded envelope: {RECORDED_SPEED} m/s reachable: {'yes' if s.top_speed >= RECORDED_SPEED else 'NO'} (top {s.top_speed:.2f} m/s)"
     )
     print(
         f"  {RECORDED_YAW} rad/s without sliding: no. The steady non-sliding bound min(v tan(dmax)/L, mu g/v) peaks at "
-        f"{e['r_max']:.2f} rad/s at {e['v_at_r_max']:.2f} m/s; {RECORDED_YAW} rad/s would need mu >= "
-        f"{e['mu_needed_for_recorded']:.2f}. Peak |yaw rate| of a full-lock step steer (transient, ours): "
-        + ", ".join(f"{v:g} m/s {r:.2f}" for v, r in res["step_steer_peak_yaw"].items())
+        f"{e.r_max:.2f} rad/s at {e.v_at_r_max:.2f} m/s; {RECORDED_YAW} rad/s would need mu >= "
+        f"{e.mu_needed_for_recorded:.2f}. Peak |yaw rate| of a full-lock step steer (transient, ours): "
+        + ", ".join(f"{v:g} m/s {r:.2f}" for v, r in res.step_steer_peak_yaw.items())
     )
     print()
     print("dt sensitivity (internal steps of at most 10 ms)")
     print(f"{'dt (s)':>7} {'r @3 m/s, 0.2':>14} {'brake t':>8} {'brake d':>8}")
-    for r in res["dt_sensitivity"]:
-        print(f"{r['dt']:7.4f} {r['yaw_rate_3ms_0.2']:14.4f} {r['brake_t']:8.3f} {r['brake_d']:8.3f}")
+    for r in res.dt_sensitivity:
+        print(f"{r.dt:7.4f} {r.yaw_rate_3ms:14.4f} {r.brake_t:8.3f} {r.brake_d:8.3f}")
 
 
 def _cli(args: argparse.Namespace) -> int:
@@ -318,7 +396,7 @@ def register(kinds) -> None:
     p.set_defaults(func=_cli)
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> FidelityResult:
     """`bench all`: the quick variant."""
     res = run(quick=True)
     print_table(res)

@@ -12,12 +12,51 @@ import argparse
 import os
 import tempfile
 from pathlib import Path
-from typing import Any
 
-from .output import add_bench_parser, write_json
+from ..circuits.report import CircuitRaster
+from .output import BenchModel, add_bench_parser, write_json
 
-PAPER = {"circuits": 44, "seconds": 43.72, "mean_error_pct": 0.253, "max_error_pct": 0.924}
+PAPER: dict[str, int | float] = {"circuits": 44, "seconds": 43.72, "mean_error_pct": 0.253, "max_error_pct": 0.924}
 TARGET_SECONDS = 10.0
+
+
+class CircuitRow(BenchModel):
+    """One circuit of the build (for one that failed only ``id`` and ``source`` are known)."""
+
+    id: str
+    source: str
+    lap_length_m: float | None
+    length_error: float | None
+    width_mean_m: float | None
+    width_min_m: float | None
+    narrowed_fraction: float | None
+    grade_separated: bool | None
+    raster: CircuitRaster | None
+    seconds: float | None
+
+
+class CpuMedians(BenchModel):
+    """Median CPU seconds per circuit, and of its smoothing, narrowing and rasterising."""
+
+    median: float
+    raster_median: float
+
+
+class LibraryResult(BenchModel):
+    """``bench library``: counts, wall time, length errors (%), per-circuit cost and rows."""
+
+    circuits: int
+    built: int
+    one_corridor: int
+    jobs: int
+    seconds: float
+    mean_error_pct: float
+    max_error_pct: float
+    measured_circuits: int
+    grade_separated: list[str]
+    cpu_seconds_per_circuit: CpuMedians
+    per_circuit: list[CircuitRow]
+    paper: dict[str, int | float]
 
 
 def register(kinds) -> None:
@@ -28,61 +67,47 @@ def register(kinds) -> None:
     p.set_defaults(func=_run_cli)
 
 
-def run(sources: Path | None = None, jobs: int | None = None, resolution: float = 0.05) -> dict[str, Any]:
+def run(sources: Path | None = None, jobs: int | None = None, resolution: float = 0.05) -> LibraryResult:
     from ..circuits import CircuitConfig, build_all
 
     with tempfile.TemporaryDirectory(prefix="rra-bench-library-") as tmp:
         s = build_all(sources, tmp, CircuitConfig(resolution=resolution), jobs=jobs or os.cpu_count() or 1)
     built = s.reports()
-    res: dict[str, Any] = {
-        "circuits": s.circuits,
-        "built": s.built,
-        "one_corridor": s.one_corridor,
-        "jobs": s.jobs,
-        "seconds": s.seconds,
-        "mean_error_pct": 100 * (s.mean_length_error or 0),
-        "max_error_pct": 100 * (s.max_length_error or 0),
-        "measured_circuits": sum(r.length_error is not None for r in built),
-        "grade_separated": s.grade_separated,
-        "cpu_seconds_per_circuit": {
-            "median": sorted(r.seconds for r in built)[len(s.results) // 2],
-            "raster_median": sorted(r.seconds_raster for r in built)[len(s.results) // 2],
-        },
-        "per_circuit": [
-            {
-                k: r.to_json_dict().get(k)
-                for k in (
-                    "id",
-                    "source",
-                    "lap_length_m",
-                    "length_error",
-                    "width_mean_m",
-                    "width_min_m",
-                    "narrowed_fraction",
-                    "grade_separated",
-                    "raster",
-                    "seconds",
-                )
-            }
-            for r in s.results
+    res = LibraryResult(
+        circuits=s.circuits,
+        built=s.built,
+        one_corridor=s.one_corridor,
+        jobs=s.jobs,
+        seconds=s.seconds,
+        mean_error_pct=100 * (s.mean_length_error or 0),
+        max_error_pct=100 * (s.max_length_error or 0),
+        measured_circuits=sum(r.length_error is not None for r in built),
+        grade_separated=s.grade_separated,
+        cpu_seconds_per_circuit=CpuMedians(
+            median=sorted(r.seconds for r in built)[len(s.results) // 2],
+            raster_median=sorted(r.seconds_raster for r in built)[len(s.results) // 2],
+        ),
+        per_circuit=[
+            CircuitRow.model_validate({k: getattr(r, k, None) for k in CircuitRow.model_fields}) for r in s.results
         ],
-        "paper": PAPER,
-    }
-    print(f"{'':<28}{'ours':>12}{'paper':>12}")
-    print(f"{'circuits built':<28}{res['built']:>12}{PAPER['circuits']:>12}")
-    print(
-        f"{'wall time (s)':<28}{res['seconds']:>12.2f}{PAPER['seconds']:>12.2f}   ({res['jobs']} threads; target ≤ {TARGET_SECONDS:g} s)"
+        paper=PAPER,
     )
-    print(f"{'length error mean (%)':<28}{res['mean_error_pct']:>12.3f}{PAPER['mean_error_pct']:>12.3f}")
-    print(f"{'length error max (%)':<28}{res['max_error_pct']:>12.3f}{PAPER['max_error_pct']:>12.3f}")
+    cpu = res.cpu_seconds_per_circuit
+    print(f"{'':<28}{'ours':>12}{'paper':>12}")
+    print(f"{'circuits built':<28}{res.built:>12}{PAPER['circuits']:>12}")
     print(
-        f"{'per circuit, median (s)':<28}{res['cpu_seconds_per_circuit']['median']:>12.2f}"
-        f"   (of which smoothing + narrowing + rasterising {res['cpu_seconds_per_circuit']['raster_median']:.2f} s)"
+        f"{'wall time (s)':<28}{res.seconds:>12.2f}{PAPER['seconds']:>12.2f}   ({res.jobs} threads; target ≤ {TARGET_SECONDS:g} s)"
+    )
+    print(f"{'length error mean (%)':<28}{res.mean_error_pct:>12.3f}{PAPER['mean_error_pct']:>12.3f}")
+    print(f"{'length error max (%)':<28}{res.max_error_pct:>12.3f}{PAPER['max_error_pct']:>12.3f}")
+    print(
+        f"{'per circuit, median (s)':<28}{cpu.median:>12.2f}"
+        f"   (of which smoothing + narrowing + rasterising {cpu.raster_median:.2f} s)"
     )
     return res
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> LibraryResult:
     return run()
 
 

@@ -1,5 +1,5 @@
 """What every benchmark's CLI shares: its subcommand (help, the module doc as description,
-a ``--json FILE`` flag) and writing its results to that file."""
+a ``--json FILE`` flag), the base of its typed results, and writing them to that file."""
 
 from __future__ import annotations
 
@@ -9,6 +9,21 @@ from pathlib import Path
 from typing import Any
 
 from ..fileio import atomic_write_text
+from ..frozen_model import FrozenModel
+
+
+class BenchModel(FrozenModel):
+    """A benchmark's result or row: a :class:`FrozenModel` whose JSON is what ``--json``
+    writes. ``result["field"]`` reads a field, as callers did when results were dicts."""
+
+    def __getitem__(self, key: str) -> Any:
+        return getattr(self, key)
+
+
+class Skipped(BenchModel):
+    """``bench all``'s entry for a benchmark whose optional dependency is missing."""
+
+    skipped: str
 
 
 def add_bench_parser(kinds: Any, name: str, help: str, doc: str | None) -> argparse.ArgumentParser:
@@ -20,8 +35,13 @@ def add_bench_parser(kinds: Any, name: str, help: str, doc: str | None) -> argpa
     return p
 
 
-def write_json(path: Path | None, result: Any) -> None:
+def json_text(result: FrozenModel) -> str:
+    """The text ``--json`` writes: the model's JSON, indented, with a final newline."""
+    return json.dumps(result.to_json_dict(), indent=2) + "\n"
+
+
+def write_json(path: Path | None, result: FrozenModel) -> None:
     """Write ``result`` to ``path`` as indented JSON (atomically) and say so; nothing without a path."""
     if path:
-        atomic_write_text(path, json.dumps(result, indent=2, default=str) + "\n")
+        atomic_write_text(path, json_text(result))
         print(f"wrote {path}")

@@ -30,7 +30,7 @@ from typing import Any
 from ..errors import ArenaError, InvalidArgumentError
 from ..parse.result import DEFAULTS
 from ..paths import bench_data
-from .output import add_bench_parser, write_json
+from .output import BenchModel, add_bench_parser, write_json
 
 REPO_REQUESTS = bench_data("requests.jsonl")  # shipped in the package (bench/data)
 #: (label, file, batch or None) of every shipped request set, in report order.
@@ -51,6 +51,85 @@ PAPER_ROWS = [
     ("mistral:7b (paper)", "12/12", "45/51", "0.8 s", "4.4 GB VRAM"),
 ]
 _REL_TOL = 1e-3
+
+
+class Miss(BenchModel):
+    """A request scored wrong: its id and set, the fields that differ (or why a refusal
+    missed), and the error the call raised."""
+
+    id: str
+    set: str
+    fields: list[str]
+    error: str | None
+
+
+class ParserRow(BenchModel):
+    """One backend on one request set: counts (and ``"ok/n"`` texts), latency per call,
+    memory, what the grounding guard caught, and every miss."""
+
+    parse: str
+    parse_exact: int
+    parse_total: int
+    audit: str
+    refuse: str
+    refuse_correct: int
+    refuse_total: int
+    audit_pass: int
+    audit_calls: int
+    latency_median_s: float | None
+    latency_max_s: float | None
+    peak_rss_delta_mb: float
+    inventions_caught_by_guard: int
+    inventions_missed_by_guard: int
+    misses: list[Miss]
+
+
+class Unreachable(BenchModel):
+    """A backend that could not run (its server was not reachable)."""
+
+    status: str
+
+
+class BlindFile(BenchModel):
+    """The recorded blind score of one request file; ``misses``: id -> the wrong fields' values."""
+
+    correct: int
+    total: int
+    parse: str
+    refuse: str
+    misses: dict[str, dict[str, float | int | str]]
+
+
+class BlindScore(BenchModel):
+    """``bench/data/requests_blind_score.json``: the parser of main before this work, on
+    the blind batch as written."""
+
+    parser_commit: str
+    recorded_utc: str
+    note: str
+    files: dict[str, BlindFile]
+
+
+class ShippedSets(BenchModel):
+    """The rules backend over every shipped set, with the recorded blind score."""
+
+    sets: dict[str, ParserRow]
+    blind_recorded: BlindScore
+
+
+class ParserResult(BenchModel):
+    """``bench parser``: the request file, audit repeats, one row per backend; without
+    ``--requests`` also every shipped set (:class:`ShippedSets`)."""
+
+    requests: str
+    repeats: int
+    rows: dict[str, ParserRow | Unreachable]
+    sets: dict[str, ParserRow] | None = None
+    blind_recorded: BlindScore | None = None
+
+    def with_sets(self, shipped: ShippedSets) -> ParserResult:
+        """This result with the shipped sets added."""
+        return self.model_copy(update={"sets": shipped.sets, "blind_recorded": shipped.blind_recorded})
 
 
 def load_requests(path: Path) -> list[dict[str, Any]]:
@@ -104,7 +183,7 @@ def _ollama_call(host: str | None, model: str, timeout: float) -> Callable[[str]
     return call
 
 
-def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any]], repeats: int) -> dict[str, Any]:
+def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any]], repeats: int) -> ParserRow:
     """Run the parse set once and the audit set ``repeats`` times through ``call``."""
     from ..parse import ground
     from ..spec import TrackSpec
@@ -113,7 +192,7 @@ def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any
     times: list[float] = []
     parse_ok, parse_n, audit_ok, audit_n, guard_caught, guard_false = 0, 0, 0, 0, 0, 0
     refuse_ok, refuse_n = 0, 0
-    misses: list[dict[str, Any]] = []
+    misses: list[Miss] = []
     for req in requests:
         for rep in range(1 if req["set"] == "parse" else repeats):
             t0 = time.perf_counter()
@@ -127,14 +206,8 @@ def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any
                 named = err is not None and str(req.get("span", "")) in err
                 refuse_ok += int(named)
                 if not named:
-                    misses.append(
-                        {
-                            "id": req["id"],
-                            "set": "refuse",
-                            "fields": ["(accepted)" if err is None else "(span not named)"],
-                            "error": err,
-                        }
-                    )
+                    why = "(accepted)" if err is None else "(span not named)"
+                    misses.append(Miss(id=req["id"], set="refuse", fields=[why], error=err))
                 continue
             exact, clean, wrong = score(got, req["expected"])
             if got is not None and not clean:  # would the grounding guard have caught it?
@@ -150,55 +223,49 @@ def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any
                 audit_n += 1
                 audit_ok += int(clean)
             if (req["set"] == "parse" and not exact) or (req["set"] == "audit" and not clean):
-                if rep == 0 or not any(m["id"] == req["id"] for m in misses):
-                    misses.append({"id": req["id"], "set": req["set"], "fields": wrong, "error": err})
+                if rep == 0 or not any(m.id == req["id"] for m in misses):
+                    misses.append(Miss(id=req["id"], set=req["set"], fields=wrong, error=err))
     rss1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    return {
-        "parse": f"{parse_ok}/{parse_n}",
-        "parse_exact": parse_ok,
-        "parse_total": parse_n,
-        "audit": f"{audit_ok}/{audit_n}",
-        "refuse": f"{refuse_ok}/{refuse_n}",
-        "refuse_correct": refuse_ok,
-        "refuse_total": refuse_n,
-        "audit_pass": audit_ok,
-        "audit_calls": audit_n,
-        "latency_median_s": statistics.median(times) if times else None,
-        "latency_max_s": max(times) if times else None,
-        "peak_rss_delta_mb": round((rss1 - rss0) / 1024, 2),
-        "inventions_caught_by_guard": guard_caught,
-        "inventions_missed_by_guard": guard_false,
-        "misses": misses,
-    }
+    return ParserRow(
+        parse=f"{parse_ok}/{parse_n}",
+        parse_exact=parse_ok,
+        parse_total=parse_n,
+        audit=f"{audit_ok}/{audit_n}",
+        refuse=f"{refuse_ok}/{refuse_n}",
+        refuse_correct=refuse_ok,
+        refuse_total=refuse_n,
+        audit_pass=audit_ok,
+        audit_calls=audit_n,
+        latency_median_s=statistics.median(times) if times else None,
+        latency_max_s=max(times) if times else None,
+        peak_rss_delta_mb=round((rss1 - rss0) / 1024, 2),
+        inventions_caught_by_guard=guard_caught,
+        inventions_missed_by_guard=guard_false,
+        misses=misses,
+    )
 
 
-def run_sets() -> dict[str, Any]:
+def run_sets() -> ShippedSets:
     """The rules backend over every shipped set (:data:`SHIPPED_SETS`), with the recorded
     blind score; prints a table and returns the rows."""
-    rows: dict[str, Any] = {}
+    rows: dict[str, ParserRow] = {}
     for label, name, batch in SHIPPED_SETS:
         reqs = [r for r in load_requests(bench_data(name)) if batch is None or r.get("batch") == batch]
         rows[label] = evaluate(_rules_call, reqs, 1)
-    blind = json.loads(Path(BLIND_SCORE).read_text(encoding="utf-8"))
-    print(
-        f"\nrules parser over the shipped request sets (audit once; blind = main at {blind['parser_commit']}, recorded)"
-    )
+    blind = BlindScore.model_validate_json(Path(BLIND_SCORE).read_bytes())
+    print(f"\nrules parser over the shipped request sets (audit once; blind = main at {blind.parser_commit}, recorded)")
     head = f"{'request set':<34} {'parse':>7} {'refusals':>9} {'audit':>7} {'all':>8}"
     print(head)
     print("-" * len(head))
-    for name, b in blind["files"].items():
-        print(
-            f"{'blind run: ' + name:<34} {b['parse']:>7} {b['refuse']:>9} {'-':>7} {str(b['correct']) + '/' + str(b['total']):>8}"
-        )
+    for name, b in blind.files.items():
+        print(f"{'blind run: ' + name:<34} {b.parse:>7} {b.refuse:>9} {'-':>7} {f'{b.correct}/{b.total}':>8}")
     for label, r in rows.items():
-        ok = r["parse_exact"] + r["refuse_correct"] + r["audit_pass"]
-        n = r["parse_total"] + r["refuse_total"] + r["audit_calls"]
-        print(f"{label:<34} {r['parse']:>7} {r['refuse']:>9} {r['audit']:>7} {f'{ok}/{n}':>8}")
-        for m in r["misses"]:
-            print(
-                f"  miss {m['id']} ({m['set']}): {', '.join(m['fields'])}" + (f" — {m['error']}" if m["error"] else "")
-            )
-    return {"sets": rows, "blind_recorded": blind}
+        ok = r.parse_exact + r.refuse_correct + r.audit_pass
+        n = r.parse_total + r.refuse_total + r.audit_calls
+        print(f"{label:<34} {r.parse:>7} {r.refuse:>9} {r.audit:>7} {f'{ok}/{n}':>8}")
+        for m in r.misses:
+            print(f"  miss {m.id} ({m.set}): {', '.join(m.fields)}" + (f" — {m.error}" if m.error else ""))
+    return ShippedSets(sets=rows, blind_recorded=blind)
 
 
 def _fmt_latency(s: float | None) -> str:
@@ -214,55 +281,53 @@ def run(
     ollama_host: str | None = None,
     model: str = "gemma4:31b",
     timeout: float = 120.0,
-) -> dict[str, Any]:
+) -> ParserResult:
     """Evaluate each backend on ``requests_path``; print the table; return the results."""
     from ..parse.ollama_backend import reachable, resolve_host
 
     requests = load_requests(requests_path)
-    results: dict[str, Any] = {"requests": str(requests_path), "repeats": repeats, "rows": {}}
+    rows: dict[str, ParserRow | Unreachable] = {}
     for backend in backends:
         if backend == "rules":
             try:
                 _rules_call(requests[0]["text"])  # warm the imports and regex caches
             except ArenaError:
                 pass  # a refusal row: warmed all the same
-            results["rows"]["rules"] = evaluate(_rules_call, requests, repeats)
+            rows["rules"] = evaluate(_rules_call, requests, repeats)
         elif backend == "ollama":
             key = f"ollama {model}"
             if not reachable(ollama_host, timeout=2):
-                results["rows"][key] = {"status": f"not reachable at {resolve_host(ollama_host)}"}
+                rows[key] = Unreachable(status=f"not reachable at {resolve_host(ollama_host)}")
                 continue
-            results["rows"][key] = evaluate(_ollama_call(ollama_host, model, timeout), requests, repeats)
+            rows[key] = evaluate(_ollama_call(ollama_host, model, timeout), requests, repeats)
         else:
             raise InvalidArgumentError(f"unknown backend {backend!r} (rules, ollama)")
+    results = ParserResult(requests=str(requests_path), repeats=repeats, rows=rows)
     print_table(results)
     return results
 
 
-def print_table(results: dict[str, Any]) -> None:
-    print(f"requests: {results['requests']}  (audit repeated {results['repeats']}×)")
+def print_table(results: ParserResult) -> None:
+    print(f"requests: {results.requests}  (audit repeated {results.repeats}×)")
     head = f"{'parser':<24} {'parse':>7} {'audit pass':>11} {'latency':>10}  memory"
     print(head)
     print("-" * len(head))
-    for name, r in results["rows"].items():
-        if "status" in r:
-            print(f"{name:<24} {r['status']}")
+    for name, r in results.rows.items():
+        if isinstance(r, Unreachable):
+            print(f"{name:<24} {r.status}")
             continue
-        mem = f"{r['peak_rss_delta_mb']:.1f} MB peak RSS delta"
-        print(f"{name:<24} {r['parse']:>7} {r['audit']:>11} {_fmt_latency(r['latency_median_s']):>10}  {mem}")
+        mem = f"{r.peak_rss_delta_mb:.1f} MB peak RSS delta"
+        print(f"{name:<24} {r.parse:>7} {r.audit:>11} {_fmt_latency(r.latency_median_s):>10}  {mem}")
     for row in PAPER_ROWS:
         print(f"{row[0]:<24} {row[1]:>7} {row[2]:>11} {row[3]:>10}  {row[4]}")
-    for name, r in results["rows"].items():
-        for m in r.get("misses", []):
-            print(
-                f"  miss [{name}] {m['id']} ({m['set']}): {', '.join(m['fields'])}"
-                + (f" — {m['error']}" if m["error"] else "")
-            )
+    for name, r in results.rows.items():
+        for m in r.misses if isinstance(r, ParserRow) else []:
+            print(f"  miss [{name}] {m.id} ({m.set}): {', '.join(m.fields)}" + (f" — {m.error}" if m.error else ""))
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> ParserResult:
     """``bench all``: the rules backend on the shipped request set, then every set."""
-    return {**run(), **run_sets()}
+    return run().with_sets(run_sets())
 
 
 def register(kinds) -> None:
@@ -286,6 +351,6 @@ def _cli(args: argparse.Namespace) -> int:
         args.requests or REPO_REQUESTS, tuple(args.backend), args.repeats, args.ollama_host, args.model, args.timeout
     )
     if args.requests is None:
-        results.update(run_sets())
+        results = results.with_sets(run_sets())
     write_json(args.json, results)
     return 0

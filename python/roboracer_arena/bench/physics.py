@@ -15,18 +15,51 @@ import argparse
 import os
 import platform
 import time
-from typing import Any
 
 import numpy as np
 
 from .. import _core
 from ..drivers import PurePursuitDriver, PurePursuitParams
 from ..sim_config import PhysicsConfig, SimConfig
-from .output import add_bench_parser, write_json
+from .output import BenchModel, add_bench_parser, write_json
 
 # Paper (Isaac Sim, AMD EPYC 9654 + RTX PRO 6000): vehicle-steps/s by vehicle count.
 PAPER = {1: 28.1, 256: 8707.0, 1024: 8368.0, 2048: 6818.0}
 TARGETS = {1: 50_000.0, 256: 200_000.0, 2048: 200_000.0}
+
+
+class PhysicsRow(BenchModel):
+    """Throughput of one vehicle count: its worlds, time step, timed calls, vehicle-steps
+    per second, and the share of steps with a wall contact or through the rapier pipeline."""
+
+    vehicles: int
+    envs: int
+    per_env: int
+    dt: float
+    substeps: int
+    calls: int
+    vehicle_steps_per_s: float
+    sim_seconds_per_wall_second: float
+    wall_contact_fraction: float
+    rapier_pipeline_fraction: float
+    mean_speed: float
+
+
+class ScanTiming(BenchModel):
+    """Median time of one full lidar scan (µs) over ``repeats`` scans."""
+
+    beams: int
+    scan_us_median: float
+    repeats: int
+
+
+class PhysicsResult(BenchModel):
+    """``bench physics``: the machine, thread count, one row per vehicle count and the scan."""
+
+    machine: str
+    threads: str
+    rows: list[PhysicsRow]
+    scan: ScanTiming
 
 
 def _track(scale: float = 3.0):
@@ -55,7 +88,7 @@ class _Driver:
 
 def measure(
     vehicles: int, per_env: int, seconds: float, substeps: int, dt: float, speed: float = 3.0, shortcut: bool = True
-) -> dict[str, Any]:
+) -> PhysicsRow:
     """Vehicle-steps/s for `vehicles` cars as `vehicles / per_env` worlds."""
     per_env = max(1, min(per_env, vehicles))
     envs = max(1, vehicles // per_env)
@@ -86,22 +119,22 @@ def measure(
         wall_contacts += int(np.count_nonzero(events & 1))
     steps = calls * substeps * envs * per_env
     pipeline, shortcut_steps = sim.step_counts()
-    return {
-        "vehicles": envs * per_env,
-        "envs": envs,
-        "per_env": per_env,
-        "dt": dt,
-        "substeps": substeps,
-        "calls": calls,
-        "vehicle_steps_per_s": steps / busy,
-        "sim_seconds_per_wall_second": calls * substeps * dt / busy,
-        "wall_contact_fraction": wall_contacts / max(1, calls * envs * per_env),
-        "rapier_pipeline_fraction": pipeline / max(1, pipeline + shortcut_steps),
-        "mean_speed": float(np.mean(np.abs(state[..., sim.state_fields.index("vx")]))),
-    }
+    return PhysicsRow(
+        vehicles=envs * per_env,
+        envs=envs,
+        per_env=per_env,
+        dt=dt,
+        substeps=substeps,
+        calls=calls,
+        vehicle_steps_per_s=steps / busy,
+        sim_seconds_per_wall_second=calls * substeps * dt / busy,
+        wall_contact_fraction=wall_contacts / max(1, calls * envs * per_env),
+        rapier_pipeline_fraction=pipeline / max(1, pipeline + shortcut_steps),
+        mean_speed=float(np.mean(np.abs(state[..., sim.state_fields.index("vx")]))),
+    )
 
 
-def measure_scan(seconds: float = 1.0, beams: int = 1081) -> dict[str, Any]:
+def measure_scan(seconds: float = 1.0, beams: int = 1081) -> ScanTiming:
     """Median time of one full scan by one vehicle on the stadium track."""
     sim = _core.Simulator([_track()], 1, 1, SimConfig().to_json(), 0)
     sim.reset(np.ones(1, bool), np.array([[sim.centreline_pose(0, 5.0)]]))
@@ -114,7 +147,7 @@ def measure_scan(seconds: float = 1.0, beams: int = 1081) -> dict[str, Any]:
         t0 = time.perf_counter()
         sim.observe(scans, state, events)
         times.append(time.perf_counter() - t0)
-    return {"beams": beams, "scan_us_median": float(np.median(times) * 1e6), "repeats": len(times)}
+    return ScanTiming(beams=beams, scan_us_median=float(np.median(times) * 1e6), repeats=len(times))
 
 
 def _threads() -> str:
@@ -123,31 +156,31 @@ def _threads() -> str:
 
 def run(
     vehicles: list[int], per_env: int, seconds: float, substeps: int, dt: float, shortcut: bool = True
-) -> dict[str, Any]:
+) -> PhysicsResult:
     rows = [measure(n, per_env, seconds, substeps, dt, shortcut=shortcut) for n in vehicles]
     scan = measure_scan(min(1.0, seconds))
-    return {"machine": platform.processor() or platform.machine(), "threads": _threads(), "rows": rows, "scan": scan}
+    return PhysicsResult(machine=platform.processor() or platform.machine(), threads=_threads(), rows=rows, scan=scan)
 
 
-def print_table(result: dict[str, Any]) -> None:
-    print(f"physics throughput, lidar off (threads: {result['threads']})")
+def print_table(result: PhysicsResult) -> None:
+    print(f"physics throughput, lidar off (threads: {result.threads})")
     head = f"{'vehicles':>8} {'envs x per_env':>15} {'dt (s)':>7} {'substeps':>8} {'rapier steps':>12} {'ours (veh-steps/s)':>19} {'paper':>8} {'ratio':>8} {'target':>9}"
     print(head)
     print("-" * len(head))
-    for r in result["rows"]:
-        n = r["vehicles"]
+    for r in result.rows:
+        n = r.vehicles
         paper = PAPER.get(n)
         target = TARGETS.get(n)
-        ours = r["vehicle_steps_per_s"]
+        ours = r.vehicle_steps_per_s
         print(
-            f"{n:>8} {str(r['envs']) + ' x ' + str(r['per_env']):>15} {r['dt']:>7.3f} {r['substeps']:>8} "
-            f"{r['rapier_pipeline_fraction']:>12.1%} {ours:>19,.0f} "
+            f"{n:>8} {str(r.envs) + ' x ' + str(r.per_env):>15} {r.dt:>7.3f} {r.substeps:>8} "
+            f"{r.rapier_pipeline_fraction:>12.1%} {ours:>19,.0f} "
             f"{paper if paper is not None else '-':>8} {(f'{ours / paper:,.0f}x' if paper else '-'):>8} "
             f"{(('ok ' if ours >= target else 'MISS ') + f'{target:,.0f}') if target else '-':>9}"
         )
-    s = result["scan"]
+    s = result.scan
     print(
-        f"one {s['beams']}-beam lidar scan (exact 2D, stadium track): {s['scan_us_median']:.1f} us median over {s['repeats']} scans"
+        f"one {s.beams}-beam lidar scan (exact 2D, stadium track): {s.scan_us_median:.1f} us median over {s.repeats} scans"
     )
 
 
@@ -184,7 +217,7 @@ def register(kinds) -> None:
     p.set_defaults(func=_cli)
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> PhysicsResult:
     """`bench all`: 1, 256 and 2048 vehicles, one second each."""
     result = run([1, 256, 2048], 1, 1.0, 10, PhysicsConfig().dt)
     print_table(result)

@@ -31,9 +31,97 @@ from typing import Any
 import numpy as np
 
 from ..pool import pool_map
-from .output import add_bench_parser, write_json
+from .output import BenchModel, Skipped, add_bench_parser, write_json
 
 PROJECT_WORKERS = (8, 32, 128)
+
+
+class ExecutorRow(BenchModel):
+    """One executor on the generation requests: median and every wall time, rates, and
+    whether it returned the same tracks as the in-process run."""
+
+    executor: str
+    wall_s: float
+    walls_s: list[float]
+    requests_per_s: float
+    tracks_per_s: float
+    same_tracks: bool
+
+
+class Generation(BenchModel):
+    """Track generation on every executor, with the overheads and scalings derived from it."""
+
+    requests: int
+    accepted: int
+    rows: list[ExecutorRow]
+    seconds_per_request_1_core: float
+    ray_overhead_per_request_s: float
+    ray_vs_local_pool_overhead_per_request_s: float
+    ray_scaling_1_to_2: float
+    local_scaling_1_to_2: float
+    ray_noop_tasks_per_s: float
+
+
+class RolloutRow(BenchModel):
+    """One rollout configuration: workers, envs, ms per step (median, p90), env-steps/s."""
+
+    config: str
+    workers: int
+    num_envs: int
+    step_ms_median: float
+    step_ms_p90: float
+    env_steps_per_s: float
+
+
+class Rollouts(BenchModel):
+    """Rollouts on every configuration, Ray's overhead and scaling, and the sameness check."""
+
+    envs_per_actor: int
+    beams: int
+    physics_dt: float
+    steps: int
+    rows: list[RolloutRow]
+    compute_ms_per_step_1_thread: float
+    ray_overhead_ms_per_step_1_actor: float
+    ray_overhead_ms_per_step_2_actors: float
+    ray_scaling_1_to_2: float
+    same_rollouts_as_local: bool
+
+
+class ProjectionRow(BenchModel):
+    """Projected throughput on ``workers`` workers."""
+
+    workers: int
+    requests_per_s: float
+    env_steps_per_s: float
+    step_overhead_ms: float
+
+
+class Projection(BenchModel):
+    """See :func:`project` (a projection, not a measurement: ``note`` says so)."""
+
+    note: str
+    rows: list[ProjectionRow]
+
+
+class LoadAverage(BenchModel):
+    """The 1-minute load average at the start and the end of the run."""
+
+    start: float
+    end: float
+
+
+class RayResult(BenchModel):
+    """``bench ray``: the cluster, the machine's load, and each half (None when not run)."""
+
+    cluster: str
+    ray_version: str
+    cluster_start_s: float
+    load_average_1min: LoadAverage
+    cores: int | None
+    generation: Generation | None
+    rollouts: Rollouts | None
+    projection: Projection | None
 
 
 def register(kinds) -> None:
@@ -123,7 +211,7 @@ def _noop_rate(n: int = 400) -> float:
     return n / (time.perf_counter() - t0)
 
 
-def bench_generation(requests: int, repeats: int) -> dict[str, Any]:
+def bench_generation(requests: int, repeats: int) -> Generation:
     from ..library.sweep import EXAMPLE_SWEEP, SweepFile
 
     tasks = SweepFile.model_validate(EXAMPLE_SWEEP).requests(0, requests)
@@ -139,30 +227,30 @@ def bench_generation(requests: int, repeats: int) -> dict[str, Any]:
     for name, (walls, res) in runs.items():
         wall = statistics.median(walls)
         rows.append(
-            {
-                "executor": name,
-                "wall_s": round(wall, 3),
-                "walls_s": [round(w, 3) for w in walls],
-                "requests_per_s": round(requests / wall, 2),
-                "tracks_per_s": round(accepted / wall, 2),
-                "same_tracks": _strip(res) == ref,
-            }
+            ExecutorRow(
+                executor=name,
+                wall_s=round(wall, 3),
+                walls_s=[round(w, 3) for w in walls],
+                requests_per_s=round(requests / wall, 2),
+                tracks_per_s=round(accepted / wall, 2),
+                same_tracks=_strip(res) == ref,
+            )
         )
-    by = {r["executor"]: r["wall_s"] for r in rows}
+    by = {r.executor: r.wall_s for r in rows}
     per_task = by["in-process (1 worker)"] / requests
-    return {
-        "requests": requests,
-        "accepted": accepted,
-        "rows": rows,
-        "seconds_per_request_1_core": round(per_task, 4),
-        "ray_overhead_per_request_s": round((by["Ray tasks, 1 worker"] - by["in-process (1 worker)"]) / requests, 4),
-        "ray_vs_local_pool_overhead_per_request_s": round(
+    return Generation(
+        requests=requests,
+        accepted=accepted,
+        rows=rows,
+        seconds_per_request_1_core=round(per_task, 4),
+        ray_overhead_per_request_s=round((by["Ray tasks, 1 worker"] - by["in-process (1 worker)"]) / requests, 4),
+        ray_vs_local_pool_overhead_per_request_s=round(
             (by["Ray tasks, 2 workers"] - by["local pool, 2 processes"]) / requests, 4
         ),
-        "ray_scaling_1_to_2": round(by["Ray tasks, 1 worker"] / by["Ray tasks, 2 workers"], 2),
-        "local_scaling_1_to_2": round(by["in-process (1 worker)"] / by["local pool, 2 processes"], 2),
-        "ray_noop_tasks_per_s": round(_noop_rate(), 1),
-    }
+        ray_scaling_1_to_2=round(by["Ray tasks, 1 worker"] / by["Ray tasks, 2 workers"], 2),
+        local_scaling_1_to_2=round(by["in-process (1 worker)"] / by["local pool, 2 processes"], 2),
+        ray_noop_tasks_per_s=round(_noop_rate(), 1),
+    )
 
 
 # ---------------------------------------------------------------------------- rollouts
@@ -228,7 +316,7 @@ def _same_rollouts(track: Any, per: int, actions: np.ndarray, beams: int, steps:
         lenv.close()
 
 
-def bench_rollouts(track: Any, per: int, steps: int, beams: int) -> dict[str, Any]:
+def bench_rollouts(track: Any, per: int, steps: int, beams: int) -> Rollouts:
     from .env import record_lap
 
     actions = record_lap(track, beams)
@@ -242,64 +330,62 @@ def bench_rollouts(track: Any, per: int, steps: int, beams: int) -> dict[str, An
     for name, (workers, times) in timed.items():
         med = statistics.median(times)
         rows.append(
-            {
-                "config": name,
-                "workers": workers,
-                "num_envs": workers * per,
-                "step_ms_median": round(1e3 * med, 3),
-                "step_ms_p90": round(1e3 * float(np.percentile(times, 90)), 3),
-                "env_steps_per_s": round(workers * per / med, 1),
-            }
+            RolloutRow(
+                config=name,
+                workers=workers,
+                num_envs=workers * per,
+                step_ms_median=round(1e3 * med, 3),
+                step_ms_p90=round(1e3 * float(np.percentile(times, 90)), 3),
+                env_steps_per_s=round(workers * per / med, 1),
+            )
         )
-    ms = {r["config"]: r["step_ms_median"] for r in rows}
-    return {
-        "envs_per_actor": per,
-        "beams": beams,
-        "physics_dt": 0.01,
-        "steps": steps,
-        "rows": rows,
-        "compute_ms_per_step_1_thread": ms["local native batch, 1 thread"],
-        "ray_overhead_ms_per_step_1_actor": round(ms["RayVectorEnv, 1 actor"] - ms["local native batch, 1 thread"], 3),
-        "ray_overhead_ms_per_step_2_actors": round(
-            ms["RayVectorEnv, 2 actors"] - ms["local native batch, 1 thread"], 3
-        ),
-        "ray_scaling_1_to_2": round(2 * ms["RayVectorEnv, 1 actor"] / ms["RayVectorEnv, 2 actors"], 2),
-        "same_rollouts_as_local": _same_rollouts(track, min(per, 4), actions, beams),
-    }
+    ms = {r.config: r.step_ms_median for r in rows}
+    return Rollouts(
+        envs_per_actor=per,
+        beams=beams,
+        physics_dt=0.01,
+        steps=steps,
+        rows=rows,
+        compute_ms_per_step_1_thread=ms["local native batch, 1 thread"],
+        ray_overhead_ms_per_step_1_actor=round(ms["RayVectorEnv, 1 actor"] - ms["local native batch, 1 thread"], 3),
+        ray_overhead_ms_per_step_2_actors=round(ms["RayVectorEnv, 2 actors"] - ms["local native batch, 1 thread"], 3),
+        ray_scaling_1_to_2=round(2 * ms["RayVectorEnv, 1 actor"] / ms["RayVectorEnv, 2 actors"], 2),
+        same_rollouts_as_local=_same_rollouts(track, min(per, 4), actions, beams),
+    )
 
 
 # ---------------------------------------------------------------------------- projection
-def project(gen: dict[str, Any], roll: dict[str, Any]) -> dict[str, Any]:
+def project(gen: Generation, roll: Rollouts) -> Projection:
     """Throughput on W workers from the measured per-worker cost and overheads (a projection):
     generation ``W / (t + o)`` (``o`` at least one no-op task's round trip) capped by the
     measured no-op task rate (the driver and scheduler); rollouts ``W E / (t_step + o(W))`` with the per-step overhead growing
     linearly in actors as measured from 1 to 2 (the driver sends and gathers per actor)."""
-    cap = gen["ray_noop_tasks_per_s"]
+    cap = gen.ray_noop_tasks_per_s
     # The wall-time difference is noise-dominated on a shared machine (it can come out negative):
     # never assume less than one no-op task's round trip.
-    t, o = gen["seconds_per_request_1_core"], max(1.0 / cap, gen["ray_overhead_per_request_s"])
+    t, o = gen.seconds_per_request_1_core, max(1.0 / cap, gen.ray_overhead_per_request_s)
     ts, o1, o2 = (
-        roll["compute_ms_per_step_1_thread"],
-        max(0.0, roll["ray_overhead_ms_per_step_1_actor"]),
-        max(0.0, roll["ray_overhead_ms_per_step_2_actors"]),
+        roll.compute_ms_per_step_1_thread,
+        max(0.0, roll.ray_overhead_ms_per_step_1_actor),
+        max(0.0, roll.ray_overhead_ms_per_step_2_actors),
     )
-    per = roll["envs_per_actor"]
+    per = roll.envs_per_actor
     rows = []
     for w in PROJECT_WORKERS:
         ow = o1 + (max(o2, o1) - o1) * (w - 1)
         rows.append(
-            {
-                "workers": w,
-                "requests_per_s": round(min(w / (t + o), cap), 1),
-                "env_steps_per_s": round(w * per / ((ts + ow) / 1e3), 0),
-                "step_overhead_ms": round(ow, 2),
-            }
+            ProjectionRow(
+                workers=w,
+                requests_per_s=round(min(w / (t + o), cap), 1),
+                env_steps_per_s=round(w * per / ((ts + ow) / 1e3), 0),
+                step_overhead_ms=round(ow, 2),
+            )
         )
-    return {
-        "note": "projection from this machine's per-worker measurements, not a measurement; ignores network "
+    return Projection(
+        note="projection from this machine's per-worker measurements, not a measurement; ignores network "
         "latency between nodes and assumes the driver is not otherwise loaded",
-        "rows": rows,
-    }
+        rows=rows,
+    )
 
 
 def run(
@@ -310,7 +396,7 @@ def run(
     beams: int = 1081,
     map_path: Path | None = None,
     only: str | None = None,
-) -> dict[str, Any]:
+) -> RayResult:
     """Measure, print the tables (and the projection when both halves ran); returns the results."""
     from ..distributed.ray_cluster import import_ray
     from ..envs.tracks import resolve_tracks
@@ -333,78 +419,77 @@ def run(
     finally:
         if owns:
             ray.shutdown()
-    res = {
-        "cluster": "local, ray.init(num_cpus=2)",
-        "ray_version": ray.__version__,
-        "cluster_start_s": round(start, 2),
-        "load_average_1min": {"start": round(load0, 2), "end": round(os.getloadavg()[0], 2)},
-        "cores": os.cpu_count(),
-        "generation": gen,
-        "rollouts": roll,
-        "projection": project(gen, roll) if gen and roll else None,
-    }
+    res = RayResult(
+        cluster="local, ray.init(num_cpus=2)",
+        ray_version=ray.__version__,
+        cluster_start_s=round(start, 2),
+        load_average_1min=LoadAverage(start=round(load0, 2), end=round(os.getloadavg()[0], 2)),
+        cores=os.cpu_count(),
+        generation=gen,
+        rollouts=roll,
+        projection=project(gen, roll) if gen and roll else None,
+    )
     _print(res)
     return res
 
 
-def _print(res: dict[str, Any]) -> None:
+def _print(res: RayResult) -> None:
+    load = res.load_average_1min
     print(
-        f"Ray {res['ray_version']}, {res['cluster']}, {res['cores']} cores; cluster start {res['cluster_start_s']} s; "
-        f"load average {res['load_average_1min']['start']} -> {res['load_average_1min']['end']} (shared machine)"
+        f"Ray {res.ray_version}, {res.cluster}, {res.cores} cores; cluster start {res.cluster_start_s} s; "
+        f"load average {load.start} -> {load.end} (shared machine)"
     )
-    if res["generation"]:
-        _print_generation(res["generation"])
-    if res["rollouts"]:
-        _print_rollouts(res["rollouts"])
-    if res["projection"]:
-        p = res["projection"]
-        print(f"\nPROJECTION ({p['note']}):")
+    if res.generation:
+        _print_generation(res.generation)
+    if res.rollouts:
+        _print_rollouts(res.rollouts)
+    if res.projection:
+        p = res.projection
+        print(f"\nPROJECTION ({p.note}):")
         print(f"{'workers':>8}{'requests/s':>12}{'env-steps/s':>14}{'step overhead ms':>18}")
-        for row in p["rows"]:
+        for row in p.rows:
             print(
-                f"{row['workers']:>8}{row['requests_per_s']:>12,.1f}{row['env_steps_per_s']:>14,.0f}{row['step_overhead_ms']:>18.2f}"
+                f"{row.workers:>8}{row.requests_per_s:>12,.1f}{row.env_steps_per_s:>14,.0f}{row.step_overhead_ms:>18.2f}"
             )
 
 
-def _print_generation(g: dict[str, Any]) -> None:
-    print(
-        f"\ntrack generation: {g['requests']} requests of the example sweep ({g['accepted']} accepted), median of runs"
-    )
+def _print_generation(g: Generation) -> None:
+    print(f"\ntrack generation: {g.requests} requests of the example sweep ({g.accepted} accepted), median of runs")
     print(f"{'executor':<28}{'wall s':>9}{'req/s':>8}{'tracks/s':>10}  same tracks")
-    for row in g["rows"]:
+    for row in g.rows:
         print(
-            f"{row['executor']:<28}{row['wall_s']:>9.2f}{row['requests_per_s']:>8.2f}{row['tracks_per_s']:>10.2f}  {row['same_tracks']}"
+            f"{row.executor:<28}{row.wall_s:>9.2f}{row.requests_per_s:>8.2f}{row.tracks_per_s:>10.2f}  {row.same_tracks}"
         )
     print(
-        f"Ray overhead per request: {1e3 * g['ray_overhead_per_request_s']:.1f} ms vs in-process, "
-        f"{1e3 * g['ray_vs_local_pool_overhead_per_request_s']:.1f} ms vs the local pool (compute {1e3 * g['seconds_per_request_1_core']:.0f} ms"
-        f"/request on 1 core); scaling 1 -> 2 workers: Ray {g['ray_scaling_1_to_2']}x, local {g['local_scaling_1_to_2']}x; "
-        f"no-op task ceiling {g['ray_noop_tasks_per_s']:.0f} tasks/s"
+        f"Ray overhead per request: {1e3 * g.ray_overhead_per_request_s:.1f} ms vs in-process, "
+        f"{1e3 * g.ray_vs_local_pool_overhead_per_request_s:.1f} ms vs the local pool (compute {1e3 * g.seconds_per_request_1_core:.0f} ms"
+        f"/request on 1 core); scaling 1 -> 2 workers: Ray {g.ray_scaling_1_to_2}x, local {g.local_scaling_1_to_2}x; "
+        f"no-op task ceiling {g.ray_noop_tasks_per_s:.0f} tasks/s"
     )
 
 
-def _print_rollouts(r: dict[str, Any]) -> None:
+def _print_rollouts(r: Rollouts) -> None:
     print(
-        f"\nrollouts: {r['envs_per_actor']} envs per actor/batch, {r['beams']}-beam lidar every 0.01 s step, median of {r['steps']} steps"
+        f"\nrollouts: {r.envs_per_actor} envs per actor/batch, {r.beams}-beam lidar every 0.01 s step, median of {r.steps} steps"
     )
     print(f"{'configuration':<32}{'envs':>6}{'ms/step':>10}{'p90':>8}{'env-steps/s':>13}")
-    for row in r["rows"]:
+    for row in r.rows:
         print(
-            f"{row['config']:<32}{row['num_envs']:>6}{row['step_ms_median']:>10.2f}{row['step_ms_p90']:>8.2f}{row['env_steps_per_s']:>13,.0f}"
+            f"{row.config:<32}{row.num_envs:>6}{row.step_ms_median:>10.2f}{row.step_ms_p90:>8.2f}{row.env_steps_per_s:>13,.0f}"
         )
     print(
-        f"Ray overhead per step: {r['ray_overhead_ms_per_step_1_actor']:.2f} ms (1 actor), "
-        f"{r['ray_overhead_ms_per_step_2_actors']:.2f} ms (2 actors); scaling 1 -> 2 actors {r['ray_scaling_1_to_2']}x; "
-        f"rollouts equal to the local vector env: {r['same_rollouts_as_local']}"
+        f"Ray overhead per step: {r.ray_overhead_ms_per_step_1_actor:.2f} ms (1 actor), "
+        f"{r.ray_overhead_ms_per_step_2_actors:.2f} ms (2 actors); scaling 1 -> 2 actors {r.ray_scaling_1_to_2}x; "
+        f"rollouts equal to the local vector env: {r.same_rollouts_as_local}"
     )
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> RayResult | Skipped:
     try:
         import ray  # noqa: F401
     except ImportError:
         print("skipped: Ray is not installed (pip install 'roboracer-arena[ray]')")
-        return {"skipped": "Ray is not installed"}
+        return Skipped(skipped="Ray is not installed")
     return run(requests=12, repeats=1, steps=100)
 
 

@@ -27,10 +27,35 @@ from typing import Any
 
 import numpy as np
 
-from .output import add_bench_parser, write_json
+from .output import BenchModel, Skipped, add_bench_parser, write_json
 
 DEFAULT_MAP = Path("f1tenth-gym") / "maps" / "berlin.yaml"
 TARGET_RTF, TARGET_LATENCY_MS = 20.0, 50.0
+
+
+class ModeRow(BenchModel):
+    """One ``--rate`` mode as this node received it (from the first ``/clock`` on), and the
+    bridge's own statistics (its ``--json`` output, as printed)."""
+
+    mode: str
+    wall_s: float
+    sim_s: float
+    real_time_factor_received: float
+    received_per_s: float
+    scans_received_per_s: float
+    received: dict[str, int]
+    odom_path_m: float
+    bridge: dict[str, Any]
+
+
+class Ros2Result(BenchModel):
+    """``bench ros2``: the map, the machine's load, the targets, the max-rate and real-time rows."""
+
+    map: str
+    load_average_1min: float | None
+    target_real_time_factor: float
+    target_latency_ms: float
+    rows: list[ModeRow]
 
 
 def register(kinds) -> None:
@@ -57,7 +82,7 @@ def follow_the_gap(ranges: np.ndarray, fov: float, speed: float = 2.0, max_steer
     return float(np.clip(0.6 * ang[int(np.argmax(r))], -max_steer, max_steer)), speed
 
 
-def _run_mode(map_path: Path, rate: str, seconds: float) -> dict[str, Any]:
+def _run_mode(map_path: Path, rate: str, seconds: float) -> ModeRow:
     from cyclonedds.pub import DataWriter
     from cyclonedds.sub import DataReader
     from cyclonedds.topic import Topic
@@ -151,61 +176,60 @@ def _run_mode(map_path: Path, rate: str, seconds: float) -> dict[str, Any]:
     wall = max(t_last - t_first, 1e-9)
     bridge = json.loads(out[out.index("{") :]) if "{" in out else {}
     received = sum(counts.values())
-    return {
-        "mode": f"--rate {rate}",
-        "wall_s": round(wall, 3),
-        "sim_s": round(last_clock - first_clock, 3),
-        "real_time_factor_received": round((last_clock - first_clock) / wall, 2),
-        "received_per_s": round(received / wall, 1),
-        "scans_received_per_s": round(counts["/scan"] / wall, 1),
-        "received": counts,
-        "odom_path_m": round(path_len, 2),
-        "bridge": bridge,
-    }
+    return ModeRow(
+        mode=f"--rate {rate}",
+        wall_s=round(wall, 3),
+        sim_s=round(last_clock - first_clock, 3),
+        real_time_factor_received=round((last_clock - first_clock) / wall, 2),
+        received_per_s=round(received / wall, 1),
+        scans_received_per_s=round(counts["/scan"] / wall, 1),
+        received=counts,
+        odom_path_m=round(path_len, 2),
+        bridge=bridge,
+    )
 
 
-def run(map_path: Path | None = None, seconds: float = 8.0) -> dict[str, Any]:
+def run(map_path: Path | None = None, seconds: float = 8.0) -> Ros2Result:
     """Measure both modes and print the table; returns the results."""
     map_path = Path(map_path or _default_map())
     rows = [_run_mode(map_path, "max", seconds), _run_mode(map_path, "1", seconds)]
     load = round(os.getloadavg()[0], 2) if hasattr(os, "getloadavg") else None
     mx, rt = rows
-    lat = rt["bridge"].get("drive_latency_ms") or {}
+    lat = rt.bridge.get("drive_latency_ms") or {}
     print(
         f"ROS 2 bridge on {map_path.stem}: 1 car, 1081-beam scan at 39.9 Hz, odometry+tf 50 Hz, /clock 100 Hz, "
         f"DDS over loopback to a second process (follow-the-gap on every scan); load average {load}"
     )
     print(f"{'mode':<12}{'sim s/wall s':>14}{'msgs/s recv':>13}{'scans/s':>9}{'bridge CPU s':>14}  target")
-    ok = "ok" if mx["real_time_factor_received"] >= TARGET_RTF else "MISS"
+    ok = "ok" if mx.real_time_factor_received >= TARGET_RTF else "MISS"
     for r in rows:
-        b = r["bridge"]
         tgt = f"≥{TARGET_RTF:.0f}× {ok}" if r is mx else ""
         print(
-            f"{r['mode']:<12}{r['real_time_factor_received']:>14.2f}{r['received_per_s']:>13,.0f}"
-            f"{r['scans_received_per_s']:>9,.0f}{b.get('cpu_time_s', float('nan')):>14.2f}  {tgt}"
+            f"{r.mode:<12}{r.real_time_factor_received:>14.2f}{r.received_per_s:>13,.0f}"
+            f"{r.scans_received_per_s:>9,.0f}{r.bridge.get('cpu_time_s', float('nan')):>14.2f}  {tgt}"
         )
     if lat:
         ok = "ok" if lat["p99"] < TARGET_LATENCY_MS else "MISS"
         print(
-            f"/drive write → command in effect (real time, {rt['bridge'].get('drive_commands')} commands): "
+            f"/drive write → command in effect (real time, {rt.bridge.get('drive_commands')} commands): "
             f"median {lat['median']:.2f} ms, p99 {lat['p99']:.2f} ms, max {lat['max']:.2f} ms "
             f"(target p99 < {TARGET_LATENCY_MS:.0f} ms = one control period) {ok}"
         )
-    return {
-        "map": map_path.stem,
-        "load_average_1min": load,
-        "target_real_time_factor": TARGET_RTF,
-        "target_latency_ms": TARGET_LATENCY_MS,
-        "rows": rows,
-    }
+    return Ros2Result(
+        map=map_path.stem,
+        load_average_1min=load,
+        target_real_time_factor=TARGET_RTF,
+        target_latency_ms=TARGET_LATENCY_MS,
+        rows=rows,
+    )
 
 
-def run_quick() -> dict[str, Any]:
+def run_quick() -> Ros2Result | Skipped:
     try:
         import cyclonedds  # noqa: F401
     except ImportError:
         print("bench ros2: skipped (the [ros2] extra is not installed)")
-        return {"skipped": "cyclonedds not installed"}
+        return Skipped(skipped="cyclonedds not installed")
     return run(seconds=5.0)
 
 

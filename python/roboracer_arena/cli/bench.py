@@ -41,8 +41,8 @@ def _run_all(args: argparse.Namespace) -> int:
     for kind in KINDS:
         module = import_module(f"roboracer_arena.bench.{kind}")
         print(f"\n== bench {kind}")
-        results[kind] = module.run_quick()
+        results[kind] = module.run_quick().to_json_dict()
     if args.json:
-        atomic_write_text(args.json, json.dumps(results, indent=2, default=str))
+        atomic_write_text(args.json, json.dumps(results, indent=2))
         print(f"\nwrote {args.json}")
     return 0

@@ -323,10 +323,16 @@ def run_catalog(args) -> int:
             )
     cat = build_catalog(Path(sources), Path(tracks), jobs=jobs, progress=_progress("recorded maps"))
     if args.json:
-        print_json({**cat.meta, "count": len(cat.entries), "left_out": [lo.to_json_dict() for lo in cat.left_out]})
+        print_json(
+            {
+                **cat.meta.to_json_dict(),
+                "count": len(cat.entries),
+                "left_out": [lo.to_json_dict() for lo in cat.left_out],
+            }
+        )
     else:
         print(
-            f"wrote {cat.path}: {len(cat.entries)} tracks {cat.meta['counts']}; {len(cat.left_out)} recorded maps left out:"
+            f"wrote {cat.path}: {len(cat.entries)} tracks {cat.meta.counts}; {len(cat.left_out)} recorded maps left out:"
         )
         for lo in cat.left_out:
             print(f"  {lo.source_path}: {lo.reason}")

@@ -12,6 +12,7 @@ from __future__ import annotations
 import hashlib
 import json
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVar
@@ -21,10 +22,11 @@ from pydantic import BaseModel, ValidationError
 from ..errors import InvalidArgumentError, MapIOError
 from ..fileio import read_json
 from ..paths import sources_dir, tracks_dir
-from .entry import LeftOut, TrackEntry
+from .entry import CatalogMeta, Kind, LeftOut, TrackEntry
 
 M = TypeVar("M", bound=BaseModel)
 KINDS = ("recorded", "circuit", "generated")
+SCHEMA = "roboracer-arena track catalog v1"
 #: Selections accepted by :func:`resolve` besides single ids.
 SELECTIONS = {
     "all": KINDS,
@@ -72,14 +74,20 @@ def sha256_file(path: Path) -> str:
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
+def count_kinds(entries: Sequence[TrackEntry]) -> dict[Kind, int]:
+    """Entries per kind, in the catalog's order of kinds."""
+    kinds: tuple[Kind, ...] = ("circuit", "recorded", "generated")
+    return {k: sum(e.kind == k for e in entries) for k in kinds}
+
+
 @dataclass
 class Catalog:
     """The loaded catalog. ``entries`` keeps file order; ``path`` is where it was read.
     ``meta`` is the file's header (schema, counts, how it was built)."""
 
     entries: list[TrackEntry]
+    meta: CatalogMeta
     left_out: list[LeftOut] = field(default_factory=list)
-    meta: dict[str, Any] = field(default_factory=dict)
     path: Path | None = None
 
     def get(self, track_id: str) -> TrackEntry:
@@ -114,14 +122,14 @@ class Catalog:
         """Absolute path of an entry's map YAML."""
         return self.file_path(entry, entry.map, sources, tracks)
 
-    def counts(self) -> dict[str, int]:
+    def counts(self) -> dict[Kind, int]:
         """Entries per kind, in the catalog's order of kinds."""
-        return {k: sum(e.kind == k for e in self.entries) for k in ("circuit", "recorded", "generated")}
+        return count_kinds(self.entries)
 
     def to_json(self) -> str:
         """The catalog file's text (header, count, tracks, left-out maps)."""
         doc = {
-            **self.meta,
+            **self.meta.to_json_dict(),
             "count": len(self.entries),
             "tracks": [e.to_json_dict() for e in self.entries],
             "left_out": [lo.to_json_dict() for lo in self.left_out],
@@ -134,23 +142,24 @@ def load_catalog(path: str | Path | None = None) -> Catalog:
     :class:`TrackEntry` is a :class:`MapIOError` naming the file and the entry."""
     p = Path(path) if path else default_tracks_dir() / "catalog.json"
     doc = read_json(p, "track catalog", MapIOError, max_bytes=64 * 2**20)
-    meta = {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count")}
-    entries = _parse(p, "tracks", TrackEntry, doc.get("tracks", []))
-    left_out = _parse(p, "left_out", LeftOut, doc.get("left_out", []))
+    meta = _parse(p, "header", CatalogMeta, {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count")})
+    entries = [_parse(p, f"tracks[{_name(x, i)!r}]", TrackEntry, x) for i, x in enumerate(doc.get("tracks", []))]
+    left_out = [_parse(p, f"left_out[{_name(x, i)!r}]", LeftOut, x) for i, x in enumerate(doc.get("left_out", []))]
     return Catalog(entries=entries, left_out=left_out, meta=meta, path=p)
 
 
-def _parse(path: Path, where: str, model: type[M], items: list[Any]) -> list[M]:
-    out = []
-    for i, item in enumerate(items):
-        try:
-            out.append(model.model_validate(item))
-        except ValidationError as e:
-            err = e.errors()[0]
-            field_name = ".".join(str(x) for x in err["loc"]) or "(entry)"
-            name = item.get("id", i) if isinstance(item, dict) else i
-            raise MapIOError(f"{path}: {where}[{name!r}].{field_name}: {err['msg']}") from None
-    return out
+def _name(item: Any, i: int) -> Any:
+    return item.get("id", i) if isinstance(item, dict) else i
+
+
+def _parse(path: Path, where: str, model: type[M], item: Any) -> M:
+    """``item`` as ``model``; else a :class:`MapIOError` naming the file, ``where`` and the field."""
+    try:
+        return model.model_validate(item)
+    except ValidationError as e:
+        err = e.errors()[0]
+        field_name = ".".join(str(x) for x in err["loc"]) or "(entry)"
+        raise MapIOError(f"{path}: {where}.{field_name}: {err['msg']}") from None
 
 
 def resolve(

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import Any, Literal
 
+from pydantic import ConfigDict, Field
+
 from ..frozen_model import FrozenModel
 
 Kind = Literal["recorded", "circuit", "generated"]
@@ -40,6 +42,31 @@ class LeftOut(FrozenModel):
     id: str
     source_path: str
     reason: str
+
+
+class SweepCounts(FrozenModel):
+    """A ``tracks generate --sweep`` catalog's sweep: its grid and the run's counts."""
+
+    sweep: dict[str, Any]
+    count: int
+    requests: int
+    accepted: int
+    rejected: int
+    failed: int
+
+
+class CatalogMeta(FrozenModel):
+    """The catalog file's header: schema, builder, where paths are relative to, entries
+    per kind, and the build's seconds (``tracks catalog``) or sweep (``tracks generate``)."""
+
+    model_config = ConfigDict(serialize_by_alias=True, validate_by_name=True)
+
+    catalog_schema: str = Field(alias="schema")  # (``schema`` is a pydantic method name)
+    built_with: str
+    sources_note: str
+    counts: dict[Kind, int]
+    seconds: float | None = None
+    sweep: SweepCounts | None = None
 
 
 class TrackEntry(FrozenModel):
@@ -74,7 +101,3 @@ class TrackEntry(FrozenModel):
     direction_source: str | None = None
     verified: dict[str, Status] | None = None
     drive: str | None = None
-
-    def with_fields(self, **fields: Any) -> TrackEntry:
-        """A copy with ``fields`` set (validated, and written to the catalog)."""
-        return TrackEntry.model_validate({**self.to_json_dict(), **fields})

@@ -7,16 +7,15 @@ from __future__ import annotations
 import json
 import time
 from pathlib import Path
-from typing import Any
 
 from .. import __version__
 from ..circuits.report import CircuitReport
 from ..fileio import atomic_write_text
 from ..maps import load_map
 from ..pool import Progress
-from .catalog import Catalog, provenance, sha256_file
+from .catalog import SCHEMA, Catalog, count_kinds, provenance, sha256_file
 from .directions import annotate_directions
-from .entry import LeftOut, Raster, Source, TrackEntry
+from .entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
 from .recorded import assess_all
 
 PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
@@ -115,30 +114,30 @@ def _generated_entries(tracks: Path) -> list[TrackEntry]:
 def _recorded_entries(sources: Path, jobs: int, progress: Progress | None) -> tuple[list[TrackEntry], list[LeftOut]]:
     entries, left_out = [], []
     for r in assess_all(sources, jobs=jobs, progress=progress):
-        prov = provenance(sources, r["source_dir"])
-        if not r.get("usable"):
-            left_out.append(LeftOut(id=r["id"], source_path=r["source_path"], reason=r["reason"]))
+        prov = provenance(sources, r.source_dir)
+        if not r.usable:
+            left_out.append(LeftOut(id=r.id, source_path=r.source_path, reason=r.reason or ""))
             continue
-        yaml_path = sources / r["source_path"]
+        yaml_path = sources / r.source_path
         img_path = Path(load_map(yaml_path).meta["image_path"])
-        notes = [f"corridor checked with {r['corridor_check']}"]
-        if r.get("infields", 1) > 1:
-            notes.append(f"{r['infields']} enclosed regions (obstacles or islands in the corridor)")
+        notes = [f"corridor checked with {r.corridor_check}"]
+        if (r.infields or 1) > 1:
+            notes.append(f"{r.infields} enclosed regions (obstacles or islands in the corridor)")
         entries.append(
             TrackEntry(
-                id=r["id"],
-                name=r["name"],
+                id=r.id,
+                name=r.name,
                 kind="recorded",
-                source=Source(**prov, path=r["source_path"]),
+                source=Source(**prov, path=r.source_path),
                 scale=None,
-                resolution_m=r["resolution_m"],
-                lap_length_m=r["lap_length_m"],
-                width_mean_m=r["width_mean_m"],
-                width_min_m=r["width_min_m"],
-                min_radius_m=r["min_radius_m"],
-                raster=Raster(**r["raster"]),
+                resolution_m=r.resolution_m,
+                lap_length_m=r.lap_length_m,
+                width_mean_m=r.width_mean_m,
+                width_min_m=r.width_min_m,
+                min_radius_m=r.min_radius_m,
+                raster=r.raster,
                 sha256=sha256_file(img_path),
-                map=r["source_path"],
+                map=r.source_path,
                 notes=notes,
             )
         )
@@ -156,15 +155,16 @@ def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress
     dup = {i for i in ids if ids.count(i) > 1}
     if dup:
         raise RuntimeError(f"duplicate catalog ids: {sorted(dup)}")
-    meta: dict[str, Any] = {
-        "schema": "roboracer-arena track catalog v1",
-        "built_with": f"roboracer-arena {__version__}",
-        "sources_note": "recorded maps: 'map' is relative to the sources directory (--sources / "
+    meta = CatalogMeta(
+        catalog_schema=SCHEMA,
+        built_with=f"roboracer-arena {__version__}",
+        sources_note="recorded maps: 'map' is relative to the sources directory (--sources / "
         "$ROBORACER_ARENA_SOURCES, default ../shared/track-sources); circuits and generated: "
         "relative to this file's directory",
-    }
+        counts=count_kinds(entries),
+        seconds=round(time.perf_counter() - t0, 2),
+    )
     cat = Catalog(entries=entries, left_out=left_out, meta=meta, path=tracks / "catalog.json")
-    meta.update(counts=cat.counts(), seconds=round(time.perf_counter() - t0, 2))
     annotate_directions(cat, sources)
     atomic_write_text(tracks / "catalog.json", cat.to_json())
     return cat

@@ -18,7 +18,10 @@ from .. import _core
 from ..circuits.geometry import MIN_RADIUS_SPAN_M
 from ..corridor import extract_corridor
 from ..errors import ArenaError
+from ..frozen_model import FrozenModel
 from ..maps import load_map
+from ..pool import Progress, pool_map
+from .entry import Raster
 
 #: Source folders in order of preference (an identical map later on is a duplicate).
 SOURCE_DIRS = {
@@ -35,6 +38,29 @@ MIN_LAP_M = 8.0
 MIN_MEAN_WIDTH_M = 0.5
 #: Wider than this on average is an open area (a lobby), not a racing corridor.
 MAX_MEAN_WIDTH_M = 6.0
+
+
+class RecordedMap(FrozenModel):
+    """One recorded map assessed: where it is, whether it is ``usable`` (else the
+    ``reason``), and as far as the assessment got, its grid (resolution in m, raster, a
+    digest of cells + resolution for finding duplicates, the corridor check that decided)
+    and its corridor measured (lengths in m)."""
+
+    id: str
+    name: str
+    source_path: str
+    source_dir: str
+    usable: bool = False
+    reason: str | None = None
+    resolution_m: float | None = None
+    raster: Raster | None = None
+    grid_sha256: str | None = None
+    corridor_check: str | None = None
+    lap_length_m: float | None = None
+    width_mean_m: float | None = None
+    width_min_m: float | None = None
+    min_radius_m: float | None = None
+    infields: int | None = None
 
 
 def find_map_yamls(sources: Path) -> list[Path]:
@@ -75,74 +101,70 @@ def corridor_grid(yaml_path: Path, data: np.ndarray) -> tuple[np.ndarray | None,
     return iso, "", check
 
 
-def assess_map(sources: Path, yaml_path: Path) -> dict:
+def assess_map(sources: Path, yaml_path: Path) -> RecordedMap:
     """Load one recorded map and measure it; ``usable`` False comes with a ``reason``."""
     rel = str(yaml_path.relative_to(sources))
     name = yaml_path.stem[:-4] if yaml_path.stem.endswith("_map") else yaml_path.stem
-    rec: dict = {"id": record_id(sources, yaml_path), "name": name, "source_path": rel, "source_dir": rel.split("/")[0]}
+    rec = RecordedMap(id=record_id(sources, yaml_path), name=name, source_path=rel, source_dir=rel.split("/")[0])
     try:
         m = load_map(yaml_path)
     except (ArenaError, OSError, ValueError) as e:
-        rec.update(usable=False, reason=f"broken YAML or image: {e}".replace(str(sources) + "/", ""))
-        return rec
+        return rec.with_fields(reason=f"broken YAML or image: {e}".replace(str(sources) + "/", ""))
     data = np.asarray(m.data, np.uint8)
     h, w = data.shape
-    img_bytes = data.tobytes()
-    rec.update(
-        resolution_m=float(m.resolution),
-        raster={"width_px": w, "height_px": h},
-        grid_sha256=hashlib.sha256(img_bytes + repr(float(m.resolution)).encode()).hexdigest(),
-    )
     iso, why, check = corridor_grid(yaml_path, data)
-    rec["corridor_check"] = check
+    rec = rec.with_fields(
+        resolution_m=float(m.resolution),
+        raster=Raster(width_px=w, height_px=h),
+        grid_sha256=hashlib.sha256(data.tobytes() + repr(float(m.resolution)).encode()).hexdigest(),
+        corridor_check=check,
+    )
     if iso is None:
-        rec.update(usable=False, reason=why)
-        return rec
+        return rec.with_fields(reason=why)
     try:
         mm = _core.measure_map(iso, float(m.resolution), m.origin)
     except ArenaError as e:
-        rec.update(usable=False, reason=f"no closed corridor: {e}")
-        return rec
+        return rec.with_fields(reason=f"no closed corridor: {e}")
     lap = mm.centreline_length_m
-    rec.update(
+    reason = None
+    if lap < MIN_LAP_M:
+        reason = f"corridor loop only {lap:.1f} m long (< {MIN_LAP_M} m)"
+    elif mm.mean_width_m < MIN_MEAN_WIDTH_M:
+        reason = f"corridor {mm.mean_width_m:.2f} m wide on average (< {MIN_MEAN_WIDTH_M} m)"
+    elif mm.mean_width_m > MAX_MEAN_WIDTH_M:
+        reason = (
+            f"open area, not a corridor: {mm.mean_width_m:.1f} m wide on average "
+            f"(> {MAX_MEAN_WIDTH_M} m) around a {lap:.1f} m loop"
+        )
+    return rec.with_fields(
         lap_length_m=round(lap, 3),
         width_mean_m=round(mm.mean_width_m, 3),
         width_min_m=round(float(np.percentile(mm.widths, 0.5)), 3),
         min_radius_m=round(_core.min_radius(mm.centreline, MIN_RADIUS_SPAN_M), 3),
         infields=mm.infields,
+        usable=reason is None,
+        reason=reason,
     )
-    if lap < MIN_LAP_M:
-        rec.update(usable=False, reason=f"corridor loop only {lap:.1f} m long (< {MIN_LAP_M} m)")
-    elif mm.mean_width_m < MIN_MEAN_WIDTH_M:
-        rec.update(usable=False, reason=f"corridor {mm.mean_width_m:.2f} m wide on average (< {MIN_MEAN_WIDTH_M} m)")
-    elif mm.mean_width_m > MAX_MEAN_WIDTH_M:
-        rec.update(
-            usable=False,
-            reason=f"open area, not a corridor: {mm.mean_width_m:.1f} m wide on average "
-            f"(> {MAX_MEAN_WIDTH_M} m) around a {lap:.1f} m loop",
-        )
-    else:
-        rec.update(usable=True, reason=None)
-    return rec
 
 
-def assess_all(sources: Path, jobs: int = 1, progress=None) -> list[dict]:
-    """Assess every recorded map; identical grids after the first are marked duplicates."""
+def assess_all(sources: Path, jobs: int = 1, progress: Progress | None = None) -> list[RecordedMap]:
+    """Assess every recorded map; identical grids after the first are marked duplicates,
+    and a repeated id gets ``-2`` appended."""
     from functools import partial
 
-    from ..pool import pool_map
-
-    recs = pool_map(partial(assess_map, sources), find_map_yamls(sources), jobs, progress)
+    out = []
     seen: dict[str, str] = {}
     ids: set[str] = set()
-    for r in recs:
-        g = r.get("grid_sha256")
+    for r in pool_map(partial(assess_map, sources), find_map_yamls(sources), jobs, progress):
+        g = r.grid_sha256
         if g and g in seen:
-            if r.get("usable"):
-                r.update(usable=False, reason=f"duplicate of {seen[g]} (identical grid)")
+            if r.usable:
+                r = r.with_fields(usable=False, reason=f"duplicate of {seen[g]} (identical grid)")
         elif g:
-            seen[g] = r["id"]
-        while r["id"] in ids:
-            r["id"] += "-2"
-        ids.add(r["id"])
-    return recs
+            seen[g] = r.id
+        rid = r.id
+        while rid in ids:
+            rid += "-2"
+        ids.add(rid)
+        out.append(r.with_fields(id=rid) if rid != r.id else r)
+    return out

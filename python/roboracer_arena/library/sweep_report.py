@@ -28,10 +28,6 @@ class SweepRecord(FrozenModel):
     violations: list[str] | None = None
     kept: bool | None = None
 
-    def with_fields(self, **fields: Any) -> SweepRecord:
-        """A copy with ``fields`` set (validated, and written to ``sweep.json``)."""
-        return SweepRecord.model_validate({**self.to_json_dict(), **fields})
-
 
 def count_outcome(records: Sequence[SweepRecord], outcome: Outcome) -> int:
     """Records with ``outcome``."""

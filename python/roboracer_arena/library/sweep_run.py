@@ -26,8 +26,9 @@ from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
 from ..fileio import atomic_write_dir, atomic_write_text
 from ..pool import Progress, map_ordered
-from .catalog import Catalog
+from .catalog import SCHEMA, Catalog, count_kinds
 from .directions import annotate_directions
+from .entry import CatalogMeta, SweepCounts
 from .generated import generate_files
 from .index import _generated_entries
 from .sweep import SweepFile
@@ -110,15 +111,13 @@ def _remove_stale(gen: Path, name: str, kept: set[str]) -> None:
 def _write_catalog(out: Path, kept: list[str], summary: LibrarySummary) -> None:
     by_id = {e.id: e for e in _generated_entries(out)}
     entries = [by_id[i] for i in kept]
-    meta = {
-        "schema": "roboracer-arena track catalog v1",
-        "built_with": f"roboracer-arena {__version__} tracks generate",
-        "sources_note": "generated tracks: 'map' is relative to this file's directory",
-        "counts": {"circuit": 0, "recorded": 0, "generated": len(entries)},
-        "sweep": summary.model_dump(
-            mode="json", include={"sweep", "count", "requests", "accepted", "rejected", "failed"}
-        ),
-    }
+    meta = CatalogMeta(
+        catalog_schema=SCHEMA,
+        built_with=f"roboracer-arena {__version__} tracks generate",
+        sources_note="generated tracks: 'map' is relative to this file's directory",
+        counts=count_kinds(entries),
+        sweep=SweepCounts.model_validate(summary.model_dump(include=set(SweepCounts.model_fields))),
+    )
     cat = Catalog(entries=entries, meta=meta, path=out / "catalog.json")
     annotate_directions(cat)
     atomic_write_text(out / "catalog.json", cat.to_json())

@@ -205,5 +205,5 @@ def prune_catalog(cat: Catalog, summary: VerifySummary) -> list[str]:
             e.with_fields(verified={k: c.status for k, c in r.checks.items()}, drive=drive.detail if drive else "")
         )
     cat.entries = keep
-    cat.meta["counts"] = cat.counts()
+    cat.meta = cat.meta.model_copy(update={"counts": cat.counts()})
     return moved
