@@ -19,14 +19,14 @@ def test_rejected_specs_are_not_trials_and_lattice_builds_valid_maps(tmp_path):
     path = tmp_path / "specs.jsonl"
     path.write_text("\n".join(SPECS) + "\n\n")
     result = bc.run(bc.load_specs(path), [0, 1], ["lattice", "lattice-raw", "random"], progress=False)
-    assert result["admissible_specs"] == 1
-    assert [r["spec"] for r in result["screen_rejections"]] == ["too-long"]
-    by = {s["constructor"]: s for s in result["summary"]}
-    assert all(s["trials"] == 2 for s in by.values())
-    assert by["lattice"]["built"] == by["lattice"]["valid"] == 2
-    assert by["random"]["built"] == 2  # random always emits a map
-    for row in result["trials"]:
-        assert row["valid"] <= row["built"] and row["seconds"] > 0
+    assert result.admissible_specs == 1
+    assert [r.spec for r in result.screen_rejections] == ["too-long"]
+    by = {s.constructor: s for s in result.summary}
+    assert all(s.trials == 2 for s in by.values())
+    assert by["lattice"].built == by["lattice"].valid == 2
+    assert by["random"].built == 2  # random always emits a map
+    for row in result.trials:
+        assert row.valid <= row.built and row.seconds > 0
 
 
 def test_cli_prints_the_table_and_writes_json(tmp_path, capsys):

@@ -107,8 +107,8 @@ def test_sweep_runner_counts_and_writes_remeasurable_maps(tmp_path):
 
     specs = [ISSUE_CASE.model_copy(update={"name": "issue-case"}), TrackSpec(name="paper-200m", lap_length_m=200.0)]
     result = run_sweep(specs, maps=tmp_path, progress=False)
-    assert result["specs"] == 2 and result["accepted"] == 1
-    assert [m["spec"] for m in result["misses"]] == ["paper-200m"] and result["misses"][0]["outcome"] == "rejected"
-    assert result["by_hall"] == {"12x9": "1/1", "20x15": "0/1"}
-    assert (result["obvious_accepted"], result["obvious_specs"]) == (1, 1)
+    assert result.specs == 2 and result.accepted == 1
+    assert [m.spec for m in result.misses] == ["paper-200m"] and result.misses[0].outcome == "rejected"
+    assert result.by_hall == {"12x9": "1/1", "20x15": "0/1"}
+    assert (result.obvious_accepted, result.obvious_specs) == (1, 1)
     assert problems(ISSUE_CASE, tmp_path / "issue-case" / "map.yaml") == []

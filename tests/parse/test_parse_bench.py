@@ -8,7 +8,16 @@ from pathlib import Path
 from fake_ollama import Reply
 
 from roboracer_arena.bench.output import json_text
-from roboracer_arena.bench.parser import REPO_REQUESTS, ParserResult, Unreachable, load_requests, run, run_sets, score
+from roboracer_arena.bench.parser import (
+    REPO_REQUESTS,
+    ParserResult,
+    ParserRow,
+    Unreachable,
+    load_requests,
+    run,
+    run_sets,
+    score,
+)
 from roboracer_arena.cli import EXIT_OK, main
 from roboracer_arena.parse.result import DEFAULTS
 from roboracer_arena.paths import bench_data
@@ -28,10 +37,11 @@ def test_shipped_set_size_and_rules_scores(capsys):
     assert sum(r["set"] == "parse" for r in reqs) >= 12
     assert sum(r["set"] == "audit" for r in reqs) >= 17
     assert any(r["text"] == "a 38 m lap for a small 15 by 12 hall" for r in reqs)
-    row = run(REPO_REQUESTS, ("rules",), repeats=3)["rows"]["rules"]
-    assert row["parse_exact"] == row["parse_total"]
-    assert row["audit_pass"] == row["audit_calls"] == 3 * sum(r["set"] == "audit" for r in reqs)
-    assert row["misses"] == []
+    row = run(REPO_REQUESTS, ("rules",), repeats=3).rows["rules"]
+    assert isinstance(row, ParserRow)
+    assert row.parse_exact == row.parse_total
+    assert row.audit_pass == row.audit_calls == 3 * sum(r["set"] == "audit" for r in reqs)
+    assert row.misses == []
     assert "gemma4:31b (paper)" in capsys.readouterr().out
 
 
@@ -52,9 +62,10 @@ def test_ollama_row_counts_inventions_and_guard(tmp_path, fake_ollama, capsys):
         content=TrackSpec(lap_length_m=38, hall_x_m=15, hall_y_m=12, min_radius_m=9).model_dump_json()
     )
     res = run(_small_set(tmp_path), ("ollama",), repeats=2, ollama_host=fake_ollama.url)
-    row = res["rows"]["ollama gemma4:31b"]
-    assert row["parse"] == "0/1" and row["audit"] == "0/2"
-    assert row["inventions_caught_by_guard"] == 3 and row["inventions_missed_by_guard"] == 0
+    row = res.rows["ollama gemma4:31b"]
+    assert isinstance(row, ParserRow)
+    assert row.parse == "0/1" and row.audit == "0/2"
+    assert row.inventions_caught_by_guard == 3 and row.inventions_missed_by_guard == 0
     assert len(fake_ollama.requests) == 3
     assert "min_radius_m" in capsys.readouterr().out
 
@@ -81,9 +92,10 @@ def test_refusal_rows_need_a_typed_error_naming_the_span(tmp_path):
     ]
     p = tmp_path / "r.jsonl"
     p.write_text("\n".join(json.dumps(x) for x in lines) + "\n")
-    row = run(p, ("rules",), repeats=1)["rows"]["rules"]
-    assert row["refuse"] == "1/3"
-    assert [(m["id"], m["fields"]) for m in row["misses"]] == [("r2", ["(accepted)"]), ("r3", ["(span not named)"])]
+    row = run(p, ("rules",), repeats=1).rows["rules"]
+    assert isinstance(row, ParserRow)
+    assert row.refuse == "1/3"
+    assert [(m.id, m.fields) for m in row.misses] == [("r2", ["(accepted)"]), ("r3", ["(span not named)"])]
 
 
 def test_every_shipped_set_with_the_recorded_blind_score(capsys):
@@ -91,14 +103,14 @@ def test_every_shipped_set_with_the_recorded_blind_score(capsys):
     assert len(everyday) >= 100 and sum(r["batch"] == "blind" for r in everyday) >= 40
     assert len(load_requests(bench_data("requests_e2e.jsonl"))) == 8
     res = run_sets()
-    sets = res["sets"]
+    sets = res.sets
     e2e = sets["paper end-to-end (8)"]
-    assert e2e["parse_exact"] == e2e["parse_total"] == 8  # the end-to-end requests must parse exactly
+    assert e2e.parse_exact == e2e.parse_total == 8  # the end-to-end requests must parse exactly
     for label in ("everyday, blind batch", "everyday, after batch"):
         r = sets[label]
-        assert r["refuse_correct"] == r["refuse_total"]  # no refusal is ever missed
-        assert r["parse_exact"] >= r["parse_total"] - 1
-    blind = res["blind_recorded"]["files"]["requests_everyday.jsonl"]
-    assert blind["total"] == sum(r["batch"] == "blind" for r in everyday)
+        assert r.refuse_correct == r.refuse_total  # no refusal is ever missed
+        assert r.parse_exact >= r.parse_total - 1
+    blind = res.blind_recorded.files["requests_everyday.jsonl"]
+    assert blind.total == sum(r["batch"] == "blind" for r in everyday)
     out = capsys.readouterr().out
     assert "blind run: requests_everyday.jsonl" in out and "everyday, after batch" in out

@@ -14,10 +14,7 @@ from ..frozen_model import FrozenModel
 
 class BenchModel(FrozenModel):
     """A benchmark's result or row: a :class:`FrozenModel` whose JSON is what ``--json``
-    writes. ``result["field"]`` reads a field, as callers did when results were dicts."""
-
-    def __getitem__(self, key: str) -> Any:
-        return getattr(self, key)
+    writes."""
 
 
 class Skipped(BenchModel):
