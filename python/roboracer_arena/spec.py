@@ -162,11 +162,12 @@ class TrackSpec(NumbersAreNumbers):
             raise SpecError(f"{source}: {format_validation_error(e)}") from e
 
 
-def format_validation_error(e: ValidationError) -> str:
-    """One line per problem: ``field: message (got value)``."""
+def format_validation_error(e: ValidationError, top: str = "(spec)") -> str:
+    """One line for all problems: ``field: message (got value)``, joined by ``; ``; a
+    problem with the whole object is named ``top``."""
     parts = []
     for err in e.errors():
-        loc = ".".join(str(x) for x in err["loc"]) or "(spec)"
+        loc = ".".join(str(x) for x in err["loc"]) or top
         value = err.get("input")
         shown = "" if isinstance(value, dict) else f" (got {value!r})"
         parts.append(f"{loc}: {err['msg']}{shown}")

@@ -22,6 +22,7 @@ from pydantic import BaseModel, ValidationError
 from ..errors import InvalidArgumentError, MapIOError
 from ..fileio import read_json
 from ..paths import sources_dir, tracks_dir
+from ..spec import format_validation_error
 from .entry import CatalogMeta, Kind, LeftOut, TrackEntry
 
 M = TypeVar("M", bound=BaseModel)
@@ -157,9 +158,7 @@ def _parse(path: Path, where: str, model: type[M], item: Any) -> M:
     try:
         return model.model_validate(item)
     except ValidationError as e:
-        err = e.errors()[0]
-        field_name = ".".join(str(x) for x in err["loc"]) or "(entry)"
-        raise MapIOError(f"{path}: {where}.{field_name}: {err['msg']}") from None
+        raise MapIOError(f"{path}: {where}.{format_validation_error(e, top='(entry)')}") from None
 
 
 def resolve(

@@ -33,7 +33,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from ..errors import SpecError
 from ..fileio import read_json
-from ..spec import TrackSpec
+from ..spec import TrackSpec, format_validation_error
 
 #: The example sweep (also ``examples/sweep.json``): varied halls, lap lengths and features.
 EXAMPLE_SWEEP: dict[str, Any] = {
@@ -132,8 +132,6 @@ def load_sweep(path: str | Path) -> SweepFile:
     try:
         return SweepFile.model_validate(doc)
     except ValidationError as e:
-        err = e.errors()[0]
-        where = ".".join(str(x) for x in err["loc"]) or "(top level)"
-        raise SpecError(f"{p}: {where}: {err['msg']}") from None
+        raise SpecError(f"{p}: {format_validation_error(e, top='(top level)')}") from None
     except SpecError as e:
         raise SpecError(f"{p}: {e}") from None

@@ -19,6 +19,7 @@ from pydantic import ConfigDict, Field, ValidationError
 from ..errors import ArenaError, ConfigError
 from ..fileio import read_json
 from ..sim_config import SimConfig
+from ..spec import format_validation_error
 from ..strict import NumbersAreNumbers
 
 _EPS = 1e-9
@@ -55,9 +56,7 @@ class BridgeConfig(NumbersAreNumbers):
         try:
             return cls.model_validate(raw)
         except ValidationError as e:
-            first = e.errors()[0]
-            where = ".".join(str(x) for x in first["loc"])
-            raise ConfigError(f"{p}: field {where!r}: {first['msg']}") from e
+            raise ConfigError(f"{p}: {format_validation_error(e, top='(config)')}") from e
 
 
 class Schedule:
