@@ -5,6 +5,7 @@ file, the entry and the field named."""
 from __future__ import annotations
 
 import json
+import re
 
 import pytest
 from pydantic import ValidationError
@@ -79,3 +80,13 @@ def test_catalog_builder_reproduces_every_shipped_entry(tmp_path, sources):
         assert list(built[e["id"]].items()) == list(want.items()), e["id"]
     assessed = [lo for lo in shipped["left_out"] if not lo["reason"].startswith("verify failed")]
     assert all(lo in json.loads((tmp_path / "catalog.json").read_text())["left_out"] for lo in assessed)
+
+
+def test_shipped_catalog_names_no_absolute_path():
+    """Entries name maps relative to the sources folder: a builder's own paths (its sources
+    or output folder) must not leak into the shipped catalog (they did into left_out reasons)."""
+    from roboracer_arena.paths import tracks_dir
+
+    text = (tracks_dir() / "catalog.json").read_text()
+    leaks = re.findall(r"(?<![\w:/.])/(?:[\w.+-]+/)+[\w.+-]+\.(?:yaml|pgm|png|json|csv)", text)
+    assert leaks == []

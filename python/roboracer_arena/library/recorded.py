@@ -104,12 +104,18 @@ def corridor_grid(yaml_path: Path, data: np.ndarray) -> tuple[np.ndarray | None,
 def assess_map(sources: Path, yaml_path: Path) -> RecordedMap:
     """Load one recorded map and measure it; ``usable`` False comes with a ``reason``."""
     rel = str(yaml_path.relative_to(sources))
+
+    def unsourced(reason: str) -> str:
+        """The reason without this machine's sources folder: catalog entries name maps
+        relative to it, and the shipped catalog must not carry a builder's paths."""
+        return reason.replace(str(sources) + "/", "")
+
     name = yaml_path.stem[:-4] if yaml_path.stem.endswith("_map") else yaml_path.stem
     rec = RecordedMap(id=record_id(sources, yaml_path), name=name, source_path=rel, source_dir=rel.split("/")[0])
     try:
         m = load_map(yaml_path)
     except (ArenaError, OSError, ValueError) as e:
-        return rec.with_fields(reason=f"broken YAML or image: {e}".replace(str(sources) + "/", ""))
+        return rec.with_fields(reason=unsourced(f"broken YAML or image: {e}"))
     data = np.asarray(m.data, np.uint8)
     h, w = data.shape
     iso, why, check = corridor_grid(yaml_path, data)
@@ -120,11 +126,11 @@ def assess_map(sources: Path, yaml_path: Path) -> RecordedMap:
         corridor_check=check,
     )
     if iso is None:
-        return rec.with_fields(reason=why)
+        return rec.with_fields(reason=unsourced(why))
     try:
         mm = _core.measure_map(iso, float(m.resolution), m.origin)
     except ArenaError as e:
-        return rec.with_fields(reason=f"no closed corridor: {e}")
+        return rec.with_fields(reason=unsourced(f"no closed corridor: {e}"))
     lap = mm.centreline_length_m
     reason = None
     if lap < MIN_LAP_M:
