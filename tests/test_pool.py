@@ -5,6 +5,8 @@ that names the item that failed while keeping its type."""
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 
 import pytest
 
@@ -94,3 +96,12 @@ def test_bad_jobs_are_refused():
 
     with pytest.raises(ArenaError, match="jobs must be >= 1"):
         LocalExecutor(0)
+
+
+def test_a_main_script_from_stdin_gets_a_hint_not_only_dead_workers():
+    """Spawned workers re-import ``__main__``; from stdin that fails in every worker, and
+    the error says why instead of only counting deaths."""
+    script = "from roboracer_arena.pool import pool_map\nprint(pool_map(abs, [-1, -2], 2))\n"
+    run = subprocess.run([sys.executable, "-"], input=script, capture_output=True, text=True, timeout=120)
+    assert run.returncode != 0
+    assert "WorkerLostError" in run.stderr and "came from stdin: run it from a file, or use jobs=1" in run.stderr

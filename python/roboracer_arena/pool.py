@@ -22,6 +22,7 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, Thr
 from concurrent.futures import Executor as _FuturesExecutor
 from concurrent.futures.process import BrokenProcessPool
 from contextlib import contextmanager
+from pathlib import Path
 from typing import Any, NoReturn, TypeVar
 
 from .errors import ArenaError
@@ -148,8 +149,17 @@ class LocalExecutor:
                 if failures > self.max_retries:
                     raise WorkerLostError(
                         f"a worker process died {failures} times ({len(pending)} task(s) unfinished); "
-                        f"giving up after {self.max_retries} retries"
+                        f"giving up after {self.max_retries} retries{_unspawnable_main_hint()}"
                     ) from None
+
+
+def _unspawnable_main_hint() -> str:
+    """Why every spawned worker may die at once: it re-imports the parent's ``__main__``,
+    which fails when that script came from standard input."""
+    main_file = getattr(sys.modules.get("__main__"), "__file__", None)
+    if main_file is not None and Path(main_file).name == "<stdin>":
+        return " (workers are spawned and re-import the main script, which came from stdin: run it from a file, or use jobs=1)"
+    return ""
 
 
 def map_ordered(executor: Any, fn: Callable[[T], R], items: Sequence[T], progress: Progress | None = None) -> list[R]:
