@@ -21,7 +21,7 @@ from typing import Any, Literal
 from pydantic import ConfigDict, Field, ValidationError, model_validator
 
 from .errors import ArenaError, ConfigError
-from .fileio import read_text
+from .fileio import parse_json, read_text
 from .spec import format_validation_error
 from .strict import NumbersAreNumbers
 
@@ -220,8 +220,8 @@ class BuildConfig(NumbersAreNumbers):
                 data = json.loads(text)
             except json.JSONDecodeError:
                 data = _parse_toml(p, text)
-            except RecursionError:
-                raise ConfigError(f"{p}: JSON nested too deeply to be a build config") from None
+            except (RecursionError, ValueError):
+                data = _parse_json(p, text)  # the one JSON reader names the problem
         return cls.from_dict(data, source=str(p))
 
 
@@ -237,12 +237,7 @@ def _parse_toml(p: Path, text: str) -> dict[str, Any]:
 
 
 def _parse_json(p: Path, text: str) -> Any:
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as e:
-        raise ConfigError(f"{p}: not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from e
-    except RecursionError:
-        raise ConfigError(f"{p}: JSON nested too deeply to be a build config") from None
+    return parse_json(text, p, "build config", ConfigError)
 
 
 __all__ = ["BuildConfig", "GeometryConfig", "MaterialsConfig", "StagePhysicsConfig"]

@@ -160,6 +160,15 @@ class EnvPurePursuit:
                 f"pure pursuit needs the odometry fields x, y, yaw in the observation (missing {missing})"
             )
         self._cols = (f["x"], f["y"], f["yaw"], f.get("speed", f.get("vx")))
+        batch = getattr(self.env, "_batch", None)
+        if self._cols[3] is None and (batch is None or "vx" not in getattr(batch, "field_index", {})):
+            from .errors import ConfigError
+
+            # Never guess: a speed of 0 plans for a standing car and steers into the wall.
+            raise ConfigError(
+                "pure pursuit needs the car's speed: add 'vx' (or 'speed') to the observation's odometry "
+                "fields, or use an env whose simulator state it can read"
+            )
 
     def _driver(self, e: int, k: int, track_id: int) -> PurePursuitDriver:
         slot = self._slots.get((e, k))
@@ -180,11 +189,15 @@ class EnvPurePursuit:
         if not self._vector:
             odo = odo[None]
         cx, cy, cyaw, cv = self._cols
+        if cv is None:  # no speed in the observation: the env's own state has it (checked at creation)
+            b = env._batch
+            speeds = np.asarray(b.state[..., b.field_index["vx"]], dtype=np.float64).reshape(odo.shape[:2])
+        else:
+            speeds = odo[..., cv]
         cmds = np.zeros((*odo.shape[:2], 2))
         for e, tid in enumerate(track_ids):
             for k, row in enumerate(odo[e]):
-                speed = row[cv] if cv is not None else 0.0
-                cmds[e, k] = self._driver(e, k, int(tid)).act_pose(row[cx], row[cy], row[cyaw], speed)
+                cmds[e, k] = self._driver(e, k, int(tid)).act_pose(row[cx], row[cy], row[cyaw], speeds[e, k])
         return env.from_ackermann(cmds if self._vector else cmds[0])
 
     def reset(self) -> None:
@@ -240,9 +253,9 @@ def drive_laps(
     """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
     list) with :class:`PurePursuitDriver` from the centreline start, stopping at the first
     contact. Optionally writes a GIF/MP4 of the drive. ``env_kwargs`` go to the env;
-    ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it before driving."""
-    import time
-
+    ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it before driving. On SIGINT (and
+    SIGTERM in the CLI) the env is closed, so a recording is finished; on any other error
+    a wrapper's ``abort()`` discards its output."""
     from .envs.single import RoboRacerEnv
 
     if laps < 1:
@@ -264,7 +277,30 @@ def drive_laps(
     length = env.tracks[0].length
     limit = max_time_s if max_time_s is not None else laps * (length / 0.5 + 30.0)  # >= 0.5 m/s average
     dt = env.config.control_dt
-    driver = PurePursuitDriver.for_env(env) if params is None else EnvPurePursuit(env, params)
+    try:
+        driver = PurePursuitDriver.for_env(env) if params is None else EnvPurePursuit(env, params)
+        return _drive(env, laps, driver, limit, length, dt, video, video_fps, progress)
+    except KeyboardInterrupt:
+        env.close()  # SIGINT/SIGTERM: what was driven is kept whole (a recording is finished)
+        raise
+    except BaseException:
+        getattr(env, "abort", env.close)()  # a failed drive leaves no partial output
+        raise
+
+
+def _drive(
+    env: Any,
+    laps: int,
+    driver: Any,
+    limit: float,
+    length: float,
+    dt: float,
+    video: Any,
+    video_fps: float,
+    progress: bool,
+) -> DriveResult:
+    import time
+
     every = max(1, round(env.config.control_rate_hz / video_fps))
     frames: list[np.ndarray] = []
 

@@ -13,8 +13,10 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import signal
 import stat
 import tempfile
+import weakref
 from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
@@ -31,6 +33,21 @@ MAX_TEXT_BYTES = 16 << 20
 MAX_NAME_BYTES = 255
 
 
+_HELD_SIGNALS = {signal.SIGINT, signal.SIGTERM}
+
+
+@contextmanager
+def signals_held() -> Iterator[None]:
+    """Hold SIGINT and SIGTERM back (in this thread) until the block is done, for steps
+    that must not stop half-way (a swap of two folders, a message inside a file format):
+    Python runs a signal's handler between any two bytecodes."""
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD_SIGNALS)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
 def _why(e: OSError) -> str:
     return e.strerror or str(e)
 
@@ -42,17 +59,51 @@ def _same_file(a: Path, b: Path) -> bool:
         return a.resolve() == b.resolve()
 
 
-def check_output(path: str | Path, inputs: Iterable[str | Path | None] = ()) -> Path:
-    """Refuse an output path that cannot be written as a file, before any work: a
-    directory, a name over 255 bytes, a parent that is not a writable directory, or one
-    of the command's own ``inputs`` (which it would destroy)."""
+def referenced_inputs(path: str | Path) -> list[Path]:
+    """Files that the input ``path`` names and a command reads with it: the image of a
+    ROS map YAML. A YAML that cannot be read is left for its loader to report."""
+    path = Path(path)
+    if path.suffix.lower() not in (".yaml", ".yml") or not path.is_file():
+        return []
+    from .maps import image_named_by  # here: maps imports this module
+
+    try:
+        image = image_named_by(read_text(path, "map YAML", 1 << 20))
+    except (MapIOError, OSError):
+        return []
+    return [path.parent / image] if image else []
+
+
+def _probe_writable(directory: Path, path: Path) -> None:
+    # os.access says yes to root even on a read-only mount: create and remove a file instead.
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".arena-probe-", dir=directory)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as e:
+        raise MapIOError(f"{path}: directory {directory} is not writable: {_why(e)}") from None
+
+
+def check_output(path: str | Path, inputs: Iterable[str | Path | None] = (), *, directory: bool = False) -> Path:
+    """The one output guard, called before any work: refuse an output path that cannot
+    be written, i.e. a directory (a file for ``directory=True``), a name over 255 bytes,
+    a parent that is a file or not a writable directory (probed by creating a file), or
+    one of the command's ``inputs`` or a file an input names (:func:`referenced_inputs`),
+    which it would destroy. Errors are one-line :class:`MapIOError` /
+    :class:`InvalidArgumentError` (CLI exit 2)."""
     path = Path(path)
     if not path.name or len(os.fsencode(path.name)) > MAX_NAME_BYTES:
         raise MapIOError(f"{str(path)[:80]}…: file name must be 1 to {MAX_NAME_BYTES} bytes")
-    if path.is_dir():
+    if directory:
+        if path.exists() and not path.is_dir():
+            raise MapIOError(f"{path}: is not a directory; give a directory to write")
+    elif path.is_dir():
         raise MapIOError(f"{path}: is a directory; give a file name to write")
-    for src in inputs:
-        if src is not None and Path(src).exists() and _same_file(path, Path(src)):
+    given = [Path(src) for src in inputs if src is not None]
+    for src in [*given, *(r for g in given for r in referenced_inputs(g))]:
+        if not src.exists():
+            continue
+        if _same_file(path, src):
             raise InvalidArgumentError(f"{path}: the output would overwrite the input {src}")
     anc = path.parent
     while not anc.exists() and anc != anc.parent:
@@ -61,7 +112,45 @@ def check_output(path: str | Path, inputs: Iterable[str | Path | None] = ()) -> 
         raise MapIOError(f"{path}: {anc} is not a directory")
     if not os.access(anc, os.W_OK | os.X_OK):
         raise MapIOError(f"{path}: directory {anc} is not writable")
+    _probe_writable(anc, path)
     return path
+
+
+class StagedFile:
+    """An output written in place over time (a recording): checked with
+    :func:`check_output` at creation, written to a hidden temporary file beside the target,
+    renamed into place with the umask's permissions by :meth:`commit`, or deleted by
+    :meth:`discard`. A staged file never committed is deleted when the object is collected
+    or the interpreter exits, so no exit path but SIGKILL leaves a temporary behind."""
+
+    def __init__(self, path: str | Path, inputs: Iterable[str | Path | None] = ()) -> None:
+        self.path = check_output(path, inputs)
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self.tmp = _temp_beside(self.path)
+        except OSError as e:
+            raise MapIOError(f"{self.path}: cannot write: {_why(e)}") from None
+        self._finalizer = weakref.finalize(self, _unlink_quietly, self.tmp)
+
+    def commit(self) -> Path:
+        """Give the finished temporary file the usual permissions and move it into place."""
+        try:
+            os.chmod(self.tmp, 0o666 & ~_UMASK)  # mkstemp makes 0600
+            os.replace(self.tmp, self.path)
+        except OSError as e:
+            self.discard()
+            raise MapIOError(f"{self.path}: cannot write: {_why(e)}") from None
+        self._finalizer.detach()
+        return self.path
+
+    def discard(self) -> None:
+        """Delete the temporary file (idempotent)."""
+        self._finalizer()
+
+
+def _unlink_quietly(p: Path) -> None:
+    with suppress(OSError):
+        p.unlink(missing_ok=True)
 
 
 def _temp_beside(path: Path) -> Path:
@@ -184,18 +273,26 @@ def read_text(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BYTES) -> s
         raise MapIOError(f"{path}: {what} is not UTF-8 text (byte {e.start}){hint}") from None
 
 
-def read_json(
-    path: str | Path, what: str, error: type[Exception] = MapFormatError, max_bytes: int = MAX_TEXT_BYTES
-) -> Any:
-    """A JSON document from :func:`read_text` (regular file, size cap, UTF-8). Malformed or
-    absurdly nested JSON raises ``error`` with one line naming the file and what it is."""
-    text = read_text(path, what, max_bytes)
+def parse_json(text: str, where: str | Path, what: str, error: type[Exception] = MapFormatError) -> Any:
+    """The one JSON parser of the package's input files: malformed JSON, absurd nesting and
+    values Python refuses (an integer of more than 4300 digits) raise ``error`` with one
+    line naming ``where`` and ``what`` it is."""
     try:
         return json.loads(text)
     except json.JSONDecodeError as e:
-        raise error(f"{path}: {what} is not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from None
+        raise error(f"{where}: {what} is not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from None
     except RecursionError:
-        raise error(f"{path}: {what} is JSON nested too deeply") from None
+        raise error(f"{where}: {what} is JSON nested too deeply") from None
+    except ValueError as e:  # int_max_str_digits: a 5000-digit integer
+        raise error(f"{where}: {what} holds a number JSON cannot be read as: {str(e).split(';')[0]}") from None
+
+
+def read_json(
+    path: str | Path, what: str, error: type[Exception] = MapFormatError, max_bytes: int = MAX_TEXT_BYTES
+) -> Any:
+    """A JSON document from :func:`read_text` (regular file, size cap, UTF-8) parsed by
+    :func:`parse_json`."""
+    return parse_json(read_text(path, what, max_bytes), path, what, error)
 
 
 @contextmanager
@@ -215,18 +312,21 @@ def atomic_dir(path: str | Path) -> Iterator[Path]:
     old: Path | None = None
     try:
         yield tmp
-        if path.exists():
-            old = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".old", dir=parent))
-            os.replace(path, old / "previous")
-        os.replace(tmp, path)
+        with signals_held():  # the two renames happen both or neither
+            if path.exists():
+                old = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".old", dir=parent))
+                os.replace(path, old / "previous")
+            os.replace(tmp, path)
     except BaseException:
-        if old is not None and not path.exists():
-            os.replace(old / "previous", path)  # put the earlier folder back
-        shutil.rmtree(tmp, ignore_errors=True)
+        with signals_held():
+            if old is not None and not path.exists():
+                os.replace(old / "previous", path)  # put the earlier folder back
+            shutil.rmtree(tmp, ignore_errors=True)
         raise
     finally:
         if old is not None:
-            shutil.rmtree(old, ignore_errors=True)
+            with signals_held():
+                shutil.rmtree(old, ignore_errors=True)
 
 
 def atomic_write_dir(path: str | Path, files: dict[str, bytes]) -> None:

@@ -19,6 +19,13 @@ from .strict import NumbersAreNumbers
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
+#: Floors of every rate (Hz) and time step (s), here and in ``arena_core::sim::params``
+#: (MIN_RATE_HZ, MIN_DT): a vanishing rate or step (5e-324 Hz, 1e-300 s) passes "> 0"
+#: and then divides by zero; the schema refuses it with the floor in the message.
+MIN_RATE_HZ = 0.01
+MIN_DT = 1e-4
+
+
 class VehicleConfig(NumbersAreNumbers):
     """Rigid chassis on four suspended wheels with Ackermann steering behind a lagged servo,
     and a drivetrain: a VESC-like PI speed loop on wheel speed driving a brushless motor
@@ -200,7 +207,7 @@ class LidarConfig(NumbersAreNumbers):
     mount_z: float = Field(0.12, description="Scanner height above the ground (m); informational in the 2D scan.")
     rate_hz: float = Field(
         40.0,
-        gt=0,
+        ge=MIN_RATE_HZ,
         description=(
             "Scan rate (Hz; paper: 39.9 Hz). Under a faster control loop the env holds the latest scan "
             "until the next is due; at or below the scan rate every step gets a fresh scan."
@@ -223,7 +230,7 @@ class PhysicsConfig(NumbersAreNumbers):
 
     dt: float = Field(
         0.005,
-        gt=0,
+        ge=MIN_DT,
         le=0.02,
         description="Physics time step (s). Steps above 10 ms are split into equal internal steps, so every accepted dt is stable.",
     )

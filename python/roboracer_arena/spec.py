@@ -8,14 +8,13 @@ request states; the rest keep these defaults.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Literal
 
 from pydantic import ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from .errors import ArenaError, SpecError
-from .fileio import read_text
+from .fileio import parse_json, read_text
 from .strict import NumbersAreNumbers
 
 FeatureName = Literal["hairpin", "chicane", "sweeper"]
@@ -143,12 +142,7 @@ class TrackSpec(NumbersAreNumbers):
             text = read_text(p, "spec file")
         except ArenaError as e:
             raise SpecError(str(e)) from None
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as e:
-            raise SpecError(f"{p}: not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from e
-        except RecursionError:
-            raise SpecError(f"{p}: JSON nested too deeply to be a spec") from None
+        data = parse_json(text, p, "spec file", SpecError)
         return cls.from_dict(data, source=str(p))
 
     @classmethod

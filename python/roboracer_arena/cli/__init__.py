@@ -10,13 +10,15 @@ internal error.
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
+import threading
 from collections.abc import Sequence
 from importlib import import_module
 
 from .. import __version__
 from ..errors import ArenaError, InternalError
-from ._common import check_numeric_flags
+from ._common import check_numeric_flags, check_outputs, raise_interrupt_on_sigterm
 
 # Subcommand modules, in the order `--help` lists them.
 COMMANDS: list[str] = [
@@ -58,8 +60,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return EXIT_BAD_INPUT
+    previous = signal.getsignal(signal.SIGTERM)
     try:
+        raise_interrupt_on_sigterm()
         check_numeric_flags(args)
+        check_outputs(args)
         return int(args.func(args) or 0)
     except InternalError as e:  # a caught core panic: a bug, not bad input
         print(f"roboracer-arena {args.command}: {e}", file=sys.stderr)
@@ -73,6 +78,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:  # e.g. `roboracer-arena ... --json | head`
         sys.stderr.close()
         return EXIT_OK
+    finally:
+        if threading.current_thread() is threading.main_thread() and previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -61,3 +61,44 @@ def check_numeric_flags(args: Any) -> None:
                 if dest in ("seed", "seeds"):
                     rng = " in [0, 2**64 - 1]"
                 raise InvalidArgumentError(f"{flag} must be a finite number{rng}, got {v}")
+
+
+#: Flags that name a file the command writes, by argparse ``dest``. ``out`` is a file
+#: unless the command lists it in its ``output_dirs`` default (``set_defaults``).
+OUTPUT_FILE_DESTS = ("out", "json", "gif", "mcap", "record", "markdown")
+#: Flags that name a directory the command writes into.
+OUTPUT_DIR_DESTS = ("maps",)
+
+
+def check_outputs(args: Any) -> None:
+    """The one output guard of the CLI, run in ``main`` before any command starts: every
+    output flag is checked with :func:`~roboracer_arena.fileio.check_output` against every
+    other path argument (and the files those name, e.g. a map YAML's image), so an output
+    that would overwrite an input, or that cannot be written (a directory, a file as its
+    parent, an unwritable place), fails at once with exit 2 and nothing written."""
+    from pathlib import Path
+
+    from ..fileio import check_output
+
+    dirs = set(getattr(args, "output_dirs", ())) | set(OUTPUT_DIR_DESTS)
+    outs = {d: v for d, v in vars(args).items() if isinstance(v, Path) and (d in OUTPUT_FILE_DESTS or d in dirs)}
+    inputs: list[Path] = []
+    for d, v in vars(args).items():
+        for item in v if isinstance(v, (list, tuple)) else [v]:
+            if d not in outs and isinstance(item, (str, Path)) and item and Path(item).is_file():
+                inputs.append(Path(item))
+    for d, path in outs.items():
+        check_output(path, inputs, directory=d in dirs)
+
+
+def raise_interrupt_on_sigterm() -> None:
+    """Make SIGTERM end a command the way Ctrl-C does (``KeyboardInterrupt``), so every
+    job finishes or removes its outputs and cleans its temporary files on both signals."""
+    import signal
+    import threading
+
+    def on_term(signum: int, frame: Any) -> None:
+        raise KeyboardInterrupt(f"signal {signum}")
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, on_term)

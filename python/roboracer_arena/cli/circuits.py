@@ -44,7 +44,7 @@ def register(sub) -> None:
     p.add_argument("--jobs", type=int, default=None, metavar="N", help="worker threads (default: all cores)")
     p.add_argument("--only", nargs="+", metavar="ID", help="build only these circuit ids")
     add_json_flag(p)
-    p.set_defaults(func=run)
+    p.set_defaults(func=run, output_dirs=("out",))
 
 
 def run(args: argparse.Namespace) -> int:

@@ -42,7 +42,7 @@ def register(sub) -> None:
     add_backend_args(p)
     _share_timeout(p)
     add_json_flag(p)
-    p.set_defaults(func=run)
+    p.set_defaults(func=run, output_dirs=("out",))
 
 
 _MODEL_TIMEOUT_DEFAULT = "_model_timeout_default"

@@ -17,6 +17,7 @@ import sys
 import time
 from pathlib import Path
 
+from ..sim_config import MIN_RATE_HZ
 from ._common import add_json_flag, print_json
 
 
@@ -27,8 +28,8 @@ def _rate(value: str) -> float | None:
         r = float(value)
     except ValueError:
         raise argparse.ArgumentTypeError(f"--rate must be a positive number or 'max', got {value!r}") from None
-    if not (math.isfinite(r) and r > 0):
-        raise argparse.ArgumentTypeError(f"--rate must be a positive number or 'max', got {value!r}")
+    if not (math.isfinite(r) and MIN_RATE_HZ <= r <= 1e6):
+        raise argparse.ArgumentTypeError(f"--rate must be in [{MIN_RATE_HZ:g}, 1e6] or 'max', got {value!r}")
     return r
 
 
@@ -98,6 +99,7 @@ def run(args: argparse.Namespace) -> int:
         config=config,
         record=args.record,
         loopback=args.loopback,
+        stop_at=args.sim_time,
     )
     stop = {"flag": False}
 
@@ -115,8 +117,6 @@ def run(args: argparse.Namespace) -> int:
     try:
         while not stop["flag"] and not bridge.wait(0.05):
             if args.duration is not None and time.monotonic() - t0 >= args.duration:
-                break
-            if args.sim_time is not None and bridge.sim_time >= args.sim_time:
                 break
     except KeyboardInterrupt:
         pass

@@ -100,7 +100,7 @@ def register(sub) -> None:
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="local worker processes (default: all cores)")
     _ray_flag(a)
     add_json_flag(a)
-    a.set_defaults(func=run_generate)
+    a.set_defaults(func=run_generate, output_dirs=("out",))
     a = t.add_parser("sheet", help="contact sheet of every track")
     a.add_argument(
         "-o", "--out", type=Path, required=True, metavar="sheet.png", help="picture to write (.png, .jpg or .jpeg)"

@@ -122,6 +122,9 @@ class RayVectorEnv(VectorEnv):
             raise ValueError(f"num_actors and envs_per_actor must be >= 1, got {num_actors} and {envs_per_actor}")
         if "num_envs" in env_kwargs or "env_index_offset" in env_kwargs:
             raise ValueError("pass num_actors and envs_per_actor, not num_envs / env_index_offset")
+        from ..envs.track_pool import check_track_names
+
+        check_track_names(env_kwargs.get("track"))  # an unknown id: the local env's typed error, no actor started
         ray = import_ray()
         self._owns = connect(address or "auto")
         self.num_actors, self.envs_per_actor = int(num_actors), int(envs_per_actor)

@@ -33,6 +33,35 @@ STATE_INFO = ("laps", "lap_time", "last_lap_time", "progress_s")
 BACKWARDS_EPS = 1e-3
 
 
+#: Most vehicles (envs x vehicles per env) one simulator holds: each is a rapier world
+#: of its own plus its buffers (measured: see README "Limits").
+MAX_VEHICLES = 16_384
+#: Most float32 scan values the observation buffers hold (envs x vehicles x beams x
+#: frame stack): 2**28 values, 1 GiB.
+MAX_SCAN_VALUES = 1 << 28
+
+
+def check_size_budget(num_envs: int, config: EnvConfig) -> None:
+    """Refuse an env whose size would exhaust memory, before anything is allocated (the
+    native allocator aborts the process on failure, which Python cannot catch)."""
+    from ..errors import ConfigError
+
+    V, B = config.vehicles_per_env, config.sim.lidar.num_beams
+    k = config.observation.frame_stack
+    vehicles = num_envs * V
+    if vehicles > MAX_VEHICLES:
+        raise ConfigError(
+            f"num_envs x vehicles_per_env = {num_envs} x {V} = {vehicles} vehicles, more than the {MAX_VEHICLES} "
+            "one simulator holds; use fewer envs or several processes (Ray)"
+        )
+    values = vehicles * B * (k + 1) if config.observation.scan else 0
+    if values > MAX_SCAN_VALUES:
+        raise ConfigError(
+            f"scan buffers of {vehicles} vehicles x {B} beams x (frame_stack {k} + 1) = {values} values, "
+            f"more than the {MAX_SCAN_VALUES} allowed; use fewer envs, beams or stacked frames"
+        )
+
+
 class SimBatch:
     """``E`` environments × ``V`` vehicles on one native simulator (see module docstring)."""
 
@@ -53,11 +82,13 @@ class SimBatch:
         self.config = config
         self.num_envs = E = int(num_envs)
         self.vehicles = V = config.vehicles_per_env
+        check_size_budget(E, config)
         self._natives = [t.native() for t in tracks]
         self.seed = int(seed)
         self.env_index_offset = int(env_index_offset)  # env e draws from the streams of env offset + e
         self._start_json = self._start_spec(tracks, probs=track_probs)
         self.sim = self._new_sim(self.seed)
+        self.never_reset = np.ones(E, bool)  # an env observes nothing until its first reset
         self.num_beams = B = int(self.sim.num_beams)
         self.fields = tuple(self.sim.state_fields)
         self.field_index = {f: i for i, f in enumerate(self.fields)}
@@ -154,7 +185,15 @@ class SimBatch:
                 out[0, 0, 0] = (slo if steer < slo else shi if steer > shi else steer) if steer == steer else 0.0
                 out[0, 0, 1] = (vlo if speed < vlo else vhi if speed > vhi else speed) if speed == speed else 0.0
                 return
-        a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, self.vehicles, 2)
+        raw = np.asarray(actions)
+        if raw.dtype.kind not in "biuf" or raw.size != self.num_envs * self.vehicles * 2:
+            from ..errors import InvalidArgumentError
+
+            raise InvalidArgumentError(
+                f"actions must be {self.num_envs * self.vehicles * 2} numbers "
+                f"({self.num_envs} env(s) x {self.vehicles} vehicle(s) x [steer, speed]), got {actions!r:.80}"
+            )
+        a = raw.astype(np.float64, copy=False).reshape(self.num_envs, self.vehicles, 2)
         if self.config.action_mode == "ackermann":
             np.clip(a, self._lo, self._hi, out=out)  # ±inf -> bounds; NaN stays NaN
         else:
@@ -252,6 +291,14 @@ class SimBatch:
         [0, start_speed_noise] (at rest when 0). The draws come from each env's own stream
         in the simulator (see the module docstring)."""
         mask = np.asarray(mask, dtype=bool)
+        if (self.never_reset & ~mask).any():
+            from ..errors import ConfigError
+
+            raise ConfigError(
+                f"reset_mask leaves env(s) {np.flatnonzero(self.never_reset & ~mask)[:8].tolist()} that were "
+                "never reset (after creation or a new seed every env must be reset once)"
+            )
+        self.never_reset &= ~mask
         self.sim.reset_drawn(mask, self.track_ids, self.start_pose, self.start_speed, track_ids, poses, speeds)
         idx = np.flatnonzero(mask)
         if self._vehicle_rngs is not None:
@@ -410,6 +457,7 @@ class SimBatch:
         its per-vehicle noise streams restart: the same seed gives the same episode."""
         self.seed = int(seed)
         self.sim = self._new_sim(self.seed)
+        self.never_reset[:] = True
 
 
 class EnvHelpers:

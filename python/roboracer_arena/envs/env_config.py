@@ -13,7 +13,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import ConfigError
-from ..sim_config import SimConfig
+from ..sim_config import MIN_RATE_HZ, SimConfig
 from ..start_grid import GRID_OFFSET, GRID_SPACING
 from ..strict import NumbersAreNumbers
 
@@ -153,7 +153,9 @@ class EnvConfig(NumbersAreNumbers):
 
     model_config = _FROZEN
 
-    control_rate_hz: float = Field(20.0, gt=0, description="Agent steps per simulated second (drive commands: 20 Hz).")
+    control_rate_hz: float = Field(
+        20.0, ge=MIN_RATE_HZ, le=10_000, description="Agent steps per simulated second (drive commands: 20 Hz)."
+    )
     action_mode: Literal["ackermann", "normalised"] = Field(
         "ackermann",
         description="'ackermann': [steer (rad), speed (m/s)] like /drive; 'normalised': both in [-1, 1] "

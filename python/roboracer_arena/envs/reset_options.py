@@ -75,3 +75,17 @@ def reset_options(
             )
         speeds = sp
     return ids, poses, speeds
+
+
+def reset_mask(options: Mapping[str, Any] | None, num_envs: int) -> np.ndarray | None:
+    """The ``reset_mask`` option as (E,) bools, or None when not given. Only booleans (or
+    0/1 integers) of the right length are accepted: a string, floats or a wrong length is
+    a :class:`ConfigError`, never "reset everything"."""
+    raw = None if not options else options.get("reset_mask")
+    if raw is None:
+        return None
+    arr = np.asarray(raw) if not isinstance(raw, (str, bytes)) else np.asarray([raw])
+    ok_kind = arr.dtype.kind == "b" or (arr.dtype.kind in "iu" and bool(((arr == 0) | (arr == 1)).all()))
+    if not ok_kind or arr.shape != (num_envs,):
+        raise ConfigError(f"reset option reset_mask must be {num_envs} booleans, got {raw!r:.80}")
+    return arr.astype(bool)

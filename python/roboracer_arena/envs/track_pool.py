@@ -18,13 +18,14 @@ from __future__ import annotations
 
 import fnmatch
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ..errors import ConfigError
 from ..library.catalog import load_catalog
-from ..track import Track
+from ..track import MAP_SUFFIXES, Track
 from .tracks import resolve_tracks
 
 #: Track used when ``track=`` is not given: a 40 m generated catalog track (1.2 m wide).
@@ -58,6 +59,22 @@ def resolve_track_pool(
         return tracks, np.asarray(probs) / total
     items = list(track) if isinstance(track, (list, tuple)) else [track]
     return resolve_tracks([x for item in items for x in _expand_list(item)], corridor_params, reverse=reverse), None
+
+
+def check_track_names(track: Any) -> None:
+    """Resolve every catalog id, selection and pattern named by ``track=`` (the keys of a
+    weights dict too) without building a track, so a caller that builds the env elsewhere
+    (Ray actors) raises the same typed error as the local env, before starting anything.
+    Map paths, maps and tracks are left to the env."""
+    from .tracks import resolve_catalog
+
+    if track is None:
+        track = DEFAULT_TRACK
+    items = list(track) if isinstance(track, (Mapping, list, tuple)) else [track]
+    for item in items:
+        for name in _expand_list(item):
+            if isinstance(name, str) and not (Path(name).suffix.lower() in MAP_SUFFIXES or Path(name).is_file()):
+                resolve_catalog(name)
 
 
 def _expand_list(item: Any) -> list[Any]:

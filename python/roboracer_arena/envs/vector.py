@@ -45,7 +45,7 @@ from gymnasium.vector.utils import batch_space
 from .batch import EnvHelpers, SimBatch
 from .env_config import EnvConfig
 from .episode_limit import time_limit_given, vector_config
-from .reset_options import reset_options
+from .reset_options import reset_mask, reset_options
 from .track_pool import resolve_track_pool
 
 
@@ -123,9 +123,8 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
             self._np_random = np.random.default_rng(seed)
             self._seeded = True
             self._batch.rebuild(int(seed))
-        mask = self._all
-        if options and options.get("reset_mask") is not None:
-            mask = np.asarray(options["reset_mask"], dtype=bool).reshape(self.num_envs)
+        given = reset_mask(options, self.num_envs)
+        mask = self._all if given is None else given
         track_ids, poses, speeds = reset_options(
             options, self.num_envs, self.vehicles_per_env, len(self.tracks), single=False
         )

@@ -8,14 +8,23 @@ a field added to the catalog is added here first.
 
 from __future__ import annotations
 
+import math
+from pathlib import PurePosixPath
 from typing import Any, Literal
 
-from pydantic import ConfigDict, Field
+from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from ..frozen_model import FrozenModel
 
 Kind = Literal["recorded", "circuit", "generated"]
 Status = Literal["pass", "FAIL", "not run"]
+
+#: Track ids: printed by the CLI and used as folder names, so a safe character set only
+#: (no newline, escape code, slash or leading dot).
+ID_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,119}$"
+#: Largest raster side (px) and resolution (m/cell) a catalog entry may declare (the map
+#: loader's own limits are the real gate; these keep a tampered entry from lying).
+MAX_RASTER_PX = 1 << 16
 
 
 class Source(FrozenModel):
@@ -32,14 +41,14 @@ class Source(FrozenModel):
 class Raster(FrozenModel):
     """Size of the map image in cells."""
 
-    width_px: int
-    height_px: int
+    width_px: int = Field(ge=1, le=MAX_RASTER_PX)
+    height_px: int = Field(ge=1, le=MAX_RASTER_PX)
 
 
 class LeftOut(FrozenModel):
     """A recorded map the catalog does not offer, with the reason."""
 
-    id: str
+    id: str = Field(pattern=ID_PATTERN)
     source_path: str
     reason: str
 
@@ -76,18 +85,18 @@ class TrackEntry(FrozenModel):
     :mod:`~roboracer_arena.library.directions`; ``verified`` and ``drive`` from
     ``tracks verify --update-catalog``."""
 
-    id: str
+    id: str = Field(pattern=ID_PATTERN)
     name: str
     kind: Kind
     source: Source
-    scale: float | None
-    resolution_m: float
-    lap_length_m: float
-    width_mean_m: float
-    width_min_m: float
-    min_radius_m: float
+    scale: float | None = Field(gt=0, allow_inf_nan=False)
+    resolution_m: float = Field(gt=0, le=1.0, allow_inf_nan=False)
+    lap_length_m: float = Field(gt=0, le=100_000, allow_inf_nan=False)
+    width_mean_m: float = Field(gt=0, le=100, allow_inf_nan=False)
+    width_min_m: float = Field(gt=0, le=100, allow_inf_nan=False)
+    min_radius_m: float = Field(ge=0, le=100_000, allow_inf_nan=False)
     raster: Raster
-    sha256: str
+    sha256: str = Field(pattern=r"^[0-9a-f]{64}$")
     map: str
     centreline: str | None = None
     spec: str | None = None
@@ -101,3 +110,23 @@ class TrackEntry(FrozenModel):
     direction_source: str | None = None
     verified: dict[str, Status] | None = None
     drive: str | None = None
+
+    @field_validator("map", "centreline", "spec")
+    @classmethod
+    def _inside_the_library(cls, v: str | None) -> str | None:
+        # Relative to the catalog's folder (or the sources for recorded maps) and staying
+        # there: an absolute or ../ path would make verify read files anywhere.
+        if v is None:
+            return v
+        p = PurePosixPath(v)
+        if not v or p.is_absolute() or ".." in p.parts or "\\" in v or any(ord(c) < 32 for c in v):
+            raise ValueError(f"must be a relative path inside the library without '..', got {v!r:.80}")
+        return v
+
+    @model_validator(mode="after")
+    def _widths_ordered(self) -> TrackEntry:
+        if self.width_min_m > self.width_mean_m + 1e-9:
+            raise ValueError(f"width_min_m {self.width_min_m} is above width_mean_m {self.width_mean_m}")
+        if self.start is not None and not all(math.isfinite(v) for v in self.start):
+            raise ValueError(f"start must be finite, got {self.start}")
+        return self

@@ -25,6 +25,8 @@ order.
 
 from __future__ import annotations
 
+import itertools
+import math
 from pathlib import Path
 from typing import Any
 
@@ -52,6 +54,10 @@ EXAMPLE_SWEEP: dict[str, Any] = {
     },
     "fixed": {},
 }
+
+
+#: Most corners of a sweep's ranges checked at load (fields x bounds x choices).
+MAX_CORNERS = 1 << 14
 
 
 class Choice(BaseModel):
@@ -89,12 +95,44 @@ class SweepFile(BaseModel):
             raise ValueError(f"field(s) {', '.join(both)} are in both ranges and fixed")
         for k, r in self.ranges.items():
             if isinstance(r, tuple):
+                if not all(math.isfinite(v) for v in r):
+                    raise ValueError(f"ranges.{k}: bounds must be finite numbers, got [{r[0]}, {r[1]}]")
                 if r[0] > r[1]:
                     raise ValueError(f"ranges.{k}: lower bound {r[0]:g} is above upper bound {r[1]:g}")
                 if _is_int_field(k) and (r[0] != int(r[0]) or r[1] != int(r[1])):
                     raise ValueError(f"ranges.{k}: an integer field takes integer bounds, got [{r[0]:g}, {r[1]:g}]")
-        self.spec(0)  # a fixed value of the wrong type fails here, not in a worker
+        self._check_every_draw()
         return self
+
+    def _check_every_draw(self) -> None:
+        """Whole-range validation at load: every request the ranges can draw must be a valid
+        TrackSpec, not only request 0. TrackSpec's limits are per-field bounds and count
+        equalities, so it is enough to try every corner of the ranges (each float bound
+        rounded to ``decimals`` as draws are; every listed choice)."""
+        names = sorted(self.ranges)
+        options: list[list[Any]] = []
+        for name in names:
+            r = self.ranges[name]
+            if isinstance(r, Choice):
+                options.append(list(r.choice))
+            elif _is_int_field(name):
+                options.append(sorted({int(r[0]), int(r[1])}))
+            else:
+                options.append(sorted({round(float(r[0]), self.decimals), round(float(r[1]), self.decimals)}))
+        corners = math.prod(len(o) for o in options)
+        if corners > MAX_CORNERS:
+            raise ValueError(
+                f"ranges: {corners} combinations of bounds and choices, more than the {MAX_CORNERS} checked"
+            )
+        for combo in itertools.product(*options):
+            drawn = dict(zip(names, combo))
+            try:
+                TrackSpec(name=self.track_id(0), **{**self.fixed, **drawn})
+            except ValidationError as e:
+                what = ", ".join(f"{k}={v!r}" for k, v in drawn.items()) or "the fixed fields"
+                raise ValueError(
+                    f"a request can draw {what}, which is not a valid spec: {format_validation_error(e)}"
+                ) from None
 
     def draw(self, k: int) -> dict[str, Any]:
         """The ranged field values of request ``k``."""

@@ -3,9 +3,13 @@ executor (local processes or Ray tasks), deterministically.
 
 Requests run in waves of consecutive ``k`` (:mod:`.sweep`); the library is the first
 ``count`` acceptances in ``k`` order, so it does not depend on the number of workers or
-the wave sizes. Workers return files; only this process writes, each track directory
-atomically (:func:`~roboracer_arena.fileio.atomic_write_dir`), ``sweep.json`` and
-``catalog.json`` last, atomically. Layout of ``outdir``::
+the wave sizes. Workers return files; only this process writes. The whole library is
+staged in a hidden sibling of ``outdir`` and swapped in by rename when it is complete
+(:func:`~roboracer_arena.fileio.atomic_dir`): an interrupt (SIGINT, SIGTERM) or an error
+at any moment leaves the previous ``outdir`` exactly as it was (or no ``outdir``) and no
+staging folder. What ``outdir`` held besides this sweep's tracks, ``sweep.json`` and
+``catalog.json`` (other sweeps' tracks, other files) is carried over by hard links.
+Layout of ``outdir``::
 
     generated/<id>/{map.yaml, map.png, centreline.csv, spec.json, report.json}
     sweep.json      every request up to the last kept one, with its outcome
@@ -16,6 +20,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import shutil
 import time
@@ -24,7 +29,7 @@ from pathlib import Path
 from .. import __version__
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
-from ..fileio import atomic_write_dir, atomic_write_text
+from ..fileio import atomic_dir, atomic_write_dir, atomic_write_text, check_output
 from ..pool import Progress, map_ordered
 from .catalog import SCHEMA, Catalog, count_kinds
 from .directions import annotate_directions
@@ -61,8 +66,48 @@ def generate_library(
     budget = max_requests if max_requests is not None else 10 * count
     if budget < count:
         raise InvalidArgumentError(f"--max-requests {budget} is below --count {count}")
+    check_output(outdir, directory=True)
+    with atomic_dir(outdir) as stage:
+        _carry_over(Path(outdir), stage, sweep.name)
+        return _generate_into(stage, sweep, count, budget, executor, progress)
+
+
+def _carry_over(old: Path, stage: Path, name: str) -> None:
+    """Hard-link (or copy) into ``stage`` what ``old`` holds that this run does not rewrite."""
+    if not old.is_dir():
+        return
+    mine = re.compile(rf"^{re.escape(name)}-\d{{5,}}$")
+    for item in old.iterdir():
+        if item.name in ("sweep.json", "catalog.json"):
+            continue
+        if item.name == "generated" and item.is_dir():
+            (stage / "generated").mkdir(exist_ok=True)
+            for d in item.iterdir():
+                if not mine.match(d.name):  # this sweep's tracks are generated afresh
+                    _link_tree(d, stage / "generated" / d.name)
+        else:
+            _link_tree(item, stage / item.name)
+
+
+def _link_tree(src: Path, dst: Path) -> None:
+    def link(a: str, b: str) -> None:
+        try:
+            os.link(a, b)
+        except OSError:
+            shutil.copy2(a, b)
+
+    if src.is_dir() and not src.is_symlink():
+        shutil.copytree(src, dst, symlinks=True, copy_function=link)
+    elif src.is_symlink():
+        os.symlink(os.readlink(src), dst)
+    else:
+        link(str(src), str(dst))
+
+
+def _generate_into(
+    out: Path, sweep: SweepFile, count: int, budget: int, executor: Executor, progress: Progress | None
+) -> LibrarySummary:
     t0 = time.perf_counter()
-    out = Path(outdir)
     gen = out / "generated"
     records: list[SweepRecord] = []
     kept: list[str] = []
@@ -74,13 +119,12 @@ def generate_library(
         for k, (rec, files) in enumerate(map_ordered(executor, generate_files, tasks, progress), start):
             keep = bool(files) and len(kept) < count
             if keep:
-                atomic_write_dir(gen / rec.id, files)
+                atomic_write_dir(gen / rec.id, files)  # inside the stage
                 kept.append(rec.id)
             records.append(rec.with_fields(k=k, kept=keep))
     if kept:  # requests after the last kept one depend on the wave size: leave them out
         last = next(r.k for r in records if r.id == kept[-1])
         records = records[: (last or 0) + 1]
-    _remove_stale(gen, sweep.name, set(kept))
     summary = LibrarySummary(
         sweep=sweep.model_dump(mode="json"),
         count=count,
@@ -97,15 +141,6 @@ def generate_library(
     atomic_write_text(out / "sweep.json", json.dumps(summary.to_json_dict(), indent=2) + "\n")
     _write_catalog(out, kept, summary)
     return summary
-
-
-def _remove_stale(gen: Path, name: str, kept: set[str]) -> None:
-    """Delete track directories of an earlier run of the same sweep name that this run
-    does not keep (e.g. a larger --count before), so the directory matches the catalog."""
-    pattern = re.compile(rf"^{re.escape(name)}-\d{{5,}}$")
-    for d in gen.glob(f"{name}-*") if gen.is_dir() else []:
-        if d.is_dir() and pattern.match(d.name) and d.name not in kept:
-            shutil.rmtree(d, ignore_errors=True)
 
 
 def _write_catalog(out: Path, kept: list[str], summary: LibrarySummary) -> None:

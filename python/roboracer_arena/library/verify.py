@@ -10,6 +10,7 @@ packages are not installed they report ``not run`` with the reason, never a pass
 
 from __future__ import annotations
 
+import math
 import tempfile
 import time
 from pathlib import Path
@@ -35,9 +36,15 @@ def check_load(entry: TrackEntry, yaml_path: Path) -> tuple[Check, OccupancyMap 
     except (ArenaError, OSError) as e:
         return Check(status=FAIL, detail=f"does not load: {e}"), None
     digest = sha256_file(Path(m.meta["image_path"]))
-    if entry.sha256 and digest != entry.sha256:
+    if digest != entry.sha256:  # (the loader refuses an entry without a 64-hex-digit checksum)
         return Check(status=FAIL, detail=f"image checksum {digest[:12]} != catalog {entry.sha256[:12]}"), m
     h, w = np.asarray(m.data).shape
+    if (w, h) != (entry.raster.width_px, entry.raster.height_px):
+        return Check(
+            status=FAIL, detail=f"raster {w}x{h} != catalog {entry.raster.width_px}x{entry.raster.height_px}"
+        ), m
+    if not math.isclose(m.resolution, entry.resolution_m, rel_tol=1e-6):
+        return Check(status=FAIL, detail=f"resolution {m.resolution:g} m != catalog {entry.resolution_m:g} m"), m
     return Check(status=PASS, detail=f"{w}x{h} at {m.resolution:g} m, checksum ok"), m
 
 
@@ -61,8 +68,8 @@ def check_ring(entry: TrackEntry, m: OccupancyMap, yaml_path: Path) -> Check:
         )
     if entry.kind != "recorded" and mm.infields != 1:
         return Check(status=FAIL, detail=f"{mm.infields} enclosed regions, expected 1")
-    ref = entry.lap_length_m
-    if ref and abs(lap - ref) / ref > LAP_TOLERANCE:
+    ref = entry.lap_length_m  # > 0 and finite (checked on load)
+    if abs(lap - ref) / ref > LAP_TOLERANCE:
         return Check(status=FAIL, detail=f"raster lap {lap:.2f} m vs catalog {ref:.2f} m (> {100 * LAP_TOLERANCE:g} %)")
     return Check(status=PASS, detail=f"one closed ring, raster lap {lap:.2f} m, mean width {mm.mean_width_m:.2f} m")
 

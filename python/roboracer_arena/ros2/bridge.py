@@ -12,11 +12,19 @@ command, so a run is a deterministic function of the commands sent (the other ca
 keep their latest command). ``/initialpose`` puts the ego at rest at the given pose and
 the other cars at rest where they are; simulated time keeps running (``/clock`` stays
 monotonic).
+
+Messages from other DDS participants follow one rule: validate, count, log once per
+kind, keep running. A non-finite ``/drive`` command or ``/initialpose``, or a pose
+outside the world (the track's extent plus a margin), is dropped; ``stats()["rejected"]``
+counts them by kind and the first of each kind is logged as a warning. An error inside
+the bridge stops it, but a recording is still finished (whole and readable up to then).
 """
 
 from __future__ import annotations
 
 import collections
+import logging
+import math
 import threading
 import time
 from pathlib import Path
@@ -33,6 +41,10 @@ from .source import SimSource, sim_source
 from .topics import CENTRELINE, CLOCK, INITIALPOSE, MAP, TF, TF_STATIC, TYPE_OF, car_names, dds_topic
 
 _POLL_S = 0.002  # longest sleep between checks for commands while pacing
+#: A reset pose may lie this far (m) outside the centreline's bounding box, or half its
+#: larger side if that is more; further out there are no walls and nothing to simulate.
+_POSE_MARGIN_M = 10.0
+_log = logging.getLogger(__name__)
 
 
 class Bridge:
@@ -50,6 +62,8 @@ class Bridge:
         record: optional MCAP path; everything published and every command received.
         loopback: configure DDS for the loopback interface (see :mod:`.dds`).
         dds: False runs the simulation and the recording without any DDS entity.
+        stop_at: stop exactly when this much simulated time has run (seconds; None: run
+            until ``stop()``); checked by the simulation thread, so it never overshoots.
     """
 
     def __init__(
@@ -65,7 +79,16 @@ class Bridge:
         loopback: bool = False,
         dds: bool = True,
         seed: int = 0,
+        stop_at: float | None = None,
     ) -> None:
+        if record is not None:  # before any work: a bad target fails now, not after the run
+            from ..fileio import check_output
+
+            check_output(record, inputs=[env_or_sim] if isinstance(env_or_sim, (str, Path)) else [])
+        if stop_at is not None and not (math.isfinite(stop_at) and stop_at > 0):
+            from ..errors import InvalidArgumentError
+
+            raise InvalidArgumentError(f"stop_at must be a finite number of seconds > 0, got {stop_at}")
         self.config = config or BridgeConfig()
         self.src: SimSource = sim_source(env_or_sim, cars=cars, config=self.config.sim, seed=seed)
         self.domain_id, self.loopback, self.use_dds = domain_id, loopback, dds
@@ -83,6 +106,12 @@ class Bridge:
         self.state = np.zeros((E, V, len(self.src.fields)))
         self.events = np.zeros((E, V), np.uint8)
         self.step = 0
+        self.stop_step = None if stop_at is None else max(1, math.ceil(stop_at / self.dt - 1e-9))
+        line = np.asarray(self.src.centreline, float)
+        lo, hi = line.min(axis=0), line.max(axis=0)
+        margin = max(_POSE_MARGIN_M, 0.5 * float(np.max(hi - lo)))
+        self._world = (lo - margin, hi + margin)
+        self.rejected: collections.Counter = collections.Counter()
         lid = self.src.config.lidar
         self._odom_packers = [OdometryPacker(n) for n in self.names]
         self._scan_packers = [
@@ -117,7 +146,7 @@ class Bridge:
         if self.record_path is not None:
             from .recorder import McapRecorder
 
-            self._recorder = McapRecorder(self.record_path)
+            self._recorder = McapRecorder(self.record_path, inputs=[self.src.name])
         if self.use_dds:
             self._open_dds()
         self.src.sim.reset(np.ones(self.src.num_envs, bool), self.src.grid_poses())
@@ -136,7 +165,11 @@ class Bridge:
         if self._thread is not None:
             self._thread.join(timeout)
         if self._recorder is not None:
-            self._recorder.close() if self.error is None else self._recorder.abort()
+            try:  # also after an error: what was recorded until then is whole and kept
+                self._recorder.close()
+            except BaseException:
+                self._recorder.abort()
+                raise
         self._writers.clear()
         self._raw.clear()
         self._readers.clear()
@@ -175,6 +208,7 @@ class Bridge:
                 "p99": round(float(np.quantile(lat, 0.99)) * 1e3, 3),
                 "max": round(float(lat.max()) * 1e3, 3),
             },
+            "rejected": dict(self.rejected),
             "error": None if self.error is None else repr(self.error),
         }
 
@@ -253,8 +287,11 @@ class Bridge:
                 if not s.sample_info.valid_data:
                     continue
                 cmd = (float(s.drive.steering_angle), float(s.drive.speed))
-                if self._recorder is not None:
+                if self._recorder is not None:  # recorded as received: the log shows what peers sent
                     self._recorder.write(n.drive, TYPE_OF["drive"], s, self.sim_time)
+                if not all(math.isfinite(v) for v in cmd):
+                    self._reject(n.drive, "non-finite steering or speed", cmd)
+                    continue
                 if self.lockstep and i == 0:
                     self._pending_lockstep.append((cmd, s.sample_info.source_timestamp))
                 else:
@@ -264,10 +301,22 @@ class Bridge:
         if r is not None:
             for s in r.take(N=16):
                 if s.sample_info.valid_data:
-                    p = s.pose.pose
-                    self._reset_pose = (p.position.x, p.position.y, sm.quaternion_yaw(p.orientation))
                     if self._recorder is not None:
                         self._recorder.write(INITIALPOSE, TYPE_OF[INITIALPOSE], s, self.sim_time)
+                    p = s.pose.pose
+                    q = p.orientation
+                    raw = (p.position.x, p.position.y, q.x, q.y, q.z, q.w)
+                    if not all(math.isfinite(v) for v in raw) or not any(raw[2:]):
+                        self._reject(INITIALPOSE, "non-finite position or orientation", raw)
+                        continue
+                    self.reset_ego(p.position.x, p.position.y, sm.quaternion_yaw(q))
+
+    def _reject(self, topic: str, why: str, values: Any) -> None:
+        """Count a dropped external message; log the first of each kind (no flood)."""
+        key = f"{topic}: {why}"
+        self.rejected[key] += 1
+        if self.rejected[key] == 1:
+            _log.warning("ros2 bridge: dropped %s message (%s): %s; further ones are only counted", topic, why, values)
 
     def drive(self, car: int, steer: float, speed: float) -> None:
         """Command car ``car`` from Python, as a ``/drive`` message would (recorded too; in
@@ -284,9 +333,19 @@ class Bridge:
         else:
             self.actions[:, car] = (steer, speed)
 
-    def reset_ego(self, x: float, y: float, yaw: float) -> None:
-        """Put the ego at rest at (x, y, yaw) at the next step (what ``/initialpose`` does)."""
+    def reset_ego(self, x: float, y: float, yaw: float) -> bool:
+        """Put the ego at rest at (x, y, yaw) at the next step (what ``/initialpose`` does).
+        A non-finite pose or one outside the world is dropped and counted (False)."""
+        x, y, yaw = float(x), float(y), float(yaw)
+        lo, hi = self._world
+        if not all(math.isfinite(v) for v in (x, y, yaw)):
+            self._reject(INITIALPOSE, "non-finite position or orientation", (x, y, yaw))
+            return False
+        if not (lo[0] <= x <= hi[0] and lo[1] <= y <= hi[1]):
+            self._reject(INITIALPOSE, "position outside the world", (x, y))
+            return False
         self._reset_pose = (x, y, yaw)
+        return True
 
     def _apply_reset(self) -> None:
         if self._reset_pose is None:  # (the caller checks; nothing to apply)
@@ -318,9 +377,13 @@ class Bridge:
                     self.actions[:, 0] = cmd
                     self._pending_latency.append(ts)
                     period_end = self.step + self.control_steps
+                if self.stop_step is not None and self.step >= self.stop_step:
+                    break
                 end = self.schedule.next_step()
                 if period_end is not None:
                     end = min(end, period_end)
+                if self.stop_step is not None:
+                    end = min(end, self.stop_step)
                 self._advance(end - self.step, scan=self.schedule._next["scan"] == end)
                 if period_end is not None and self.step >= period_end:
                     period_end = None

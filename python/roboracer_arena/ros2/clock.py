@@ -18,7 +18,7 @@ from pydantic import ConfigDict, Field, ValidationError
 
 from ..errors import ArenaError, ConfigError
 from ..fileio import read_json
-from ..sim_config import SimConfig
+from ..sim_config import MIN_RATE_HZ, SimConfig
 from ..spec import format_validation_error
 from ..strict import NumbersAreNumbers
 
@@ -31,10 +31,12 @@ class RatesConfig(NumbersAreNumbers):
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
-    scan_hz: float = Field(39.9, gt=0, le=1000, description="LaserScan rate per car.")
-    odom_hz: float = Field(50.0, gt=0, le=1000, description="Odometry and /tf rate.")
-    drive_hz: float = Field(20.0, gt=0, le=1000, description="Control rate: one --lockstep period is 1/drive_hz.")
-    clock_hz: float = Field(100.0, gt=0, le=1000, description="/clock rate.")
+    scan_hz: float = Field(39.9, ge=MIN_RATE_HZ, le=1000, description="LaserScan rate per car.")
+    odom_hz: float = Field(50.0, ge=MIN_RATE_HZ, le=1000, description="Odometry and /tf rate.")
+    drive_hz: float = Field(
+        20.0, ge=MIN_RATE_HZ, le=1000, description="Control rate: one --lockstep period is 1/drive_hz."
+    )
+    clock_hz: float = Field(100.0, ge=MIN_RATE_HZ, le=1000, description="/clock rate.")
 
 
 class BridgeConfig(NumbersAreNumbers):
@@ -92,8 +94,10 @@ class Pacer:
     more than ``max_lag`` wall seconds behind re-anchors instead of bursting to catch up."""
 
     def __init__(self, rate: float | None, max_lag: float = 0.25) -> None:
-        if rate is not None and not rate > 0:
-            raise ConfigError(f"--rate must be > 0 or 'max', got {rate}")
+        if rate is not None and not (math.isfinite(rate) and MIN_RATE_HZ <= rate <= 1e6):
+            raise ConfigError(
+                f"rate must be in [{MIN_RATE_HZ:g}, 1e6] (x real time) or None (as fast as possible), got {rate}"
+            )
         self.rate = rate
         self.max_lag = max_lag
         self._anchor_wall = time.perf_counter()

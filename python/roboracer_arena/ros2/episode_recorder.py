@@ -6,7 +6,8 @@ running across episodes so the file's clock is monotonic), each car's scan and o
 the simulator received) as ``ackermann_msgs/AckermannDriveStamped`` on the car's drive
 topic. ``/tf_static``, the centreline marker and ``/map`` (when the track came from a
 map) are written once per track. Topic names are the bridge's (:mod:`.topics`).
-``close()`` finishes the file.
+``close()`` finishes the file and ``abort()`` discards it; a recorder never closed
+removes its temporary file when collected or at exit (never a stray hidden file).
 
 Attributes the wrapped env exposes (``odometry_raw``, ``simulator_state``, ...) are
 forwarded, so drivers written for the env work on the wrapper too.
@@ -42,13 +43,14 @@ class McapEpisodeRecorder(gym.Wrapper):
             raise TypeError("McapEpisodeRecorder wraps a RoboRacerArena-v0 single env")
         self._inner: RoboRacerEnv = inner
         self._batch: SimBatch = inner._batch
-        self.recorder = McapRecorder(path)
         self._names = [car_names(i) for i in range(inner.config.vehicles_per_env)]
         self._dt = inner.config.control_dt
         self._t = 0.0
         self._steps = 0
         self._tracks_done: set[int] = set()
         self.episodes = 0
+        # Last: nothing after it can fail and leave the temporary file open.
+        self.recorder = McapRecorder(path, inputs=[t.source for t in inner.tracks if isinstance(t.source, (str, Path))])
 
     def __getattr__(self, name: str) -> Any:  # forward env helpers (gymnasium>=1.0 does not)
         if name.startswith("_"):
@@ -77,8 +79,18 @@ class McapEpisodeRecorder(gym.Wrapper):
         return obs, reward, terminated, truncated, info
 
     def close(self) -> None:
-        self.recorder.close()
-        super().close()
+        """Finish the recording (whole and readable up to the last step) and close the env."""
+        try:
+            self.recorder.close()
+        finally:
+            super().close()
+
+    def abort(self) -> None:
+        """Discard the recording (its temporary file) and close the env."""
+        try:
+            self.recorder.abort()
+        finally:
+            super().close()
 
     # ------------------------------------------------------------------ helpers
     def _write_track(self) -> None:

@@ -4,18 +4,22 @@
 The payload of each message is exactly the XCDR1 serialisation the bridge sends on the
 wire (:func:`~roboracer_arena.ros2.msgs.serialize`); each channel carries the ROS 2
 QoS it was offered with (``offered_qos_profiles``) so ``ros2 bag play`` republishes the
-latched topics as transient local. The file is written beside its target and renamed
-into place on :meth:`McapRecorder.close` (never half-written).
+latched topics as transient local. The target is checked before anything runs
+(:func:`~roboracer_arena.fileio.check_output`); the file is written beside it and renamed
+into place, with the umask's permissions, on :meth:`McapRecorder.close` (never
+half-written). SIGINT and SIGTERM are held back while a message or the footer is being
+written, so an interrupt lands between messages and the file can always be finished.
 """
 
 from __future__ import annotations
 
 import os
-import tempfile
 import threading
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from ..fileio import StagedFile, signals_held
 from . import msgs
 from ._deps import require
 from .qos import DEPTH, LATCHED
@@ -29,17 +33,17 @@ _QOS_YAML = (
 
 class McapRecorder:
     """Write ROS 2 messages to an MCAP file. Thread safe; use as a context manager or call
-    :meth:`close` (``abort()`` discards the file)."""
+    :meth:`close` (``abort()`` discards the file). ``inputs``: files the recording must not
+    overwrite (the map it records, its config)."""
 
-    def __init__(self, path: str | os.PathLike[str]) -> None:
+    def __init__(self, path: str | os.PathLike[str], inputs: Iterable[str | Path | None] = ()) -> None:
         require("mcap")
         from mcap.writer import CompressionType, Writer
 
-        self.path = Path(path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{self.path.stem}.", suffix=".mcap", dir=self.path.parent)
-        self._tmp = Path(tmp)
-        self._stream = os.fdopen(fd, "wb")
+        self._staged = StagedFile(path, inputs)
+        self.path = self._staged.path
+        self._tmp = self._staged.tmp
+        self._stream = open(self._tmp, "wb")
         self._writer = Writer(self._stream, compression=CompressionType.ZSTD)
         self._writer.start(profile="ros2", library="roboracer-arena")
         self._schemas: dict[str, int] = {}
@@ -64,7 +68,7 @@ class McapRecorder:
     def write_cdr(self, topic: str, typename: str, data: bytes, t: float) -> None:
         """Record already serialised ``data`` on ``topic`` at ``t`` simulated seconds."""
         ns = int(round(t * 1e9))
-        with self._lock:
+        with self._lock, signals_held():
             if self.closed:
                 return
             cid = self._channel(topic, typename)
@@ -77,22 +81,28 @@ class McapRecorder:
         self.write_cdr(topic, typename, msgs.serialize(msg), t)
 
     def close(self) -> Path:
-        """Finish the file and move it into place; returns its path."""
-        with self._lock:
+        """Finish the file and move it into place; returns its path. If finishing fails
+        the temporary file is removed and the error raised."""
+        with self._lock, signals_held():
             if not self.closed:
                 self.closed = True
-                self._writer.finish()
-                self._stream.close()
-                os.replace(self._tmp, self.path)
+                try:
+                    self._writer.finish()
+                    self._stream.close()
+                except BaseException:
+                    self._stream.close()
+                    self._staged.discard()
+                    raise
+                self._staged.commit()
         return self.path
 
     def abort(self) -> None:
         """Discard the recording."""
-        with self._lock:
+        with self._lock, signals_held():
             if not self.closed:
                 self.closed = True
                 self._stream.close()
-                self._tmp.unlink(missing_ok=True)
+                self._staged.discard()
 
     def __enter__(self) -> McapRecorder:
         return self

@@ -10,6 +10,12 @@ use crate::error::{ArenaError, Result};
 /// Largest accepted physics time step (s). Steps above [`MAX_INTERNAL_DT`] are split
 /// into equal internal sub-steps, so every accepted dt is as stable as 10 ms.
 pub const MAX_DT: f64 = 0.02;
+/// Smallest accepted physics time step (s): below it a second of simulation is more
+/// than ten thousand steps, and a vanishing dt (1e-300) divides by zero downstream.
+pub const MIN_DT: f64 = 1e-4;
+/// Smallest accepted rate (Hz) of anything periodic (lidar, and in Python the control
+/// and bridge rates): a period above 100 s is no rate, and 5e-324 Hz overflows 1/rate.
+pub const MIN_RATE_HZ: f64 = 0.01;
 /// Largest step the vehicle model integrates in one go (s).
 pub const MAX_INTERNAL_DT: f64 = 0.01;
 
@@ -312,6 +318,17 @@ impl SimParams {
         check(
             p.dt <= MAX_DT,
             &format!("physics.dt must be at most {MAX_DT} s, got {}", p.dt),
+        )?;
+        check(
+            p.dt >= MIN_DT,
+            &format!("physics.dt must be at least {MIN_DT} s, got {}", p.dt),
+        )?;
+        check(
+            l.rate_hz >= MIN_RATE_HZ,
+            &format!(
+                "lidar.rate_hz must be at least {MIN_RATE_HZ} Hz, got {}",
+                l.rate_hz
+            ),
         )?;
         check(
             p.solver_iterations >= 1 && p.solver_iterations <= 16,
