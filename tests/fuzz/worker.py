@@ -66,7 +66,26 @@ def _api_measure(resolution, origin):
     _core.measure_map(np.full((20, 20), 254, np.uint8), resolution, tuple(origin))
 
 
+def _api_env(kwargs, options=None, actions=(), vector=0):
+    """Make a ``RoboRacerArena-v0`` env (``vector`` > 0: a native vector env of that many
+    envs) with hostile ``kwargs``, reset it with hostile ``options`` and step ``actions``."""
+    import gymnasium as gym
+
+    track = "gen-l040-w12-h2c1s1-clo-s0"
+    if vector:
+        env = gym.make_vec("RoboRacerArena-v0", num_envs=vector, track=track, **kwargs)
+    else:
+        env = gym.make("RoboRacerArena-v0", track=track, **kwargs)
+    try:
+        env.reset(seed=0, options=options)
+        for a in actions:
+            env.step(a)
+    finally:
+        env.close()
+
+
 API = {
+    "env": _api_env,
     "analyse_curve": _api_analyse_curve,
     "distance_transform": _api_distance_transform,
     "extract_corridor": _api_extract_corridor,

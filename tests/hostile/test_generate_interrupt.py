@@ -32,6 +32,18 @@ def tree(root: Path) -> dict[str, str]:
     }
 
 
+def _wait_for_a_new_track(tmp_path: Path, proc, timeout: float = 120.0) -> None:
+    """Until the run has written a track of its own, wherever it writes (mid-run)."""
+    t0 = time.time()
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline and proc.poll() is None:
+        specs = [*tmp_path.glob("*/generated/t-*/spec.json"), *tmp_path.glob(".*/generated/t-*/spec.json")]
+        if any(s.stat().st_mtime >= t0 for s in specs if s.exists()):
+            return
+        time.sleep(0.05)
+    pytest.fail("the run never wrote a track")
+
+
 def _generate(tmp_path: Path, out: Path, count: int, base_seed: int) -> object:
     sweep = tmp_path / f"sweep{base_seed}.json"
     sweep.write_text(json.dumps({**SWEEP, "base_seed": base_seed}))
@@ -47,7 +59,7 @@ def test_an_interrupted_rerun_leaves_the_old_library_whole(tmp_path, sig):
     (out / "generated" / "mine.txt").write_text("a file of the user's")
     before = tree(out)
     p = _generate(tmp_path, out, 30, 8)  # another library into the same folder
-    time.sleep(4.0)  # some tracks of the new run are done by now
+    _wait_for_a_new_track(tmp_path, p)
     p.send_signal(sig)
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130 and "Traceback" not in err, err
@@ -61,7 +73,7 @@ def test_an_interrupted_rerun_leaves_the_old_library_whole(tmp_path, sig):
 def test_an_interrupted_first_run_leaves_nothing(tmp_path):
     out = tmp_path / "fresh"
     p = _generate(tmp_path, out, 30, 7)
-    time.sleep(4.0)
+    _wait_for_a_new_track(tmp_path, p)
     p.send_signal(signal.SIGINT)
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130, err
