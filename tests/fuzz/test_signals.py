@@ -1,0 +1,145 @@
+"""Round 2 (issue 25): SIGINT or SIGTERM at random moments (seeded, so the same moments
+on every run) during ``drive --mcap``, ``ros2 --record`` and ``tracks generate``. After
+every signal: the inputs are byte for byte what they were, the output is either whole
+and readable or absent, and no temporary or staging file is left. A signal can land
+anywhere, including during the interpreter's imports (then the process dies of it
+before any file exists)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytestmark = [pytest.mark.slow, pytest.mark.timeout(300)]
+RNG = random.Random(25)
+#: Exit codes after a signal: 130 the CLI's own (SIGINT and SIGTERM alike), -2/-15 dead
+#: of the signal before the CLI installed its handlers, 0 finished before the signal.
+AFTER_SIGNAL = {0, 130, -2, -15}
+
+
+def _cli(args: list[str], cwd: Path) -> subprocess.Popen:
+    env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
+    env["RAYON_NUM_THREADS"] = "2"
+    return subprocess.Popen(
+        [sys.executable, "-c", "import sys; from roboracer_arena.cli import main; sys.exit(main())", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+        cwd=cwd,
+    )
+
+
+def _tree(root: Path) -> dict[str, str]:
+    return {
+        str(p.relative_to(root)): hashlib.sha256(p.read_bytes()).hexdigest()
+        for p in sorted(root.rglob("*"))
+        if p.is_file()
+    }
+
+
+def _strays(folder: Path) -> list[str]:
+    return sorted(p.name for p in folder.iterdir() if p.name.startswith("."))
+
+
+def _mcap_whole(path: Path) -> bool:
+    from mcap.reader import make_reader
+
+    with open(path, "rb") as f:
+        reader = make_reader(f)
+        reader.get_summary()
+        sum(1 for _ in reader.iter_messages())
+    return True
+
+
+def _interrupt(p: subprocess.Popen, delay: float) -> tuple[int, str]:
+    time.sleep(delay)
+    p.send_signal(RNG.choice([signal.SIGINT, signal.SIGTERM]))
+    _, err = p.communicate(timeout=120)
+    return p.returncode, err
+
+
+@pytest.fixture(scope="module")
+def ring_map(tmp_path_factory) -> Path:
+    from roboracer_arena import _core
+    from roboracer_arena.maps import OccupancyMap
+
+    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
+    xy = np.column_stack([6.0 * np.cos(t), 3.5 * np.sin(t)])
+    data, origin = _core.rasterise_centreline(xy, np.full(len(xy), 1.8), resolution=0.05)
+    return OccupancyMap(data, 0.05, origin).save(tmp_path_factory.mktemp("map") / "ellipse.yaml")
+
+
+@pytest.mark.parametrize("run", range(4))
+@pytest.mark.parametrize("command", ["drive", "ros2"])
+def test_a_signal_during_a_recording_leaves_it_whole_or_absent(ring_map, tmp_path, command, run):
+    pytest.importorskip("mcap")
+    inputs = tmp_path / "in"
+    inputs.mkdir()
+    for p in ring_map.parent.iterdir():
+        (inputs / p.name).write_bytes(p.read_bytes())
+    before = _tree(inputs)
+    out = tmp_path / "out"
+    out.mkdir()
+    target = out / "run.mcap"
+    if command == "drive":
+        args = ["drive", str(inputs / ring_map.name), "--laps", "100", "--mcap", str(target), "--json"]
+    else:
+        args = ["ros2", str(inputs / ring_map.name), "--record", str(target), "--loopback", "--json"]
+        args += ["--domain-id", str(RNG.randint(1, 200))]
+    code, err = _interrupt(_cli(args, out), RNG.uniform(0.05, 8.0))
+    assert code in AFTER_SIGNAL, err[-800:]
+    if code in (0, 130):
+        assert "Traceback" not in err, err[-800:]
+    assert _tree(inputs) == before
+    assert _strays(out) == []
+    assert not target.exists() or _mcap_whole(target)
+
+
+SWEEP = {
+    "name": "fz",
+    "base_seed": 3,
+    "ranges": {"lap_length_m": [30, 45], "hairpins": [0, 1]},
+    "fixed": {"corridor_width_m": 1.5, "hall_x_m": 15, "hall_y_m": 12},
+}
+
+
+@pytest.fixture(scope="module")
+def library(tmp_path_factory) -> Path:
+    """A one-track library made once; each test interrupts a rerun over a copy of it."""
+    root = tmp_path_factory.mktemp("lib")
+    (root / "s.json").write_text(json.dumps(SWEEP))
+    p = _cli(["tracks", "generate", "--sweep", "s.json", "--count", "1", "-o", "lib", "--jobs", "1"], root)
+    _, err = p.communicate(timeout=240)
+    assert p.returncode == 0, err
+    return root / "lib"
+
+
+@pytest.mark.parametrize("run", range(3))
+def test_a_signal_during_tracks_generate_leaves_the_library_whole(library, tmp_path, run):
+    import shutil
+
+    from roboracer_arena.library.catalog import load_catalog, sha256_file
+
+    lib = tmp_path / "lib"
+    shutil.copytree(library, lib)
+    sweep = tmp_path / "s.json"
+    sweep.write_text(json.dumps({**SWEEP, "base_seed": 4 + run}))
+    before, sweep_before = _tree(lib), sweep.read_bytes()
+    args = ["tracks", "generate", "--sweep", "s.json", "--count", "20", "-o", "lib", "--jobs", "1"]
+    code, err = _interrupt(_cli(args, tmp_path), RNG.uniform(0.05, 10.0))
+    assert code in AFTER_SIGNAL - {0}, err[-800:]
+    assert _tree(lib) == before and sweep.read_bytes() == sweep_before
+    assert _strays(tmp_path) == [] and _strays(lib / "generated") == []
+    cat = load_catalog(lib / "catalog.json")
+    assert all(sha256_file(lib / Path(e.map).parent / "map.png") == e.sha256 for e in cat.entries)
