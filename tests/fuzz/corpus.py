@@ -190,8 +190,8 @@ CORPUS: list[dict] = [
         "files": ring_map(),
         "argv": ["preview", "ring.yaml", "-o", "ring.yaml"],
         "codes": [2],
-        "says": ["picture format"],
-    },  # refused by its extension first, before any work
+        "says": ["would overwrite the input"],
+    },  # refused by the CLI's output guard, before any work
     {
         "id": "preview-overwrites-its-image",
         "files": ring_map(),

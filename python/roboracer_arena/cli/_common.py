@@ -85,10 +85,21 @@ def check_outputs(args: Any) -> None:
     inputs: list[Path] = []
     for d, v in vars(args).items():
         for item in v if isinstance(v, (list, tuple)) else [v]:
-            if d not in outs and isinstance(item, (str, Path)) and item and Path(item).is_file():
+            if d not in outs and isinstance(item, (str, Path)) and item and _is_file(item):
                 inputs.append(Path(item))
     for d, path in outs.items():
         check_output(path, inputs, directory=d in dirs)
+
+
+def _is_file(item: Any) -> bool:
+    """Whether a text argument names an existing file (a request text is not a path: a
+    name too long for the file system is not a file)."""
+    from pathlib import Path
+
+    try:
+        return Path(item).is_file()
+    except (OSError, ValueError):
+        return False
 
 
 def raise_interrupt_on_sigterm() -> None:

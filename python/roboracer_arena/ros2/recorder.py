@@ -40,7 +40,7 @@ class McapRecorder:
         require("mcap")
         from mcap.writer import CompressionType, Writer
 
-        self._staged = StagedFile(path, inputs)
+        self._staged = StagedFile(Path(path), inputs)
         self.path = self._staged.path
         self._tmp = self._staged.tmp
         self._stream = open(self._tmp, "wb")
