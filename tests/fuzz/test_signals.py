@@ -62,8 +62,14 @@ def _mcap_whole(path: Path) -> bool:
     return True
 
 
-def _interrupt(p: subprocess.Popen, delay: float) -> tuple[int, str]:
-    time.sleep(delay)
+def _interrupt(p: subprocess.Popen, started, run: int, within: float) -> tuple[int, str]:
+    """Signal ``p`` at a random moment: for run 0 counted from the process start (often
+    during imports), else counted from when ``started()`` first holds (the job is writing)."""
+    if run:
+        deadline = time.monotonic() + 120
+        while not started() and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.01)
+    time.sleep(RNG.uniform(0.0, within))
     p.send_signal(RNG.choice([signal.SIGINT, signal.SIGTERM]))
     _, err = p.communicate(timeout=120)
     return p.returncode, err
@@ -97,7 +103,7 @@ def test_a_signal_during_a_recording_leaves_it_whole_or_absent(ring_map, tmp_pat
     else:
         args = ["ros2", str(inputs / ring_map.name), "--record", str(target), "--loopback", "--json"]
         args += ["--domain-id", str(RNG.randint(1, 200))]
-    code, err = _interrupt(_cli(args, out), RNG.uniform(0.05, 8.0))
+    code, err = _interrupt(_cli(args, out), lambda: bool(_strays(out)), run, 3.0)  # the temporary exists
     assert code in AFTER_SIGNAL, err[-800:]
     if code in (0, 130):
         assert "Traceback" not in err, err[-800:]
@@ -136,8 +142,14 @@ def test_a_signal_during_tracks_generate_leaves_the_library_whole(library, tmp_p
     sweep = tmp_path / "s.json"
     sweep.write_text(json.dumps({**SWEEP, "base_seed": 4 + run}))
     before, sweep_before = _tree(lib), sweep.read_bytes()
-    args = ["tracks", "generate", "--sweep", "s.json", "--count", "20", "-o", "lib", "--jobs", "1"]
-    code, err = _interrupt(_cli(args, tmp_path), RNG.uniform(0.05, 10.0))
+    args = ["tracks", "generate", "--sweep", "s.json", "--count", "200", "-o", "lib", "--jobs", "1"]
+    t0 = time.time()
+
+    def started() -> bool:  # a track of this run is written, wherever this code writes it
+        specs = [*tmp_path.glob("*/generated/*/spec.json"), *tmp_path.glob(".*/generated/*/spec.json")]
+        return any(p.stat().st_mtime >= t0 for p in specs if p.exists())
+
+    code, err = _interrupt(_cli(args, tmp_path), started, run, 4.0)
     assert code in AFTER_SIGNAL - {0}, err[-800:]
     assert _tree(lib) == before and sweep.read_bytes() == sweep_before
     assert _strays(tmp_path) == [] and _strays(lib / "generated") == []
