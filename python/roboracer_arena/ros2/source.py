@@ -9,7 +9,6 @@ env after the bridge stops) or a ``_core.Simulator`` (env 0 is used).
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -81,7 +80,9 @@ def sim_source(
         sim = env_or_sim
         tid = int(sim.track_ids()[0])
         # A bare simulator has no Track to place a grid on: s = 0 of each centreline.
-        sim.set_start_spec(start_spec([None] * int(sim.num_tracks), int(sim.vehicles_per_env), reset_poses="centreline_start"))
+        sim.set_start_spec(
+            start_spec([None] * int(sim.num_tracks), int(sim.vehicles_per_env), reset_poses="centreline_start")
+        )
         return SimSource(
             sim,
             int(sim.vehicles_per_env),
