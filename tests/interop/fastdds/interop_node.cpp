@@ -3,7 +3,7 @@
 // bridge's ego topics with ROS 2's QoS (reliable, keep last 10; transient local for /map
 // and /tf_static) and prints one JSON line per sample it decodes; it publishes /drive
 // (20 Hz, like a controller) and /initialpose when told on stdin:
-//   drive STEER SPEED | initialpose X Y YAW | quit
+//   drive STEER SPEED | stop | initialpose X Y YAW | quit
 // Usage: interop_node DOMAIN_ID. Discovery configuration comes from the XML profile in
 // FASTRTPS_DEFAULT_PROFILES_FILE, as for any ROS 2 node on Fast DDS.
 #include <atomic>
@@ -255,6 +255,12 @@ int main(int argc, char** argv) {
             steer = s;
             speed = v;
             driving = true;
+        } else if (cmd == "stop") {  // one zero command, then no more /drive
+            driving = false;
+            std::this_thread::sleep_for(std::chrono::milliseconds(60));
+            ackermann_msgs::msg::dds_::AckermannDriveStamped_ m;
+            m.header().frame_id("ego_racecar/base_link");
+            drive_w->write(&m);
         } else if (cmd == "initialpose") {
             double x = 0, y = 0, yaw = 0;
             in >> x >> y >> yaw;
