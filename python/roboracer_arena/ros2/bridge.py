@@ -76,9 +76,10 @@ class Bridge:
         start_speeds: Any = None,
     ) -> None:
         self.config = config or BridgeConfig()
-        self.src: SimSource = sim_source(
-            env_or_sim, cars=cars, config=self.config.sim, seed=seed, start=self.config.start
-        )
+        start = self.config.start
+        if start_poses is not None:  # fixed poses: no grid to search (open maps have none to find)
+            start = start.model_copy(update={"reset_poses": "centreline_start"})
+        self.src: SimSource = sim_source(env_or_sim, cars=cars, config=self.config.sim, seed=seed, start=start)
         self._start_poses = fixed_poses(start_poses, self.src.vehicles)
         self._start_speeds = fixed_speeds(start_speeds, self.src.vehicles)
         #: Where the cars started (1, V, 3), set by :meth:`start`.

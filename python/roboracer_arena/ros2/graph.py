@@ -83,6 +83,6 @@ def announce(dp: Any, readers: Iterable[Any], writers: Iterable[Any]) -> Any:
     from .msgs import msg_class
 
     qos = discovery_qos()
-    w = DataWriter(dp, Topic(dp, TOPIC, msg_class(TYPE), qos=qos), qos=qos)
+    w: DataWriter[Any] = DataWriter(dp, Topic(dp, TOPIC, msg_class(TYPE), qos=qos), qos=qos)
     w.write(participant_info(dp.guid, (r.guid for r in readers), (x.guid for x in writers)))
     return w
