@@ -3,7 +3,8 @@
 
 :func:`sim_source` accepts a track (map YAML path, ``OccupancyMap``, ``Track``, catalog
 id), a ``RoboRacerArena-v0`` env (possibly wrapped; its simulator is shared, so reset the
-env after the bridge stops) or a ``_core.Simulator`` (env 0 is used).
+env after the bridge stops) or a ``_core.Simulator`` (env 0 is used). The cars start as
+the env starts them (:meth:`SimSource.reset`, see :mod:`.start`).
 """
 
 from __future__ import annotations
