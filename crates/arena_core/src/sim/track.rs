@@ -9,7 +9,7 @@
 
 use rapier3d::prelude::{SharedShape, Vector};
 
-use super::lidar::SegmentGrid;
+use super::segments::SegmentGrid;
 use crate::error::{ArenaError, Result};
 use crate::geometry::mesh::extrude_walls;
 use crate::geometry::polyline::cumulative_length;
