@@ -157,7 +157,7 @@ def _executor(args):
 
     if args.jobs is not None and args.jobs < 1:
         raise InvalidArgumentError(f"--jobs must be >= 1, got {args.jobs}")
-    return make_executor(args.jobs, args.ray)
+    return make_executor(args.jobs, args.ray, arg="--ray")
 
 
 def _progress(desc: str) -> Progress:

@@ -5,7 +5,8 @@ over the map, so the legend never covers the track."""
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+import re
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -110,16 +111,68 @@ def _text_h(d: ImageDraw.ImageDraw, text: str, f) -> int:
 
 
 def _wrap(d: ImageDraw.ImageDraw, text: str, f, width: int) -> list[str]:
-    """``text`` broken at spaces into lines at most ``width`` px wide."""
+    """``text`` in lines at most ``width`` px wide, broken as :func:`wrap_items` says."""
+    return wrap_items(text, lambda line: d.textlength(line, font=f) <= width)
+
+
+def wrap_items(text: str, fits: Callable[[str], bool]) -> list[str]:
+    """``text`` broken into lines for which ``fits(line)`` holds: between items first
+    (after ``, `` ``; `` ``. `` or ``: ``), and only an item too long for a line of its own
+    is broken at its spaces, never inside a value ("70.9 m", "30.0 x 30.0 m", "x 7.01 m")."""
+    lines: list[str] = []
+    cur = ""
+    for piece in _items(text):
+        trial = cur + piece
+        if not cur or fits(trial.rstrip()):
+            cur = trial
+            continue
+        lines.append(cur.rstrip())
+        cur = piece
+    lines.append(cur.rstrip())
+    out: list[str] = []
+    for line in lines:  # an item longer than a line: break it between its values
+        out += [line] if fits(line) else _break_item(line, fits)
+    return out
+
+
+def _items(text: str) -> list[str]:
+    """``text`` cut after each item separator (the separator stays with its item)."""
+    pieces = re.split(r"(?<=[,;.:]) (?=\S)", text)
+    return [p + " " for p in pieces[:-1]] + pieces[-1:]
+
+
+def _break_item(item: str, fits: Callable[[str], bool]) -> list[str]:
+    """``item`` broken at the spaces that do not split a value (see :func:`_glued`)."""
+    words = item.split(" ")
+    chunks = [words[0]]
+    for prev, word in zip(words, words[1:]):
+        if _glued(prev, word):
+            chunks[-1] += " " + word
+        else:
+            chunks.append(word)
     lines, cur = [], ""
-    for word in text.split(" "):
-        trial = f"{cur} {word}".strip()
-        if cur and d.textlength(trial, font=f) > width:
+    for c in chunks:
+        trial = f"{cur} {c}" if cur else c
+        if cur and not fits(trial):
             lines.append(cur)
-            cur = word
+            cur = c
         else:
             cur = trial
     return [*lines, cur]
+
+
+_NUMBER = re.compile(r"^[-+−]?\(?[\d.]+[\d.,%°)]*$")
+
+
+def _glued(prev: str, word: str) -> bool:
+    """True when the space between ``prev`` and ``word`` sits inside a value: a number and
+    its unit ("70.9 m"), a name and its number ("x 7.01", "lap 2"), "30.0 x 30.0"."""
+    num_prev, num_word = bool(_NUMBER.match(prev)), bool(_NUMBER.match(word))
+    if num_prev and not num_word and len(word.rstrip(",;.:")) <= 5:
+        return True  # number, unit
+    if num_word and not prev.endswith((",", ";", ".", ":")):
+        return True  # label, number
+    return prev == "x" or word == "x"
 
 
 def _legend_rows(
