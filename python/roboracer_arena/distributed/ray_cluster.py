@@ -44,9 +44,14 @@ def connect(address: str, arg: str = "address") -> bool:
         else:
             ray.init(address=address, **kwargs)
     except (ConnectionError, RuntimeError, ValueError) as e:
+        if address == "auto" and str(e).startswith("Could not find any running Ray instance"):
+            # Ray's own text names its CLI's --address flag, whatever the caller wrote.
+            raise ArenaError(
+                f"{_named(arg, 'auto')}: no running Ray cluster found on this machine and RAY_ADDRESS is not set; "
+                f"{_named(arg, 'local')} starts one here, {_named(arg, 'HOST:PORT')} joins a remote one"
+            ) from None
         first = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-        hint = f"; {_named(arg, 'local')} starts a cluster on this machine" if address == "auto" else ""
-        raise ArenaError(f"{_named(arg, address)}: cannot connect to a Ray cluster: {first}{hint}") from None
+        raise ArenaError(f"{_named(arg, address)}: cannot connect to a Ray cluster: {first}") from None
     return True
 
 

@@ -63,11 +63,27 @@ def check_actors_fit(
     )
 
 
-def check_cluster_fits(num_actors: int, cpus_per_actor: float, envs_per_actor: int | None = None) -> None:
-    """:func:`check_actors_fit` against the connected cluster's CPUs (total and free)."""
+#: How long a request that fits the cluster's total CPUs waits for enough of them to be free
+#: (s): actors killed a moment ago (``RayVectorEnv.close``) give their CPUs back asynchronously.
+FREE_WAIT_S = 3.0
+
+
+def check_cluster_fits(
+    num_actors: int, cpus_per_actor: float, envs_per_actor: int | None = None, wait_s: float = FREE_WAIT_S
+) -> None:
+    """:func:`check_actors_fit` against the connected cluster's CPUs: at once against its
+    total, then against its free CPUs, which it waits up to ``wait_s`` seconds for."""
+    import time
+
     from .ray_cluster import import_ray
 
     ray = import_ray()
     total = float(ray.cluster_resources().get("CPU", 0.0))
-    free = float(ray.available_resources().get("CPU", 0.0))
+    check_actors_fit(num_actors, cpus_per_actor, total, envs_per_actor=envs_per_actor)
+    deadline = time.monotonic() + wait_s
+    while True:
+        free = float(ray.available_resources().get("CPU", 0.0))
+        if num_actors * cpus_per_actor <= free + 1e-9 or time.monotonic() >= deadline:
+            break
+        time.sleep(0.05)
     check_actors_fit(num_actors, cpus_per_actor, total, free, envs_per_actor=envs_per_actor)

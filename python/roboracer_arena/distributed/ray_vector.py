@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import pickle
+import sys
 from typing import Any
 
 import numpy as np
@@ -126,9 +127,9 @@ class RayVectorEnv(VectorEnv):
             raise ValueError(f"num_actors and envs_per_actor must be >= 1, got {num_actors} and {envs_per_actor}")
         if "num_envs" in env_kwargs or "env_index_offset" in env_kwargs:
             raise ValueError("pass num_actors and envs_per_actor, not num_envs / env_index_offset")
-        ray = import_ray()
         self.num_actors, self.envs_per_actor = int(num_actors), int(envs_per_actor)
         self._owns = self._connect_fitting(address, float(num_cpus_per_actor))
+        ray = import_ray()
         self.num_envs = self.num_actors * self.envs_per_actor
         # The native batch's thread pool gets the CPUs Ray reserved for the actor, no more.
         threads = str(max(1, int(num_cpus_per_actor)))
@@ -164,10 +165,12 @@ class RayVectorEnv(VectorEnv):
         """Connect (see :func:`.ray_cluster.connect`) and fail at once, in one line, if the
         actors' CPUs do not fit the cluster: Ray would otherwise queue them forever. With
         ``address="local"`` the check runs before Ray starts (it can take tens of seconds)."""
-        ray = import_ray()
         n, m = self.num_actors, self.envs_per_actor
-        if address == "local" and not ray.is_initialized():
+        loaded = sys.modules.get("ray")
+        if address == "local" and not (loaded is not None and loaded.is_initialized()):
+            # Before even importing Ray (seconds on a busy machine), let alone starting it.
             check_actors_fit(n, cpus, local_cpus(), envs_per_actor=m, where="this machine (address='local')")
+        ray = import_ray()
         owns = connect(address or "auto")
         try:
             check_cluster_fits(n, cpus, envs_per_actor=m)
