@@ -133,8 +133,8 @@ def _still(track: Any, map_px: int) -> tuple[TopDown, Any, list[LegendEntry]]:
     if isinstance(src, (str, Path)) and Path(src).is_file():
         canvas, _, occ, _, legend = map_canvas(Path(src), max_px=map_px, min_px=map_px // 2)
         return canvas, occ, legend
-    lo, hi = np.asarray(track.bounds[:2]), np.asarray(track.bounds[2:])
-    canvas = TopDown.for_bounds(lo, hi, resolution=0.02, margin=0.5, max_px=map_px)
+    x0, y0, x1, y1 = (float(v) for v in track.bounds)
+    canvas = TopDown.for_bounds((x0, y0), (x1, y1), resolution=0.02, margin=0.5, max_px=map_px)
     for wall in track.walls:
         canvas.polyline(wall, WALL, min_px=2)
     return canvas, None, [LegendEntry("collision walls", WALL, "line")]
