@@ -45,6 +45,7 @@ def test_a_frame_shows_the_previews_marks_the_car_and_the_hud(ellipse_map):
     m = bg[y0:y1, x0:x1]
     assert near(m, ARROW, 30).sum() > 100  # racing-direction arrows on the map
     assert track.name in view.title and "lap" in view.title and "counterclockwise" in view.title
+    assert ": clockwise" in DriveView(track.reversed(), map_px=200).title  # the arrows show the way it is driven
     title = bg[: view.hud_box[1]]
     assert (title.min(axis=-1) < 80).sum() > 300  # the title's ink
     sx0, sy0, sx1, sy1 = view.layout.scale_box

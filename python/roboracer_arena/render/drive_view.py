@@ -131,7 +131,7 @@ def _still(track: Any, map_px: int) -> tuple[TopDown, Any, list[LegendEntry]]:
 
     src = track.source
     if isinstance(src, (str, Path)) and Path(src).is_file():
-        canvas, _, occ, _, legend = map_canvas(Path(src), max_px=map_px, min_px=map_px // 2)
+        canvas, _, occ, _, legend = map_canvas(Path(src), max_px=map_px, min_px=map_px)
         return canvas, occ, legend
     x0, y0, x1, y1 = (float(v) for v in track.bounds)
     canvas = TopDown.for_bounds((x0, y0), (x1, y1), resolution=0.02, margin=0.5, max_px=map_px)
