@@ -137,7 +137,7 @@ def contact_sheet(
             draw.text((x0 + 4, y0 + cell[1] // 2), f"cannot load: {type(ex).__name__}", fill=(200, 0, 0), font=font)
         colour = KIND_COLOUR.get(e.kind, (0, 0, 0))
         draw.rectangle([x0 + 1, y0 + 1, x0 + cell[0] - 2, y0 + cell[1] + label_h - 2], outline=colour, width=2)
-        draw.text((x0 + 4, y0 + cell[1]), e.id[:28], fill=(0, 0, 0), font=font)
+        draw.text((x0 + 4, y0 + cell[1]), e.id, fill=(0, 0, 0), font=_fitting_font(draw, e.id, cell[0] - 8))
         kind = e.kind + (f", lap {e.lap_length_m:.1f} m" if e.lap_length_m is not None else "")
         draw.text((x0 + 4, y0 + cell[1] + 13), kind, fill=colour, font=font)
         if extent is not None:
@@ -145,6 +145,18 @@ def contact_sheet(
                 (x0 + 4, y0 + cell[1] + 26), f"extent {extent[0]:.0f} x {extent[1]:.0f} m", fill=(60, 60, 60), font=font
             )
     return save_image(sheet, out)
+
+
+def _fitting_font(draw: ImageDraw.ImageDraw, text: str, width: int):
+    """The default font at the largest size from 10 px down to 6 px at which ``text``
+    fits ``width`` px: an id is shown whole, never cut."""
+    from ..render.topdown import font
+
+    for size in range(10, 5, -1):
+        f = font(size)
+        if draw.textlength(text, font=f) <= width:
+            break
+    return f
 
 
 def _scale_bar(draw: ImageDraw.ImageDraw, x: int, y: int, px_per_m: float, max_px: int, font) -> None:
