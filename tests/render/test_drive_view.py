@@ -3,6 +3,8 @@ scale bar, legend) plus a HUD, and the lap counter is right on the last frame.""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 from PIL import Image, ImageDraw
@@ -96,3 +98,17 @@ def test_the_last_gif_frame_says_the_lap_is_finished(ellipse_map, tmp_path):
     got = _lap_text_mask(last, view, "finished 1 of 1 lap")
     assert (got == want["finished"]).mean() > 0.98
     assert (_lap_text_mask(early, view, "lap 1 of 1") == want["lap 1"]).mean() > 0.98
+
+
+def test_the_progress_bar_shows_simulated_time_and_the_cars_speed(ellipse_map, capsys):
+    res = drive_laps(ellipse_map, 1, progress=True, sim={"lidar": {"num_beams": 55}})
+    err = capsys.readouterr().err
+    updates = [u for u in err.replace("\r", "\n").splitlines() if "sim " in u]
+    assert updates, err[-500:]
+    last = re.search(r"/(\d+\.\d) m, sim (\d+\.\d) s, (\d+\.\d\d) m/s", updates[-1])
+    assert last is not None, updates[-1]
+    assert float(last.group(1)) == pytest.approx(res.track_length, abs=0.1)
+    assert 0 < float(last.group(2)) <= res.sim_time + 1e-9  # simulated seconds, not wall
+    speeds = [float(m.group(1)) for u in updates for m in [re.search(r"(\d+\.\d\d) m/s", u)] if m]
+    assert 0 < max(speeds) <= res.max_speed + 0.01  # the car's own speed, not metres per wall second
+    assert "it/s" not in err and "m/s]" not in err  # no tqdm rate
