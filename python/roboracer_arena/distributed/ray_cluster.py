@@ -34,7 +34,7 @@ def connect(address: str, arg: str = "address") -> bool:
         return False
     if not address or not isinstance(address, str):
         raise InvalidArgumentError(f"{_named(arg, address)}: expected auto, local or HOST:PORT")
-    # logging_level ERROR also keeps Ray 2.5x+'s "Token authentication is enabled for this Ray
+    # logging_level ERROR also keeps Ray 2.60's "Token authentication is enabled for this Ray
     # cluster" notice off the user's terminal: a local cluster started here gets Ray's default
     # (token auth on, token in ~/.ray/auth_token); RAY_AUTH_MODE, if set, is Ray's to honour.
     kwargs: dict[str, Any] = {"include_dashboard": False, "logging_level": "ERROR", "log_to_driver": False}
