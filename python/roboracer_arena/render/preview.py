@@ -58,18 +58,38 @@ def preview_map(
 ) -> PreviewSummary:
     """Extract the corridor of a ROS map and draw map, corridor, collision walls, ducts,
     racing direction, start line and grid (``vehicles`` cars); write PNG or JPEG."""
-    from ..builder import parse_start, resolve_config
-    from ..corridor import extract_corridor
     from ..direction import direction_for_map
-    from ..maps import load_map
     from ..track import Track
     from .formats import image_format
 
     image_format(out_png)  # a bad extension fails before any work
     map_path = Path(map_path)
+    canvas, geo, occ, drawn, legend = map_canvas(map_path, config, start, max_px)
+    features = _generated_overlay(canvas, map_path, drawn, legend)
+    name = track_name(map_path)
+    race: dict[str, Any] = {}
+    if len(geo.centreline) > 2:
+        track = Track.from_polylines(list(geo.walls), geo.centreline, name=name).oriented(direction_for_map(map_path))
+        marks, race = _race_marks(canvas, track, vehicles)
+        drawn += ["centreline", "direction", "start"]
+        legend += marks
+    title = map_title(name, race, occ)
+    return _write(canvas, title, _subtitle(race, vehicles), legend, out_png, map_path, drawn, features, race)
+
+
+def map_canvas(
+    map_path: Path, config: Any = None, start: Any = None, max_px: int = 2048, min_px: int = 1024
+) -> tuple[TopDown, Any, Any, list[str], list[LegendEntry]]:
+    """A canvas of the map with its drivable corridor, ducts and collision walls drawn (what
+    a preview shows before its race marks; drive videos draw on it too): returns the canvas,
+    the extracted corridor geometry, the map, what was drawn and the legend entries."""
+    from ..builder import parse_start, resolve_config
+    from ..corridor import extract_corridor
+    from ..maps import load_map
+
     cfg = resolve_config(config)
     occ = load_map(map_path)
-    canvas = TopDown.for_raster(occ.data, occ.resolution, occ.origin, max_px=max_px)
+    canvas = TopDown.for_raster(occ.data, occ.resolution, occ.origin, max_px=max_px, min_px=min_px)
     geo = extract_corridor(occ, params=cfg.geometry_params(), start=parse_start(start))
     drawn = ["map"]
     legend: list[LegendEntry] = []
@@ -84,22 +104,18 @@ def preview_map(
         canvas.polyline(wall, WALL, closed=True, min_px=2)
     drawn += ["ducts", "walls"]
     legend += [LegendEntry("ducts (visible)", DUCT[:3]), LegendEntry("collision walls (invisible)", WALL, "line")]
-    features = _generated_overlay(canvas, map_path, drawn, legend)
-    name = track_name(map_path)
-    race: dict[str, Any] = {}
-    if len(geo.centreline) > 2:
-        track = Track.from_polylines(list(geo.walls), geo.centreline, name=name).oriented(direction_for_map(map_path))
-        marks, race = _race_marks(canvas, track, vehicles)
-        drawn += ["centreline", "direction", "start"]
-        legend += marks
+    return canvas, geo, occ, drawn, legend
+
+
+def map_title(name: str, race: dict[str, Any], occ: Any) -> str:
+    """``name: direction, lap length, map size``, the title of a map's picture."""
     h, w = occ.data.shape
     facts = [
         race.get("direction", "direction unknown"),
         f"lap {race['lap_length_m']:.1f} m" if race else None,
         f"map {w * occ.resolution:.1f} x {h * occ.resolution:.1f} m at {occ.resolution:g} m/cell",
     ]
-    title = f"{name}: {', '.join(f for f in facts if f)}"
-    return _write(canvas, title, _subtitle(race, vehicles), legend, out_png, map_path, drawn, features, race)
+    return f"{name}: {', '.join(f for f in facts if f)}"
 
 
 def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, vehicles: int = 1) -> PreviewSummary:
