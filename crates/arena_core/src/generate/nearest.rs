@@ -13,8 +13,12 @@
 //! * `features`: one feature dropped, then two, then three (every combination of kinds,
 //!   the order kept for the features that stay): the largest feature count that fits.
 //!
-//! Probes run round-robin over the directions, so each gets its nearest probes first
-//! whatever the budget. A probe tries [`PROBE_SEEDS`] seeds, each with a cap of
+//! Each direction first tries one *anchor*: the value that puts the lap at
+//! [`ANCHOR_FILL`] of L_max (lap shortened, hall enlarged, corridor narrowed), where the
+//! sweep builds almost everything, so a long lap in a small hall gets a suggestion even
+//! when its nearer probes are slow to fail. Then the probes run, nearest first, and the
+//! nearest that builds replaces the anchor. Both phases run round-robin over the
+//! directions, so each gets its anchor and then its nearest probes whatever the budget. A probe tries [`PROBE_SEEDS`] seeds, each with a cap of
 //! [`PROBE_CANDIDATES`] candidates. Candidate `k` of a seed never depends on the cap or
 //! on earlier candidates, so a probe accepted at candidate `k` is accepted at `k` again
 //! by a full run with the same seed (800 candidates, any budget that lets it reach `k`).
@@ -23,10 +27,12 @@
 use super::budget::Budget;
 use super::construct::{generate, Outcome};
 use super::screen::screen;
-use super::spec::{ConstructorConfig, Spec};
+use super::spec::{derive, ConstructorConfig, Spec};
 use crate::track::features::FeatureKind;
 use serde::Serialize;
 
+/// Fill L / L_max the anchors aim at.
+pub const ANCHOR_FILL: f64 = 0.5;
 /// Relative lap step of the lap probes.
 pub const LAP_STEP: f64 = 0.06;
 /// Lap probes on each side of L.
@@ -165,6 +171,45 @@ fn feature_probes(spec: &Spec) -> Vec<Spec> {
     out
 }
 
+/// The anchors (see the module doc), or `None` where the lap already fills at most
+/// [`ANCHOR_FILL`] of L_max in that direction (the nearest probes then do).
+fn anchors(spec: &Spec, cfg: &ConstructorConfig) -> [Option<Spec>; 4] {
+    let l_max = derive(spec, cfg).l_max;
+    let l = spec.lap_length_m;
+    if !(l_max > 0.0 && l > ANCHOR_FILL * l_max) {
+        return [None, None, None, None];
+    }
+    let step = if l < 20.0 { 0.5 } else { 1.0 };
+    let lap = ((ANCHOR_FILL * l_max / step).floor() * step).max(1.0);
+    let lap = (lap < l).then(|| Spec {
+        lap_length_m: lap,
+        ..spec.clone()
+    });
+    // L_max = (X − 2 m)(Y − 2 m) / p: the scale f with (fX − 2 m)(fY − 2 m) = L p / fill.
+    let m = cfg.hall_margin_m;
+    let p = derive(spec, cfg).pitch;
+    let (x, y) = (spec.hall_x_m, spec.hall_y_m);
+    let area = l * p / ANCHOR_FILL;
+    // (f x − 2m)(f y − 2m) = area: x y f² − 2m (x + y) f + 4m² − area = 0.
+    let (a, b, c) = (x * y, -2.0 * m * (x + y), 4.0 * m * m - area);
+    let f = (-b + (b * b - 4.0 * a * c).max(0.0).sqrt()) / (2.0 * a);
+    let hall = (f.is_finite() && f * x.max(y) <= 1000.0).then(|| Spec {
+        hall_x_m: (x * f * 2.0).ceil() / 2.0,
+        hall_y_m: (y * f * 2.0).ceil() / 2.0,
+        ..spec.clone()
+    });
+    // p = w + 2 t_w + d_c: the width whose pitch gives L_max = L / fill.
+    let usable = (x - 2.0 * m).max(0.0) * (y - 2.0 * m).max(0.0);
+    let w = ((usable * ANCHOR_FILL / l - 2.0 * cfg.wall_thickness_m - cfg.clearance_m) / 0.05)
+        .floor()
+        * 0.05;
+    let width = (w >= 0.2 - 1e-9 && w < spec.corridor_width_m - 1e-9).then(|| Spec {
+        corridor_width_m: w,
+        ..spec.clone()
+    });
+    [lap, hall, width, None]
+}
+
 /// The first seed (of [`PROBE_SEEDS`] from `seed`) whose capped run accepts `spec`.
 fn builds(spec: &Spec, cfg: &ConstructorConfig, seed: u64, budget: &Budget) -> Option<(u64, u32)> {
     if !screen(spec, cfg).passed {
@@ -187,6 +232,18 @@ fn builds(spec: &Spec, cfg: &ConstructorConfig, seed: u64, budget: &Budget) -> O
     None
 }
 
+/// Whether probe `p` is no nearer to `spec` than the anchor (in its direction's value).
+fn beyond_anchor(field: &str, spec: &Spec, p: &Spec, anchor: Option<&Spec>) -> bool {
+    let Some(a) = anchor else { return false };
+    let dist = |s: &Spec| match field {
+        "lap_length_m" => (s.lap_length_m - spec.lap_length_m).abs(),
+        "hall" => (s.hall_x_m - spec.hall_x_m).abs(),
+        "corridor_width_m" => (s.corridor_width_m - spec.corridor_width_m).abs(),
+        _ => 0.0,
+    };
+    dist(p) >= dist(a)
+}
+
 /// Search the nearest specs that build (see the module doc). `budget` bounds the whole
 /// search; the probes and their order never depend on time, only how far it gets.
 pub fn nearest_specs(
@@ -201,31 +258,59 @@ pub fn nearest_specs(
         ("corridor_width_m", width_probes(spec)),
         ("features", feature_probes(spec)),
     ];
-    let mut found: [Option<Suggestion>; 4] = [None, None, None, None];
+    // Per direction: the suggestion found and its rank (probe index; an anchor ranks
+    // after every probe, so any probe that builds replaces it).
+    let mut found: [Option<(usize, Suggestion)>; 4] = [None, None, None, None];
     let mut probes = 0;
+    let anchors = anchors(spec, cfg);
+    let mut attempt =
+        |i: usize, rank: usize, p: &Spec, found: &mut [Option<(usize, Suggestion)>; 4]| {
+            probes += 1;
+            if let Some((s, k)) = builds(p, cfg, seed, budget) {
+                found[i] = Some((
+                    rank,
+                    Suggestion {
+                        field: directions[i].0,
+                        spec: p.clone(),
+                        seed: s,
+                        candidate_index: k,
+                    },
+                ));
+            }
+        };
+    for (i, anchor) in anchors.iter().enumerate() {
+        if let Some(p) = anchor {
+            if budget.stopped().is_some() {
+                break;
+            }
+            attempt(i, usize::MAX, p, &mut found);
+        }
+    }
     let rounds = directions.iter().map(|d| d.1.len()).max().unwrap_or(0);
     'outer: for r in 0..rounds {
-        for (i, (field, list)) in directions.iter().enumerate() {
-            if found[i].is_some() {
+        for i in 0..directions.len() {
+            if found[i].as_ref().is_some_and(|(rank, _)| *rank <= r) {
                 continue;
             }
-            let Some(p) = list.get(r) else { continue };
+            let Some(p) = directions[i].1.get(r) else {
+                continue;
+            };
+            // Past the anchor: a probe farther than the anchor that built is no nearer.
+            if found[i].is_some() && beyond_anchor(directions[i].0, spec, p, anchors[i].as_ref()) {
+                continue;
+            }
+            // A lap above the anchor's fill only gets harder when lengthened.
+            if i == 0 && anchors[0].is_some() && p.lap_length_m > spec.lap_length_m {
+                continue;
+            }
             if budget.stopped().is_some() {
                 break 'outer;
             }
-            probes += 1;
-            if let Some((s, k)) = builds(p, cfg, seed, budget) {
-                found[i] = Some(Suggestion {
-                    field,
-                    spec: p.clone(),
-                    seed: s,
-                    candidate_index: k,
-                });
-            }
+            attempt(i, r, p, &mut found);
         }
     }
     NearestReport {
-        suggestions: found.into_iter().flatten().collect(),
+        suggestions: found.into_iter().flatten().map(|(_, g)| g).collect(),
         probes,
         exhausted: budget.stopped().is_some(),
     }
@@ -273,6 +358,28 @@ mod tests {
             .map(|p| (p.hairpins, p.chicanes, p.sweepers))
             .collect();
         assert_eq!(feats, [(1, 0, 0), (0, 1, 0), (0, 0, 0)]);
+    }
+
+    #[test]
+    fn anchors_put_the_lap_at_half_of_l_max() {
+        let cfg = ConstructorConfig::default();
+        let s = spec(110.0, 0.8, 16.0, 12.0, 1, 0, 0);
+        let [lap, hall, width, feats] = anchors(&s, &cfg);
+        let fill = |p: &Spec| p.lap_length_m / derive(p, &cfg).l_max;
+        for a in [&lap, &hall] {
+            let a = a.as_ref().expect("an anchor");
+            assert!((0.4..=0.5).contains(&fill(a)), "{a:?}: {}", fill(a));
+        }
+        let hall = hall.unwrap();
+        assert!((hall.hall_x_m / hall.hall_y_m - 16.0 / 12.0).abs() < 0.05);
+        // No corridor of at least 0.2 m halves this fill; no feature anchor.
+        assert!(width.is_none() && feats.is_none());
+        let w = anchors(&spec(80.0, 1.5, 20.0, 15.0, 0, 0, 0), &cfg)[2].clone();
+        assert!(w.is_some_and(|w| fill(&w) <= 0.5 && w.corridor_width_m < 1.5));
+        // A lap already under half of L_max has no anchors.
+        assert!(anchors(&spec(30.0, 1.5, 20.0, 15.0, 0, 0, 0), &cfg)
+            .iter()
+            .all(Option::is_none));
     }
 
     #[test]
