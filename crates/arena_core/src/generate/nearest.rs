@@ -342,7 +342,7 @@ mod tests {
     fn probes_change_one_field_nearest_first() {
         let s = spec(60.0, 1.0, 12.0, 9.0, 1, 1, 0);
         let laps: Vec<f64> = lap_probes(&s).iter().map(|p| p.lap_length_m).collect();
-        assert_eq!(laps[..4], [56.0, 64.0, 53.0, 68.0]);
+        assert_eq!(laps[..4], [56.0, 64.0, 53.0, 67.0]);
         let halls: Vec<(f64, f64)> = hall_probes(&s)
             .iter()
             .map(|p| (p.hall_x_m, p.hall_y_m))
