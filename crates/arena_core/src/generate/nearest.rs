@@ -288,15 +288,15 @@ pub fn nearest_specs(
     }
     let rounds = directions.iter().map(|d| d.1.len()).max().unwrap_or(0);
     'outer: for r in 0..rounds {
-        for i in 0..directions.len() {
+        for (i, (field, list)) in directions.iter().enumerate() {
             if found[i].as_ref().is_some_and(|(rank, _)| *rank <= r) {
                 continue;
             }
-            let Some(p) = directions[i].1.get(r) else {
+            let Some(p) = list.get(r) else {
                 continue;
             };
             // Past the anchor: a probe farther than the anchor that built is no nearer.
-            if found[i].is_some() && beyond_anchor(directions[i].0, spec, p, anchors[i].as_ref()) {
+            if found[i].is_some() && beyond_anchor(field, spec, p, anchors[i].as_ref()) {
                 continue;
             }
             // A lap above the anchor's fill only gets harder when lengthened.
