@@ -127,3 +127,26 @@ def test_same_limits(kind, model):
 def test_unknown_kind_is_a_typed_error():
     with pytest.raises(ArenaError, match="config kind"):
         _core.check_config("nope", "{}")
+
+
+def test_spec_straight_cap_limits_agree():
+    """``max_straight_m`` (issue 28): TrackSpec and the core's Spec accept and refuse the
+    same caps (the core reads the spec in every call; ``_core.screen`` is the cheapest)."""
+    from roboracer_arena.spec import TrackSpec
+
+    cfg = ConstructorConfig().model_dump_json()
+    base = json.loads(TrackSpec().model_dump_json())
+    assert base["max_straight_m"] is None
+    info = TrackSpec.model_fields["max_straight_m"]
+    disagree = []
+    for v in [None, *_probes(info)]:
+        doc = {**base, "max_straight_m": v}
+        py = _py_accepts(TrackSpec, doc)
+        try:
+            _core.screen(json.dumps(doc, allow_nan=True), cfg)
+            core = True
+        except ArenaError:
+            core = False
+        if py != core:
+            disagree.append(f"max_straight_m={v!r}: pydantic {py}, core {core}")
+    assert not disagree, "\n".join(disagree)

@@ -1,4 +1,5 @@
-"""TrackSpec: 12 fields, defaults, validation errors that name the field."""
+"""TrackSpec: the paper's 12 fields and the optional speed cap, defaults, validation
+errors that name the field."""
 
 import json
 import math
@@ -9,10 +10,11 @@ from roboracer_arena import TrackSpec
 from roboracer_arena.errors import SpecError
 
 
-def test_exactly_twelve_fields_with_defaults():
-    assert len(TrackSpec.model_fields) == 12
+def test_twelve_fields_and_the_optional_cap_with_defaults():
+    assert len(TrackSpec.model_fields) == 13
     s = TrackSpec()
     assert s.feature_order == [] and s.min_radius_m == 0 and s.longest_straight_m == 0
+    assert s.max_straight_m is None
     assert "properties" in TrackSpec.json_schema()
 
 

@@ -26,6 +26,7 @@ __all__ = [
     "derived_geometry",
     "generate_lattice",
     "construct_lattice",
+    "nearest_specs",
     "validate_map",
     "analyse_curve",
     "polyline_length",
@@ -81,6 +82,10 @@ def screen(spec_json: str, config_json: str) -> str:
 
 def derived_geometry(spec_json: str, config_json: str) -> str:
     """Derived geometry as JSON: r_min, pitch, l_max, s_min, corner_radius."""
+
+def nearest_specs(spec_json: str, config_json: str, seed: int, timeout: float) -> str:
+    """Nearest specs that build after a failure: JSON {suggestions: [{field, spec, seed,
+    candidate_index}], probes, exhausted}; ``timeout`` seconds bound the search."""
 
 def generate_lattice(
     spec_json: str, config_json: str, seed: int, timeout: float | None = None

@@ -1,4 +1,5 @@
-"""The typed 12-field track specification (the paper's ``S``).
+"""The typed track specification: the paper's 12 fields (``S``) and the optional speed
+cap ``max_straight_m`` (issue 28).
 
 Every field has an indoor default, chosen for a typical RoboRacer venue (a sports hall
 or corridor in a university building) and the 1:10 car; the reason for each default is
@@ -80,6 +81,15 @@ class TrackSpec(NumbersAreNumbers):
         le=1_000,
         description="Required longest straight (m); 0 means unstated (no requirement).",
     )
+    max_straight_m: float | None = Field(
+        None,
+        gt=0,
+        le=1_000,
+        description=(
+            "Upper bound on every straight (m), a speed cap for small halls; None means unstated"
+            " (no cap). The validator checks it with no tolerance."
+        ),
+    )
 
     @field_validator(
         "lap_length_m",
@@ -91,6 +101,7 @@ class TrackSpec(NumbersAreNumbers):
         "sweepers",
         "min_radius_m",
         "longest_straight_m",
+        "max_straight_m",
         mode="before",
     )
     @classmethod
@@ -131,7 +142,7 @@ class TrackSpec(NumbersAreNumbers):
 
     @classmethod
     def json_schema(cls) -> dict:
-        """JSON schema of the 12 fields (used for schema-constrained LLM output)."""
+        """JSON schema of the fields (used for schema-constrained LLM output)."""
         return cls.model_json_schema()
 
     @classmethod

@@ -43,9 +43,9 @@ def test_requested_radius_overrides_the_default_rmin():
     assert screen(TrackSpec(corridor_width_m=1.0)).r_min_m == 0.9
 
 
-def test_json_schema_export_has_the_twelve_fields():
+def test_json_schema_export_has_the_twelve_fields_and_the_cap():
     schema = TrackSpec.json_schema()
-    assert len(schema["properties"]) == 12
+    assert len(schema["properties"]) == 13 and "max_straight_m" in schema["properties"]
     assert schema["additionalProperties"] is False
     assert set(schema["properties"]["direction"]["enum"]) == {"clockwise", "counterclockwise"}
     lap = schema["properties"]["lap_length_m"]

@@ -112,3 +112,9 @@ def test_sweep_runner_counts_and_writes_remeasurable_maps(tmp_path):
     assert result.by_hall == {"12x9": "1/1", "20x15": "0/1"}
     assert (result.obvious_accepted, result.obvious_specs) == (1, 1)
     assert problems(ISSUE_CASE, tmp_path / "issue-case" / "map.yaml") == []
+    # Fill bands (issue 28): 30 m of L_max 53.3 m (w = 1 m, 12 × 9 m) is 0.56, in the
+    # practical region; the 200 m lap is beyond L_max (the last band holds it).
+    assert result.rows[0].fill == pytest.approx(30 / (11 * 8 / 1.65))
+    assert result.by_fill == {"0.4-0.6": "1/1", "0.8-1": "0/1"}
+    assert (result.practical_accepted, result.practical_specs) == (1, 1)
+    assert result.misses_with_suggestion is None

@@ -136,8 +136,9 @@ def test_bounds_on_targets_are_read_as_the_bound_with_a_warning(text, field, val
 def test_a_cap_on_a_floor_is_refused():
     with pytest.raises(RequestParseError, match="min_radius_m is a minimum; 'at most 2 m'"):
         parse_request("radius at most 2 m")
-    with pytest.raises(RequestParseError, match="longest_straight_m is a minimum"):
-        parse_request("a straight of no more than 6 m")
+    # A cap on the straight is the speed cap max_straight_m (issue 28), not a refusal.
+    r = parse_request("a straight of no more than 6 m")
+    assert r.spec.max_straight_m == 6 and r.spec.longest_straight_m == 0 and r.hedges["max_straight_m"] == "at most"
 
 
 @pytest.mark.parametrize(

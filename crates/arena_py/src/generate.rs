@@ -230,7 +230,32 @@ fn construct_lattice<'py>(
     })
 }
 
+/// Nearest specs that build after a generation failure (`generate::nearest`), as JSON
+/// ``{"suggestions": [{field, spec, seed, candidate_index}], "probes", "exhausted"}``.
+/// ``timeout`` (seconds) bounds the search; when it passes inside one probe the search
+/// reports what it found so far. Ctrl-C raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (spec_json, config_json, seed, timeout))]
+fn nearest_specs(
+    py: Python<'_>,
+    spec_json: &str,
+    config_json: &str,
+    seed: u64,
+    timeout: f64,
+) -> PyResult<String> {
+    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    let out = run_budgeted(py, Some(timeout), move |b| {
+        to_json(&arena_core::generate::nearest::nearest_specs(
+            &spec, &cfg, seed, b,
+        ))
+    })?;
+    Ok(out.unwrap_or_else(|| {
+        serde_json::json!({"suggestions": [], "probes": 0, "exhausted": true}).to_string()
+    }))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(nearest_specs, m)?)?;
     m.add_function(wrap_pyfunction!(screen, m)?)?;
     m.add_function(wrap_pyfunction!(derived_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;

@@ -20,6 +20,13 @@ rounded rectangle of length L (corner radius r_c) fits the hall: L ≤ 2 (X + Y)
 ``--maps DIR`` every accepted map is written there (one folder per spec, the ``generate``
 outputs) for an independent re-measurement, e.g.
 ``python tests/generate/remeasure_dir.py DIR``.
+
+The summary reports acceptance by *fill* L / L_max (:data:`FILL_BANDS`; L_max of Eq. 1)
+and on the practical region below :data:`PRACTICAL_FILL` L_max. With ``--suggest`` every
+miss also runs the nearest-spec search (:mod:`roboracer_arena.generate.nearest`), and
+each suggestion is generated again as suggested (its spec, its seed, the default
+candidate cap and budget); the summary counts the misses with at least one suggestion
+that was accepted that way.
 """
 
 from __future__ import annotations
@@ -34,7 +41,15 @@ from collections import Counter
 from pathlib import Path
 
 from ..constructor_config import ConstructorConfig
-from ..generate import Acceptance, derived_geometry, generate_track, screen, write_outputs
+from ..generate import (
+    Acceptance,
+    GenerationFailure,
+    derived_geometry,
+    generate_track,
+    nearest_specs,
+    screen,
+    write_outputs,
+)
 from ..pool import pool_map, tqdm_progress
 from ..spec import TrackSpec
 from .output import BenchModel
@@ -45,6 +60,10 @@ HALLS = ((8.0, 6.0), (12.0, 9.0), (16.0, 12.0), (20.0, 15.0), (30.0, 20.0))
 FEATURES = ((0, 0, 0), (0, 0, 1), (1, 0, 0), (0, 1, 0), (1, 1, 0), (1, 1, 1), (2, 1, 1), (3, 1, 0))
 TARGET_COUNT = 360
 SWEEP_FILE = "sweep_specs.jsonl"
+FILL_BANDS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
+"""Edges of the L / L_max bands of the summary (the screen admits fill ≤ 1)."""
+PRACTICAL_FILL = 0.6
+"""The practical region: laps below this share of L_max (issue 28 asks ≥ 99 % there)."""
 
 
 class SweepRow(BenchModel):
@@ -58,10 +77,13 @@ class SweepRow(BenchModel):
     hall: str
     features: str
     obvious: bool
+    fill: float
     outcome: str
     candidates: int
     seconds: float
     top_reasons: dict[str, int] | None = None
+    suggestions: list[str] | None = None
+    suggestions_built: int | None = None
 
 
 class SweepMiss(BenchModel):
@@ -70,9 +92,12 @@ class SweepMiss(BenchModel):
     spec: str
     seed: int
     obvious: bool
+    fill: float
     outcome: str
     candidates: int
     top_reasons: dict[str, int] | None = None
+    suggestions: list[str] | None = None
+    suggestions_built: int | None = None
 
 
 class SweepResult(BenchModel):
@@ -91,6 +116,10 @@ class SweepResult(BenchModel):
     by_width: dict[str, str]
     by_hall: dict[str, str]
     by_features: dict[str, str]
+    by_fill: dict[str, str]
+    practical_specs: int
+    practical_accepted: int
+    misses_with_suggestion: int | None = None
     misses: list[SweepMiss]
     rows: list[SweepRow]
 
@@ -127,20 +156,22 @@ def obvious_construction(spec: TrackSpec, config: ConstructorConfig | None = Non
     return x > 2 * rc and y > 2 * rc and spec.lap_length_m <= 2 * (x + y) - 4 * (2 - math.pi / 2) * rc
 
 
-def _trial(job: tuple[int, str, str | None]) -> SweepRow:
-    i, spec_json, maps = job
+def _trial(job: tuple[int, str, str | None, bool]) -> SweepRow:
+    i, spec_json, maps, suggest = job
     spec = TrackSpec.model_validate_json(spec_json)
     seed = i % 3
     t0 = time.perf_counter()
-    out = generate_track(spec, seed=seed)
+    out = generate_track(spec, seed=seed, suggest_timeout=None)
     seconds = time.perf_counter() - t0
-    miss = {}
+    miss: dict = {}
     if isinstance(out, Acceptance):
         if maps:
             write_outputs(out, Path(maps) / spec.name)
     else:
         reasons = getattr(out, "reasons", {}) or {}
         miss["top_reasons"] = dict(sorted(reasons.items(), key=lambda kv: -kv[1])[:3])
+        if suggest and isinstance(out, GenerationFailure):
+            miss.update(_suggest_and_rerun(spec, seed))
     return SweepRow(
         spec=spec.name,
         seed=seed,
@@ -149,6 +180,7 @@ def _trial(job: tuple[int, str, str | None]) -> SweepRow:
         hall=f"{spec.hall_x_m:g}x{spec.hall_y_m:g}",
         features=f"h{spec.hairpins}c{spec.chicanes}s{spec.sweepers}",
         obvious=obvious_construction(spec),
+        fill=spec.lap_length_m / derived_geometry(spec).l_max,
         outcome=out.kind,
         candidates=getattr(out, "candidates_tried", 0),
         seconds=seconds,
@@ -156,9 +188,32 @@ def _trial(job: tuple[int, str, str | None]) -> SweepRow:
     )
 
 
-def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, progress: bool = True) -> SweepResult:
-    """One ``generate_track`` per spec; rows, acceptance rate and the misses by stratum."""
-    work = [(i, s.model_dump_json(), str(maps) if maps else None) for i, s in enumerate(specs)]
+def _suggest_and_rerun(spec: TrackSpec, seed: int) -> dict:
+    """The nearest-spec search for a miss, then each suggestion generated as suggested
+    (its spec and seed, default cap and budget): the suggestions' lines and how many of
+    them were accepted."""
+    found = nearest_specs(spec, seed)
+    built = 0
+    for s in found.suggestions:
+        again = generate_track(s.spec, seed=s.seed, suggest_timeout=None)
+        built += isinstance(again, Acceptance)
+    return {"suggestions": [s.text() for s in found.suggestions], "suggestions_built": built}
+
+
+def fill_band(fill: float) -> str:
+    """The :data:`FILL_BANDS` band of a fill L / L_max, e.g. ``"0.2-0.4"``."""
+    for lo, hi in itertools.pairwise(FILL_BANDS):
+        if fill < hi or hi == FILL_BANDS[-1]:
+            return f"{lo:g}-{hi:g}"
+    raise AssertionError("unreachable")
+
+
+def run_sweep(
+    specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, progress: bool = True, suggest: bool = False
+) -> SweepResult:
+    """One ``generate_track`` per spec; rows, acceptance rate and the misses by stratum.
+    ``suggest``: search and re-run the nearest specs that build for every miss."""
+    work = [(i, s.model_dump_json(), str(maps) if maps else None, suggest) for i, s in enumerate(specs)]
     bar = tqdm_progress("sweep specs", "spec", file=sys.stderr, disable=not progress)
     rows: list[SweepRow] = pool_map(_trial, work, jobs, bar)
     accepted = [r for r in rows if r.outcome == "accepted"]
@@ -167,6 +222,14 @@ def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, p
         tot = Counter(str(getattr(r, key)) for r in rows)
         ok = Counter(str(getattr(r, key)) for r in accepted)
         return {k: f"{ok[k]}/{tot[k]}" for k in sorted(tot, key=lambda x: (len(x), x))}
+
+    def by_fill() -> dict[str, str]:
+        tot = Counter(fill_band(r.fill) for r in rows)
+        ok = Counter(fill_band(r.fill) for r in accepted)
+        return {k: f"{ok[k]}/{tot[k]}" for k in sorted(tot)}
+
+    practical = [r for r in rows if r.fill < PRACTICAL_FILL]
+    failed = [r for r in rows if r.outcome == "failed"]
 
     secs = [r.seconds for r in rows]
     obvious = [r for r in rows if r.obvious]
@@ -183,6 +246,10 @@ def run_sweep(specs: list[TrackSpec], maps: Path | None = None, jobs: int = 1, p
         by_width=by("corridor_width_m"),
         by_hall=by("hall"),
         by_features=by("features"),
+        by_fill=by_fill(),
+        practical_specs=len(practical),
+        practical_accepted=sum(r.outcome == "accepted" for r in practical),
+        misses_with_suggestion=sum(bool(r.suggestions_built) for r in failed) if suggest else None,
         misses=[
             SweepMiss.model_validate(r.model_dump(include=set(SweepMiss.model_fields), exclude_unset=True))
             for r in rows
@@ -201,12 +268,24 @@ def print_sweep(result: SweepResult) -> None:
     print(
         f"  obvious construction (a rounded rectangle of length L fits): {result.obvious_accepted}/{result.obvious_specs}"
     )
-    for name in ("lap", "width", "hall", "features"):
+    for name in ("lap", "width", "hall", "features", "fill"):
         print(f"  {name:<9} " + "  ".join(f"{k}: {v}" for k, v in getattr(result, f"by_{name}").items()))
+    share = result.practical_accepted / result.practical_specs if result.practical_specs else float("nan")
+    print(
+        f"  practical region (L < {PRACTICAL_FILL:g} L_max): {result.practical_accepted}/{result.practical_specs} "
+        f"({100 * share:.1f} %)"
+    )
+    if result.misses_with_suggestion is not None:
+        failed = sum(m.outcome == "failed" for m in result.misses)
+        print(
+            f"  generation failures with a suggestion accepted as suggested: {result.misses_with_suggestion}/{failed}"
+        )
     for m in result.misses:
         print(
-            f"  miss {m.spec}{' (obvious)' if m.obvious else ''} seed {m.seed}: {m.outcome} after {m.candidates} ({json.dumps(m.top_reasons or {})})"
+            f"  miss {m.spec}{' (obvious)' if m.obvious else ''} fill {m.fill:.2f} seed {m.seed}: {m.outcome} after {m.candidates} ({json.dumps(m.top_reasons or {})})"
         )
+        if m.suggestions is not None:
+            print(f"    {m.suggestions_built}/{len(m.suggestions)} built as suggested: " + "; ".join(m.suggestions))
 
 
 def load_sweep_file() -> list[TrackSpec]:

@@ -286,6 +286,11 @@ def register(kinds) -> None:
     )
     p.add_argument("--maps", type=Path, metavar="DIR", help="with --sweep: write every accepted map under DIR")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="with --sweep: worker processes (default 1)")
+    p.add_argument(
+        "--suggest",
+        action="store_true",
+        help="with --sweep: search the nearest specs that build for every miss and run each suggestion as suggested",
+    )
     p.set_defaults(func=_cli)
 
 
@@ -295,7 +300,7 @@ def _cli(args: argparse.Namespace) -> int:
 
         if args.jobs < 1:
             raise SpecError(f"--jobs must be ≥ 1, got {args.jobs}")
-        sweep = run_sweep(load_sweep_file(), args.maps, args.jobs)
+        sweep = run_sweep(load_sweep_file(), args.maps, args.jobs, suggest=args.suggest)
         print_sweep(sweep)
         write_json(args.json, sweep)
         return 0

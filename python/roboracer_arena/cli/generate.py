@@ -1,6 +1,9 @@
 """``roboracer-arena generate``: a TrackSpec (``--spec FILE``) or a natural-language
 REQUEST (parsed first, see ``roboracer-arena parse``) to a validated map, a proven
 rejection (exit 3) or a generation failure (exit 4, also when ``--timeout`` runs out).
+A generation failure lists the nearest specs that did build, one field changed at a
+time, each with the seed that built it ("try: lap_length_m = 48 (built with seed 2)";
+a bounded search of its own, at most 20 s; ``--no-suggest`` skips it).
 
 OUTDIR appears whole or not at all, and replaces an earlier generate output there (so no
 stale stage is left when ``--build`` is not given); an OUTDIR that is a file or holds
@@ -39,6 +42,11 @@ def register(sub) -> None:
     p.add_argument(
         "--drive", action="store_true", help="then drive the reference car one lap on the map (exit 5 if it fails)"
     )
+    p.add_argument(
+        "--no-suggest",
+        action="store_true",
+        help="on a generation failure, skip the search for the nearest specs that build",
+    )
     add_backend_args(p)
     _share_timeout(p)
     add_json_flag(p)
@@ -72,6 +80,7 @@ def _spec_from_args(args: argparse.Namespace):
 
 def run(args: argparse.Namespace) -> int:
     from ..generate import Acceptance, Rejection, generate_track
+    from ..generate.nearest import DEFAULT_SUGGEST_TIMEOUT_S, DISCLAIMER
     from ..generate.pipeline import DEFAULT_TIMEOUT_S, check_timeout
 
     if args.seed < 0 or args.seed >= 2**64:
@@ -81,7 +90,13 @@ def run(args: argparse.Namespace) -> int:
     spec, parsed = _spec_from_args(args)
     if parsed is not None and not args.json:
         print_result(parsed, file=sys.stderr)
-    outcome = generate_track(spec, seed=args.seed, constructor=args.constructor, timeout=timeout)
+    outcome = generate_track(
+        spec,
+        seed=args.seed,
+        constructor=args.constructor,
+        timeout=timeout,
+        suggest_timeout=None if args.no_suggest else DEFAULT_SUGGEST_TIMEOUT_S,
+    )
     summary: dict = {"outcome": outcome.kind, "name": spec.name, "seconds": round(outcome.seconds, 4)}
     if parsed is not None:
         summary["parse"] = parsed.to_dict()
@@ -99,6 +114,8 @@ def run(args: argparse.Namespace) -> int:
         code = EXIT_REJECTED
     else:
         summary.update(candidates_tried=outcome.candidates_tried, reasons=outcome.reasons, stopped=outcome.stopped)
+        if outcome.nearest is not None:
+            summary["nearest"] = {**outcome.nearest.model_dump(mode="json"), "note": DISCLAIMER}
         code = EXIT_GENERATION_FAILURE
     if args.json:
         print_json(summary)

@@ -2,6 +2,7 @@
 validator; Algorithm 1), the three typed outcomes, output writing, and the DE / random
 baselines used by ``roboracer-arena bench constructors``."""
 
+from .nearest import NearestSpecs, Suggestion, nearest_specs
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
 from .outputs import write_outputs
 from .pipeline import CONSTRUCTORS, derived_geometry, generate_track, rasterise, screen, validate_map
@@ -18,6 +19,9 @@ __all__ = [
     "ScreenResult",
     "ValidationReport",
     "GenerationFailure",
+    "NearestSpecs",
+    "Suggestion",
+    "nearest_specs",
     "Outcome",
     "Rejection",
     "derived_geometry",

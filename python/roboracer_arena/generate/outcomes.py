@@ -10,6 +10,7 @@ import numpy as np
 
 from ..maps import OccupancyMap
 from ..spec import TrackSpec
+from .nearest import NearestSpecs
 from .report import ScreenResult, ValidationReport
 
 
@@ -62,7 +63,10 @@ class Rejection:
 
 @dataclass(frozen=True)
 class GenerationFailure:
-    """No candidate passed within the budget; this does not prove infeasibility."""
+    """No candidate passed within the budget; this does not prove infeasibility.
+    ``nearest`` holds the nearest specs that did build (each with the seed that built
+    it), or None when the search was not run (the DE / random baselines, or
+    ``suggest_timeout=None``)."""
 
     spec: TrackSpec
     constructor: str
@@ -72,12 +76,16 @@ class GenerationFailure:
     seconds: float = 0.0
     built_invalid_report: ValidationReport | None = None
     stopped: str | None = None  # "timeout" when the time budget cut the search short
+    nearest: NearestSpecs | None = None
     kind: str = "failed"
 
     def summary(self) -> str:
         top = ", ".join(f"{k}: {v}" for k, v in sorted(self.reasons.items(), key=lambda kv: -kv[1])[:5])
         why = " (time budget exhausted)" if self.stopped == "timeout" else ""
-        return f"generation failure after {self.candidates_tried} candidate(s){why} ({top})"
+        head = f"generation failure after {self.candidates_tried} candidate(s){why} ({top})"
+        if self.nearest is None:
+            return head
+        return "\n".join([head, *(f"  {line}" for line in self.nearest.lines())])
 
 
 Outcome = Acceptance | Rejection | GenerationFailure

@@ -16,6 +16,7 @@ from ..constructor_config import ConstructorConfig
 from ..errors import InternalError, InvalidArgumentError
 from ..maps import OccupancyMap
 from ..spec import TrackSpec
+from .nearest import DEFAULT_SUGGEST_TIMEOUT_S, nearest_specs
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
 from .report import DerivedGeometry, ScreenResult, ValidationReport
 
@@ -76,6 +77,7 @@ def generate_track(
     constructor: Constructor = "lattice",
     config: ConstructorConfig | None = None,
     timeout: float | None = DEFAULT_TIMEOUT_S,
+    suggest_timeout: float | None = DEFAULT_SUGGEST_TIMEOUT_S,
 ) -> Outcome:
     """Turn a spec into a validated map, a proven rejection or a generation failure.
 
@@ -90,12 +92,17 @@ def generate_track(
     background at its next check. Ctrl-C raises KeyboardInterrupt at once the same way. The
     DE and random baselines are not bounded by ``timeout``. A hall whose raster would exceed the generator's cell budget
     raises :class:`~roboracer_arena.errors.SpecError`.
+
+    When the lattice search fails, the nearest specs that build are searched within
+    ``suggest_timeout`` seconds (default 20; None = no search) and returned on the
+    failure's ``nearest`` (:mod:`~roboracer_arena.generate.nearest`).
     """
     if constructor not in CONSTRUCTORS:
         raise InvalidArgumentError(f"constructor must be one of {', '.join(CONSTRUCTORS)}; got {constructor!r}")
     if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**64:
         raise InvalidArgumentError(f"seed must be an integer in [0, 2**64), got {seed!r}")
     timeout = check_timeout(timeout)
+    suggest_timeout = check_timeout(suggest_timeout, "suggest_timeout")
     config = config or ConstructorConfig()
     t0 = time.perf_counter()
     sr = screen(spec, config)
@@ -118,14 +125,17 @@ def generate_track(
                 info["tried"],
                 time.perf_counter() - t0,
             )
+        seconds = time.perf_counter() - t0
+        nearest = None if suggest_timeout is None else nearest_specs(spec, seed, config, suggest_timeout)
         return GenerationFailure(
             spec,
             constructor,
             seed,
             info["tried"],
             dict(info["reasons"]),
-            time.perf_counter() - t0,
+            seconds,
             stopped=info.get("stopped"),
+            nearest=nearest,
         )
     from .baselines import construct_baseline
 

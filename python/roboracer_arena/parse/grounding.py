@@ -44,6 +44,7 @@ _LENGTH_CUES: dict[str, set[str]] = {
     "hall_y_m": set(HALL_NOUNS) | {"by", "x", "long", "length", "wide", "width"},
     "min_radius_m": {"radius", "tighter", "tightest", "sharpest", "smallest", "turning"},
     "longest_straight_m": {"straight", "straights"},
+    "max_straight_m": {"straight", "straights"},
 }
 _COUNT_FIELDS = {"hairpins": "hairpin", "chicanes": "chicane", "sweepers": "sweeper"}
 _ONE_WORDS = {"a", "an", "single", "another", "one"}
@@ -126,7 +127,7 @@ def _close(a: float, b: float) -> bool:
 
 
 def _lone_length(value: float, values: dict[str, Any], toks: list[Tok]) -> Span | None:
-    others = [float(values[k]) for k in _LENGTH_CUES if k != "lap_length_m" and values[k] != DEFAULTS[k]]
+    others = [float(values[k]) for k in _LENGTH_CUES if k != "lap_length_m" and values[k] not in (DEFAULTS[k], None)]
     lone = [
         k for k, t in enumerate(toks)
         if t.kind == "num" and k + 1 < len(toks) and toks[k + 1].kind == "unit"
@@ -161,7 +162,7 @@ def unexplained_numbers(text: str, values: dict[str, Any]) -> list[Fragment]:
     toks = tokenize(text)
     name = str(values.get("name", ""))
     at = text.lower().find(name.lower()) if name and values.get("name") != DEFAULTS["name"] else -1
-    lengths = [float(values[k]) for k in _LENGTH_CUES]
+    lengths = [float(values[k]) for k in _LENGTH_CUES if values[k] is not None]
     counts = [int(values[k]) for k in _COUNT_FIELDS]
     out = []
     for k, t in enumerate(toks):

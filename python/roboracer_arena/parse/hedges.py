@@ -13,7 +13,9 @@ whether the number can be used:
   "no shorter/narrower/tighter than", "... or more"):
 
   - ``min_radius_m`` and ``longest_straight_m`` are floors already: *at least* is their
-    meaning; *at most* cannot be expressed and is refused.
+    meaning; *at most* on a radius cannot be expressed and is refused, while *at most* on
+    a straight ("straights of at most 8 m") is the speed cap ``max_straight_m``
+    (:func:`straight_caps`), whose meaning it is (*at least* on a cap is refused).
   - hall sizes are the space available: either bound reads as that size.
   - ``lap_length_m``, ``corridor_width_m`` and the feature counts are targets: a bound
     reads as a target equal to the bound, and the result carries a warning saying so.
@@ -22,6 +24,7 @@ whether the number can be used:
 from __future__ import annotations
 
 from ..errors import RequestParseError
+from .found import Found
 from .lexer import Canon
 from .limits import FIELD_RANGES
 
@@ -46,6 +49,7 @@ _AFTER: dict[tuple[str, ...], str] = {
     ("or", "more"): AT_LEAST, ("at", "least"): AT_LEAST, ("minimum",): AT_LEAST, ("min",): AT_LEAST,
 }  # fmt: skip
 _FLOORS = {"min_radius_m", "longest_straight_m"}
+_CAPS = {"max_straight_m"}
 _HALL = {"hall_x_m", "hall_y_m"}
 
 
@@ -98,12 +102,31 @@ def read_hedges(c: Canon, spans: dict[str, list[tuple[int, int]]]) -> dict[str, 
     return out
 
 
+def straight_caps(f: Found, hedges: dict[str, tuple[str, tuple[int, int]]]) -> None:
+    """A straight bounded from above ("straights of at most 8 m", "the longest straight
+    under 8 m") states the cap ``max_straight_m``, not the floor: move it there."""
+    h = hedges.get("longest_straight_m")
+    if h is None or h[0] != AT_MOST or "longest_straight_m" not in f.values:
+        return
+    value = f.values.pop("longest_straight_m")
+    for span in f.spans.pop("longest_straight_m"):
+        f.set("max_straight_m", value, span)
+    hedges["max_straight_m"] = hedges.pop("longest_straight_m")
+
+
 def apply_hedges(text: str, hedges: dict[str, tuple[str, tuple[int, int]]]) -> list[str]:
     """Warnings for bounds read as targets; :class:`RequestParseError` for a cap on a floor."""
     notes = []
     for name, (hedge, (s, e)) in hedges.items():
         if hedge == APPROX or name in _HALL or (name in _FLOORS and hedge == AT_LEAST):
             continue
+        if name in _CAPS:
+            if hedge == AT_MOST:
+                continue
+            raise RequestParseError(
+                f"{name} is a maximum; {text[s:e]!r} (characters {s}-{e}) is a floor. State a cap "
+                "(e.g. 'no straight longer than 8 m') or a plain value"
+            )
         if name in _FLOORS:
             raise RequestParseError(
                 f"{name} is a minimum; {text[s:e]!r} (characters {s}-{e}) caps it. State a floor "

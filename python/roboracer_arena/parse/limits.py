@@ -23,7 +23,7 @@ def _field_ranges() -> dict[str, tuple[float, float]]:
     """(lowest, highest) of every numeric TrackSpec field, from the schema itself."""
     out = {}
     for name, info in TrackSpec.model_fields.items():
-        if info.annotation not in (int, float):
+        if info.annotation not in (int, float, float | None):
             continue
         lo = next((getattr(m, k) for m in info.metadata for k in ("ge", "gt") if getattr(m, k, None) is not None), 0)
         hi = next(m.le for m in info.metadata if getattr(m, "le", None) is not None)

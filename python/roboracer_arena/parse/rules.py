@@ -24,7 +24,7 @@ from ..errors import RequestParseError, SpecError
 from ..spec import TrackSpec
 from .features import parse_features
 from .found import Found
-from .hedges import apply_hedges, read_hedges
+from .hedges import apply_hedges, read_hedges, straight_caps
 from .lexer import Canon, tokenize
 from .limits import MAX_REQUEST_CHARS, check_length, quote
 from .result import FIELDS, Fragment, ParseResult
@@ -155,6 +155,14 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
     (_rx(rf"{HALL} (?:{FILL})(?P<w>{_LONG}|{_WIDE}) (?:{FILL}){_q('q')}{_QEND}"), _hall_one),
     (_rx(rf"{HALL} (?:{FILL}){_q('q')} (?P<w>{_LONG}|{_WIDE})"), _hall_one),
     (_rx(rf"{_q('q')} (?P<w>{_LONG}|{_WIDE}) {HALL}"), _hall_one),
+    # -- the speed cap: "no straight longer than 8 m", "no straight is over 8 m long"
+    (
+        _rx(
+            rf"(?:no|not a|not one|never a) (?:single )?{_STRAIGHT_ADJ}straights? (?:(?:is|should be|may be|must be|can be) )?"
+            rf"(?:longer than|more than|over|above|exceeding|exceeds) {_q('q')}(?: long| in length)?{_QEND}"
+        ),
+        _setter("max_straight_m"),
+    ),
     # -- quantity then noun ("no turn tighter than 2 m radius" first: it ends in "radius")
     (
         _rx(rf"(?:{FILL})?(?:no|not|never) (?:{_TURNS} )?(?:{FILL})tighter than (?:a )?{_q('q')}(?: radius)?{_QEND}"),
@@ -264,6 +272,7 @@ def _direction(c: Canon, f: Found) -> None:
 _QUALIFIERS = {
     "min_radius_m": {"tightest", "smallest", "sharpest", "minimum", "min", "lowest", "least", "radius"},
     "longest_straight_m": {"longest", "straight", "straights"},
+    "max_straight_m": {"longest", "straight", "straights"},
     "corridor_width_m": {"width", "wide"},
 }
 
@@ -395,6 +404,7 @@ def parse_rules(text: str, *, lenient: bool = False, max_chars: int | None = MAX
     parse_features(c, f)
     _qualifiers(c, f)
     hedges = read_hedges(c, f.spans)
+    straight_caps(f, hedges)
     notes = apply_hedges(text, {k: v for k, v in hedges.items() if k in f.values})
     stray = _leftover_numbers(text, c, f)
     if stray and not lenient:

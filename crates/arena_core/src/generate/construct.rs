@@ -31,6 +31,11 @@ use std::f64::consts::PI;
 /// 1.4 the one-edge gaps of hairpins/chicanes outgrow the detector's merge gap.
 pub const PITCH_RANGE: (f64, f64) = (1.0, 1.4);
 
+/// Share of the straight cap (`max_straight_m`) the constructors aim under: the raster
+/// validator measures the straight on the rasterised corridor, which may read a few
+/// centimetres longer than the analytic curve.
+pub const STRAIGHT_CAP_MARGIN: f64 = 0.95;
+
 /// A constructed, not yet validated, candidate.
 #[derive(Debug, Clone)]
 pub struct Candidate {
@@ -243,12 +248,19 @@ fn lattice_line(
     } else {
         0
     };
+    // A run of n edges at pitch s leaves n s − 2 r_c of straight between its fillets.
+    let max_run = spec.max_straight_m.map_or(0, |cap| {
+        ((STRAIGHT_CAP_MARGIN * cap + 2.0 * rc) / s_est)
+            .floor()
+            .clamp(1.0, u32::MAX as f64) as u32
+    });
     let target = Target {
         perimeter,
         hairpins: spec.hairpins,
         chicanes: spec.chicanes,
         sweepers: spec.sweepers,
         min_run,
+        max_run,
         order: boundary_order(spec),
     };
     let (_, b) =
@@ -311,6 +323,11 @@ fn finish(
     }
     if spec.longest_straight_m > 0.0 && a.longest_straight_m < spec.longest_straight_m {
         return Err("analytic longest straight");
+    }
+    if let Some(cap) = spec.max_straight_m {
+        if a.longest_straight_m > STRAIGHT_CAP_MARGIN * cap {
+            return Err("analytic straight above the cap");
+        }
     }
     if self_clearance(&line, PI * d.pitch / 2.0, 0.1) < d.pitch - 1e-6 {
         return Err("analytic self-clearance");
@@ -456,6 +473,7 @@ mod tests {
             feature_order: vec![],
             min_radius_m: 0.0,
             longest_straight_m: 0.0,
+            max_straight_m: None,
         }
     }
 

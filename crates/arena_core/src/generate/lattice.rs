@@ -53,6 +53,8 @@ pub struct Target {
     pub sweepers: u32,
     /// Minimum number of lattice edges in the longest run (0 = no requirement).
     pub min_run: u32,
+    /// Maximum number of lattice edges in any run (0 = no cap): the speed cap.
+    pub max_run: u32,
     /// Wanted cyclic order (counter-clockwise boundary order), empty = any.
     pub order: Vec<FeatureKind>,
 }
@@ -296,6 +298,9 @@ pub fn score(b: &Boundary, t: &Target) -> u32 {
     if b.longest_run < t.min_run {
         s += 1;
     }
+    if t.max_run > 0 && b.longest_run > t.max_run {
+        s += 1;
+    }
     if s == 0 && !t.order.is_empty() && t.sweepers == 0 {
         let got: Vec<FeatureKind> = b.features.iter().map(|f| f.0).collect();
         if !crate::track::features::is_cyclic_order(&got, &t.order) {
@@ -428,6 +433,7 @@ mod tests {
             chicanes: 0,
             sweepers: 0,
             min_run: 0,
+            max_run: 0,
             order: vec![],
         };
         let run = |seed| {

@@ -5,6 +5,7 @@
 pub mod budget;
 pub mod construct;
 pub mod lattice;
+pub mod nearest;
 pub mod polygon;
 pub mod ring;
 pub mod rounding;

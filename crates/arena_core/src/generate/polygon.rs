@@ -21,6 +21,7 @@
 //! length L ([`spare_shares`]). Hall fit (any rotation), direction and the analytic checks
 //! are the caller's, as for the ring.
 
+use super::construct::STRAIGHT_CAP_MARGIN;
 use super::rounding::round_polygon_radii;
 use super::spec::{Derived, Spec};
 use crate::track::features::FeatureKind;
@@ -92,7 +93,7 @@ fn uniform(rng: &mut ChaCha8Rng) -> f64 {
 
 /// The turn sequence: features in `order` (counter-clockwise boundary order) with plain
 /// corners between them, the corners sharing what the hairpins leave of 360°.
-fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
+fn turns(order: &[FeatureKind], capped: bool, rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
     let h = order.iter().filter(|&&k| k == FeatureKind::Hairpin).count();
     let s = order.iter().filter(|&&k| k == FeatureKind::Sweeper).count();
     if h > 2 || order.len() > MAX_FEATURES {
@@ -115,9 +116,11 @@ fn turns(order: &[FeatureKind], rng: &mut ChaCha8Rng) -> Option<Vec<Turn>> {
         0
     } else {
         // Fewer corners leave more of a short lap to the features: the least of two
-        // draws favours them.
+        // draws favours them; under a straight cap more corners keep the sides short,
+        // so the greater of two draws.
         let m = ks.len().max(1);
-        let pick = ((rng.next_u32() as usize) % m).min((rng.next_u32() as usize) % m);
+        let (a, b) = ((rng.next_u32() as usize) % m, (rng.next_u32() as usize) % m);
+        let pick = if capped { a.max(b) } else { a.min(b) };
         *ks.get(pick)?
     };
     // Corner angles: equal shares, perturbed pairwise (sum kept) within the band.
@@ -235,6 +238,7 @@ fn lengths(
     t: &[Turn],
     lap: f64,
     rc: f64,
+    cap: Option<f64>,
     rng: &mut ChaCha8Rng,
 ) -> Result<(Vec<f64>, Vec<f64>), &'static str> {
     let n = t.len();
@@ -277,6 +281,16 @@ fn lengths(
     for (j, &i) in long.iter().enumerate() {
         len[i] += spare * shares[j];
     }
+    // The speed cap: every straight between two fillets stays under it (another draw
+    // shares the spare length differently).
+    if let Some(cap) = cap {
+        let over = (0..n).any(|i| {
+            len[i] - tangent(&t[i], rc) - tangent(&t[(i + 1) % n], rc) > STRAIGHT_CAP_MARGIN * cap
+        });
+        if over {
+            return Err("polygon: a straight above the cap");
+        }
+    }
     Ok((heading, len))
 }
 
@@ -295,10 +309,10 @@ pub fn polygon_candidate(
     let mut why = "polygon: features do not fit a convex loop";
     let mut found = None;
     for _ in 0..CLOSURE_DRAWS {
-        let Some(t) = turns(order, rng) else {
+        let Some(t) = turns(order, spec.max_straight_m.is_some(), rng) else {
             continue;
         };
-        match lengths(&t, spec.lap_length_m, rc, rng) {
+        match lengths(&t, spec.lap_length_m, rc, spec.max_straight_m, rng) {
             Ok((heading, len)) => {
                 found = Some((t, heading, len));
                 break;
@@ -367,6 +381,7 @@ mod tests {
             feature_order: vec![],
             min_radius_m: 0.0,
             longest_straight_m: 0.0,
+            max_straight_m: None,
         }
     }
 
@@ -400,13 +415,13 @@ mod tests {
     #[test]
     fn three_hairpins_too_many_features_or_a_sweeper_without_a_corner_are_refused() {
         let mut rng = ChaCha8Rng::seed_from_u64(0);
-        assert!(turns(&[FeatureKind::Hairpin; 3], &mut rng).is_none());
-        assert!(turns(&[FeatureKind::Chicane; MAX_FEATURES + 1], &mut rng).is_none());
+        assert!(turns(&[FeatureKind::Hairpin; 3], false, &mut rng).is_none());
+        assert!(turns(&[FeatureKind::Chicane; MAX_FEATURES + 1], false, &mut rng).is_none());
         let two_and_sweeper = [
             FeatureKind::Hairpin,
             FeatureKind::Hairpin,
             FeatureKind::Sweeper,
         ];
-        assert!(turns(&two_and_sweeper, &mut rng).is_none());
+        assert!(turns(&two_and_sweeper, false, &mut rng).is_none());
     }
 }

@@ -69,6 +69,17 @@ pub fn screen(spec: &Spec, cfg: &ConstructorConfig) -> ScreenResult {
             cfg.hall_margin_m
         ));
     }
+    if let Some(cap) = spec.max_straight_m {
+        // The validator wants the longest straight ≥ 0.95 × the floor and ≤ the cap.
+        let floor = 0.95 * spec.longest_straight_m;
+        if floor > cap {
+            v.push(format!(
+                "longest straight ≥ 0.95 × {:.2} m = {floor:.2} m (the floor less the validator's \
+                 5 %) > max_straight_m = {cap:.2} m",
+                spec.longest_straight_m
+            ));
+        }
+    }
     if feat > budget {
         v.push(format!(
             "named features need Σℓ_min = {feat:.2} m > 0.70·(1 − 0.28)·L = {budget:.2} m \
@@ -114,6 +125,7 @@ mod tests {
             feature_order: vec![],
             min_radius_m: 0.0,
             longest_straight_m: 0.0,
+            max_straight_m: None,
         }
     }
 
@@ -138,6 +150,17 @@ mod tests {
         assert!(((r.feature_budget_m - r.feature_length_m) - 0.77).abs() < 0.005);
         s.hairpins = 6;
         assert!(!screen(&s, &ConstructorConfig::default()).passed);
+    }
+
+    #[test]
+    fn a_straight_cap_below_the_floor_is_rejected() {
+        let mut s = spec(60.0, 20.0, 15.0);
+        s.longest_straight_m = 8.0;
+        s.max_straight_m = Some(7.6);
+        assert!(screen(&s, &ConstructorConfig::default()).passed);
+        s.max_straight_m = Some(7.5);
+        let r = screen(&s, &ConstructorConfig::default());
+        assert!(!r.passed && r.violations[0].contains("max_straight_m = 7.50 m"));
     }
 
     #[test]

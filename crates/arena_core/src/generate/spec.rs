@@ -5,7 +5,11 @@ use crate::error::{ArenaError, Result};
 use crate::track::features::FeatureKind;
 use serde::{Deserialize, Serialize};
 
-/// The 12-field requirement specification (SI units). See `roboracer_arena.spec`.
+/// Largest straight cap a spec may state (m), the schema's bound (`TrackSpec`).
+pub const MAX_STRAIGHT_CAP_M: f64 = 1_000.0;
+
+/// The requirement specification (SI units): the paper's 12 fields and the optional
+/// speed cap `max_straight_m`. See `roboracer_arena.spec`.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Spec {
     pub name: String,
@@ -23,6 +27,9 @@ pub struct Spec {
     pub min_radius_m: f64,
     #[serde(default)]
     pub longest_straight_m: f64,
+    /// Upper bound on every straight (m): the indoor speed cap. `None` = no cap.
+    #[serde(default)]
+    pub max_straight_m: Option<f64>,
 }
 
 impl Spec {
@@ -53,6 +60,13 @@ impl Spec {
                 "longest_straight_m: must be ≥ 0 (got {})",
                 s.longest_straight_m
             )));
+        }
+        if let Some(cap) = s.max_straight_m {
+            if !(cap.is_finite() && cap > 0.0 && cap <= MAX_STRAIGHT_CAP_M) {
+                return Err(ArenaError::Spec(format!(
+                    "max_straight_m: must be in (0, {MAX_STRAIGHT_CAP_M}] m or null (got {cap})"
+                )));
+            }
         }
         if s.direction != "clockwise" && s.direction != "counterclockwise" {
             return Err(ArenaError::Spec(format!(

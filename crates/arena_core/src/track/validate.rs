@@ -212,6 +212,14 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
             a.longest_straight_m >= 0.95 * want,
         ));
     }
+    if let Some(cap) = spec.max_straight_m {
+        checks.push(check(
+            "max_straight",
+            format!("{:.2} m", a.longest_straight_m),
+            format!("≤ {cap:.2} m (requested cap, no tolerance)"),
+            a.longest_straight_m <= cap,
+        ));
+    }
     // Non-local passes must keep the pitch p apart (centreline to centreline); arcs closer
     // than π p / 2 along the lap are local (a hairpin of radius p/2 is still legal).
     let clearance = self_clearance(&line, PI * d.pitch / 2.0, 0.1);
@@ -292,6 +300,7 @@ mod tests {
             feature_order: vec![],
             min_radius_m: 0.0,
             longest_straight_m: 0.0,
+            max_straight_m: None,
         }
     }
 
