@@ -247,9 +247,7 @@ def write_probe_stage(track_stage: Path, plan: list[tuple[float, ...]], sim: Sim
         body = UsdPhysics.RigidBodyAPI.Apply(prim)
         body.CreateVelocityAttr(Gf.Vec3f(speed * math.cos(heading), speed * math.sin(heading), 0.0))
         UsdPhysics.MassAPI.Apply(prim).CreateMassAttr(float(veh.mass))
-        UsdShade.MaterialBindingAPI.Apply(prim).Bind(
-            mat, UsdShade.Tokens.weakerThanDescendants, "physics"
-        )
+        UsdShade.MaterialBindingAPI.Apply(prim).Bind(mat, UsdShade.Tokens.weakerThanDescendants, "physics")
         includes.AddTarget(Sdf.Path(path))
         paths.append(path)
     stage.GetRootLayer().Save()
