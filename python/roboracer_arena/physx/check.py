@@ -38,6 +38,8 @@ MIN_BEAM_FRACTION = 0.99
 #: Probe bodies lower than this (m, centre) have fallen through the floor.
 FLOOR_LIMIT_M = -0.02
 PROBE_ROOT = "/RoboRacerArenaProbes"
+#: The car ``build --car`` authors: its chassis holds the sensor, so beams pass through it.
+CAR_PATH = "/World/Car"
 
 
 class LidarParity(FrozenModel):
@@ -156,9 +158,8 @@ def physx_scan(scene: PhysxScene, pose: tuple[float, float, float], sim: SimConf
     out = np.empty(n)
     for k in range(n):
         a = yaw + start + k * inc
-        out[k] = min(
-            scene.raycast((ox, oy, lid.mount_z), (math.cos(a), math.sin(a), 0.0), lid.range_max), lid.range_max
-        )
+        ray = scene.raycast((ox, oy, lid.mount_z), (math.cos(a), math.sin(a), 0.0), lid.range_max, ignore=CAR_PATH)
+        out[k] = min(ray, lid.range_max)
     return out
 
 

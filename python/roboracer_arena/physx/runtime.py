@@ -117,14 +117,31 @@ class PhysxScene:
             if stage is not None:
                 stage.destroy()
 
-    def raycast(self, origin: Any, direction: Any, max_distance: float, both_sides: bool = False) -> float:
-        """Distance to the closest hit (``inf`` for none); single-sided as a PhysX lidar casts."""
+    def raycast(
+        self, origin: Any, direction: Any, max_distance: float, both_sides: bool = False, ignore: str | None = None
+    ) -> float:
+        """Distance to the closest hit (``inf`` for none); single-sided as a PhysX lidar
+        casts. ``ignore``: a prim path whose shapes (and their descendants') the ray passes
+        through, e.g. the car carrying the sensor."""
+        from ovphysx.types import SceneQueryMode
+
+        o, d = [float(v) for v in origin], [float(v) for v in direction]
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            hits = self._physx.raycast(
-                [float(v) for v in origin], [float(v) for v in direction], float(max_distance), both_sides=both_sides
-            )
-        return float(hits[0]["distance"]) if hits else float("inf")
+            if ignore is None:
+                hits = self._physx.raycast(o, d, float(max_distance), both_sides=both_sides)
+            else:
+                hits = self._physx.raycast(o, d, float(max_distance), mode=SceneQueryMode.ALL, both_sides=both_sides)
+                hits = [h for h in hits if not self._path_of(h["collision"]).startswith(ignore)]
+        return min((float(h["distance"]) for h in hits), default=float("inf"))
+
+    def _path_of(self, collision_id: int) -> str:
+        cache: dict[int, str] = self.__dict__.setdefault("_paths", {})
+        if collision_id not in cache:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                cache[collision_id] = str(self._physx.get_scene_query_paths_from_ids([collision_id])[0])
+        return cache[collision_id]
 
     def step(self, dt: float, n: int = 1) -> None:
         """``n`` synchronous steps of ``dt`` seconds."""
