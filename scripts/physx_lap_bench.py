@@ -50,8 +50,8 @@ def main() -> None:
             stage = work / f"{len(rows)}.usdc"
             build_environment(map_yaml, stage, car=True)
             track = track_of_stage(stage)
-            physx = drive_physx_lap(stage, track)
-            ours = drive_native_lap(track)
+            physx = drive_physx_lap(stage, track, max_seconds=240.0)
+            ours = drive_native_lap(track, max_seconds=240.0)
             rows.append(
                 {"track": name, "length_m": track.length, "physx": physx.to_json_dict(), "ours": ours.to_json_dict()}
             )
