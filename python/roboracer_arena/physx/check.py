@@ -20,6 +20,7 @@ import json
 import math
 import tempfile
 import time
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -210,7 +211,7 @@ def probe_plan(track: Any, sim: SimConfig, points: int) -> list[tuple[float, flo
     return plan
 
 
-def write_probe_stage(track_stage: Path, plan: list[tuple[float, ...]], sim: SimConfig, out: Path) -> list[str]:
+def write_probe_stage(track_stage: Path, plan: Sequence[tuple[float, ...]], sim: SimConfig, out: Path) -> list[str]:
     """A stage that sublayers the track stage and adds one chassis-sized box per probe,
     launched by its initial velocity. Probes do not collide with each other (a filtered
     collision group) and touch the floor without friction. Returns the probe prim paths."""

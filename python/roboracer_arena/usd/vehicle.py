@@ -74,8 +74,9 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
     tyres = {}
     for name, c_alpha in (("FrontTire", v.cornering_stiffness_front), ("RearTire", v.cornering_stiffness_rear)):
         tyre: Any = P.PhysxVehicleTireAPI.Apply(UsdGeom.Scope.Define(stage, f"{PARTS}/{name}").GetPrim())
-        # (normalised load at which the lateral stiffness peaks, that peak per unit gravity)
-        tyre.CreateLateralStiffnessGraphAttr(Gf.Vec2f(2.0, float(c_alpha * load * 2.0 / g)))
+        # (load in N where the graph flattens, lateral stiffness there in N/rad): linear in the
+        # load up to twice the static load, so at rest it is the cornering stiffness x load.
+        tyre.CreateLateralStiffnessGraphAttr(Gf.Vec2f(float(2.0 * load), float(c_alpha * 2.0 * load)))
         tyre.CreateLongitudinalStiffnessAttr(float(v.longitudinal_stiffness * load))
         tyre.CreateCamberStiffnessAttr(0.0)
         tyre.CreateFrictionVsSlipGraphAttr([Gf.Vec2f(0.0, 1.0), Gf.Vec2f(0.1, 1.0), Gf.Vec2f(1.0, 1.0)])
