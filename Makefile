@@ -16,11 +16,11 @@ $(BIN)/python:
 
 # Dev-profile build (dependencies at opt-level 3) plus runtime and test dependencies.
 develop: $(BIN)/python
-	$(BIN)/maturin develop -q --extras test,video,ros2,ros2-test,render3d,ray
+	$(BIN)/maturin develop -q --extras test,video,ros2,ros2-test,render3d,ray,physx
 
 # Optimised build for benchmarks.
 release: $(BIN)/python
-	$(BIN)/maturin develop -q --release --extras test,video,ros2,ros2-test,render3d,ray
+	$(BIN)/maturin develop -q --release --extras test,video,ros2,ros2-test,render3d,ray,physx
 
 demo: develop
 	$(BIN)/python -m roboracer_arena.demo --out out/demo

@@ -8,7 +8,7 @@
 # Env:   PYTHON (default python3), MATURIN (default: .venv/bin/maturin, else maturin on PATH),
 #        ROBORACER_ARENA_SOURCES (default ../shared/track-sources beside the checkout),
 #        KEEP_WHEEL_ENV=1 keeps the temporary directory,
-#        WHEEL_EXTRAS (default test,video,ros2,ros2-test,render3d,ray) the extras installed with the wheel.
+#        WHEEL_EXTRAS (default test,video,ros2,ros2-test,render3d,ray,physx) the extras installed with the wheel.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
@@ -45,7 +45,7 @@ WHEEL="$(cd "$(dirname "$WHEEL")" && pwd)/$(basename "$WHEEL")"
 WORK="$(mktemp -d "${TMPDIR:-/tmp}/rra-wheel-XXXXXX")"
 if [[ "${KEEP_WHEEL_ENV:-0}" != 1 ]]; then trap 'rm -rf "$WORK"' EXIT; fi
 case "$WORK/" in "$ROOT"/*) echo "wheel_smoke.sh: $WORK is inside the checkout" >&2; exit 1 ;; esac
-EXTRAS="${WHEEL_EXTRAS:-test,video,ros2,ros2-test,render3d,ray}"
+EXTRAS="${WHEEL_EXTRAS:-test,video,ros2,ros2-test,render3d,ray,physx}"
 step "fresh venv in $WORK, pip install $(basename "$WHEEL")[$EXTRAS]"
 "$PYTHON" -m venv "$WORK/venv"
 "$WORK/venv/bin/pip" install --quiet --upgrade pip

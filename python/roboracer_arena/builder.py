@@ -113,13 +113,15 @@ def build_environment(
     out_path: str | Path,
     config: ConfigLike = None,
     start: Sequence[float] | str | None = None,
+    car: bool = False,
 ) -> BuildReport:
     """Build the USD environment of a ROS occupancy map.
 
     ``map_or_path`` is a map YAML path or an :class:`~roboracer_arena.maps.OccupancyMap`;
     ``out_path`` ends in ``.usdc`` (default encoding), ``.usda`` or ``.usd`` (encoding from
     ``config.usd_format``); ``config`` is a :class:`BuildConfig`, a mapping or a TOML/JSON
-    file; ``start`` optionally seeds the corridor from a pose ``(x, y[, yaw])``.
+    file; ``start`` optionally seeds the corridor from a pose ``(x, y[, yaw])``; ``car``
+    adds the paper's car as a PhysX vehicle at the grid start (needs the ``physx`` extra).
 
     Raises a :class:`~roboracer_arena.errors.ArenaError` subclass on bad input (unreadable
     map, no closed corridor, leaking walls, bad config); nothing is written then.
@@ -159,7 +161,13 @@ def build_environment(
     }
     if pose is not None:
         metadata["start"] = list(pose)
-    written = write_stage(out, meshes, cfg, metadata)
+    car_pose = None
+    if car:
+        from .usd.vehicle import grid_start_pose
+
+        car_pose = grid_start_pose(geo, cfg, source)
+        metadata["car_pose"] = list(car_pose)
+    written = write_stage(out, meshes, cfg, metadata, car_pose)
 
     h, w = occ.data.shape
     timings = {"load": t1 - t0, "geometry": t2 - t1}

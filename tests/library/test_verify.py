@@ -9,6 +9,7 @@ import pytest
 from roboracer_arena.cli import main
 from roboracer_arena.library import load_catalog
 from roboracer_arena.library.verify import verify
+from roboracer_arena.physx import available as physx_available
 
 
 def test_verify_one_track_of_each_kind():
@@ -21,6 +22,7 @@ def test_verify_one_track_of_each_kind():
             "load": "pass",
             "ring": "pass",
             "usd": "pass",
+            "physx": "pass" if physx_available() else "not run",  # the PhysX check, with the extra
             "drive": "pass",
         }, r
 

@@ -3,8 +3,8 @@ exposes ``register(subparsers)`` which adds its parser and sets ``func``.
 
 Exit codes: 0 success, 2 bad input (any :class:`~roboracer_arena.errors.ArenaError`),
 3 request rejected by the screen, 4 generation failure, 5 the car did not finish
-(``drive``: a collision, or fewer laps than asked in the time allowed), 1 unexpected
-internal error.
+(``drive``: a collision, or fewer laps than asked in the time allowed), 6 the stage does
+not hold in PhysX (``physx-check``), 1 unexpected internal error.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ COMMANDS: list[str] = [
     "drive",
     "generate",
     "parse",
+    "physx_check",
     "preview",
     "ros2",
     "tracks",

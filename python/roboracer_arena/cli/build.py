@@ -25,6 +25,11 @@ def register(sub) -> None:
     )
     p.add_argument("--usda", action="store_true", help="write text USD (the output must end in .usda or .usd)")
     p.add_argument("--no-textures", action="store_true", help="plain colours, no PNG textures beside the stage")
+    p.add_argument(
+        "--car",
+        action="store_true",
+        help="add the paper's car as a PhysX vehicle at the grid start (needs the 'physx' extra)",
+    )
     add_json_flag(p)
     p.set_defaults(func=run)
 
@@ -39,7 +44,7 @@ def run(args: argparse.Namespace) -> int:
         cfg = cfg.model_copy(update={"usd_format": "usda"})
     if args.no_textures:
         cfg = cfg.model_copy(update={"materials": cfg.materials.model_copy(update={"textures": False})})
-    report = build_environment(args.map, args.out, cfg, start=args.start)
+    report = build_environment(args.map, args.out, cfg, start=args.start, car=args.car)
     if args.json:
         print_json(report.model_dump(mode="json"))
     else:

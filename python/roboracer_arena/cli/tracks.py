@@ -74,6 +74,9 @@ def register(sub) -> None:
     _subset(a)
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
     a.add_argument("--no-usd", action="store_true", help="skip the USD build check")
+    a.add_argument(
+        "--no-physx", action="store_true", help="skip the PhysX check (run when the 'physx' extra is installed)"
+    )
     a.add_argument("--no-drive", action="store_true", help="skip the pure-pursuit lap")
     a.add_argument("--reverse", action="store_true", help="drive each lap against the track's racing direction")
     a.add_argument(
@@ -253,6 +256,7 @@ def run_verify(args) -> int:
             progress=_progress("verify"),
             reverse=args.reverse,
             executor=ex,
+            physx=False if args.no_physx else None,
         )
     if args.update_catalog:
         from ..fileio import atomic_write_text
@@ -266,7 +270,7 @@ def run_verify(args) -> int:
     if args.json:
         print_json(s)
     else:
-        print(f"{'id':<42}{'kind':<10}{'load':<9}{'ring':<9}{'usd':<9}{'drive':<9}  detail")
+        print(f"{'id':<42}{'kind':<10}" + "".join(f"{n:<9}" for n in CHECKS) + "  detail")
         for r in s.results:
             st = [r.status(n) or "-" for n in CHECKS]
             print(f"{r.id:<42}{r.kind:<10}" + "".join(f"{x:<9}" for x in st) + "  " + "; ".join(r.failures()))

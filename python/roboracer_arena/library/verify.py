@@ -74,23 +74,47 @@ def check_ring(entry: TrackEntry, m: OccupancyMap, yaml_path: Path) -> Check:
     return Check(status=PASS, detail=f"one closed ring, raster lap {lap:.2f} m, mean width {mm.mean_width_m:.2f} m")
 
 
-def check_usd(yaml_path: Path) -> Check:
-    """Hook onto the builder: build the USD stage and run every usd-core validator on it."""
+def check_usd(yaml_path: Path, physx: bool = False) -> tuple[Check, Check]:
+    """Hook onto the builder: build the USD stage and run every usd-core validator on it;
+    with ``physx``, the PhysX check (:mod:`roboracer_arena.physx.check`, lighter: 4 points,
+    1 s) on the same stage. Returns the ``usd`` and ``physx`` verdicts."""
     from ..builder import build_environment
     from ..usd.validate import validation_errors
 
+    skipped = Check(status=NOT_RUN, detail="not run: the stage did not build")
     with tempfile.TemporaryDirectory(prefix="rra-verify-") as tmp:
         out = Path(tmp) / "stage.usdc"
         try:
             report = build_environment(yaml_path, out)
         except ArenaError as e:
-            return Check(status=FAIL, detail=f"build failed: {e}")
+            return Check(status=FAIL, detail=f"build failed: {e}"), skipped
         errors = validation_errors(out)
         if errors:
-            return Check(status=FAIL, detail=f"stage invalid: {'; '.join(map(str, errors[:3]))}")
-        return Check(
+            return Check(status=FAIL, detail=f"stage invalid: {'; '.join(map(str, errors[:3]))}"), skipped
+        usd = Check(
             status=PASS, detail=f"stage {report.usd_bytes // 1024} KiB, {report.walls} walls, IoU {report.iou:.4f}"
         )
+        return usd, (check_physx(out) if physx else physx_not_run())
+
+
+def physx_not_run() -> Check:
+    """The ``physx`` verdict when the PhysX check is not run, saying why."""
+    from ..physx import available
+
+    why = "--no-physx" if available() else "the 'physx' extra is not installed"
+    return Check(status=NOT_RUN, detail=f"not run: {why}")
+
+
+def check_physx(stage: Path) -> Check:
+    """The stage in PhysX (CPU): single-sided lidar parity and containment."""
+    from ..physx.check import check_stage
+
+    r = check_stage(stage, points=4, seconds=1.0)
+    detail = (
+        f"lidar {r.lidar.within_tolerance}/{r.lidar.beams} beams within 1 cm, "
+        f"{r.containment.contained}/{r.containment.bodies} bodies contained"
+    )
+    return Check(status=PASS if r.ok else FAIL, detail=detail)
 
 
 #: The retry after a collision at the reference settings: slower, shorter lookahead.
@@ -140,8 +164,14 @@ def verify_entry(
     usd: bool = True,
     drive: bool = True,
     reverse: bool = False,
+    physx: bool | None = None,
 ) -> TrackResult:
-    """Every check of one track (see the module doc)."""
+    """Every check of one track (see the module doc); ``physx`` None = run the PhysX
+    check when the ``physx`` extra is installed."""
+    if physx is None:
+        from ..physx import available
+
+        physx = available()
     t0 = time.perf_counter()
     yaml_path = cat.map_path(entry, sources)
     checks: dict[str, Check] = {}
@@ -150,7 +180,11 @@ def verify_entry(
         checks["ring"] = check_ring(entry, m, yaml_path)
     else:
         checks["ring"] = Check(status=NOT_RUN, detail="not run: map did not load")
-    checks["usd"] = check_usd(yaml_path) if usd else Check(status=NOT_RUN, detail="not run: --no-usd")
+    if usd:
+        checks["usd"], checks["physx"] = check_usd(yaml_path, physx)
+    else:
+        checks["usd"] = Check(status=NOT_RUN, detail="not run: --no-usd")
+        checks["physx"] = Check(status=NOT_RUN, detail="not run: --no-usd")
     checks["drive"] = (
         check_drive(cat, entry, sources, reverse) if drive else Check(status=NOT_RUN, detail="not run: --no-drive")
     )
@@ -162,10 +196,10 @@ def _result(entry: TrackEntry, checks: dict[str, Check], seconds: float) -> Trac
     return TrackResult(id=entry.id, kind=entry.kind, passed=passed, seconds=round(seconds, 3), checks=checks)
 
 
-def _work(args: tuple[Catalog, TrackEntry, Path | None, bool, bool, bool]) -> TrackResult:
-    cat, entry, sources, usd, drive, reverse = args
+def _work(args: tuple[Catalog, TrackEntry, Path | None, bool, bool, bool, bool | None]) -> TrackResult:
+    cat, entry, sources, usd, drive, reverse, physx = args
     try:
-        return verify_entry(cat, entry, sources, usd, drive, reverse)
+        return verify_entry(cat, entry, sources, usd, drive, reverse, physx)
     except Exception as e:  # one broken track never stops the run
         return _result(entry, {"internal": Check(status=FAIL, detail=f"{type(e).__name__}: {e}")}, 0.0)
 
@@ -180,12 +214,13 @@ def verify(
     progress: Progress | None = None,
     reverse: bool = False,
     executor: Executor | None = None,
+    physx: bool | None = None,
 ) -> VerifySummary:
     """Verify ``entries`` (laps against the racing direction with ``reverse``) on ``executor``
     (default: a local pool of ``jobs`` processes); returns per-track results in entry order
     and a summary. On a Ray cluster every node must see the same catalog and sources paths."""
     t0 = time.perf_counter()
-    tasks = [(cat, e, sources, usd, drive, reverse) for e in entries]
+    tasks = [(cat, e, sources, usd, drive, reverse, physx) for e in entries]
     with local_unless(executor, jobs) as ex:
         results = map_ordered(ex, _work, tasks, progress)
     return VerifySummary.tally(results, time.perf_counter() - t0, ex.workers)

@@ -11,7 +11,7 @@ PASS: Status = "pass"
 FAIL: Status = "FAIL"
 NOT_RUN: Status = "not run"
 #: The checks, in the order they run and are printed.
-CHECKS = ("load", "ring", "usd", "drive")
+CHECKS = ("load", "ring", "usd", "physx", "drive")
 
 
 class Check(FrozenModel):

@@ -3,7 +3,7 @@
 Layout (Z up, metres, kilograms, default prim ``/World``)::
 
     /World                      Xform
-    /World/PhysicsScene         UsdPhysics.Scene (gravity -Z)
+    /World/PhysicsScene         UsdPhysics.Scene (gravity -Z); PhysxSceneAPI with the `physx` extra
     /World/Track                Xform
     /World/Track/Floor          Mesh, visual + collider (approximation none), physics material
     /World/Track/Walls          Mesh, collider (approximation none), purpose guide, invisible
@@ -29,6 +29,7 @@ from ..build_config import BuildConfig
 from ..errors import ConfigError, MapIOError
 from ..fileio import atomic_paths
 from . import materials as looks
+from . import physx_schemas
 from .textures import Texture, duct_texture, floor_texture
 
 METADATA_KEY = "roboracerArena"
@@ -76,9 +77,13 @@ def resolve_format(out_path: Path, config: BuildConfig) -> str:
 
 
 def author_stage(
-    meshes: list[StageMesh], config: BuildConfig, metadata: Mapping[str, Any]
+    meshes: list[StageMesh],
+    config: BuildConfig,
+    metadata: Mapping[str, Any],
+    car_pose: tuple[float, float, float] | None = None,
 ) -> tuple[Usd.Stage, list[Texture]]:
-    """Build the stage in memory; returns it and the textures its materials reference."""
+    """Build the stage in memory; returns it and the textures its materials reference.
+    ``car_pose`` (x, y, yaw) adds the PhysX vehicle there (:mod:`.vehicle`, the ``physx`` extra)."""
     stage = Usd.Stage.CreateInMemory()
     UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
     UsdGeom.SetStageMetersPerUnit(stage, 1.0)
@@ -94,6 +99,7 @@ def author_stage(
     scene = UsdPhysics.Scene.Define(stage, "/World/PhysicsScene")
     scene.CreateGravityDirectionAttr(Gf.Vec3f(0.0, 0.0, -1.0))
     scene.CreateGravityMagnitudeAttr(float(config.physics.gravity_m_s2))
+    physx_schemas.apply_scene(scene.GetPrim(), config.physics)
 
     UsdGeom.Xform.Define(stage, "/World/Track")
     UsdGeom.Scope.Define(stage, looks.LOOKS)
@@ -109,6 +115,12 @@ def author_stage(
             UsdPhysics.CollisionAPI.Apply(prim)
             UsdPhysics.MeshCollisionAPI.Apply(prim).CreateApproximationAttr(UsdPhysics.Tokens.none)
             looks.bind(prim, physics_mat, physics=True)
+            physx_schemas.apply_collider(prim, config.physics)
+    if car_pose is not None:
+        from ..sim_config import SimConfig
+        from .vehicle import author_car
+
+        author_car(stage, SimConfig(), car_pose)
     return stage, textures
 
 
@@ -117,6 +129,7 @@ def write_stage(
     meshes: list[StageMesh],
     config: BuildConfig,
     metadata: Mapping[str, Any],
+    car_pose: tuple[float, float, float] | None = None,
 ) -> WrittenStage:
     """Author and write the stage atomically; textures go to ``textures/`` beside it.
     The stage and every texture not already there with identical bytes are written to
@@ -126,7 +139,7 @@ def write_stage(
     out = Path(out_path)
     fmt = resolve_format(out, config)
     t0 = time.perf_counter()
-    stage, textures = author_stage(meshes, config, metadata)
+    stage, textures = author_stage(meshes, config, metadata, car_pose)
     t1 = time.perf_counter()
     written = [out.parent / tex.relpath for tex in textures]
     fresh = [(p, tex) for p, tex in zip(written, textures) if not tex.present(out.parent)]

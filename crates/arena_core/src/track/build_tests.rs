@@ -162,3 +162,81 @@ fn origin_yaw_rotates_every_output() {
     }
     assert!(geo.iou >= 0.97);
 }
+
+/// Even–odd point-in-region test over all wall loops: inside = drivable.
+fn drivable(walls: &[Polyline], p: [f64; 2]) -> bool {
+    let mut inside = false;
+    for l in walls {
+        for i in 0..l.len() {
+            let (a, b) = (l[i], l[(i + 1) % l.len()]);
+            if (a[1] > p[1]) != (b[1] > p[1])
+                && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+            {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// Unnormalised normal of a triangle (right-hand rule) and its centroid.
+fn normal_and_centroid(m: &TriMesh, t: &[u32; 3]) -> ([f64; 3], [f64; 3]) {
+    let p = |i: u32| m.vertices[i as usize].map(|v| v as f64);
+    let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+    let (u, v) = (
+        [0, 1, 2].map(|k| b[k] - a[k]),
+        [0, 1, 2].map(|k| c[k] - a[k]),
+    );
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    (n, [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0))
+}
+
+/// Every wall triangle faces the drivable side and the floor faces up: PhysX meshes are
+/// single-sided, so a wall facing away lets rays and bodies through (issue #23).
+fn assert_faces_the_corridor(geo: &Geometry) {
+    const STEP: f64 = 1e-3;
+    for t in &geo.wall_mesh.triangles {
+        let (n, c) = normal_and_centroid(&geo.wall_mesh, t);
+        let len = n[0].hypot(n[1]);
+        assert!(
+            len > 0.0 && n[2].abs() < 1e-6 * len,
+            "wall {t:?} not vertical: {n:?}"
+        );
+        let (dx, dy) = (STEP * n[0] / len, STEP * n[1] / len);
+        assert!(
+            drivable(&geo.walls, [c[0] + dx, c[1] + dy]),
+            "wall triangle {t:?} at {c:?} faces away from the corridor"
+        );
+        assert!(!drivable(&geo.walls, [c[0] - dx, c[1] - dy]));
+    }
+    for t in &geo.floor.triangles {
+        let (n, _) = normal_and_centroid(&geo.floor, t);
+        assert!(
+            n[2] > 0.0 && n[0] == 0.0 && n[1] == 0.0,
+            "floor {t:?} faces {n:?}"
+        );
+    }
+}
+
+#[test]
+fn wall_faces_point_into_the_corridor_and_the_floor_up() {
+    assert_faces_the_corridor(
+        &build_geometry(&ring(4.0, 1.5, 0.05), &BuildParams::default(), None).unwrap(),
+    );
+    // A non-convex ring (three lobes): concave and convex stretches on both walls.
+    let c: Vec<[f64; 2]> = (0..2000)
+        .map(|i| {
+            let a = 2.0 * PI * i as f64 / 2000.0;
+            let r = 4.0 + 1.2 * (3.0 * a).sin();
+            [r * a.cos() + CX, r * a.sin() + CY]
+        })
+        .collect();
+    let g = rasterise_constant(&c, 1.2, 0.04, 0.15, 0.6).unwrap();
+    let geo = build_geometry(&g, &BuildParams::default(), None).unwrap();
+    assert_eq!(geo.walls.len(), 2);
+    assert_faces_the_corridor(&geo);
+}

@@ -1,0 +1,190 @@
+"""Drive the stage's PhysX vehicle (``build --car``) through ovphysx on the CPU with the
+reference pure pursuit (:class:`~roboracer_arena.drivers.PurePursuitDriver`), for one
+lap; and the same lap in our simulator, for comparison (``scripts/physx_lap_bench.py``).
+
+The driver gives ``[steer (rad), speed (m/s)]``; PhysX's basic drive takes a normalised
+steer (``steer / max_steer``), an accelerator and a brake: a proportional speed loop
+turns the speed command into those two, as the car's VESC speed loop does in our model.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..frozen_model import FrozenModel
+from ..sim_config import SimConfig
+from .runtime import PhysxScene
+
+CAR = "/World/Car"
+#: Accelerator (or brake) per m/s of speed error.
+SPEED_GAIN = 0.8
+#: Control period (s): the env's default 40 Hz control loop.
+CONTROL_DT = 0.025
+
+
+class LapRun(FrozenModel):
+    """One lap driven by pure pursuit. ``steps_per_second``: physics steps per second of
+    the engine's own stepping (PhysX: ``step_sync`` time only, not the Python reads and
+    writes around it; ours: the env's whole step, lidar included)."""
+
+    engine: str
+    completed: bool
+    lap_time_s: float | None
+    mean_deviation_m: float
+    max_deviation_m: float
+    physics_steps: int
+    wall_seconds: float
+    steps_per_second: float
+
+
+def _deviation(points: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    """Distance of each (x, y) from the resampled centreline points (5 cm spacing)."""
+    d = np.hypot(points[None, :, 0] - xy[:, 0:1], points[None, :, 1] - xy[:, 1:2])
+    return d.min(axis=1)
+
+
+class _Progress:
+    """Arc length travelled along the driver's resampled centreline, unwrapped."""
+
+    def __init__(self, driver: Any, x: float, y: float) -> None:
+        self.driver, self.n = driver, len(driver.points)
+        self.last = driver.project(x, y)
+        self.s = 0.0
+
+    def update(self, x: float, y: float) -> float:
+        i = self.driver.project(x, y)
+        step = (i - self.last + self.n // 2) % self.n - self.n // 2
+        self.last = i
+        self.s += step * self.driver.ds
+        return self.s
+
+
+def drive_physx_lap(stage: str | Path, track: Any, sim: SimConfig | None = None, max_seconds: float = 120.0) -> LapRun:
+    """Drive the stage's car one lap in PhysX; the stage must carry ``/World/Car``."""
+    from ovphysx.types import SimObjectType
+
+    from ..drivers import PurePursuitDriver
+
+    sim = sim or SimConfig()
+    dt = float(sim.physics.dt)
+    sub = max(1, round(CONTROL_DT / dt))
+    driver = PurePursuitDriver(track.centreline)
+    xy: list[tuple[float, float]] = []
+    stepping = 0.0
+    with PhysxScene(stage) as scene:
+        physx = scene._physx
+        with (
+            physx.query(SimObjectType.VEHICLE, pattern=CAR).wait() as vq,
+            physx.query(SimObjectType.RIGID_BODY, pattern=CAR).wait() as bq,
+        ):
+            if vq.metadata.total_prim_count != 1:
+                from ..errors import ConfigError
+
+                raise ConfigError(f"{stage}: no PhysX vehicle at {CAR} (build it with --car)")
+            scene.step(dt, 20)  # settle on the suspension
+            x, y, yaw, v = _pose(physx, bq)
+            prog = _Progress(driver, x, y)
+            steps, t0, lap = 20, time.perf_counter(), None
+            while steps * dt < max_seconds:
+                steer, v_cmd = driver.act_pose(x, y, yaw, v)
+                err = float(v_cmd) - v
+                controls = {
+                    "steer": float(np.clip(steer / sim.vehicle.max_steer, -1.0, 1.0)),
+                    "accelerator": float(np.clip(SPEED_GAIN * err, 0.0, 1.0)),
+                    "brake0": float(np.clip(-SPEED_GAIN * err, 0.0, 1.0)),
+                }
+                with physx.write(vq, list(controls)).wait() as w:
+                    while (g := w.fetch_next().wait()) is not None:
+                        g.tensors[0].fill_(controls[list(controls)[g.attribute_index]])
+                        w.commit(g).wait()
+                ts = time.perf_counter()
+                scene.step(dt, sub)
+                stepping += time.perf_counter() - ts
+                steps += sub
+                x, y, yaw, v = _pose(physx, bq)
+                xy.append((x, y))
+                if prog.update(x, y) >= driver.length:
+                    lap = (steps - 20) * dt
+                    break
+            wall = time.perf_counter() - t0
+        physx.wait_all()
+    dev = _deviation(driver.points, np.asarray(xy)) if xy else np.zeros(1)
+    return LapRun(
+        engine="physx-cpu",
+        completed=lap is not None,
+        lap_time_s=lap,
+        mean_deviation_m=float(dev.mean()),
+        max_deviation_m=float(dev.max()),
+        physics_steps=steps,
+        wall_seconds=wall,
+        steps_per_second=(steps - 20) / stepping if stepping > 0 else 0.0,
+    )
+
+
+_POSE_ATTRS = ["position", "orientation", "linearVelocity"]
+
+
+def _pose(physx: Any, query: Any) -> tuple[float, float, float, float]:
+    """(x, y, yaw, forward speed) of the car's chassis."""
+    body: dict[str, np.ndarray] = {}
+    with physx.read(query, _POSE_ATTRS).wait() as result:
+        while (g := result.fetch_next().wait()) is not None:
+            body[query.dictionary.token_to_string(g.attribute)] = g.tensors[0].numpy()[g.prim_offset].copy()
+            del g
+    physx.wait_all()
+    px, py = float(body["position"][0]), float(body["position"][1])
+    qx, qy, qz, qw = (float(c) for c in body["orientation"][:4])  # PhysX order: x, y, z, w
+    yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+    vel = body["linearVelocity"]
+    return px, py, yaw, float(vel[0]) * math.cos(yaw) + float(vel[1]) * math.sin(yaw)
+
+
+def drive_native_lap(track: Any, sim: SimConfig | None = None, max_seconds: float = 120.0) -> LapRun:
+    """The same lap in our simulator (the env, grid start, pure pursuit)."""
+    from ..drivers import PurePursuitDriver
+    from ..envs.env_config import EnvConfig
+    from ..envs.single import RoboRacerEnv
+
+    sim = sim or SimConfig()
+    env = RoboRacerEnv(track=track, config=EnvConfig(sim=sim))
+    driver = PurePursuitDriver(track.centreline)
+    try:
+        env.reset(seed=0)
+        state, idx = env.simulator_state
+        x, y = float(state[0, idx["x"]]), float(state[0, idx["y"]])
+        prog = _Progress(driver, x, y)
+        xy, t, lap, t0 = [], 0.0, None, time.perf_counter()
+        ctrl_dt = float(env.config.control_dt)
+        while t < max_seconds:
+            state, idx = env.simulator_state
+            x, y, yaw = (float(state[0, idx[k]]) for k in ("x", "y", "yaw"))
+            v = float(state[0, idx["vx"]]) if "vx" in idx else 0.0
+            steer, v_cmd = driver.act_pose(x, y, yaw, v)
+            env.step(env.from_ackermann(np.array([steer, v_cmd])))
+            t += ctrl_dt
+            state, idx = env.simulator_state
+            x, y = float(state[0, idx["x"]]), float(state[0, idx["y"]])
+            xy.append((x, y))
+            if prog.update(x, y) >= driver.length:
+                lap = t
+                break
+        wall = time.perf_counter() - t0
+    finally:
+        env.close()
+    dev = _deviation(driver.points, np.asarray(xy))
+    steps = round(t / float(sim.physics.dt))
+    return LapRun(
+        engine="roboracer-arena",
+        completed=lap is not None,
+        lap_time_s=lap,
+        mean_deviation_m=float(dev.mean()),
+        max_deviation_m=float(dev.max()),
+        physics_steps=steps,
+        wall_seconds=wall,
+        steps_per_second=steps / wall if wall > 0 else 0.0,
+    )
