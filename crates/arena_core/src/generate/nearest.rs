@@ -387,8 +387,13 @@ mod tests {
         use FeatureKind::*;
         let mut s = spec(60.0, 1.0, 20.0, 15.0, 2, 1, 0);
         s.feature_order = vec![Hairpin, Chicane, Hairpin];
-        let p = &feature_probes(&s)[0];
-        assert_eq!((p.hairpins, p.chicanes), (1, 1));
+        let probes = feature_probes(&s);
+        assert_eq!((probes[0].hairpins, probes[0].chicanes), (2, 0));
+        assert_eq!(probes[0].feature_order, vec![Hairpin, Hairpin]);
+        let p = probes
+            .iter()
+            .find(|p| (p.hairpins, p.chicanes) == (1, 1))
+            .expect("one hairpin dropped");
         assert_eq!(p.feature_order, vec![Hairpin, Chicane]);
     }
 
