@@ -158,6 +158,21 @@ def build_geometry(
 ) -> _Geometry:
     """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
 
+class _OpenGeometry(_Geometry):
+    start_pose: tuple[float, float, float]
+    start_clearance_m: float
+
+def build_open_geometry(
+    data: npt.NDArray[np.uint8],
+    resolution: float,
+    origin: tuple[float, float, float],
+    params_json: str = "{}",
+    unknown_free: bool = False,
+    start: Sequence[float] | None = None,
+) -> _OpenGeometry:
+    """An open map's geometry: walls around every non-drivable region, no centreline (empty),
+    plus the default start pose (the free cell farthest from the walls) and its clearance (m)."""
+
 # --- track (track.rs): raster measurement for the library ---------------------------
 @final
 class RasterMeasurement:

@@ -46,9 +46,13 @@ class PurePursuitParams:
 
 
 class PurePursuitDriver:
-    """Pure pursuit on one closed centreline ((M, 2), map frame, driving direction = vertex order)."""
+    """Pure pursuit on one closed centreline ((M, 2), map frame, driving direction = vertex order).
 
-    def __init__(self, centreline: Any, params: PurePursuitParams | None = None) -> None:
+    ``speed_cap`` ((M,) m/s, one per centreline vertex, optional) caps the speed profile
+    before its braking and acceleration passes, e.g. by the wall clearance along a
+    narrow path (:mod:`roboracer_arena.clearance_path`)."""
+
+    def __init__(self, centreline: Any, params: PurePursuitParams | None = None, speed_cap: Any = None) -> None:
         self.params = p = params or PurePursuitParams()
         line = np.asarray(centreline, dtype=np.float64)
         self.points = _core.resample_closed(line, p.spacing)
@@ -56,7 +60,11 @@ class PurePursuitDriver:
         self.ds = self.length / len(self.points)
         # Signed three-point curvature over chords of ±curvature_window (a smoothed estimate).
         self.curvature = _core.curvature(self.points, p.curvature_window)
-        self.speed_profile = _speed_profile(self.curvature, self.ds, p)
+        cap = None
+        if speed_cap is not None:
+            vals = _core.resample_closed_values(line, np.asarray(speed_cap, dtype=np.float64), p.spacing)[1]
+            cap = vals[: len(self.points)]
+        self.speed_profile = _speed_profile(self.curvature, self.ds, p, cap)
         self._idx: int | None = None
 
     @staticmethod
@@ -121,9 +129,11 @@ class PurePursuitDriver:
         return np.asarray(steer, dtype=np.float64), self.speed_profile[ahead].min(axis=-1)
 
 
-def _speed_profile(curv: np.ndarray, ds: float, p: PurePursuitParams) -> np.ndarray:
+def _speed_profile(curv: np.ndarray, ds: float, p: PurePursuitParams, cap: np.ndarray | None = None) -> np.ndarray:
     v = np.sqrt(p.lateral_accel / np.maximum(np.abs(curv), 1e-6))
     v = np.clip(v, p.min_speed, p.max_speed)
+    if cap is not None:
+        v = np.minimum(v, cap)
     n = len(v)
     for _ in range(2):  # two laps so the passes wrap around the closed loop
         for k in range(2 * n - 1, -1, -1):  # braking: v_i^2 <= v_{i+1}^2 + 2 a ds
@@ -143,8 +153,11 @@ class EnvPurePursuit:
     in the env's action mode. Create it with :meth:`PurePursuitDriver.for_env`.
     """
 
-    def __init__(self, env: Any, params: PurePursuitParams | None = None) -> None:
+    def __init__(self, env: Any, params: PurePursuitParams | None = None, paths: dict[int, Any] | None = None) -> None:
+        """``paths``: per track id, ``(line (M, 2), speed cap (M,) or None)`` to follow
+        instead of the track's centreline (e.g. a clearance path)."""
         self.env = env.unwrapped
+        self._paths = dict(paths or {})
         self.params = params or PurePursuitParams(
             max_steer=float(self.env.max_steer), wheelbase=float(self.env.wheelbase)
         )
@@ -166,7 +179,8 @@ class EnvPurePursuit:
         if slot is None or slot[0] != track_id:
             base = self._geometry.get(track_id)
             if base is None:
-                base = self._geometry[track_id] = PurePursuitDriver(self.env.tracks[track_id].centreline, self.params)
+                line, cap = self._paths.get(track_id, (self.env.tracks[track_id].centreline, None))
+                base = self._geometry[track_id] = PurePursuitDriver(line, self.params, cap)
             slot = (track_id, copy.copy(base))  # shares the geometry, own projection state
             slot[1].reset()
             self._slots[(e, k)] = slot
@@ -235,12 +249,15 @@ def drive_laps(
     max_time_s: float | None = None,
     progress: bool = False,
     env_wrapper: Any = None,
+    path: Any = None,
     **env_kwargs: Any,
 ) -> DriveResult:
     """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
     list) with :class:`PurePursuitDriver` from the centreline start, stopping at the first
     contact. Optionally writes a GIF/MP4 of the drive. ``env_kwargs`` go to the env;
-    ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it before driving."""
+    ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it before driving. ``path``: ``(line
+    (M, 2), speed cap (M,) or None)`` for the driver to follow instead of the centreline
+    (laps still count along the track's centreline)."""
     import time
 
     from .envs.single import RoboRacerEnv
@@ -264,7 +281,8 @@ def drive_laps(
     length = env.tracks[0].length
     limit = max_time_s if max_time_s is not None else laps * (length / 0.5 + 30.0)  # >= 0.5 m/s average
     dt = env.config.control_dt
-    driver = PurePursuitDriver.for_env(env) if params is None else EnvPurePursuit(env, params)
+    paths = None if path is None else {0: path}
+    driver = EnvPurePursuit(env, params, paths)
     every = max(1, round(env.config.control_rate_hz / video_fps))
     frames: list[np.ndarray] = []
 

@@ -16,6 +16,7 @@ from ..pool import Progress
 from .catalog import SCHEMA, Catalog, count_kinds, provenance, sha256_file
 from .directions import annotate_directions
 from .entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
+from .open_maps import open_maps
 from .recorded import assess_all
 
 PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
@@ -165,6 +166,7 @@ def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress
         seconds=round(time.perf_counter() - t0, 2),
     )
     cat = Catalog(entries=entries, left_out=left_out, meta=meta, path=tracks / "catalog.json")
+    cat.open_maps = open_maps(sources, left_out, jobs)
     annotate_directions(cat, sources)
     atomic_write_text(tracks / "catalog.json", cat.to_json())
     return cat

@@ -43,7 +43,8 @@ class SimSource:
         length = self.sim.centreline_length(self.track_id)
         poses = np.zeros((self.num_envs, self.vehicles, 3))
         for k in range(self.vehicles):
-            x, y, yaw = self.sim.centreline_pose(self.track_id, (-k * spacing) % length)
+            s = -k * spacing  # an open map's anchor has length 0: the grid lines up behind its start
+            x, y, yaw = self.sim.centreline_pose(self.track_id, s % length if length > 0 else s)
             lat = 0.0 if self.vehicles == 1 else (offset if k % 2 == 0 else -offset)
             poses[:, k] = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
         return poses
