@@ -122,6 +122,13 @@ def register(sub) -> None:
     a.add_argument("--generate", action="store_true", help="rerun the generated-track sweep first")
     a.add_argument("--count", type=int, default=60, help="generated tracks to keep (default 60)")
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
+    a.add_argument(
+        "--rejudge",
+        action="store_true",
+        help="instead of a rebuild: verify again the recorded maps 'verify' moved to left_out (current drivers: "
+        "reference, cautious, clearance path), put back the ones that lap, measure the others' narrowest gap, and "
+        "recompute the open maps; every other entry is kept as it is",
+    )
     a.set_defaults(func=run_catalog)
 
 
@@ -336,6 +343,8 @@ def run_catalog(args) -> int:
     tracks = writable_tracks_dir(args.tracks or (args.catalog.parent if args.catalog else None), "--tracks")
     sources = sources_dir(args.sources, "tracks catalog (it assesses the recorded maps)")
     jobs = args.jobs or os.cpu_count() or 1
+    if args.rejudge:
+        return _rejudge(args, Path(sources), jobs)
     if args.generate:
         g = build_generated(tracks / "generated", count=args.count, jobs=jobs, progress=_progress("generate"))
         if not args.json:
@@ -358,6 +367,28 @@ def run_catalog(args) -> int:
         )
         for lo in cat.left_out:
             print(f"  {lo.source_path}: {lo.reason}")
+    return EXIT_OK
+
+
+def _rejudge(args: argparse.Namespace, sources: Path, jobs: int) -> int:
+    from ..fileio import atomic_write_text
+    from ..library.open_maps import map_kinds, open_maps, rejudge
+
+    cat = _load(args)
+    joined = rejudge(cat, sources)
+    cat.open_maps = open_maps(sources, cat.left_out, jobs)
+    assert cat.path is not None
+    atomic_write_text(cat.path, cat.to_json())
+    kinds = map_kinds(cat)
+    counts = {k: sum(v == k for v in kinds.values()) for k in ("track", "open", "duplicate", "broken", "left out")}
+    if args.json:
+        print_json({"joined": joined, "recorded_maps": len(kinds), "by_kind": counts})
+    else:
+        print(f"updated {cat.path}: {len(joined)} map(s) joined the tracks: {', '.join(joined) or '-'}")
+        print(f"{len(kinds)} recorded source maps: " + ", ".join(f"{n} {k}" for k, n in counts.items()))
+        for lo in cat.left_out:
+            if lo.reason.startswith("verify failed"):
+                print(f"  {lo.id}: {lo.reason}")
     return EXIT_OK
 
 

@@ -105,3 +105,50 @@ def map_kinds(catalog: Any) -> dict[str, str]:
         else:
             out[lo.id] = "left out"
     return out
+
+
+def rejudge(cat: Any, sources: Path) -> list[str]:
+    """Verify again every recorded map that ``tracks verify`` moved to ``left_out``, with
+    the current drivers (the reference, the cautious retry and the clearance path): a map
+    that laps now goes back into the catalog's tracks (in the builder's order); one that
+    does not keeps its place in ``left_out`` with the new drive result and, measured, its
+    narrowest gap beside the car's width. Returns the ids that joined the tracks."""
+    from .catalog import Catalog
+    from .directions import annotate_directions
+    from .index import recorded_entry
+    from .recorded import assess_map, find_map_yamls
+    from .verify import verify_entry
+
+    order = {str(p.relative_to(sources)): i for i, p in enumerate(find_map_yamls(sources))}
+    width = SimConfig().vehicle.chassis_width
+    joined: list[str] = []
+    left: list[LeftOut] = []
+    for lo in cat.left_out:
+        if not lo.reason.startswith("verify failed"):
+            left.append(lo)
+            continue
+        r = assess_map(sources, sources / lo.source_path).with_fields(id=lo.id)
+        one = Catalog(entries=[recorded_entry(sources, r)], meta=cat.meta, path=cat.path)
+        annotate_directions(one, sources)
+        entry = one.entries[0]
+        result = verify_entry(one, entry, sources)
+        if result.passed:
+            drive = result.checks.get("drive")
+            cat.entries.append(
+                entry.with_fields(
+                    verified={k: c.status for k, c in result.checks.items()}, drive=drive.detail if drive else ""
+                )
+            )
+            joined.append(lo.id)
+            continue
+        reason = f"verify failed: {'; '.join(result.failures())}"
+        gap = narrowest_gap_m(sources / lo.source_path)
+        if gap is not None:
+            reason += f"; narrowest gap {gap:.2f} m {'<' if gap < width else '>='} car width {width:.2f} m"
+        left.append(lo.with_fields(reason=reason))
+    if joined:
+        kinds = {"circuit": 0, "recorded": 1, "generated": 2}
+        cat.entries.sort(key=lambda e: (kinds[e.kind], order.get(e.map, -1) if e.kind == "recorded" else 0))
+    cat.left_out = left
+    cat.meta = cat.meta.model_copy(update={"counts": cat.counts()})
+    return joined
