@@ -39,6 +39,7 @@ __all__ = [
     "load_map",
     "save_map",
     "build_geometry",
+    "build_open_geometry",
     "config_defaults",
     "check_config",
     "measure_map",

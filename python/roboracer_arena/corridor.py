@@ -77,8 +77,8 @@ class CorridorGeometry:
     #: ``"track"`` (a closed corridor: centreline, laps, progress) or ``"open"`` (an open
     #: map, see :func:`extract_open`: walls only, ``centreline`` empty).
     kind: str = "track"
-    #: An open map's start pose (x, y, yaw): the given one, else the free cell farthest
-    #: from the walls heading along its longest free line of sight.
+    #: An open map's start pose (x, y, yaw): the given one, else the map origin when it
+    #: is drivable (f1tenth_gym_ros's default), else the free cell farthest from the walls.
     start_pose: tuple[float, float, float] | None = None
     #: Why a map asked for as a track is open: the corridor error (``open=None``).
     open_reason: str | None = None
@@ -184,8 +184,10 @@ def extract_open(
             nav2's rules: ``occupied_thresh``, ``free_thresh``, ``negate``).
         params: geometry parameters, as for :func:`extract_corridor`.
         start: the start pose ``(x, y)`` or ``(x, y, yaw)`` (yaw 0 when omitted), as
-            f1tenth_gym_ros gives it; it must be on a drivable cell. Default: the
-            drivable cell farthest from the walls, heading along its longest free line.
+            f1tenth_gym_ros gives it; it must be on a drivable cell. Default: the map
+            origin (0, 0, 0), f1tenth_gym_ros's default, when it is drivable and at least
+            :data:`ORIGIN_START_CLEARANCE_M` from the walls; else the drivable cell
+            farthest from the walls, heading along its longest free line.
         unknown: one of :data:`UNKNOWN_AS`.
 
     Raises:
@@ -203,8 +205,34 @@ def extract_open(
         )
     except CorridorError as e:
         raise CorridorError(f"{where}{e}") from None
-    x, y, yaw = (float(v) for v in out["start_pose"])
-    return replace(_geometry(out, m), kind="open", start_pose=(x, y, yaw))
+    geo = _geometry(out, m)
+    x, y, yaw = (float(v) for v in out["start_pose"]) if s is not None else _default_start(geo, out["start_pose"])
+    return replace(geo, kind="open", start_pose=(x, y, yaw))
+
+
+#: Clearance (m) the map origin needs to be an open map's default start.
+ORIGIN_START_CLEARANCE_M = 0.3
+
+
+def _default_start(geo: CorridorGeometry, farthest: Any) -> tuple[float, float, float]:
+    """An open map's default start, as f1tenth_gym_ros gives it: the map-frame origin
+    (0, 0) heading along +x (its ``sx, sy, stheta`` defaults; a SLAM map starts where the
+    car was) when that is a drivable cell at least :data:`ORIGIN_START_CLEARANCE_M` from
+    the walls; else the drivable cell farthest from the walls (the core's choice)."""
+    m = geo.map
+    c, s = np.cos(m.origin[2]), np.sin(m.origin[2])
+    u = (c * -m.origin[0] + s * -m.origin[1]) / m.resolution
+    v = (-s * -m.origin[0] + c * -m.origin[1]) / m.resolution
+    h, w = m.data.shape
+    if 0 <= u < w and 0 <= v < h:
+        col, row = int(u), h - 1 - int(v)
+        mask = np.asarray(geo.corridor_mask, bool)
+        if mask[row, col]:
+            clear = float(_core.distance_transform(~mask)[row, col]) * m.resolution
+            if clear >= ORIGIN_START_CLEARANCE_M:
+                return 0.0, 0.0, 0.0
+    x, y, yaw = (float(v) for v in farthest)
+    return x, y, yaw
 
 
 def _params_json(params: dict[str, Any] | None) -> str:

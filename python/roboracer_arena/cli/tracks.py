@@ -375,7 +375,7 @@ def _rejudge(args: argparse.Namespace, sources: Path, jobs: int) -> int:
     from ..library.open_maps import map_kinds, open_maps, rejudge
 
     cat = _load(args)
-    joined = rejudge(cat, sources)
+    joined = rejudge(cat, sources, jobs)
     cat.open_maps = open_maps(sources, cat.left_out, jobs)
     assert cat.path is not None
     atomic_write_text(cat.path, cat.to_json())

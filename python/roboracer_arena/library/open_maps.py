@@ -107,25 +107,29 @@ def map_kinds(catalog: Any) -> dict[str, str]:
     return out
 
 
-def rejudge(cat: Any, sources: Path) -> list[str]:
+def rejudge(cat: Any, sources: Path, jobs: int = 1) -> list[str]:
     """Verify again every recorded map that ``tracks verify`` moved to ``left_out``, with
     the current drivers (the reference, the cautious retry and the clearance path): a map
     that laps now goes back into the catalog's tracks (in the builder's order); one that
     does not keeps its place in ``left_out`` with the new drive result and, measured, its
-    narrowest gap beside the car's width. Returns the ids that joined the tracks."""
+    narrowest gap beside the car's width. The other left-out maps get the reason a fresh
+    assessment gives (as ``tracks catalog`` would write it). Returns the ids that joined
+    the tracks."""
     from .catalog import Catalog
     from .directions import annotate_directions
     from .index import recorded_entry
-    from .recorded import assess_map, find_map_yamls
+    from .recorded import assess_all, assess_map, find_map_yamls
     from .verify import verify_entry
 
     order = {str(p.relative_to(sources)): i for i, p in enumerate(find_map_yamls(sources))}
     width = SimConfig().vehicle.chassis_width
     joined: list[str] = []
     left: list[LeftOut] = []
+    assessed = {r.id: r for r in assess_all(sources, jobs=jobs)}
     for lo in cat.left_out:
         if not lo.reason.startswith("verify failed"):
-            left.append(lo)
+            fresh = assessed.get(lo.id)
+            left.append(lo.with_fields(reason=fresh.reason) if fresh is not None and fresh.reason else lo)
             continue
         r = assess_map(sources, sources / lo.source_path).with_fields(id=lo.id)
         one = Catalog(entries=[recorded_entry(sources, r)], meta=cat.meta, path=cat.path)
