@@ -68,11 +68,11 @@ class Track:
         simulator starts cars there (a grid lines up behind it) and counts no progress
         and no laps: :attr:`length` is 0."""
         x, y, yaw = (float(v) for v in start_pose)
+        if not np.isfinite([x, y, yaw]).all():
+            raise ConfigError(f"track {name!r}: start pose must be finite (x, y, yaw), got {(x, y, yaw)}")
         anchor = np.array([[x, y], [x + cls.ANCHOR_M * np.cos(yaw), y + cls.ANCHOR_M * np.sin(yaw)]])
-        t = cls.from_polylines(walls, np.vstack([anchor, anchor[:1] + 1e-3]), name=name, wall_height=wall_height)
-        object.__setattr__(t, "centreline", anchor)
-        object.__setattr__(t, "kind", "open")
-        return t
+        walls_ = _checked_walls(walls, name)
+        return cls(name=name, walls=walls_, centreline=anchor, wall_height=float(wall_height), kind="open")
 
     @property
     def is_open(self) -> bool:
@@ -93,15 +93,10 @@ class Track:
     ) -> Track:
         """A track from wall polylines ((N_i, 2) arrays), a closed centreline ((M, 2)) and
         the height of its collision walls (m)."""
-        ws = tuple(np.ascontiguousarray(np.asarray(w, dtype=np.float64)) for w in walls)
+        ws = _checked_walls(walls, name)
         c = np.ascontiguousarray(np.asarray(centreline, dtype=np.float64))
-        for i, w in enumerate(ws):
-            if w.ndim != 2 or w.shape[1] != 2 or len(w) < 2 or not np.isfinite(w).all():
-                raise ConfigError(f"track {name!r}: wall {i} must be a finite (N>=2, 2) array, got shape {w.shape}")
         if c.ndim != 2 or c.shape[1] != 2 or len(c) < 3 or not np.isfinite(c).all():
             raise ConfigError(f"track {name!r}: centreline must be a finite (M>=3, 2) array, got shape {c.shape}")
-        if not ws:
-            raise ConfigError(f"track {name!r}: no walls")
         return cls(name=name, walls=ws, centreline=c, wall_height=float(wall_height))
 
     @property
@@ -184,6 +179,17 @@ class Track:
     def native(self) -> tuple[list[np.ndarray], np.ndarray, float]:
         """The ``(walls, centreline, wall_height)`` the native simulator takes."""
         return list(self.walls), self.centreline, self.wall_height
+
+
+def _checked_walls(walls: Sequence[Any], name: str) -> tuple[np.ndarray, ...]:
+    """Wall polylines as finite (N >= 2, 2) float64 arrays, at least one."""
+    ws = tuple(np.ascontiguousarray(np.asarray(w, dtype=np.float64)) for w in walls)
+    for i, w in enumerate(ws):
+        if w.ndim != 2 or w.shape[1] != 2 or len(w) < 2 or not np.isfinite(w).all():
+            raise ConfigError(f"track {name!r}: wall {i} must be a finite (N>=2, 2) array, got shape {w.shape}")
+    if not ws:
+        raise ConfigError(f"track {name!r}: no walls")
+    return ws
 
 
 def track_from_map_path(

@@ -212,7 +212,8 @@ def run_list(args) -> int:
     print(
         f"\n{len(entries)} tracks: "
         + ", ".join(f"{n} {k}" for k, n in counts.items())
-        + f"; {len(cat.left_out)} recorded maps left out (see 'tracks list --json' / catalog.json 'left_out')"
+        + f"; {len(cat.left_out)} recorded maps left out (see 'tracks list --json' / catalog.json 'left_out'), "
+        + f"{len(cat.open_maps)} of them offered as open maps ('tracks list --kind open')"
     )
     return EXIT_OK
 
