@@ -36,3 +36,15 @@ def test_tracks_list_kind_open(capsys):
     assert "gym-ros-levine" in {r["id"] for r in rows}
     assert main(["tracks", "list", "--kind", "open"]) == 0
     assert "open maps" in capsys.readouterr().out
+
+
+def test_an_open_map_catalog_id_is_a_track_argument():
+    import gymnasium as gym
+
+    import roboracer_arena  # noqa: F401
+
+    env = gym.make("RoboRacerArena-v0", track="gym-ros-levine")
+    _, info = env.reset(seed=0)
+    assert info["open_map"] is True and info["track"] == "gym-ros-levine"
+    assert env.unwrapped.tracks[0].start_pose == (0.0, 0.0, 0.0)
+    env.close()
