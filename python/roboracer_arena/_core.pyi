@@ -219,7 +219,9 @@ class Simulator:
     ``tracks``: list of ``(walls, centreline)`` or ``(walls, centreline, wall_height)``;
     walls = list of closed (N, 2) float64 polylines (map-frame metres), centreline = closed
     (M, 2) float64 polyline, wall_height (m, in (0, 10]; default the build geometry's 0.5) the
-    height of the extruded collision walls (``Track.native()`` passes the build's own).
+    height of the extruded collision walls (``Track.native()`` passes the build's own). A
+    centreline of exactly two points is an open map's start anchor (start, heading towards
+    the second point): length 0, no progress, no laps (``Track.open_map``).
     ``config_json``: ``SimConfig().to_json()``. Every env starts on track 0.
     ``seed`` (None = 0) and ``env_index_offset`` (None = 0; the index of env 0 in a larger
     batch, so that a shard draws the same per-env streams as the whole) are ints >= 0.
