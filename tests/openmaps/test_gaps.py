@@ -53,3 +53,13 @@ def test_preview_and_build_show_every_closed_gap(tmp_path):
     assert "closed gaps" in s.drawn and [f for f in s.features if "closed_gap" in f]
     rep = build_environment(y, tmp_path / "leak.usdc", close_gaps_m=0.8)
     assert rep.map_kind == "track" and len(rep.closed_gaps) == 1 and "closed gap at" in rep.summary()
+
+
+def test_close_gaps_flag_is_range_checked(tmp_path, capsys):
+    from roboracer_arena.cli import main
+
+    y = _leaking_ring(tmp_path)
+    for bad in ("nan", "-1", "50"):
+        assert main(["build", str(y), "-o", str(tmp_path / "x.usdc"), "--close-gaps", bad]) == 2
+        assert "--close-gaps" in capsys.readouterr().err
+    assert not (tmp_path / "x.usdc").exists()
