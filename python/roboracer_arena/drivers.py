@@ -245,7 +245,7 @@ def drive_laps(
     params: PurePursuitParams | None = None,
     video: Any = None,
     video_fps: float = 10.0,
-    render_size: int = 500,
+    render_size: int = 720,
     max_time_s: float | None = None,
     progress: bool = False,
     env_wrapper: Any = None,
@@ -254,10 +254,12 @@ def drive_laps(
 ) -> DriveResult:
     """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
     list) with :class:`PurePursuitDriver` from the centreline start, stopping at the first
-    contact. Optionally writes a GIF/MP4 of the drive. ``env_kwargs`` go to the env;
-    ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it before driving. ``path``: ``(line
-    (M, 2), speed cap (M,) or None)`` for the driver to follow instead of the centreline
-    (laps still count along the track's centreline)."""
+    contact. Optionally writes a GIF/MP4 of the drive, framed as a preview (``render_size``:
+    the longer side of its map, px) with a HUD (:mod:`.render.drive_view`). With
+    ``progress``, a bar shows the distance driven, the simulated time and the car's speed.
+    ``env_kwargs`` go to the env; ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it
+    before driving. ``path``: ``(line (M, 2), speed cap (M,) or None)`` for the driver to
+    follow instead of the centreline (laps still count along the track's centreline)."""
     import time
 
     from .envs.single import RoboRacerEnv
@@ -272,10 +274,9 @@ def drive_laps(
         video_format(video)  # a bad extension fails before the lap is driven
     env = RoboRacerEnv(
         track=track,
-        render_mode="rgb_array" if video else None,
-        render_size=render_size,
         **{"reset_poses": "grid", "collision_ends_episode": True, "time_limit_s": None, **env_kwargs},
     )
+    base_env = env
     if env_wrapper is not None:
         env = env_wrapper(env)
     length = env.tracks[0].length
@@ -285,26 +286,45 @@ def drive_laps(
     driver = EnvPurePursuit(env, params, paths)
     every = max(1, round(env.config.control_rate_hz / video_fps))
     frames: list[np.ndarray] = []
+    view = None
+    if video:
+        from .render.drive_view import DriveView, drive_subtitle
+
+        view = DriveView(base_env.tracks[0], base_env.config.sim, subtitle=drive_subtitle(laps), map_px=render_size)
+    lap_times: list[float] = []
+    steps = 0
+
+    def speed_now() -> float:
+        state, f = base_env.simulator_state
+        row = state[0]
+        return float(row[f["speed"]]) if "speed" in f else float(np.hypot(row[f["vx"]], row[f["vy"]]))
 
     def add_frame() -> None:
-        frame = env.render()
-        if frame is None:  # the env was made with render_mode="rgb_array" since a video is wanted
-            from .errors import InternalError
+        from .render.drive_view import HudState
 
-            raise InternalError("drive: the env rendered no frame in rgb_array mode")
-        frames.append(frame)
+        assert view is not None
+        state, f = base_env.simulator_state
+        last = lap_times[-1] - (lap_times[-2] if len(lap_times) > 1 else 0.0) if lap_times else None
+        hud = HudState(steps * dt, speed_now(), len(lap_times), laps, last)
+        frames.append(view.frame(state, f, base_env.simulator_scans, hud))
 
     bar = None
     if progress:
         from tqdm import tqdm
 
-        bar = tqdm(total=round(laps * length, 1), unit="m", desc=f"driving {env.tracks[0].name}", leave=False)
+        # Distance as the bar; simulated time and the car's speed (m/s) beside it. No
+        # tqdm rate: it would be metres per wall-clock second, not the car's speed.
+        bar = tqdm(
+            total=round(laps * length, 1),
+            desc=f"driving {env.tracks[0].name}",
+            leave=False,
+            bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} m{postfix}",  # postfix: ", sim ..."
+        )
     t0 = time.perf_counter()
     obs, info = env.reset(seed=0, options={"track_id": 0})
     if video:
         add_frame()
-    lap_times: list[float] = []
-    steps, contacts, vmax, collided = 0, 0, 0.0, False
+    contacts, vmax, collided = 0, 0.0, False
     contact_at: list[float] | None = None
     width_at_contact: float | None = None
     state_speed = env.odometry_index.get("speed", env.odometry_index.get("vx"))
@@ -325,6 +345,7 @@ def drive_laps(
         if state_speed is not None:
             vmax = max(vmax, float(np.max(np.abs(env.odometry_raw(obs)[:, state_speed]))))
         if bar is not None:
+            bar.set_postfix_str(f"sim {steps * dt:.1f} s, {speed_now():.2f} m/s", refresh=False)
             bar.update(round(min(progressed, laps * length), 1) - bar.n)
         if video and steps % every == 0:
             add_frame()

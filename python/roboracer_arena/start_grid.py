@@ -115,3 +115,46 @@ def grid_poses(track: Any, slots: int, spacing: float, offset: float, s0: float 
         lat = 0.0 if slots == 1 else (offset if k % 2 == 0 else -offset)
         out[k] = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
     return out
+
+
+def start_spec(
+    tracks: list[Any],
+    vehicles: int,
+    *,
+    reset_poses: str = "grid",
+    grid_spacing: float = GRID_SPACING,
+    grid_offset: float = GRID_OFFSET,
+    lateral_noise: float = 0.0,
+    heading_noise: float = 0.0,
+    speed_noise: float = 0.0,
+    side_clearance: float = 0.0,
+    track_weights: Any = None,
+    noise_std: tuple[float, float] = (0.0, 0.0),
+    dropout: float = 0.0,
+) -> str:
+    """The simulator's reset draws (``_core.Simulator.set_start_spec``) as JSON: where
+    ``reset_drawn`` puts the cars. ``reset_poses`` is ``"grid"`` (first slot at
+    :func:`grid_start_s`), ``"centreline_start"`` (s = 0) or ``"random"``. The envs and the
+    ROS 2 bridge both start their cars through this, so one track gives one start."""
+    import json
+
+    if reset_poses == "grid":
+        s0 = [grid_start_s(t, vehicles, grid_spacing) for t in tracks]
+    elif reset_poses in ("centreline_start", "random"):
+        s0 = [0.0] * len(tracks)
+    else:
+        raise ValueError(f"reset_poses must be 'grid', 'centreline_start' or 'random', got {reset_poses!r}")
+    spec = {
+        "random_s": reset_poses == "random",
+        "s0": s0,
+        "track_weights": [] if track_weights is None else [float(p) for p in track_weights],
+        "grid_spacing": float(grid_spacing),
+        "grid_offset": float(grid_offset),
+        "lateral_noise": float(lateral_noise),
+        "heading_noise": float(heading_noise),
+        "side_clearance": float(side_clearance),
+        "speed_noise": float(speed_noise),
+        "noise_std": [float(x) for x in noise_std],
+        "dropout": float(dropout),
+    }
+    return json.dumps(spec)

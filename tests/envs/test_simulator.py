@@ -245,5 +245,5 @@ def test_drives_a_lap_of_berlin_without_touching_a_wall(berlin):
 @pytest.mark.parametrize("height", [math.nan, math.inf, -1.0, 0.0, 1e300, True, "x"])
 def test_a_bad_wall_height_is_refused_naming_it(height):
     walls, centre = _core.stadium_track()
-    with pytest.raises(InvalidArgumentError, match=r"tracks\[0\] wall_height"):
+    with pytest.raises(InvalidArgumentError, match=r"tracks\[0\]:? wall_height"):
         _core.Simulator([(walls, centre, height)], 1, 1, "{}", 0)

@@ -104,7 +104,14 @@ def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, 
     lx = tf.transform.translation.x + math.cos(yaw) * static.transform.translation.x
     ly = tf.transform.translation.y + math.sin(yaw) * static.transform.translation.x
     assert np.isfinite([lx, ly]).all()
-    assert _progress(line, np.array([lx, ly])) == pytest.approx(0.12, abs=0.08)  # ahead of the start on the line
+    # The car starts at the env's grid start (start_grid.py), the laser 0.12 m ahead of it.
+    from roboracer_arena.envs.tracks import resolve_tracks
+    from roboracer_arena.start_grid import grid_start_s
+
+    s_grid = grid_start_s(resolve_tracks(str(ellipse_map))[0], 1, 1.0)
+    lap = _progress(line, line[-2])
+    gap = (_progress(line, np.array([lx, ly])) - (s_grid + 0.12) + lap / 2) % lap - lap / 2
+    assert gap == pytest.approx(0.0, abs=0.08)  # ahead of the start on the line
 
     # /drive at 1.5 m/s moves the car forward along the track.
     start = ros_node.wait_for("/ego_racecar/odom")[-1]

@@ -233,12 +233,6 @@ impl Simulator {
                         (w, c, h)
                     }
                 };
-            if !(height.is_finite() && height > 0.0 && height <= 10.0) {
-                return Err(invalid(format!(
-                    "tracks[{i}] wall_height must be in (0, 10] m, got {}",
-                    arena_core::limits::show(height)
-                )));
-            }
             let mut ws = Vec::new();
             for (j, w) in walls.try_iter()?.enumerate() {
                 ws.push(points(&w?, &format!("tracks[{i}] wall {j}"))?);

@@ -39,7 +39,7 @@ def register(sub) -> None:
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    p.add_argument("track", metavar="TRACK", help="ROS map YAML (or a catalog id)")
+    p.add_argument("track", metavar="TRACK", nargs="?", help="ROS map YAML (or a catalog id)")
     p.add_argument("--cars", type=int, default=1, help="number of cars (default 1; 2 = ego + opponent)")
     p.add_argument("--domain-id", type=int, default=None, help="ROS 2 domain id 0..232 (default: $ROS_DOMAIN_ID or 0)")
     p.add_argument(
@@ -61,6 +61,30 @@ def register(sub) -> None:
         action="store_true",
         help="configure DDS for the loopback interface only (no multicast; unicast discovery on 127.0.0.1)",
     )
+    p.add_argument(
+        "--start",
+        type=float,
+        nargs=3,
+        action="append",
+        metavar=("X", "Y", "YAW"),
+        help="start pose of a car in the map frame (m, m, rad); once per car, ego first "
+        "(default: the env's grid start, as gym.make(..., reset_poses='grid'))",
+    )
+    p.add_argument(
+        "--reset-poses",
+        choices=("grid", "centreline_start", "random"),
+        default=None,
+        help="where the cars start without --start, as the env's reset_poses (default grid; "
+        "other start options: the 'start' section of --config)",
+    )
+    p.add_argument(
+        "--print-profile",
+        choices=("cyclonedds", "fastdds"),
+        metavar="cyclonedds|fastdds",
+        help="print the loopback discovery profile a ROS 2 node on that DDS needs to find a --loopback "
+        "bridge (cyclonedds: the CYCLONEDDS_URI value; fastdds: the XML file FASTRTPS_DEFAULT_PROFILES_FILE "
+        "names) and exit",
+    )
     p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S wall seconds")
     p.add_argument("--sim-time", type=float, default=None, metavar="S", help="stop after S simulated seconds")
     add_json_flag(p)
@@ -75,6 +99,13 @@ def run(args: argparse.Namespace) -> int:
     from ..ros2.clock import BridgeConfig
     from ..ros2.dds import check_domain_id
 
+    if args.print_profile:
+        from ..ros2.dds import profile
+
+        sys.stdout.write(profile(args.print_profile, "any" if args.domain_id is None else args.domain_id))
+        return 0
+    if args.track is None:
+        raise InvalidArgumentError("ros2: a TRACK (map YAML or catalog id) is needed, unless --print-profile")
     if args.cars < 1 or args.cars > 64:
         raise InvalidArgumentError(f"--cars must be in 1..64, got {args.cars}")
     for flag in ("duration", "sim_time"):
@@ -89,6 +120,8 @@ def run(args: argparse.Namespace) -> int:
         domain = int(env)
     check_domain_id(domain)
     config = BridgeConfig.load(args.config) if args.config else BridgeConfig()
+    if args.reset_poses is not None:
+        config = config.model_copy(update={"start": config.start.model_copy(update={"reset_poses": args.reset_poses})})
     bridge = Bridge(
         args.track,
         cars=args.cars,
@@ -98,6 +131,7 @@ def run(args: argparse.Namespace) -> int:
         config=config,
         record=args.record,
         loopback=args.loopback,
+        start_poses=args.start,
     )
     stop = {"flag": False}
 

@@ -164,7 +164,7 @@ def _executor(args):
 
     if args.jobs is not None and args.jobs < 1:
         raise InvalidArgumentError(f"--jobs must be >= 1, got {args.jobs}")
-    return make_executor(args.jobs, args.ray)
+    return make_executor(args.jobs, args.ray, arg="--ray")
 
 
 def _progress(desc: str) -> Progress:
@@ -240,15 +240,9 @@ def run_show(args) -> int:
     if args.json:
         print_json({**e.to_json_dict(), "map_path": str(path)})
         return EXIT_OK
-    for k, v in e.to_json_dict().items():
-        if k == "notes":
-            for n in v:
-                print(f"{'note':<19}{n}")
-        elif isinstance(v, dict):
-            print(f"{k:<19}" + ", ".join(f"{kk}={vv}" for kk, vv in v.items()))
-        else:
-            print(f"{k:<19}{v}")
-    print(f"{'map_path':<19}{path}")
+    from ..library.entry_text import entry_lines
+
+    print("\n".join(entry_lines({**e.to_json_dict(), "map_path": str(path)})))
     return EXIT_OK
 
 

@@ -42,15 +42,19 @@ class Executor(Protocol):
 
 
 def make_executor(
-    jobs: int | None = None, ray_address: str | None = None, max_retries: int = DEFAULT_RETRIES
+    jobs: int | None = None,
+    ray_address: str | None = None,
+    max_retries: int = DEFAULT_RETRIES,
+    arg: str = "ray_address",
 ) -> Executor:
     """A :class:`LocalExecutor` with ``jobs`` processes (default: all cores), or, with
     ``ray_address`` (``"auto"``, ``"local"`` or ``"ray://HOST:PORT"`` / ``"HOST:PORT"``),
-    a :class:`~roboracer_arena.distributed.ray_executor.RayExecutor` on that cluster."""
+    a :class:`~roboracer_arena.distributed.ray_executor.RayExecutor` on that cluster.
+    ``arg`` is how errors name the address (the CLI passes ``"--ray"``)."""
     if ray_address:
         from .ray_executor import RayExecutor
 
-        return RayExecutor(ray_address, max_retries=max_retries)
+        return RayExecutor(ray_address, max_retries=max_retries, arg=arg)
     import os
 
     return LocalExecutor(jobs or os.cpu_count() or 1, max_retries=max_retries)

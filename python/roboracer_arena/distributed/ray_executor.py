@@ -22,10 +22,17 @@ def _call(fn: Callable[[Any], Any], item: Any) -> Any:
 class RayExecutor:
     """Run tasks on the Ray cluster at ``address`` (see :mod:`.ray_cluster`)."""
 
-    def __init__(self, address: str = "auto", max_retries: int = DEFAULT_RETRIES, workers: int | None = None) -> None:
+    def __init__(
+        self,
+        address: str = "auto",
+        max_retries: int = DEFAULT_RETRIES,
+        workers: int | None = None,
+        arg: str = "address",
+    ) -> None:
         """``workers``: tasks in flight at most (default: the cluster's CPUs, with as many
-        again queued so no CPU waits for the driver's round trip)."""
-        self._owns = connect(address)
+        again queued so no CPU waits for the driver's round trip). ``arg``: how errors name
+        the address (``"--ray"`` from the CLI)."""
+        self._owns = connect(address, arg)
         ray = import_ray()
         self.max_retries = int(max_retries)
         self.workers = int(workers) if workers else cluster_cpus()

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import pickle
+import sys
 from typing import Any
 
 import numpy as np
@@ -24,6 +25,7 @@ from gymnasium.vector import VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from .ray_cluster import connect, import_ray
+from .ray_fit import check_actors_fit, check_cluster_fits, local_cpus
 
 #: Ray returns a result smaller than its direct-call limit (100 KiB by default) inline in
 #: the reply and a larger one through the object store, a slower path for every step (64
@@ -105,9 +107,12 @@ class RayVectorEnv(VectorEnv):
 
     ``env_kwargs`` are what ``gym.make_vec("RoboRacerArena-v0", ...)`` takes (``track=``,
     ``config=``, ``autoreset_mode=``, overrides); a catalog id or map path must resolve on
-    every node. ``address`` is as for ``--ray`` (default: the current Ray connection, else
-    ``auto``); ``num_cpus_per_actor`` is the CPU share Ray reserves per actor, and the
-    number of threads its native batch steps with."""
+    every node. ``address`` is ``"auto"`` (a running cluster; the default unless Ray is
+    already initialised in this process), ``"local"`` (start one on this machine) or
+    ``"HOST:PORT"``; ``num_cpus_per_actor`` is the CPU share Ray reserves per actor, and the
+    number of threads its native batch steps with. ``num_actors * num_cpus_per_actor``
+    must fit the cluster's free CPUs: otherwise the constructor raises
+    :class:`~roboracer_arena.errors.InvalidArgumentError` at once, saying what fits."""
 
     def __init__(
         self,
@@ -122,9 +127,9 @@ class RayVectorEnv(VectorEnv):
             raise ValueError(f"num_actors and envs_per_actor must be >= 1, got {num_actors} and {envs_per_actor}")
         if "num_envs" in env_kwargs or "env_index_offset" in env_kwargs:
             raise ValueError("pass num_actors and envs_per_actor, not num_envs / env_index_offset")
-        ray = import_ray()
-        self._owns = connect(address or "auto")
         self.num_actors, self.envs_per_actor = int(num_actors), int(envs_per_actor)
+        self._owns = self._connect_fitting(address, float(num_cpus_per_actor))
+        ray = import_ray()
         self.num_envs = self.num_actors * self.envs_per_actor
         # The native batch's thread pool gets the CPUs Ray reserved for the actor, no more.
         threads = str(max(1, int(num_cpus_per_actor)))
@@ -155,6 +160,25 @@ class RayVectorEnv(VectorEnv):
         self._closed = False
         self._seeded = False
         self._chunks = 1
+
+    def _connect_fitting(self, address: str | None, cpus: float) -> bool:
+        """Connect (see :func:`.ray_cluster.connect`) and fail at once, in one line, if the
+        actors' CPUs do not fit the cluster: Ray would otherwise queue them forever. With
+        ``address="local"`` the check runs before Ray starts (it can take tens of seconds)."""
+        n, m = self.num_actors, self.envs_per_actor
+        loaded = sys.modules.get("ray")
+        if address == "local" and not (loaded is not None and loaded.is_initialized()):
+            # Before even importing Ray (seconds on a busy machine), let alone starting it.
+            check_actors_fit(n, cpus, local_cpus(), envs_per_actor=m, where="this machine (address='local')")
+        ray = import_ray()
+        owns = connect(address or "auto")
+        try:
+            check_cluster_fits(n, cpus, envs_per_actor=m)
+        except Exception:
+            if owns:
+                ray.shutdown()
+            raise
+        return owns
 
     def _gather(self, refs: list[Any]) -> list[Any]:
         """``ray.get``; an actor's exception is raised as its own type (e.g. ValueError)."""

@@ -19,7 +19,7 @@ from typing import Any, cast
 import numpy as np
 from gymnasium import spaces
 
-from ..start_grid import SIDE_MARGIN, grid_start_s
+from ..start_grid import SIDE_MARGIN, start_spec
 from ..track import Track
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
@@ -193,28 +193,22 @@ class SimBatch:
 
     def _start_spec(self, tracks: list[Track], probs: np.ndarray | None) -> str:
         """The simulator's reset draws (``_core.Simulator.set_start_spec``) as JSON."""
-        cfg, V = self.config, self.vehicles
-        if cfg.reset_poses == "grid":
-            s0 = [grid_start_s(t, V, cfg.grid_spacing) for t in tracks]
-        else:
-            s0 = [0.0] * len(tracks)
+        cfg = self.config
         rnd = cfg.randomisation
-        spec = {
-            "random_s": cfg.reset_poses == "random",
-            "s0": s0,
-            "track_weights": [] if probs is None else [float(p) for p in probs],
-            "grid_spacing": cfg.grid_spacing,
-            "grid_offset": cfg.grid_offset,
-            "lateral_noise": cfg.start_lateral_noise,
-            "heading_noise": cfg.start_heading_noise,
-            "side_clearance": cfg.sim.vehicle.chassis_width / 2 + SIDE_MARGIN,
-            "speed_noise": cfg.start_speed_noise,
-            "noise_std": [float(x) for x in rnd.lidar_noise_std],
-            "dropout": float(rnd.lidar_dropout),
-        }
-        import json
-
-        return json.dumps(spec)
+        return start_spec(
+            tracks,
+            self.vehicles,
+            reset_poses=cfg.reset_poses,
+            grid_spacing=cfg.grid_spacing,
+            grid_offset=cfg.grid_offset,
+            lateral_noise=cfg.start_lateral_noise,
+            heading_noise=cfg.start_heading_noise,
+            speed_noise=cfg.start_speed_noise,
+            side_clearance=cfg.sim.vehicle.chassis_width / 2 + SIDE_MARGIN,
+            track_weights=probs,
+            noise_std=(float(rnd.lidar_noise_std[0]), float(rnd.lidar_noise_std[1])),
+            dropout=float(rnd.lidar_dropout),
+        )
 
     def _new_sim(self, seed: int) -> Any:
         sim = self._Simulator(

@@ -213,3 +213,9 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
     def simulator_state(self) -> tuple[np.ndarray, dict[str, int]]:
         """The raw simulator state (V, S) of this env and the column of each field."""
         return self._batch.state[0].copy(), dict(self._batch.field_index)
+
+    @property
+    def simulator_scans(self) -> np.ndarray | None:
+        """The latest raw lidar ranges (V, B) in metres (all beams, before any observation
+        preset), or None when the observation has no scan."""
+        return self._batch.scans[0].copy() if self.config.observation.scan else None

@@ -5,7 +5,8 @@ over the map, so the legend never covers the track."""
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+import re
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -56,8 +57,7 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
     title_h = PAD + sum(_text_h(probe, t, f) + 4 for t, f in title_lines) + PAD // 2
     tools_w = 330  # scale bar and axes, right of the legend
     rows = _legend_rows(probe, legend, text_font, width - tools_w - 3 * PAD)
-    row_h = TEXT_PX + 10
-    footer_h = max(len(rows) * row_h + 2 * PAD, 112)
+    footer_h = max(len(rows) * LEGEND_ROW_PX + 2 * PAD, 112)
     img = Image.new("RGB", (width, title_h + mh + footer_h), (255, 255, 255))
     d = ImageDraw.Draw(img)
     mx, my = (width - mw) // 2, title_h
@@ -71,15 +71,7 @@ def framed(canvas: TopDown, title: str, subtitle: str, legend: Sequence[LegendEn
     title_box = (0, 0, width, title_h)
 
     fy = my + mh + 1
-    legend_right = PAD
-    for r, row in enumerate(rows):
-        x, yy = PAD, fy + PAD + r * row_h
-        for entry, w in row:
-            _swatch(d, entry, (x, yy + 1, x + 28, yy + TEXT_PX + 1))
-            d.text((x + 34, yy), entry.name, fill=INK, font=text_font)
-            x += w
-        legend_right = max(legend_right, x)
-    legend_box = (PAD, fy + PAD, legend_right, fy + PAD + len(rows) * row_h)
+    legend_box = _draw_rows(d, rows, PAD, fy + PAD, text_font)
 
     scale_m, scale_px = scale_length(canvas.px_per_m(), 200)
     sx, sy = width - tools_w + PAD, fy + PAD + 24
@@ -110,16 +102,90 @@ def _text_h(d: ImageDraw.ImageDraw, text: str, f) -> int:
 
 
 def _wrap(d: ImageDraw.ImageDraw, text: str, f, width: int) -> list[str]:
-    """``text`` broken at spaces into lines at most ``width`` px wide."""
+    """``text`` in lines at most ``width`` px wide, broken as :func:`wrap_items` says."""
+    return wrap_items(text, lambda line: d.textlength(line, font=f) <= width)
+
+
+def wrap_items(text: str, fits: Callable[[str], bool]) -> list[str]:
+    """``text`` broken into lines for which ``fits(line)`` holds: between items first
+    (after ``, `` ``; `` ``. `` or ``: ``), and only an item too long for a line of its own
+    is broken at its spaces, never inside a value ("70.9 m", "30.0 x 30.0 m", "x 7.01 m")."""
+    lines: list[str] = []
+    cur = ""
+    for piece in _items(text):
+        trial = cur + piece
+        if not cur or fits(trial.rstrip()):
+            cur = trial
+            continue
+        lines.append(cur.rstrip())
+        cur = piece
+    lines.append(cur.rstrip())
+    out: list[str] = []
+    for line in lines:  # an item longer than a line: break it between its values
+        out += [line] if fits(line) else _break_item(line, fits)
+    return out
+
+
+def _items(text: str) -> list[str]:
+    """``text`` cut after each item separator (the separator stays with its item)."""
+    pieces = re.split(r"(?<=[,;.:]) (?=\S)", text)
+    return [p + " " for p in pieces[:-1]] + pieces[-1:]
+
+
+def _break_item(item: str, fits: Callable[[str], bool]) -> list[str]:
+    """``item`` broken at the spaces that do not split a value (see :func:`_glued`)."""
+    words = item.split(" ")
+    chunks = [words[0]]
+    for prev, word in zip(words, words[1:]):
+        if _glued(prev, word):
+            chunks[-1] += " " + word
+        else:
+            chunks.append(word)
     lines, cur = [], ""
-    for word in text.split(" "):
-        trial = f"{cur} {word}".strip()
-        if cur and d.textlength(trial, font=f) > width:
+    for c in chunks:
+        trial = f"{cur} {c}" if cur else c
+        if cur and not fits(trial):
             lines.append(cur)
-            cur = word
+            cur = c
         else:
             cur = trial
     return [*lines, cur]
+
+
+_NUMBER = re.compile(r"^[-+−]?\(?[\d.]+[\d.,%°)]*$")
+
+
+def _glued(prev: str, word: str) -> bool:
+    """True when the space between ``prev`` and ``word`` sits inside a value: a number and
+    its unit ("70.9 m"), a name and its number ("x 7.01", "lap 2"), "30.0 x 30.0"."""
+    if prev.endswith((",", ";", ".", ":")):
+        return False  # the end of an item
+    num_prev, num_word = bool(_NUMBER.match(prev)), bool(_NUMBER.match(word))
+    if num_prev and not num_word and len(word.rstrip(",;.:")) <= 8:
+        return True  # number, unit ("m", "m/cell", "cm"; also "30.0 x")
+    return num_word  # label, number ("lap 2", "x 7.01", "x 30.0")
+
+
+LEGEND_ROW_PX = TEXT_PX + 10
+
+
+def draw_legend(d: ImageDraw.ImageDraw, legend: Sequence[LegendEntry], x: int, y: int, width: int) -> Box:
+    """The legend entries flowed into rows no wider than ``width`` px from (x, y), with the
+    swatches of the framed pictures; returns the box they fill."""
+    f = font(TEXT_PX)
+    return _draw_rows(d, _legend_rows(d, legend, f, width), x, y, f)
+
+
+def _draw_rows(d: ImageDraw.ImageDraw, rows: list[list[tuple[LegendEntry, int]]], x0: int, y0: int, f) -> Box:
+    right = x0
+    for r, row in enumerate(rows):
+        x, yy = x0, y0 + r * LEGEND_ROW_PX
+        for entry, w in row:
+            _swatch(d, entry, (x, yy + 1, x + 28, yy + TEXT_PX + 1))
+            d.text((x + 34, yy), entry.name, fill=INK, font=f)
+            x += w
+        right = max(right, x)
+    return (x0, y0, right, y0 + len(rows) * LEGEND_ROW_PX)
 
 
 def _legend_rows(

@@ -26,26 +26,30 @@ ARROW_EVERY_PX = 140
 MIN_CAR_PX = 22
 
 
-def draw_race_marks(canvas: TopDown, track: Any, vehicles: int = 1) -> tuple[list[LegendEntry], dict[str, Any]]:
-    """Draw direction arrows, start line and grid on ``canvas``; returns the legend entries
-    and what was drawn (direction, lap length, grid poses)."""
+def draw_race_marks(
+    canvas: TopDown, track: Any, vehicles: int = 1, cars: bool = True
+) -> tuple[list[LegendEntry], dict[str, Any]]:
+    """Draw direction arrows, start line and (with ``cars``) the grid on ``canvas``;
+    returns the legend entries and what was drawn (direction, lap length, grid poses)."""
     _direction_arrows(canvas, track)
     poses = grid_poses(track, vehicles, GRID_SPACING, GRID_OFFSET)
     x, y, yaw = poses[0]
     # across the corridor, and at least 36 px long so it shows on a big circuit
     half = max(float(track.clearance([[x, y]])[0]), 18.0 / canvas.px_per_m())
     canvas.reserve(_start_line(canvas, (x, y), yaw, half))
-    veh = VehicleConfig()
-    scale = max(1.0, MIN_CAR_PX / (veh.chassis_length * canvas.px_per_m()))
-    for p in poses:
-        canvas.reserve(_car(canvas, p, veh.chassis_length * scale, veh.chassis_width * scale))
+    length, width = car_size(canvas)
+    if cars:
+        for p in poses:
+            canvas.reserve(draw_car(canvas, p, length, width))
     canvas.label((x, y), "start", (0, 0, 0), marker=False, size_px=16)
     grid = "the car" if vehicles == 1 else f"{vehicles} cars"
     legend = [
         LegendEntry(f"racing direction ({track.direction})", ARROW, "arrow"),
         LegendEntry("start line", (0, 0, 0), "startline"),
-        LegendEntry(f"grid start: {grid}" + (" (enlarged)" if scale > 1 else ""), CAR, "car"),
     ]
+    if cars:
+        enlarged = length > VehicleConfig().chassis_length
+        legend.append(LegendEntry(f"grid start: {grid}" + (" (enlarged)" if enlarged else ""), CAR, "car"))
     info = {
         "direction": track.direction,
         "lap_length_m": round(track.length, 2),
@@ -90,13 +94,21 @@ def _start_line(canvas: TopDown, xy: tuple[float, float], yaw: float, half_width
     return np.array([a, b])
 
 
-def _car(canvas: TopDown, pose: Any, length: float, width: float) -> np.ndarray:
+def car_size(canvas: TopDown, vehicle: Any = None) -> tuple[float, float]:
+    """Drawn length and width (m) of the car on ``canvas``: its own, enlarged so that it is
+    at least :data:`MIN_CAR_PX` long (a 0.5 m car on a 5 km circuit would vanish)."""
+    veh = vehicle or VehicleConfig()
+    scale = max(1.0, MIN_CAR_PX / (veh.chassis_length * canvas.px_per_m()))
+    return veh.chassis_length * scale, veh.chassis_width * scale
+
+
+def draw_car(canvas: TopDown, pose: Any, length: float, width: float, colour: Any = CAR) -> np.ndarray:
     """The car as an oriented rectangle with a white line from its centre to its nose; returns its corners."""
     x, y, yaw = (float(v) for v in pose)
     c, s = math.cos(yaw), math.sin(yaw)
     hl, hw = length / 2, width / 2
     body = np.array([[hl, hw], [hl, -hw], [-hl, -hw], [-hl, hw]])
     corners = np.c_[x + body[:, 0] * c - body[:, 1] * s, y + body[:, 0] * s + body[:, 1] * c]
-    canvas.polygon(corners, CAR, outline=(0, 0, 0))
+    canvas.polygon(corners, colour, outline=(0, 0, 0))
     canvas.polyline(np.array([[x, y], [x + hl * c, y + hl * s]]), (255, 255, 255), min_px=2)
     return corners

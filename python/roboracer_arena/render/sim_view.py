@@ -79,12 +79,7 @@ class SimView:
             for k, (x, y, yaw) in enumerate(poses):
                 if not math.isfinite(x + y + yaw):
                     continue
-                r = np.asarray(scans[k], dtype=np.float64)
-                step = max(1, len(r) // self.max_rays)
-                ang = yaw + np.linspace(-lid.fov / 2, lid.fov / 2, len(r))[::step]
-                ox, oy = x + lid.mount_x * math.cos(yaw), y + lid.mount_x * math.sin(yaw)
-                rr = np.nan_to_num(r[::step], nan=0.0, posinf=lid.range_max)
-                ends = np.column_stack([ox + rr * np.cos(ang), oy + rr * np.sin(ang)])
+                (ox, oy), ends = lidar_rays((x, y, yaw), scans[k], lid, self.max_rays)
                 o = _px(np.array([[ox, oy]]), tf)[0]
                 for e in _px(ends, tf):
                     d.line([o, e], fill=(*RAY, 110), width=1)
@@ -104,6 +99,21 @@ class SimView:
             cars = [p for x, y, yaw in poses if math.isfinite(x + y + yaw) for p in _px(np.array([[x, y]]), tf)]
             _draw_hud(img, hud, max(12, self.size // 36), bg, cars, hl * tf[2])
         return np.asarray(img, dtype=np.uint8)
+
+
+def lidar_rays(
+    pose: Sequence[float], ranges: Any, lidar: Any, max_rays: int = 90
+) -> tuple[tuple[float, float], np.ndarray]:
+    """The lidar's origin and the end points (N, 2) of at most about ``max_rays`` of its
+    rays (every k-th beam) for a car at ``pose`` (x, y, yaw) with the given ``ranges``;
+    ``lidar`` is the :class:`~roboracer_arena.sim_config.LidarConfig`."""
+    x, y, yaw = (float(v) for v in pose)
+    r = np.asarray(ranges, dtype=np.float64)
+    step = max(1, len(r) // max(1, int(max_rays)))
+    ang = yaw + np.linspace(-lidar.fov / 2, lidar.fov / 2, len(r))[::step]
+    ox, oy = x + lidar.mount_x * math.cos(yaw), y + lidar.mount_x * math.sin(yaw)
+    rr = np.nan_to_num(r[::step], nan=0.0, posinf=lidar.range_max)
+    return (ox, oy), np.column_stack([ox + rr * np.cos(ang), oy + rr * np.sin(ang)])
 
 
 def hud_lines(batch: Any, env: int = 0) -> list[str]:

@@ -7,9 +7,10 @@
 * :class:`BridgeConfig` / :class:`RatesConfig` — rates and simulator configuration.
 
 One module per job: :mod:`.msgs` (message IDL types), :mod:`.qos`, :mod:`.topics`,
-:mod:`.dds` (participant, loopback configuration), :mod:`.clock` (rates, schedule,
-pacing), :mod:`.state_msgs` (messages from simulator state), :mod:`.source`,
-:mod:`.bridge`, :mod:`.recorder`, :mod:`.episode_recorder`.
+:mod:`.dds` (participant, loopback profiles for Cyclone DDS and Fast DDS), :mod:`.clock`
+(rates, schedule, pacing), :mod:`.state_msgs` (messages from simulator state),
+:mod:`.source`, :mod:`.start` (the env's start, ``--start``), :mod:`.graph`
+(``ros_discovery_info``), :mod:`.bridge`, :mod:`.recorder`, :mod:`.episode_recorder`.
 """
 
 from __future__ import annotations

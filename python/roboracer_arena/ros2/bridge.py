@@ -28,8 +28,10 @@ from . import state_msgs as sm
 from .cdr import LaserScanPacker, OdometryPacker, TfPacker, pack_clock
 from .clock import BridgeConfig, Pacer, Schedule
 from .dds import participant, raw_writer
+from .graph import announce
 from .qos import qos_for
 from .source import SimSource, sim_source
+from .start import fixed_poses, fixed_speeds
 from .topics import CENTRELINE, CLOCK, INITIALPOSE, MAP, TF, TF_STATIC, TYPE_OF, car_names, dds_topic
 
 _POLL_S = 0.002  # longest sleep between checks for commands while pacing
@@ -50,6 +52,11 @@ class Bridge:
         record: optional MCAP path; everything published and every command received.
         loopback: configure DDS for the loopback interface (see :mod:`.dds`).
         dds: False runs the simulation and the recording without any DDS entity.
+        seed: the simulator's seed (start noise, when configured, draws from it).
+        start_poses: fixed start poses, (3,) for one car or one (x, y, yaw) per car (the
+            env's reset option ``poses``; the CLI's ``--start``); default: the configured
+            start (``config.start``, the env's grid start unless set otherwise).
+        start_speeds: rolling-start forward speeds (m/s), one per car (reset option ``speeds``).
     """
 
     def __init__(
@@ -65,9 +72,18 @@ class Bridge:
         loopback: bool = False,
         dds: bool = True,
         seed: int = 0,
+        start_poses: Any = None,
+        start_speeds: Any = None,
     ) -> None:
         self.config = config or BridgeConfig()
-        self.src: SimSource = sim_source(env_or_sim, cars=cars, config=self.config.sim, seed=seed)
+        start = self.config.start
+        if start_poses is not None:  # fixed poses: no grid to search (open maps have none to find)
+            start = start.model_copy(update={"reset_poses": "centreline_start"})
+        self.src: SimSource = sim_source(env_or_sim, cars=cars, config=self.config.sim, seed=seed, start=start)
+        self._start_poses = fixed_poses(start_poses, self.src.vehicles)
+        self._start_speeds = fixed_speeds(start_speeds, self.src.vehicles)
+        #: Where the cars started (1, V, 3), set by :meth:`start`.
+        self.start_poses: np.ndarray | None = None
         self.domain_id, self.loopback, self.use_dds = domain_id, loopback, dds
         self.lockstep = lockstep
         self.pacer = Pacer(None if lockstep else rate)
@@ -95,6 +111,7 @@ class Bridge:
         self._dp: Any = None
         self._writers: dict[str, Any] = {}
         self._readers: dict[str, Any] = {}
+        self._discovery_writer: Any = None
         self._recorder: Any = None
         self._pending_lockstep: collections.deque = collections.deque()
         self._pending_latency: list[int] = []
@@ -120,7 +137,7 @@ class Bridge:
             self._recorder = McapRecorder(self.record_path)
         if self.use_dds:
             self._open_dds()
-        self.src.sim.reset(np.ones(self.src.num_envs, bool), self.src.grid_poses())
+        self.start_poses = self.src.reset(self._start_poses, self._start_speeds)
         self.src.sim.observe(self.scans, self.state, self.events)
         self._publish_latched()
         self._publish_due(self.schedule.due(0))
@@ -140,6 +157,7 @@ class Bridge:
         self._writers.clear()
         self._raw.clear()
         self._readers.clear()
+        self._discovery_writer = None
         self._dp = None  # cyclonedds deletes the entities with the last reference
         return self.stats()
 
@@ -202,6 +220,8 @@ class Bridge:
         for name, role in outs:
             self._writers[name] = w = DataWriter(dp, topic(name, TYPE_OF[role]), qos=qos_for(name))
             self._raw[name] = raw_writer(w, msg_class(TYPE_OF[role]))
+        # The bridge as a ROS 2 node (ros2 node list / info): its endpoints, by GUID.
+        self._discovery_writer = announce(dp, self._readers.values(), self._writers.values())
 
     def _emit(self, topic: str, msg: Any, typename: str) -> None:
         w = self._writers.get(topic)

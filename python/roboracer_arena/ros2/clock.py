@@ -21,6 +21,7 @@ from ..fileio import read_json
 from ..sim_config import SimConfig
 from ..spec import format_validation_error
 from ..strict import NumbersAreNumbers
+from .start import StartConfig
 
 _EPS = 1e-9
 
@@ -38,12 +39,14 @@ class RatesConfig(NumbersAreNumbers):
 
 
 class BridgeConfig(NumbersAreNumbers):
-    """Everything ``roboracer-arena ros2 --config F`` reads (JSON): rates and the simulator."""
+    """Everything ``roboracer-arena ros2 --config F`` reads (JSON): rates, the simulator
+    and where the cars start (the env's start options, :class:`~.start.StartConfig`)."""
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     rates: RatesConfig = Field(default_factory=RatesConfig)
     sim: SimConfig = Field(default_factory=SimConfig)
+    start: StartConfig = Field(default_factory=StartConfig)
 
     @classmethod
     def load(cls, path: str | Path) -> BridgeConfig:

@@ -23,7 +23,8 @@ from typing import Any, cast
 
 from ._deps import require
 
-# ROS 2 definitions (ros2/common_interfaces, ros2/rcl_interfaces, ros-drivers/ackermann_msgs).
+# ROS 2 definitions (ros2/common_interfaces, ros2/rcl_interfaces, ros-drivers/ackermann_msgs,
+# ros2/rmw_dds_common).
 DEFINITIONS: dict[str, str] = {
     "builtin_interfaces/msg/Time": "int32 sec\nuint32 nanosec",
     "builtin_interfaces/msg/Duration": "int32 sec\nuint32 nanosec",
@@ -69,6 +70,12 @@ DEFINITIONS: dict[str, str] = {
         "sensor_msgs/CompressedImage texture\nUVCoordinate[] uv_coordinates\nstring text\nstring mesh_resource\n"
         "MeshFile mesh_file\nbool mesh_use_embedded_materials"
     ),
+    # ros2/rmw_dds_common (Humble: 24-byte gids; bounded strings are plain strings on the wire).
+    "rmw_dds_common/msg/Gid": "uint8[24] data",
+    "rmw_dds_common/msg/NodeEntitiesInfo": (
+        "string node_namespace\nstring node_name\nGid[] reader_gid_seq\nGid[] writer_gid_seq"
+    ),
+    "rmw_dds_common/msg/ParticipantEntitiesInfo": "Gid gid\nNodeEntitiesInfo[] node_entities_info_seq",
 }
 
 #: Marker.type / Marker.action values used here (visualization_msgs/Marker constants).

@@ -3,13 +3,13 @@
 
 :func:`sim_source` accepts a track (map YAML path, ``OccupancyMap``, ``Track``, catalog
 id), a ``RoboRacerArena-v0`` env (possibly wrapped; its simulator is shared, so reset the
-env after the bridge stops) or a ``_core.Simulator`` (env 0 is used).
+env after the bridge stops) or a ``_core.Simulator`` (env 0 is used). The cars start as
+the env starts them (:meth:`SimSource.reset`, see :mod:`.start`).
 """
 
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -18,6 +18,8 @@ import numpy as np
 
 from ..errors import ConfigError
 from ..sim_config import SimConfig
+from ..start_grid import start_spec
+from .start import StartConfig, spec_json
 
 
 @dataclass
@@ -37,17 +39,19 @@ class SimSource:
         self.fields = {f: i for i, f in enumerate(self.sim.state_fields)}
         self.num_envs = int(self.sim.num_envs)
 
-    def grid_poses(self, spacing: float = 1.0, offset: float = 0.2) -> np.ndarray:
-        """Start poses (E, V, 3): car 0 at the centreline start (s = 0), the others in a
-        staggered two-wide grid behind it (as the envs' ``reset_poses="grid"``)."""
-        length = self.sim.centreline_length(self.track_id)
-        poses = np.zeros((self.num_envs, self.vehicles, 3))
-        for k in range(self.vehicles):
-            s = -k * spacing  # an open map's anchor has length 0: the grid lines up behind its start
-            x, y, yaw = self.sim.centreline_pose(self.track_id, s % length if length > 0 else s)
-            lat = 0.0 if self.vehicles == 1 else (offset if k % 2 == 0 else -offset)
-            poses[:, k] = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
-        return poses
+    def reset(self, poses: np.ndarray | None = None, speeds: np.ndarray | None = None) -> np.ndarray:
+        """Reset env 0 as the env does (``reset_drawn`` with the start spec set on the
+        simulator): the configured start, or the fixed ``poses`` (1, V, 3) / ``speeds``
+        (1, V). Returns the start poses (1, V, 3)."""
+        E, V = self.num_envs, self.vehicles
+        ids, out_poses, out_speeds = np.zeros(E, np.int64), np.zeros((E, V, 3)), np.zeros((E, V))
+        if poses is not None and E > 1:
+            poses = np.broadcast_to(poses, (E, V, 3)).copy()
+        if speeds is not None and E > 1:
+            speeds = np.broadcast_to(speeds, (E, V)).copy()
+        fixed_track = np.full(E, self.track_id, np.int64)  # the bridge shows one track
+        self.sim.reset_drawn(np.ones(E, bool), ids, out_poses, out_speeds, fixed_track, poses, speeds)
+        return out_poses[:1]
 
 
 def _load_map(source: Any) -> Any:
@@ -60,13 +64,26 @@ def _load_map(source: Any) -> Any:
     return None
 
 
-def sim_source(env_or_sim: Any, cars: int | None = None, config: SimConfig | None = None, seed: int = 0) -> SimSource:
-    """Normalise the bridge's first argument (see module docstring)."""
+def sim_source(
+    env_or_sim: Any,
+    cars: int | None = None,
+    config: SimConfig | None = None,
+    seed: int = 0,
+    start: StartConfig | None = None,
+) -> SimSource:
+    """Normalise the bridge's first argument (see module docstring). The start: a track
+    gets ``start`` (default: the grid start) set on its new simulator, as the env sets
+    its own; an env keeps the start its config set; a bare simulator without a start
+    spec starts at s = 0 of its centreline."""
     from .. import _core
 
     if isinstance(env_or_sim, _core.Simulator):
         sim = env_or_sim
         tid = int(sim.track_ids()[0])
+        # A bare simulator has no Track to place a grid on: s = 0 of each centreline.
+        sim.set_start_spec(
+            start_spec([None] * int(sim.num_tracks), int(sim.vehicles_per_env), reset_poses="centreline_start")
+        )
         return SimSource(
             sim,
             int(sim.vehicles_per_env),
@@ -96,5 +113,6 @@ def sim_source(env_or_sim: Any, cars: int | None = None, config: SimConfig | Non
         raise ConfigError(f"--cars must be in 1..64, got {cars}")
     cfg = config or SimConfig()
     sim = _core.Simulator([track.native()], 1, n, cfg.to_json(), seed)
+    sim.set_start_spec(spec_json(track, n, start or StartConfig(), cfg.vehicle.chassis_width))
     src = track.source if track.source is not None else env_or_sim
     return SimSource(sim, n, cfg, np.asarray(track.centreline), occupancy_map=_load_map(src), name=track.name)

@@ -4,6 +4,7 @@
 //! * [`params`]: the JSON configuration (mirrors `roboracer_arena.envs.config`)
 //! * [`track`]: shared wall mesh, lidar grid and centreline of one track
 //! * [`vehicle`]: chassis, suspension, tyres, Ackermann steering, speed controller
+//! * [`segments`]: wall segments indexed for beam walks, clearance and sweep culling
 //! * [`lidar`]: exact ray casting against wall segments and other vehicles
 //! * [`sweep`]: the same scan by angular sweep over segments (chosen for small tracks)
 //! * [`starts`]: reset draws (track, start poses, speeds, lidar randomisation) per env
@@ -15,6 +16,7 @@ pub mod batch;
 pub mod lidar;
 pub mod params;
 pub mod progress;
+pub mod segments;
 pub mod shapes;
 pub mod starts;
 pub mod sweep;

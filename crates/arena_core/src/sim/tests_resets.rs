@@ -7,8 +7,9 @@ use std::sync::Arc;
 use rand_chacha::rand_core::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use super::lidar::{Footprint, ScanNoise, Scanner, SegmentGrid};
+use super::lidar::{Footprint, ScanNoise, Scanner};
 use super::progress::Progress;
+use super::segments::SegmentGrid;
 use super::shapes::stadium_track;
 use super::sweep::sweep;
 use super::*;

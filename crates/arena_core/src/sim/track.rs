@@ -9,10 +9,14 @@
 
 use rapier3d::prelude::{SharedShape, Vector};
 
-use super::lidar::SegmentGrid;
+use super::segments::SegmentGrid;
 use crate::error::{ArenaError, Result};
 use crate::geometry::mesh::extrude_walls;
 use crate::geometry::polyline::cumulative_length;
+
+/// Tallest collision wall a track accepts (m): far above any barrier a 1:10 car meets, low
+/// enough that a unit mix-up (mm for m) is refused instead of built.
+pub const MAX_WALL_HEIGHT_M: f64 = 10.0;
 
 /// Closed polyline with cumulative arc length, for projection and interpolation.
 ///
@@ -242,6 +246,12 @@ impl Track {
                 "track walls have non-finite coordinates",
             ));
         }
+        if !(wall_height.is_finite() && wall_height > 0.0 && wall_height <= MAX_WALL_HEIGHT_M) {
+            return Err(ArenaError::invalid(format!(
+                "wall_height must be in (0, {MAX_WALL_HEIGHT_M}] m, got {}",
+                crate::limits::show(wall_height)
+            )));
+        }
         let centreline = Centreline::new(centreline)?;
         let mesh = extrude_walls(&walls, 0.0, wall_height);
         let vertices = mesh
@@ -313,5 +323,15 @@ mod tests {
         assert!(!pr.update(&c, [4.0, 2.0], 0.1, 3.0));
         assert_eq!((pr.travel, pr.laps), (0.0, 0));
         assert!((pr.lap_time - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn wall_height_is_checked_by_the_core() {
+        let (w, c) = ([circle(3.0, 32), circle(1.5, 32)], circle(2.25, 32));
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, MAX_WALL_HEIGHT_M * 1.01] {
+            let e = Track::new(&w, &c, bad).unwrap_err().to_string();
+            assert!(e.contains("wall_height must be in (0, 10] m"), "{e}");
+        }
+        assert!(Track::new(&w, &c, MAX_WALL_HEIGHT_M).is_ok());
     }
 }
