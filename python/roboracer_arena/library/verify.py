@@ -95,7 +95,9 @@ def check_drive(cat: Catalog, entry: TrackEntry, sources: Path | None = None, re
     """Hook onto the simulator: the reference pure-pursuit driver completes one lap without
     a contact (default env: full vehicle model, 1081-beam lidar), in the racing direction
     the catalog records (against it with ``reverse``). After a collision it tries once
-    more at cautious settings (:data:`CAUTIOUS`); a pass then says so."""
+    more at cautious settings (:data:`CAUTIOUS`), then on the corridor's most-clearance path
+    with a speed cap from its clearance (:mod:`roboracer_arena.clearance_path`); a pass then
+    says which."""
     from ..drivers import PurePursuitParams, drive_laps
 
     try:
