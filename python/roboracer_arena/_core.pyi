@@ -40,6 +40,7 @@ __all__ = [
     "load_map",
     "save_map",
     "build_geometry",
+    "build_open_geometry",
     "config_defaults",
     "check_config",
     "measure_map",
@@ -163,6 +164,21 @@ def build_geometry(
 ) -> _Geometry:
     """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
 
+class _OpenGeometry(_Geometry):
+    start_pose: tuple[float, float, float]
+    start_clearance_m: float
+
+def build_open_geometry(
+    data: npt.NDArray[np.uint8],
+    resolution: float,
+    origin: tuple[float, float, float],
+    params_json: str = "{}",
+    unknown_free: bool = False,
+    start: Sequence[float] | None = None,
+) -> _OpenGeometry:
+    """An open map's geometry: walls around every non-drivable region, no centreline (empty),
+    plus the default start pose (the free cell farthest from the walls) and its clearance (m)."""
+
 # --- track (track.rs): raster measurement for the library ---------------------------
 @final
 class RasterMeasurement:
@@ -208,7 +224,9 @@ class Simulator:
     ``tracks``: list of ``(walls, centreline)`` or ``(walls, centreline, wall_height)``;
     walls = list of closed (N, 2) float64 polylines (map-frame metres), centreline = closed
     (M, 2) float64 polyline, wall_height (m, in (0, 10]; default the build geometry's 0.5) the
-    height of the extruded collision walls (``Track.native()`` passes the build's own).
+    height of the extruded collision walls (``Track.native()`` passes the build's own). A
+    centreline of exactly two points is an open map's start anchor (start, heading towards
+    the second point): length 0, no progress, no laps (``Track.open_map``).
     ``config_json``: ``SimConfig().to_json()``. Every env starts on track 0.
     ``seed`` (None = 0) and ``env_index_offset`` (None = 0; the index of env 0 in a larger
     batch, so that a shard draws the same per-env streams as the whole) are ints >= 0.

@@ -59,6 +59,18 @@ class BuildReport(BaseModel):
         0,
         description="Corridor cells on the map edge; > 0 means the map edge closes the corridor there (it acts as a wall).",
     )
+    map_kind: str = Field(
+        "track",
+        description="'track' (a closed corridor with a centreline) or 'open' (an open map: walls only, no centreline).",
+    )
+    open_reason: str | None = Field(None, description="Why the map was built as an open map (its corridor error).")
+    start_pose: tuple[float, float, float] | None = Field(
+        None,
+        description="An open map's start pose (x, y, yaw): the given one or the free cell farthest from the walls.",
+    )
+    closed_gaps: list[dict[str, float]] = Field(
+        default_factory=list, description="Openings closed with close_gaps_m: centre x, y (m), width_m, cells."
+    )
 
     def summary(self) -> str:
         """A few human-readable lines."""
@@ -74,8 +86,17 @@ class BuildReport(BaseModel):
             f"worst wall deviation {self.max_wall_deviation_cells:.2f} cells"
             + (
                 f"\n  note: the corridor meets the map edge on {self.border_contact_cells} cells; the edge acts as a wall there"
-                if self.border_contact_cells
+                if self.border_contact_cells and self.map_kind == "track"
                 else ""
+            )
+            + (
+                f"\n  open map (walls only, no centreline; start {tuple(round(v, 3) for v in self.start_pose or ())})"
+                + (f": {self.open_reason}" if self.open_reason else "")
+                if self.map_kind == "open"
+                else ""
+            )
+            + "".join(
+                f"\n  closed gap at ({g['x']:.2f}, {g['y']:.2f}) m, {g['width_m']:.2f} m wide" for g in self.closed_gaps
             )
         )
 
@@ -114,14 +135,23 @@ def build_environment(
     config: ConfigLike = None,
     start: Sequence[float] | str | None = None,
     car: bool = False,
+    open: bool | None = None,
+    unknown: str = "occupied",
+    close_gaps_m: float | None = None,
 ) -> BuildReport:
     """Build the USD environment of a ROS occupancy map.
 
     ``map_or_path`` is a map YAML path or an :class:`~roboracer_arena.maps.OccupancyMap`;
     ``out_path`` ends in ``.usdc`` (default encoding), ``.usda`` or ``.usd`` (encoding from
     ``config.usd_format``); ``config`` is a :class:`BuildConfig`, a mapping or a TOML/JSON
-    file; ``start`` optionally seeds the corridor from a pose ``(x, y[, yaw])``; ``car``
-    adds the paper's car as a PhysX vehicle at the grid start (needs the ``physx`` extra).
+    file; ``start`` optionally seeds the corridor from a pose ``(x, y[, yaw])`` (an open
+    map's start pose); ``car`` adds the paper's car as a PhysX vehicle at the grid start
+    (needs the ``physx`` extra). ``open``: ``None`` builds a map without a closed corridor as an
+    open map (walls from every occupied region; the report's ``map_kind`` and
+    ``open_reason`` say so), ``True`` always, ``False`` never; ``unknown`` is how an open
+    map reads unknown cells (``"occupied"`` or ``"free"``). ``close_gaps_m`` closes the
+    openings of the walls up to that width first (:mod:`roboracer_arena.gaps`); the
+    report, the stage metadata and the summary list every gap closed.
 
     Raises a :class:`~roboracer_arena.errors.ArenaError` subclass on bad input (unreadable
     map, no closed corridor, leaking walls, bad config); nothing is written then.
@@ -142,7 +172,9 @@ def build_environment(
     occ = load_map(map_or_path) if isinstance(map_or_path, (str, Path)) else map_or_path
     check_output(out, inputs=[(occ.meta or {}).get("image_path")])
     t1 = time.perf_counter()
-    geo = extract_corridor(occ, params=cfg.geometry_params(), start=pose)
+    geo = extract_corridor(
+        occ, params=cfg.geometry_params(), start=pose, open=open, unknown=unknown, close_gaps_m=close_gaps_m
+    )
     t2 = time.perf_counter()
     meshes = stage_meshes(geo, cfg)
     t3 = time.perf_counter()
@@ -161,6 +193,15 @@ def build_environment(
     }
     if pose is not None:
         metadata["start"] = list(pose)
+    metadata["map_kind"] = geo.kind
+    gaps = [g.to_json_dict() for g in geo.closed_gaps]
+    if close_gaps_m is not None:
+        metadata["closed_gaps"] = json.dumps(gaps)
+    if geo.kind == "open" and geo.start_pose is not None:
+        metadata["start"] = list(geo.start_pose)
+        metadata["unknown_cells"] = unknown
+        if geo.open_reason:
+            metadata["open_reason"] = geo.open_reason
     car_pose = None
     if car:
         from .usd.vehicle import grid_start_pose
@@ -193,6 +234,10 @@ def build_environment(
         iou=float(geo.iou),
         max_wall_deviation_cells=float(geo.max_wall_deviation_cells),
         border_contact_cells=int(getattr(geo, "border_contact_cells", 0)),
+        map_kind=geo.kind,
+        open_reason=geo.open_reason,
+        start_pose=geo.start_pose,
+        closed_gaps=gaps,
     )
 
 

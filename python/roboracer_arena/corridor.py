@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -74,6 +74,16 @@ class CorridorGeometry:
     timings: dict[str, float]
     params: dict[str, Any]
     map: OccupancyMap
+    #: ``"track"`` (a closed corridor: centreline, laps, progress) or ``"open"`` (an open
+    #: map, see :func:`extract_open`: walls only, ``centreline`` empty).
+    kind: str = "track"
+    #: An open map's start pose (x, y, yaw): the given one, else the map origin when it
+    #: is drivable (f1tenth_gym_ros's default), else the free cell farthest from the walls.
+    start_pose: tuple[float, float, float] | None = None
+    #: Why a map asked for as a track is open: the corridor error (``open=None``).
+    open_reason: str | None = None
+    #: The openings closed with ``close_gaps_m`` (see :mod:`roboracer_arena.gaps`).
+    closed_gaps: tuple[Any, ...] = ()
 
     @property
     def vertex_count(self) -> int:
@@ -95,6 +105,9 @@ def extract_corridor(
     map_or_path: OccupancyMap | str | Path,
     params: dict[str, Any] | None = None,
     start: Sequence[float] | None = None,
+    open: bool | None = False,
+    unknown: str = "occupied",
+    close_gaps_m: float | None = None,
 ) -> CorridorGeometry:
     """Isolate the drivable corridor of a map and build its geometry.
 
@@ -108,6 +121,14 @@ def extract_corridor(
             A region touching the map edge along more than 2 % of the border cells
             leaks (the exterior of a thin-line map); a few cells of contact are
             accepted, the map edge then acts as a wall (see ``border_contact_cells``).
+        open: ``False`` (default): a closed corridor or an error. ``True``: build the map
+            as an open map (:func:`extract_open`). ``None``: a closed corridor when the
+            map has one, else an open map whose ``open_reason`` says why (the corridor
+            error) — never silently: ``kind`` says which one was built.
+        unknown: how an open map reads unknown cells (see :func:`extract_open`).
+        close_gaps_m: close every opening in the walls up to this width (m) first
+            (:func:`roboracer_arena.gaps.close_gaps`): a hallway loop with doorways
+            becomes a closed corridor. ``closed_gaps`` lists each gap closed.
 
     Raises:
         CorridorError: no closed corridor (blank or open map), walls that leak (the
@@ -117,17 +138,111 @@ def extract_corridor(
         MapIOError, MapFormatError: when given a path that does not load.
     """
     m = map_or_path if isinstance(map_or_path, OccupancyMap) else load_map(map_or_path)
+    if close_gaps_m is not None:
+        from .gaps import close_gaps
+
+        m, gaps = close_gaps(m, close_gaps_m)
+        geo = extract_corridor(m, params, start, open, unknown)
+        return replace(geo, closed_gaps=tuple(gaps))
+    if open:
+        return extract_open(m, params, start, unknown)
     s = None if start is None else [float(v) for v in start]
-    try:
-        params_json = json.dumps(params or {}, allow_nan=False)
-    except (TypeError, ValueError) as e:
-        raise InvalidArgumentError(f"params must be a JSON-able mapping of finite numbers: {e}") from None
+    params_json = _params_json(params)
     try:
         out = _core.build_geometry(m.data, m.resolution, m.origin, params_json, s)
     except CorridorError as e:
-        if m.path is None:
-            raise
-        raise CorridorError(f"{m.path}: {e}") from None
+        err = CorridorError(f"{m.path}: {e}" if m.path is not None else str(e))
+        if open is None:
+            try:
+                geo = extract_open(m, params, start, unknown)
+            except CorridorError:
+                raise err from None
+            return replace(geo, open_reason=str(e))
+        raise err from None
+    return _geometry(out, m)
+
+
+#: How an open map reads unknown cells: as walls (nav2's planners with
+#: ``allow_unknown: false``) or as floor (F1TENTH Gym thresholds the image at 128, so 205
+#: is free).
+UNKNOWN_AS = ("occupied", "free")
+
+
+def extract_open(
+    map_or_path: OccupancyMap | str | Path,
+    params: dict[str, Any] | None = None,
+    start: Sequence[float] | None = None,
+    unknown: str = "occupied",
+) -> CorridorGeometry:
+    """Build a map as an *open map*, the way F1TENTH Gym simulates any map: every free
+    cell is floor, every occupied cell (and unknown cell, with ``unknown="occupied"``)
+    and the map edge are walls. Walls, ducts and meshes as for a track; no centreline
+    (``centreline`` is empty), so no lap and no progress.
+
+    Args:
+        map_or_path: an :class:`OccupancyMap` or the path of a ROS map YAML (read with
+            nav2's rules: ``occupied_thresh``, ``free_thresh``, ``negate``).
+        params: geometry parameters, as for :func:`extract_corridor`.
+        start: the start pose ``(x, y)`` or ``(x, y, yaw)`` (yaw 0 when omitted), as
+            f1tenth_gym_ros gives it; it must be on a drivable cell. Default: the map
+            origin (0, 0, 0), f1tenth_gym_ros's default, when it is drivable and at least
+            :data:`ORIGIN_START_CLEARANCE_M` from the walls; else the drivable cell
+            farthest from the walls, heading along its longest free line.
+        unknown: one of :data:`UNKNOWN_AS`.
+
+    Raises:
+        CorridorError: no drivable cell, or a start off the map or not on a drivable cell.
+        InvalidArgumentError: a bad parameter or ``unknown`` value.
+    """
+    if unknown not in UNKNOWN_AS:
+        raise InvalidArgumentError(f"unknown must be one of {UNKNOWN_AS}, got {unknown!r}")
+    m = map_or_path if isinstance(map_or_path, OccupancyMap) else load_map(map_or_path)
+    where = f"{m.path}: " if m.path is not None else ""
+    s = None if start is None else [float(v) for v in start]
+    try:
+        out = _core.build_open_geometry(
+            m.data, m.resolution, m.origin, _params_json(params), unknown_free=unknown == "free", start=s
+        )
+    except CorridorError as e:
+        raise CorridorError(f"{where}{e}") from None
+    geo = _geometry(out, m)
+    x, y, yaw = (float(v) for v in out["start_pose"]) if s is not None else _default_start(geo, out["start_pose"])
+    return replace(geo, kind="open", start_pose=(x, y, yaw))
+
+
+#: Clearance (m) the map origin needs to be an open map's default start.
+ORIGIN_START_CLEARANCE_M = 0.3
+
+
+def _default_start(geo: CorridorGeometry, farthest: Any) -> tuple[float, float, float]:
+    """An open map's default start, as f1tenth_gym_ros gives it: the map-frame origin
+    (0, 0) heading along +x (its ``sx, sy, stheta`` defaults; a SLAM map starts where the
+    car was) when that is a drivable cell at least :data:`ORIGIN_START_CLEARANCE_M` from
+    the walls; else the drivable cell farthest from the walls (the core's choice)."""
+    m = geo.map
+    c, s = np.cos(m.origin[2]), np.sin(m.origin[2])
+    u = (c * -m.origin[0] + s * -m.origin[1]) / m.resolution
+    v = (-s * -m.origin[0] + c * -m.origin[1]) / m.resolution
+    h, w = m.data.shape
+    if 0 <= u < w and 0 <= v < h:
+        col, row = int(u), h - 1 - int(v)
+        mask = np.asarray(geo.corridor_mask, bool)
+        if mask[row, col]:
+            clear = float(_core.distance_transform(~mask)[row, col]) * m.resolution
+            if clear >= ORIGIN_START_CLEARANCE_M:
+                return 0.0, 0.0, 0.0
+    x, y, yaw = (float(v) for v in farthest)
+    return x, y, yaw
+
+
+def _params_json(params: dict[str, Any] | None) -> str:
+    try:
+        return json.dumps(params or {}, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise InvalidArgumentError(f"params must be a JSON-able mapping of finite numbers: {e}") from None
+
+
+def _geometry(out: Any, m: OccupancyMap) -> CorridorGeometry:
     return CorridorGeometry(
         walls=list(out["walls"]),
         ducts=list(out["ducts"]),
@@ -144,4 +259,4 @@ def extract_corridor(
     )
 
 
-__all__ = ["DEFAULT_PARAMS", "CorridorGeometry", "Mesh", "extract_corridor"]
+__all__ = ["DEFAULT_PARAMS", "UNKNOWN_AS", "CorridorGeometry", "Mesh", "extract_corridor", "extract_open"]

@@ -46,9 +46,13 @@ class PurePursuitParams:
 
 
 class PurePursuitDriver:
-    """Pure pursuit on one closed centreline ((M, 2), map frame, driving direction = vertex order)."""
+    """Pure pursuit on one closed centreline ((M, 2), map frame, driving direction = vertex order).
 
-    def __init__(self, centreline: Any, params: PurePursuitParams | None = None) -> None:
+    ``speed_cap`` ((M,) m/s, one per centreline vertex, optional) caps the speed profile
+    before its braking and acceleration passes, e.g. by the wall clearance along a
+    narrow path (:mod:`roboracer_arena.clearance_path`)."""
+
+    def __init__(self, centreline: Any, params: PurePursuitParams | None = None, speed_cap: Any = None) -> None:
         self.params = p = params or PurePursuitParams()
         line = np.asarray(centreline, dtype=np.float64)
         self.points = _core.resample_closed(line, p.spacing)
@@ -56,7 +60,11 @@ class PurePursuitDriver:
         self.ds = self.length / len(self.points)
         # Signed three-point curvature over chords of ±curvature_window (a smoothed estimate).
         self.curvature = _core.curvature(self.points, p.curvature_window)
-        self.speed_profile = _speed_profile(self.curvature, self.ds, p)
+        cap = None
+        if speed_cap is not None:
+            vals = _core.resample_closed_values(line, np.asarray(speed_cap, dtype=np.float64), p.spacing)[1]
+            cap = vals[: len(self.points)]
+        self.speed_profile = _speed_profile(self.curvature, self.ds, p, cap)
         self._idx: int | None = None
 
     @staticmethod
@@ -121,9 +129,11 @@ class PurePursuitDriver:
         return np.asarray(steer, dtype=np.float64), self.speed_profile[ahead].min(axis=-1)
 
 
-def _speed_profile(curv: np.ndarray, ds: float, p: PurePursuitParams) -> np.ndarray:
+def _speed_profile(curv: np.ndarray, ds: float, p: PurePursuitParams, cap: np.ndarray | None = None) -> np.ndarray:
     v = np.sqrt(p.lateral_accel / np.maximum(np.abs(curv), 1e-6))
     v = np.clip(v, p.min_speed, p.max_speed)
+    if cap is not None:
+        v = np.minimum(v, cap)
     n = len(v)
     for _ in range(2):  # two laps so the passes wrap around the closed loop
         for k in range(2 * n - 1, -1, -1):  # braking: v_i^2 <= v_{i+1}^2 + 2 a ds
@@ -143,8 +153,11 @@ class EnvPurePursuit:
     in the env's action mode. Create it with :meth:`PurePursuitDriver.for_env`.
     """
 
-    def __init__(self, env: Any, params: PurePursuitParams | None = None) -> None:
+    def __init__(self, env: Any, params: PurePursuitParams | None = None, paths: dict[int, Any] | None = None) -> None:
+        """``paths``: per track id, ``(line (M, 2), speed cap (M,) or None)`` to follow
+        instead of the track's centreline (e.g. a clearance path)."""
         self.env = env.unwrapped
+        self._paths = dict(paths or {})
         self.params = params or PurePursuitParams(
             max_steer=float(self.env.max_steer), wheelbase=float(self.env.wheelbase)
         )
@@ -175,7 +188,8 @@ class EnvPurePursuit:
         if slot is None or slot[0] != track_id:
             base = self._geometry.get(track_id)
             if base is None:
-                base = self._geometry[track_id] = PurePursuitDriver(self.env.tracks[track_id].centreline, self.params)
+                line, cap = self._paths.get(track_id, (self.env.tracks[track_id].centreline, None))
+                base = self._geometry[track_id] = PurePursuitDriver(line, self.params, cap)
             slot = (track_id, copy.copy(base))  # shares the geometry, own projection state
             slot[1].reset()
             self._slots[(e, k)] = slot
@@ -248,6 +262,7 @@ def drive_laps(
     max_time_s: float | None = None,
     progress: bool = False,
     env_wrapper: Any = None,
+    path: Any = None,
     **env_kwargs: Any,
 ) -> DriveResult:
     """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
@@ -256,8 +271,10 @@ def drive_laps(
     the longer side of its map, px) with a HUD (:mod:`.render.drive_view`). With
     ``progress``, a bar shows the distance driven, the simulated time and the car's speed.
     ``env_kwargs`` go to the env; ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it
-    before driving. On SIGINT (and SIGTERM in the CLI) the env is closed, so a recording
-    is finished; on any other error a wrapper's ``abort()`` discards its output."""
+    before driving. ``path``: ``(line (M, 2), speed cap (M,) or None)`` for the driver to
+    follow instead of the centreline (laps still count along the track's centreline). On
+    SIGINT (and SIGTERM in the CLI) the env is closed, so a recording is finished; on any
+    other error a wrapper's ``abort()`` discards its output."""
     from .envs.single import RoboRacerEnv
 
     if laps < 1:
@@ -279,7 +296,7 @@ def drive_laps(
     limit = max_time_s if max_time_s is not None else laps * (length / 0.5 + 30.0)  # >= 0.5 m/s average
     dt = env.config.control_dt
     try:
-        driver = PurePursuitDriver.for_env(env) if params is None else EnvPurePursuit(env, params)
+        driver = EnvPurePursuit(env, params, None if path is None else {0: path})
         return _drive(env, base_env, driver, laps, limit, length, dt, video, video_fps, render_size, progress)
     except KeyboardInterrupt:
         env.close()  # SIGINT/SIGTERM: what was driven is kept whole (a recording is finished)

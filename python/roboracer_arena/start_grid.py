@@ -35,7 +35,12 @@ GRID_OFFSET = 0.2
 
 
 def centreline_pose(track: Any, s: float) -> tuple[float, float, float]:
-    """(x, y, heading) of the track's centreline at arc length ``s`` (wrapped at the lap)."""
+    """(x, y, heading) of the track's centreline at arc length ``s`` (wrapped at the lap);
+    on an open map, ``s`` metres along the start heading (behind the start for ``s < 0``),
+    as the simulator places a grid there."""
+    if getattr(track, "is_open", False):
+        x, y, yaw = track.start_pose
+        return x + s * math.cos(yaw), y + s * math.sin(yaw), yaw
     loop, arc = track.loop, track.arclength
     s = float(s) % arc[-1]
     i = min(int(np.searchsorted(arc, s, side="right")) - 1, len(loop) - 1)
@@ -68,6 +73,8 @@ def grid_start_s(track: Any, slots: int = 1, spacing: float = 1.0) -> float:
     median wall clearance; among those the longest free run ahead wins (ties: the larger
     clearance). With no qualifying candidate, the one with the largest clearance wins.
     """
+    if getattr(track, "is_open", False):
+        return 0.0  # an open map's grid starts at its start pose
     per_track = _GRID_CACHE.setdefault(track, {})
     key = (int(slots), float(spacing))
     if key in per_track:
@@ -103,7 +110,8 @@ def grid_poses(track: Any, slots: int, spacing: float, offset: float, s0: float 
         s0 = grid_start_s(track, slots, spacing)
     out = np.zeros((int(slots), 3))
     for k in range(int(slots)):
-        x, y, yaw = centreline_pose(track, (s0 - k * spacing) % length)
+        s = s0 - k * spacing
+        x, y, yaw = centreline_pose(track, s % length if length > 0 else s)
         lat = 0.0 if slots == 1 else (offset if k % 2 == 0 else -offset)
         out[k] = (x - lat * math.sin(yaw), y + lat * math.cos(yaw), yaw)
     return out

@@ -94,8 +94,11 @@ def test_thin_line_ring(tmp_path):
 
 def test_bad_inputs_raise_typed_errors_and_write_nothing(tmp_path, ring_yaml):
     blank = write_map(tmp_path, np.full((120, 120), 254, np.uint8), name="blank")
-    with pytest.raises(CorridorError):
-        build_environment(blank, tmp_path / "blank.usdc")
+    with pytest.raises(CorridorError):  # no closed corridor, and open maps refused
+        build_environment(blank, tmp_path / "blank.usdc", open=False)
+    solid = write_map(tmp_path, np.zeros((120, 120), np.uint8), name="solid")
+    with pytest.raises(CorridorError):  # not even an open map: nothing is free
+        build_environment(solid, tmp_path / "solid.usdc")
     with pytest.raises(MapIOError):
         build_environment(tmp_path / "missing.yaml", tmp_path / "missing.usdc")
     with pytest.raises(ConfigError, match="tube_diameter_m"):

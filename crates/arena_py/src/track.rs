@@ -9,6 +9,7 @@ use crate::generate::parse;
 use arena_core::geometry::mesh::TriMesh;
 use arena_core::track::build;
 use arena_core::track::metrics;
+use arena_core::track::open;
 use arena_core::track::params::BuildParams;
 use arena_core::track::{features, validate};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
@@ -60,6 +61,53 @@ fn build_geometry<'py>(
         let params = BuildParams::from_json(params_json)?;
         build::build_geometry(&g, &params, start)
     })?;
+    geometry_to_py(py, geo, w, h)
+}
+
+/// Build an open map's geometry (a floor plan: every free cell drivable, every other
+/// cell a wall, no centreline); the keys of ``build_geometry`` plus ``start_pose``
+/// (``start`` (x, y[, yaw]) checked to lie on a drivable cell, else the free cell farthest
+/// from the walls) and ``start_clearance_m`` (NaN for a given start).
+#[pyfunction]
+#[pyo3(signature = (data, resolution, origin, params_json="{}", unknown_free=false, start=None))]
+fn build_open_geometry<'py>(
+    py: Python<'py>,
+    data: PyReadonlyArray2<'py, u8>,
+    resolution: f64,
+    origin: (f64, f64, f64),
+    params_json: &str,
+    unknown_free: bool,
+    start: Option<Vec<f64>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let start = match start.as_deref() {
+        None => None,
+        Some(s) if (2..=3).contains(&s.len()) && s.iter().all(|v| v.is_finite()) => {
+            Some([s[0], s[1], s.get(2).copied().unwrap_or(0.0)])
+        }
+        Some(s) => {
+            return Err(crate::errors::InvalidArgumentError::new_err(format!(
+                "start must be (x, y) or (x, y, yaw) finite numbers, got {s:?}"
+            )))
+        }
+    };
+    let g = crate::grid::grid_from_py(py, &data, resolution, origin)?;
+    let (w, h) = (g.width, g.height);
+    let o = boundary::call(py, "build_open_geometry", move || {
+        let params = BuildParams::from_json(params_json)?;
+        open::build_open_geometry(&g, &params, open::OpenOptions { unknown_free }, start)
+    })?;
+    let d = geometry_to_py(py, o.geometry, w, h)?;
+    d.set_item("start_pose", (o.start[0], o.start[1], o.start[2]))?;
+    d.set_item("start_clearance_m", o.start_clearance_m)?;
+    Ok(d)
+}
+
+fn geometry_to_py(
+    py: Python<'_>,
+    geo: build::Geometry,
+    w: usize,
+    h: usize,
+) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     let lines = |ls: &[Vec<[f64; 2]>]| PyList::new(py, ls.iter().map(|l| line_to_py(py, l)));
     d.set_item("walls", lines(&geo.walls)?)?;
@@ -183,6 +231,7 @@ fn analyse_curve(
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(build_geometry, m)?)?;
+    m.add_function(wrap_pyfunction!(build_open_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(measure_map, m)?)?;
     m.add_function(wrap_pyfunction!(validate_map, m)?)?;
     m.add_function(wrap_pyfunction!(analyse_curve, m)?)?;

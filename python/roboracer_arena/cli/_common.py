@@ -39,6 +39,7 @@ FLAG_RANGES: dict[str, tuple[float, float]] = {
     "limit": (1, 1_000_000),
     "columns": (1, 100),
     "count": (1, 100_000),
+    "close_gaps": (0.01, 20.0),
 }
 
 

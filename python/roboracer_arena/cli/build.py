@@ -21,7 +21,38 @@ def register(sub) -> None:
     p.add_argument(
         "--start",
         metavar="x,y[,yaw]",
-        help="seed the corridor from this pose (map frame, m/rad) instead of finding the ring; write --start=-1.5,2 when x is negative",
+        help="seed the corridor from this pose (map frame, m/rad) instead of finding the ring (an open map's start pose); "
+        "write --start=-1.5,2 when x is negative",
+    )
+    kind = p.add_mutually_exclusive_group()
+    kind.add_argument(
+        "--open",
+        action="store_const",
+        const=True,
+        dest="open",
+        help="build an open map (walls from every occupied region, no centreline) even when the map has a closed corridor; "
+        "by default a map without one is built as an open map, and the report says so",
+    )
+    kind.add_argument(
+        "--track-only",
+        action="store_const",
+        const=False,
+        dest="open",
+        help="refuse a map without a closed corridor instead of building it as an open map",
+    )
+    p.add_argument(
+        "--unknown",
+        choices=("occupied", "free"),
+        default="occupied",
+        help="open maps: unknown cells are walls (default, as nav2 with allow_unknown false) or floor (as F1TENTH Gym)",
+    )
+    p.add_argument(
+        "--close-gaps",
+        type=float,
+        default=None,
+        metavar="W",
+        help="close the openings of the walls up to W m wide first (doorways, sensor leaks) so a leaking loop "
+        "becomes a closed corridor; the report lists every gap closed",
     )
     p.add_argument("--usda", action="store_true", help="write text USD (the output must end in .usda or .usd)")
     p.add_argument("--no-textures", action="store_true", help="plain colours, no PNG textures beside the stage")
@@ -44,7 +75,16 @@ def run(args: argparse.Namespace) -> int:
         cfg = cfg.model_copy(update={"usd_format": "usda"})
     if args.no_textures:
         cfg = cfg.model_copy(update={"materials": cfg.materials.model_copy(update={"textures": False})})
-    report = build_environment(args.map, args.out, cfg, start=args.start, car=args.car)
+    report = build_environment(
+        args.map,
+        args.out,
+        cfg,
+        start=args.start,
+        car=args.car,
+        open=args.open,
+        unknown=args.unknown,
+        close_gaps_m=args.close_gaps,
+    )
     if args.json:
         print_json(report.model_dump(mode="json"))
     else:

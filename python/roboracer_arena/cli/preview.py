@@ -50,6 +50,13 @@ def register(sub) -> None:
         metavar="x,y[,yaw]",
         help="seed the corridor from this pose (maps only; --start=-1.5,2 when x is negative)",
     )
+    p.add_argument(
+        "--close-gaps",
+        type=float,
+        default=None,
+        metavar="W",
+        help="close the openings of the walls up to W m wide first and mark every gap closed (a map only)",
+    )
     p.add_argument("--cars", type=int, default=1, metavar="N", help="cars on the grid drawn at the start (default 1)")
     p.add_argument("--max-px", type=int, default=2048, help="longest side of the top-down map in pixels (default 2048)")
     add_json_flag(p)
@@ -83,7 +90,13 @@ def run(args: argparse.Namespace) -> int:
         from ..render.preview import preview_map
 
         summary = preview_map(
-            args.source, args.out, config=args.config, start=args.start, max_px=args.max_px, vehicles=args.cars
+            args.source,
+            args.out,
+            config=args.config,
+            start=args.start,
+            max_px=args.max_px,
+            vehicles=args.cars,
+            close_gaps_m=args.close_gaps,
         )
     if args.json:
         print_json(asdict(summary))

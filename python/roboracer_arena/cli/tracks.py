@@ -42,8 +42,8 @@ def _common(p: argparse.ArgumentParser) -> None:
     add_json_flag(p)
 
 
-def _subset(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--kind", choices=["circuit", "recorded", "generated"], help="only tracks of this kind")
+def _subset(p: argparse.ArgumentParser, kinds: tuple[str, ...] = ("circuit", "recorded", "generated")) -> None:
+    p.add_argument("--kind", choices=list(kinds), help="only tracks of this kind")
     p.add_argument("--limit", type=int, default=None, metavar="N", help="at most N tracks of each kind")
     p.add_argument("--ids", nargs="+", metavar="ID", help="only these ids")
 
@@ -56,9 +56,9 @@ def register(sub) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     t = p.add_subparsers(dest="tracks_cmd", metavar="ACTION", required=True)
-    a = t.add_parser("list", help="list catalog tracks")
+    a = t.add_parser("list", help="list catalog tracks (--kind open: the recorded maps offered as open maps)")
     _common(a)
-    _subset(a)
+    _subset(a, ("circuit", "recorded", "generated", "open"))
     a.set_defaults(func=run_list)
     a = t.add_parser("show", help="show one catalog entry")
     a.add_argument("id", help="track id")
@@ -125,6 +125,13 @@ def register(sub) -> None:
     a.add_argument("--generate", action="store_true", help="rerun the generated-track sweep first")
     a.add_argument("--count", type=int, default=60, help="generated tracks to keep (default 60)")
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
+    a.add_argument(
+        "--rejudge",
+        action="store_true",
+        help="instead of a rebuild: verify again the recorded maps 'verify' moved to left_out (current drivers: "
+        "reference, cautious, clearance path), put back the ones that lap, measure the others' narrowest gap, and "
+        "recompute the open maps; every other entry is kept as it is",
+    )
     a.set_defaults(func=run_catalog)
 
 
@@ -190,6 +197,8 @@ def _select(cat: Catalog, args: argparse.Namespace) -> list[TrackEntry]:
 
 def run_list(args) -> int:
     cat = _load(args)
+    if args.kind == "open":
+        return _list_open(cat, args)
     entries = _select(cat, args)
     if args.json:
         keys = ("id", "name", "kind", "direction", "lap_length_m", "width_mean_m", "map")
@@ -206,8 +215,24 @@ def run_list(args) -> int:
     print(
         f"\n{len(entries)} tracks: "
         + ", ".join(f"{n} {k}" for k, n in counts.items())
-        + f"; {len(cat.left_out)} recorded maps left out (see 'tracks list --json' / catalog.json 'left_out')"
+        + f"; {len(cat.left_out)} recorded maps left out (see 'tracks list --json' / catalog.json 'left_out'), "
+        + f"{len(cat.open_maps)} of them offered as open maps ('tracks list --kind open')"
     )
+    return EXIT_OK
+
+
+def _list_open(cat: Catalog, args: argparse.Namespace) -> int:
+    """``tracks list --kind open``: the recorded maps offered as open maps."""
+    opens = cat.open_maps[: args.limit] if args.limit is not None else cat.open_maps
+    if args.json:
+        print_json([o.to_json_dict() for o in opens])
+        return EXIT_OK
+    print(f"{'id':<42}{'start x, y, yaw':>24}{'clear m':>8}{'gap m':>7}  why not a track")
+    for o in opens:
+        x, y, yaw = o.start
+        gap = f"{o.narrowest_gap_m:7.2f}" if o.narrowest_gap_m is not None else f"{'-':>7}"
+        print(f"{o.id:<42}{f'{x:.2f}, {y:.2f}, {yaw:.2f}':>24}{o.start_clearance_m:8.2f}{gap}  {o.reason[:70]}")
+    print(f"\n{len(opens)} open maps (walls only, no lap: gym.make(..., track=MAP.yaml) or open=True)")
     return EXIT_OK
 
 
@@ -263,6 +288,11 @@ def run_verify(args) -> int:
         from ..library.verify import prune_catalog
 
         moved = prune_catalog(cat, s)
+        if moved:  # a recorded map that no longer laps may still be an open map
+            from ..library.open_maps import open_maps
+            from ..paths import sources_dir
+
+            cat.open_maps = open_maps(sources_dir(args.sources, "open maps"), cat.left_out)
         atomic_write_text(cat.path, cat.to_json())
         s = s.model_copy(update={"moved_to_left_out": moved})
         if not args.json:
@@ -312,6 +342,8 @@ def run_catalog(args) -> int:
     tracks = writable_tracks_dir(args.tracks or (args.catalog.parent if args.catalog else None), "--tracks")
     sources = sources_dir(args.sources, "tracks catalog (it assesses the recorded maps)")
     jobs = args.jobs or os.cpu_count() or 1
+    if args.rejudge:
+        return _rejudge(args, Path(sources), jobs)
     if args.generate:
         g = build_generated(tracks / "generated", count=args.count, jobs=jobs, progress=_progress("generate"))
         if not args.json:
@@ -334,6 +366,28 @@ def run_catalog(args) -> int:
         )
         for lo in cat.left_out:
             print(f"  {lo.source_path}: {lo.reason}")
+    return EXIT_OK
+
+
+def _rejudge(args: argparse.Namespace, sources: Path, jobs: int) -> int:
+    from ..fileio import atomic_write_text
+    from ..library.open_maps import map_kinds, open_maps, rejudge
+
+    cat = _load(args)
+    joined = rejudge(cat, sources, jobs)
+    cat.open_maps = open_maps(sources, cat.left_out, jobs)
+    assert cat.path is not None
+    atomic_write_text(cat.path, cat.to_json())
+    kinds = map_kinds(cat)
+    counts = {k: sum(v == k for v in kinds.values()) for k in ("track", "open", "duplicate", "broken", "left out")}
+    if args.json:
+        print_json({"joined": joined, "recorded_maps": len(kinds), "by_kind": counts})
+    else:
+        print(f"updated {cat.path}: {len(joined)} map(s) joined the tracks: {', '.join(joined) or '-'}")
+        print(f"{len(kinds)} recorded source maps: " + ", ".join(f"{n} {k}" for k, n in counts.items()))
+        for lo in cat.left_out:
+            if lo.reason.startswith("verify failed"):
+                print(f"  {lo.id}: {lo.reason}")
     return EXIT_OK
 
 

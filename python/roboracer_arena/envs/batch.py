@@ -84,6 +84,8 @@ class SimBatch:
         self.vehicles = V = config.vehicles_per_env
         check_size_budget(E, config)
         self._natives = [t.native() for t in tracks]
+        #: Per track: True for an open map (walls only: no lap, progress 0; see ``Track.open_map``).
+        self.open_maps = np.array([t.is_open for t in tracks], dtype=bool)
         self.seed = int(seed)
         self.env_index_offset = int(env_index_offset)  # env e draws from the streams of env offset + e
         self._start_json = self._start_spec(tracks, probs=track_probs)
@@ -428,10 +430,12 @@ class SimBatch:
         """Per-env diagnostics, fresh arrays with leading env axis (then vehicle axis):
         track_id, progress (m since reset), contact_wall / contact_vehicle / lap_completed
         (this step), wrong_way (0, +1 nose first, -1 reversing), the simulator's laps /
-        lap_time / last_lap_time / progress_s and, with several vehicles, vehicle_rewards and vehicle_terminated."""
+        lap_time / last_lap_time / progress_s, open_map (the env's track is an open map: no
+        laps, progress 0) and, with several vehicles, vehicle_rewards and vehicle_terminated."""
         ev = self.events[envs]
         info = {
             "track_id": self.track_ids[envs].copy(),
+            "open_map": self.open_maps[self.track_ids[envs]],
             "progress": self.progress[envs].copy(),
             "contact_wall": (ev & CONTACT_WALL) != 0,
             "contact_vehicle": (ev & CONTACT_VEHICLE) != 0,

@@ -13,6 +13,23 @@ Spaces (``V`` = vehicles per env; the vehicle axis is dropped when ``V == 1``):
   ``collision_ends_episode``) or wrong-way driving (if ``wrong_way_ends_episode``),
   ``truncated`` at the episode limit (see :mod:`.episode_limit`).
 
+Two semantics, stated per step in ``info["open_map"]``:
+
+* a **track** (a map with a closed corridor, a catalog track, a circuit): laps, progress
+  and wrong-way along the centreline, as above;
+* an **open map** (a floor plan without a closed corridor, e.g. f1tenth_gym_ros's
+  ``levine.yaml``; or any map with ``open=True``), simulated as F1TENTH Gym does: walls
+  from every occupied region (unknown cells are walls, or floor with
+  ``unknown="free"``), the same lidar and physics, and no reference path — ``progress``,
+  ``laps`` and the progress reward stay 0, there is no wrong way, and an episode ends on
+  a collision or the time limit. The start is ``reset(options={"poses": ...})`` (as
+  f1tenth_gym_ros gives it) or the free cell farthest from the walls
+  (``Track.start_pose``); ``env.tracks[i].open_reason`` says why a map is open.
+  ``open=None`` (default) picks per map; ``open=False`` refuses open maps.
+  ``close_gaps=W`` (m) closes the openings of a map's walls up to ``W`` wide first
+  (doorways, sensor leaks; :mod:`roboracer_arena.gaps`), so that a leaking loop becomes a
+  track with laps; the track's ``source.closed_gaps`` lists every gap closed.
+
 ``reset(options=...)``: ``"track_id"`` (or ``"track_ids"``) picks a track of the list,
 otherwise each reset draws one with the env's RNG (weighted for a track pool);
 ``"poses"`` ((V, 3) or (3,) x, y, yaw in the map frame) sets the start poses instead of
@@ -28,7 +45,7 @@ this as a PettingZoo-style ParallelEnv.
 Per-step layout (one vehicle): ``obs`` is a dict of fresh float32 arrays, ``scan``
 (B,) in metres (raw config; the simulator writes it straight into the observation buffer)
 and ``odometry`` (K,) in :attr:`odometry_index` order; ``info`` is a flat dict of Python
-scalars: ``track_id``, ``track``, ``progress``, ``contact_wall``, ``contact_vehicle``,
+scalars: ``track_id``, ``track``, ``open_map``, ``progress``, ``contact_wall``, ``contact_vehicle``,
 ``lap_completed``, ``wrong_way``, ``laps``, ``lap_time``, ``last_lap_time``,
 ``progress_s``. The step reads the state row once as Python floats
 (:meth:`SimBatch.step_one`), so the Python around the native step is a few microseconds:
@@ -64,12 +81,17 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         render_mode: str | None = None,
         corridor_params: Any = None,
         render_size: int = 600,
+        open: bool | None = None,
+        unknown: str = "occupied",
+        close_gaps: float | None = None,
         **overrides: Any,
     ) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']}, got {render_mode!r}")
         self.config = EnvConfig.build(config, **overrides)
-        self.tracks, probs = resolve_track_pool(track, corridor_params, reverse=self.config.reverse)
+        self.tracks, probs = resolve_track_pool(
+            track, corridor_params, reverse=self.config.reverse, open=open, unknown=unknown, close_gaps=close_gaps
+        )
         self._batch = SimBatch(self.tracks, 1, self.config, seed=0, track_probs=probs)
         self.observation_space, self.action_space = self._batch.single_spaces()
         self.render_mode = render_mode
@@ -79,6 +101,7 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         self._squeeze = self.config.vehicles_per_env == 1
         self._state_info = [(f, self._batch.field_index[f]) for f in STATE_INFO if f in self._batch.field_index]
         self._names = [t.name for t in self.tracks]
+        self._open = [t.is_open for t in self.tracks]
         self._spec: Any = None
         self._seeded = False
         self._one = np.ones(1, bool)
@@ -152,12 +175,13 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         tid = b.track_ids.item(0)
         if not self._squeeze:
             info: dict[str, Any] = b.info(0)
-            info.update(track_id=tid, track=self.tracks[tid].name)
+            info.update(track_id=tid, track=self.tracks[tid].name, open_map=self._open[tid])
             return info
         ev, row = b.events.item(0), b._row.tolist()
         info = {
             "track_id": tid,
             "track": self._names[tid],
+            "open_map": self._open[tid],
             "progress": b.progress.item(0),
             "contact_wall": bool(ev & CONTACT_WALL),
             "contact_vehicle": bool(ev & CONTACT_VEHICLE),

@@ -35,10 +35,11 @@ _KINDS = {"circuit": "circuit", "circuits": "circuit", "recorded": "recorded", "
 
 
 def resolve_track_pool(
-    track: Any, corridor_params: Any = None, reverse: bool = False
+    track: Any, corridor_params: Any = None, reverse: bool = False, **reading: Any
 ) -> tuple[list[Track], np.ndarray | None]:
     """(tracks, probability of each or None for uniform) for ``track=`` (see module docstring),
-    each in its racing direction, or the other way round with ``reverse=True``."""
+    each in its racing direction, or the other way round with ``reverse=True``; ``reading``
+    (``open``, ``unknown``) says how maps are read (:func:`.tracks.resolve_tracks`)."""
     if track is None:
         track = DEFAULT_TRACK
     if isinstance(track, Mapping):
@@ -50,7 +51,7 @@ def resolve_track_pool(
             w = float(weight)
             if not np.isfinite(w) or w < 0:
                 raise ConfigError(f"track weight of {item!r} must be a finite number >= 0, got {weight!r}")
-            group = resolve_tracks(_expand(item), corridor_params, reverse=reverse)
+            group = resolve_tracks(_expand(item), corridor_params, reverse=reverse, **reading)
             tracks.extend(group)
             probs.extend([w / len(group)] * len(group))
         total = sum(probs)
@@ -58,7 +59,8 @@ def resolve_track_pool(
             raise ConfigError("track= weights sum to 0")
         return tracks, np.asarray(probs) / total
     items = list(track) if isinstance(track, (list, tuple)) else [track]
-    return resolve_tracks([x for item in items for x in _expand_list(item)], corridor_params, reverse=reverse), None
+    expanded = [x for item in items for x in _expand_list(item)]
+    return resolve_tracks(expanded, corridor_params, reverse=reverse, **reading), None
 
 
 def check_track_names(track: Any) -> None:

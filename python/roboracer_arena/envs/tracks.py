@@ -31,9 +31,23 @@ from ..track import MAP_SUFFIXES, Track, _from_corridor, track_from_map_path
 __all__ = ["Track", "resolve_catalog", "resolve_tracks", "track_from_map_path"]
 
 
-def resolve_tracks(track: Any, corridor_params: Any = None, reverse: bool = False) -> list[Track]:
+def resolve_tracks(
+    track: Any,
+    corridor_params: Any = None,
+    reverse: bool = False,
+    open: bool | None = None,
+    unknown: str = "occupied",
+    close_gaps: float | None = None,
+) -> list[Track]:
     """Resolve ``track=`` (one item or a list/tuple of items) to a non-empty list of tracks,
-    each in its racing direction, or the other way round with ``reverse=True``."""
+    each in its racing direction, or the other way round with ``reverse=True``.
+
+    ``open`` and ``unknown`` say how a map is read (see :func:`track_from_map_path`): by
+    default (``open=None``) a map with a closed corridor is a track and any other map an
+    open map (walls only, no laps; ``Track.open_reason`` says why); ``open=True`` reads
+    every map as an open map, ``open=False`` refuses maps without a closed corridor.
+    ``close_gaps`` (m): close the openings of a map's walls up to this width first
+    (:mod:`roboracer_arena.gaps`), so that a leaking loop is a track."""
     if track is None:
         raise ConfigError("track= is required: a map YAML path, an OccupancyMap, a CorridorGeometry or a catalog id")
     items = list(track) if isinstance(track, (list, tuple)) else [track]
@@ -41,25 +55,34 @@ def resolve_tracks(track: Any, corridor_params: Any = None, reverse: bool = Fals
         raise ConfigError("track= is an empty list")
     out: list[Track] = []
     for item in items:
-        out.extend(_resolve_one(item, corridor_params))
+        out.extend(_resolve_one(item, corridor_params, open, unknown, close_gaps))
     return [t.reversed() for t in out] if reverse else out
 
 
-def _resolve_one(item: Any, corridor_params: Any) -> list[Track]:
+def _resolve_one(
+    item: Any,
+    corridor_params: Any,
+    open: bool | None = None,
+    unknown: str = "occupied",
+    close_gaps: float | None = None,
+) -> list[Track]:
     if isinstance(item, Track):
         return [item]
     if isinstance(item, (str, os.PathLike)):
         path = Path(item)
         if path.suffix.lower() in MAP_SUFFIXES or path.is_file():
-            return [track_from_map_path(path, corridor_params)]
-        return [t for src in resolve_catalog(str(item)) for t in _resolve_one(src, corridor_params)]
+            return [track_from_map_path(path, corridor_params, open=open, unknown=unknown, close_gaps_m=close_gaps)]
+        srcs = resolve_catalog(str(item))
+        return [t for src in srcs for t in _resolve_one(src, corridor_params, open, unknown, close_gaps)]
     if hasattr(item, "walls") and hasattr(item, "centreline"):
         return [_with_own_direction(_from_corridor(item, getattr(item, "name", None) or "corridor"), item)]
     if isinstance(getattr(item, "map", None), OccupancyMap) and hasattr(item, "direction"):  # an Acceptance
-        t = _from_corridor(_extract(item.map, corridor_params), item.spec.name)
+        t = _from_corridor(_extract(item.map, corridor_params, open, unknown, close_gaps), item.spec.name)
         return [_with_own_direction(t, item)]
     if all(hasattr(item, a) for a in ("data", "resolution", "origin")):
-        t = _from_corridor(_extract(item, corridor_params), getattr(item, "name", None) or "map")
+        t = _from_corridor(
+            _extract(item, corridor_params, open, unknown, close_gaps), getattr(item, "name", None) or "map"
+        )
         return [_with_own_direction(t, item)]
     raise ConfigError(
         f"cannot use {type(item).__name__} as a track: expected a map YAML path, an OccupancyMap, "
@@ -67,10 +90,12 @@ def _resolve_one(item: Any, corridor_params: Any) -> list[Track]:
     )
 
 
-def _extract(m: Any, corridor_params: Any) -> Any:
+def _extract(
+    m: Any, corridor_params: Any, open: bool | None = None, unknown: str = "occupied", close_gaps: float | None = None
+) -> Any:
     from ..corridor import extract_corridor
 
-    return extract_corridor(m, corridor_params)
+    return extract_corridor(m, corridor_params, open=open, unknown=unknown, close_gaps_m=close_gaps)
 
 
 def _with_own_direction(t: Track, item: Any) -> Track:

@@ -18,6 +18,9 @@ Autoreset mode (``metadata["autoreset_mode"]``), chosen with ``autoreset_mode=``
   ignore finished environments. (The native batch has no masked step: the finished
   environments still cost simulation time.)
 
+Open maps (``open=``, ``unknown=``, ``infos["open_map"]``) as in :mod:`.single`: walls
+only, no laps or progress, episodes end on a collision or the time limit.
+
 ``reset(options=...)`` also takes ``"track_ids"`` ((E,) ints) or ``"track_id"`` (one int)
 and ``"poses"`` ((E, V, 3) or (E, 3)); see :mod:`.reset_options`. The episode limit is the
 one of :mod:`.episode_limit`; ``spec.max_episode_steps`` reports it.
@@ -66,6 +69,9 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         max_episode_steps: int | None = None,
         autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
         env_index_offset: int = 0,
+        open: bool | None = None,
+        unknown: str = "occupied",
+        close_gaps: float | None = None,
         **overrides: Any,
     ) -> None:
         if num_envs < 1:
@@ -77,7 +83,9 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']}, got {render_mode!r}")
         explicit = time_limit_given({**overrides, "config": config})
         self.config = vector_config(EnvConfig.build(config, **overrides), max_episode_steps, explicit)
-        self.tracks, probs = resolve_track_pool(track, corridor_params, reverse=self.config.reverse)
+        self.tracks, probs = resolve_track_pool(
+            track, corridor_params, reverse=self.config.reverse, open=open, unknown=unknown, close_gaps=close_gaps
+        )
         self.num_envs = int(num_envs)
         self._batch = SimBatch(
             self.tracks, self.num_envs, self.config, seed=0, track_probs=probs, env_index_offset=self._env_offset

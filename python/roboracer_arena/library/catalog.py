@@ -23,7 +23,7 @@ from ..errors import InvalidArgumentError, MapIOError
 from ..fileio import read_json
 from ..paths import sources_dir, tracks_dir
 from ..spec import format_validation_error
-from .entry import CatalogMeta, Kind, LeftOut, TrackEntry
+from .entry import CatalogMeta, Kind, LeftOut, OpenMap, TrackEntry
 
 M = TypeVar("M", bound=BaseModel)
 KINDS = ("recorded", "circuit", "generated")
@@ -90,6 +90,8 @@ class Catalog:
     meta: CatalogMeta
     left_out: list[LeftOut] = field(default_factory=list)
     path: Path | None = None
+    #: Left-out recorded maps offered as open maps (``library.open_maps``).
+    open_maps: list[OpenMap] = field(default_factory=list)
 
     def get(self, track_id: str) -> TrackEntry:
         for e in self.entries:
@@ -135,6 +137,8 @@ class Catalog:
             "tracks": [e.to_json_dict() for e in self.entries],
             "left_out": [lo.to_json_dict() for lo in self.left_out],
         }
+        if self.open_maps:
+            doc["open_maps"] = [o.to_json_dict() for o in self.open_maps]
         return json.dumps(doc, indent=2) + "\n"
 
 
@@ -143,10 +147,16 @@ def load_catalog(path: str | Path | None = None) -> Catalog:
     :class:`TrackEntry` is a :class:`MapIOError` naming the file and the entry."""
     p = Path(path) if path else default_tracks_dir() / "catalog.json"
     doc = read_json(p, "track catalog", MapIOError, max_bytes=64 * 2**20)
-    meta = _parse(p, "header", CatalogMeta, {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count")})
+    meta = _parse(
+        p,
+        "header",
+        CatalogMeta,
+        {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count", "open_maps")},
+    )
     entries = [_parse(p, f"tracks[{_name(x, i)!r}]", TrackEntry, x) for i, x in enumerate(doc.get("tracks", []))]
     left_out = [_parse(p, f"left_out[{_name(x, i)!r}]", LeftOut, x) for i, x in enumerate(doc.get("left_out", []))]
-    return Catalog(entries=entries, left_out=left_out, meta=meta, path=p)
+    opens = [_parse(p, f"open_maps[{_name(x, i)!r}]", OpenMap, x) for i, x in enumerate(doc.get("open_maps", []))]
+    return Catalog(entries=entries, left_out=left_out, meta=meta, path=p, open_maps=opens)
 
 
 def _name(item: Any, i: int) -> Any:

@@ -53,6 +53,25 @@ class LeftOut(FrozenModel):
     reason: str
 
 
+class OpenMap(FrozenModel):
+    """A recorded map the catalog offers as an *open map* (walls only, no lap; see
+    ``corridor.extract_open``): not a track for ``reason`` (its ``left_out`` reason), yet
+    simulated the way F1TENTH Gym does. ``start`` is the default start pose (x, y, yaw:
+    the free cell farthest from the walls) and ``start_clearance_m`` its clearance;
+    ``narrowest_gap_m`` the corridor's narrowest free width, when it has a closed one,
+    beside the car's ``car_width_m``."""
+
+    id: str
+    source_path: str
+    reason: str
+    resolution_m: float
+    raster: Raster
+    start: tuple[float, float, float]
+    start_clearance_m: float
+    narrowest_gap_m: float | None = None
+    car_width_m: float | None = None
+
+
 class SweepCounts(FrozenModel):
     """A ``tracks generate --sweep`` catalog's sweep: its grid and the run's counts."""
 

@@ -16,7 +16,8 @@ from ..pool import Progress
 from .catalog import SCHEMA, Catalog, count_kinds, provenance, sha256_file
 from .directions import annotate_directions
 from .entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
-from .recorded import assess_all
+from .open_maps import open_maps
+from .recorded import RecordedMap, assess_all
 
 PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
 
@@ -114,34 +115,37 @@ def _generated_entries(tracks: Path) -> list[TrackEntry]:
 def _recorded_entries(sources: Path, jobs: int, progress: Progress | None) -> tuple[list[TrackEntry], list[LeftOut]]:
     entries, left_out = [], []
     for r in assess_all(sources, jobs=jobs, progress=progress):
-        prov = provenance(sources, r.source_dir)
         if not r.usable:
             left_out.append(LeftOut(id=r.id, source_path=r.source_path, reason=r.reason or ""))
             continue
-        yaml_path = sources / r.source_path
-        img_path = Path(load_map(yaml_path).meta["image_path"])
-        notes = [f"corridor checked with {r.corridor_check}"]
-        if (r.infields or 1) > 1:
-            notes.append(f"{r.infields} enclosed regions (obstacles or islands in the corridor)")
-        entries.append(
-            TrackEntry(
-                id=r.id,
-                name=r.name,
-                kind="recorded",
-                source=Source(**prov, path=r.source_path),
-                scale=None,
-                resolution_m=r.resolution_m,
-                lap_length_m=r.lap_length_m,
-                width_mean_m=r.width_mean_m,
-                width_min_m=r.width_min_m,
-                min_radius_m=r.min_radius_m,
-                raster=r.raster,
-                sha256=sha256_file(img_path),
-                map=r.source_path,
-                notes=notes,
-            )
-        )
+        entries.append(recorded_entry(sources, r))
     return entries, left_out
+
+
+def recorded_entry(sources: Path, r: RecordedMap) -> TrackEntry:
+    """The catalog entry of a usable recorded map (before directions and verify)."""
+    prov = provenance(sources, r.source_dir)
+    yaml_path = sources / r.source_path
+    img_path = Path(load_map(yaml_path).meta["image_path"])
+    notes = [f"corridor checked with {r.corridor_check}"]
+    if (r.infields or 1) > 1:
+        notes.append(f"{r.infields} enclosed regions (obstacles or islands in the corridor)")
+    return TrackEntry(
+        id=r.id,
+        name=r.name,
+        kind="recorded",
+        source=Source(**prov, path=r.source_path),
+        scale=None,
+        resolution_m=r.resolution_m,
+        lap_length_m=r.lap_length_m,
+        width_mean_m=r.width_mean_m,
+        width_min_m=r.width_min_m,
+        min_radius_m=r.min_radius_m,
+        raster=r.raster,
+        sha256=sha256_file(img_path),
+        map=r.source_path,
+        notes=notes,
+    )
 
 
 def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress | None = None) -> Catalog:
@@ -165,6 +169,7 @@ def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress
         seconds=round(time.perf_counter() - t0, 2),
     )
     cat = Catalog(entries=entries, left_out=left_out, meta=meta, path=tracks / "catalog.json")
+    cat.open_maps = open_maps(sources, left_out, jobs)
     annotate_directions(cat, sources)
     atomic_write_text(tracks / "catalog.json", cat.to_json())
     return cat

@@ -163,9 +163,8 @@ def assess_all(sources: Path, jobs: int = 1, progress: Progress | None = None) -
     ids: set[str] = set()
     for r in pool_map(partial(assess_map, sources), find_map_yamls(sources), jobs, progress):
         g = r.grid_sha256
-        if g and g in seen:
-            if r.usable:
-                r = r.with_fields(usable=False, reason=f"duplicate of {seen[g]} (identical grid)")
+        if g and g in seen:  # usable or not: a copy is a duplicate (also of an open map)
+            r = r.with_fields(usable=False, reason=f"duplicate of {seen[g]} (identical grid)")
         elif g:
             seen[g] = r.id
         rid = r.id

@@ -44,4 +44,22 @@ def resolve_tracks(
     """Tracks (named by catalog id, each in the direction the catalog records) for an id,
     a list of ids, or a selection (``"circuits"``, ``"recorded"``, ``"generated"``, ``"all"``)."""
     cat = catalog if isinstance(catalog, Catalog) else load_catalog(catalog)
+    opens = {o.id: o for o in cat.open_maps}
+    if isinstance(selection, str) and (selection == "open" or selection in opens):
+        return open_map_tracks(cat, list(opens) if selection == "open" else [selection], sources)
     return [entry_track(cat, e, Path(sources) if sources else None)[0] for e in cat.select_many(selection)]
+
+
+def open_map_tracks(cat: Catalog, ids: list[str], sources: str | Path | None = None) -> list[Track]:
+    """The catalog's open maps ``ids`` (``track="gym-ros-levine"``, or ``"open"`` for all)
+    as open-map tracks from their recorded start, named by id."""
+    from ..paths import sources_dir
+
+    base = sources_dir(sources, "open maps (recorded maps)")
+    opens = {o.id: o for o in cat.open_maps}
+    out = []
+    for i in ids:
+        o = opens[i]
+        t = track_from_map_path(base / o.source_path, open=True)
+        out.append(Track.open_map(t.walls, o.start, name=o.id, wall_height=t.wall_height))
+    return out

@@ -14,6 +14,7 @@ import math
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -125,7 +126,9 @@ def check_drive(cat: Catalog, entry: TrackEntry, sources: Path | None = None, re
     """Hook onto the simulator: the reference pure-pursuit driver completes one lap without
     a contact (default env: full vehicle model, 1081-beam lidar), in the racing direction
     the catalog records (against it with ``reverse``). After a collision it tries once
-    more at cautious settings (:data:`CAUTIOUS`); a pass then says so."""
+    more at cautious settings (:data:`CAUTIOUS`), then on the corridor's most-clearance path
+    with a speed cap from its clearance (:mod:`roboracer_arena.clearance_path`); a pass then
+    says which."""
     from ..drivers import PurePursuitParams, drive_laps
 
     try:
@@ -145,16 +148,36 @@ def check_drive(cat: Catalog, entry: TrackEntry, sources: Path | None = None, re
                 f"cautious retry at {CAUTIOUS['max_speed']:g} m/s after a collision at "
                 f"{first.distance:.1f} m with the reference settings"
             )
+        tight = None
+        if not r.completed:  # narrow or cluttered: the most-clearance path, speed from clearance
+            tight = _clearance_path(cat, entry, target, sources)
+            r = drive_laps(target, laps=1, params=PurePursuitParams(**CAUTIOUS), path=(tight.line, tight.speed_cap))
+            how = (
+                f"clearance path (min clearance {tight.min_clearance_m:.2f} m) after collisions at "
+                f"{first.distance:.1f} m (reference) and on the centreline at {CAUTIOUS['max_speed']:g} m/s"
+            )
     except ArenaError as e:
         return Check(status=FAIL, detail=f"simulator refused the track: {e}")
     if r.completed:
         return Check(status=PASS, detail=f"lap {r.lap_times[0]:.1f} s over {r.track_length:.1f} m ({follows}, {how})")
     why = "collision" if r.collided else f"{r.laps_completed} lap(s) in {r.sim_time:.0f} s"
+    also = f"also at {CAUTIOUS['max_speed']:g} m/s"
+    if tight is not None:
+        also += f" and on the clearance path (min clearance {tight.min_clearance_m:.2f} m)"
     return Check(
         status=FAIL,
-        detail=f"lap not completed ({why} after {r.distance:.1f} of {r.track_length:.1f} m, {follows}, "
-        f"also at {CAUTIOUS['max_speed']:g} m/s)",
+        detail=f"lap not completed ({why} after {r.distance:.1f} of {r.track_length:.1f} m, {follows}, {also})",
     )
+
+
+def _clearance_path(cat: Catalog, entry: TrackEntry, target: Any, sources: Path | None) -> Any:
+    """The most-clearance path of an entry's corridor in the target's direction."""
+    from ..clearance_path import clearance_path
+    from ..corridor import extract_corridor
+    from ..sim_config import SimConfig
+
+    geo = extract_corridor(cat.map_path(entry, sources))
+    return clearance_path(geo, target.centreline, half_width_m=SimConfig().vehicle.chassis_width / 2)
 
 
 def verify_entry(

@@ -26,6 +26,8 @@ FLOOR = (30, 130, 60, 255)
 WALL = (220, 30, 30)
 DUCT = (120, 120, 130, 200)
 GENERATED = (240, 140, 0)
+GAP = (230, 0, 200)
+START = (20, 90, 230)
 FEATURE = {"hairpin": (170, 0, 170), "chicane": (0, 120, 160), "sweeper": (160, 90, 0)}
 
 
@@ -55,17 +57,26 @@ def preview_map(
     start: Any = None,
     max_px: int = 2048,
     vehicles: int = 1,
+    open: bool | None = None,
+    close_gaps_m: float | None = None,
 ) -> PreviewSummary:
     """Extract the corridor of a ROS map and draw map, corridor, collision walls, ducts,
-    racing direction, start line and grid (``vehicles`` cars); write PNG or JPEG."""
+    racing direction, start line and grid (``vehicles`` cars); write PNG or JPEG.
+
+    A map without a closed corridor is drawn as an open map (``open=None``; walls and its
+    start pose, the title says "open map"); ``close_gaps_m`` closes the openings up to
+    that width first and marks every gap closed (a magenta ring and its width)."""
     from ..direction import direction_for_map
     from ..track import Track
     from .formats import image_format
 
     image_format(out_png)  # a bad extension fails before any work
     map_path = Path(map_path)
-    canvas, geo, occ, drawn, legend = map_canvas(map_path, config, start, max_px)
+    canvas, geo, occ, drawn, legend = map_canvas(map_path, config, start, max_px, open=open, close_gaps_m=close_gaps_m)
     features = _generated_overlay(canvas, map_path, drawn, legend)
+    gaps = [g.to_json_dict() for g in geo.closed_gaps]
+    if gaps:
+        features = [*features, *({"closed_gap": g} for g in gaps)]
     name = track_name(map_path)
     race: dict[str, Any] = {}
     if len(geo.centreline) > 2:
@@ -73,16 +84,24 @@ def preview_map(
         marks, race = _race_marks(canvas, track, vehicles)
         drawn += ["centreline", "direction", "start"]
         legend += marks
-    title = map_title(name, race, occ)
+    title = map_title(name, race, occ, open_map=geo.kind == "open")
     return _write(canvas, title, _subtitle(race, vehicles), legend, out_png, map_path, drawn, features, race)
 
 
 def map_canvas(
-    map_path: Path, config: Any = None, start: Any = None, max_px: int = 2048, min_px: int = 1024
+    map_path: Path,
+    config: Any = None,
+    start: Any = None,
+    max_px: int = 2048,
+    min_px: int = 1024,
+    open: bool | None = None,
+    close_gaps_m: float | None = None,
 ) -> tuple[TopDown, Any, Any, list[str], list[LegendEntry]]:
     """A canvas of the map with its drivable corridor, ducts and collision walls drawn (what
     a preview shows before its race marks; drive videos draw on it too): returns the canvas,
-    the extracted corridor geometry, the map, what was drawn and the legend entries."""
+    the extracted corridor geometry, the map, what was drawn and the legend entries. An
+    open map (``open``, see ``extract_corridor``) gets its start pose drawn; the gaps
+    ``close_gaps_m`` closes are marked."""
     from ..builder import parse_start, resolve_config
     from ..corridor import extract_corridor
     from ..maps import load_map
@@ -90,7 +109,9 @@ def map_canvas(
     cfg = resolve_config(config)
     occ = load_map(map_path)
     canvas = TopDown.for_raster(occ.data, occ.resolution, occ.origin, max_px=max_px, min_px=min_px)
-    geo = extract_corridor(occ, params=cfg.geometry_params(), start=parse_start(start))
+    geo = extract_corridor(
+        occ, params=cfg.geometry_params(), start=parse_start(start), open=open, close_gaps_m=close_gaps_m
+    )
     drawn = ["map"]
     legend: list[LegendEntry] = []
     mask = getattr(geo, "corridor_mask", None)
@@ -104,14 +125,27 @@ def map_canvas(
         canvas.polyline(wall, WALL, closed=True, min_px=2)
     drawn += ["ducts", "walls"]
     legend += [LegendEntry("ducts (visible)", DUCT[:3]), LegendEntry("collision walls (invisible)", WALL, "line")]
+    gaps = [g.to_json_dict() for g in geo.closed_gaps]
+    for g in gaps:
+        canvas.points(np.array([[g["x"], g["y"]]]), GAP, radius_px=max(6.0, 0.75 * g["width_m"] * canvas.px_per_m()))
+        canvas.label((g["x"], g["y"]), f"gap {g['width_m']:.2f} m", GAP)
+    if gaps:
+        drawn.append("closed gaps")
+        legend.append(LegendEntry(f"closed gaps ({len(gaps)})", GAP))
+    if geo.kind == "open" and geo.start_pose is not None:
+        x, y, yaw = geo.start_pose
+        canvas.points(np.array([[x, y]]), START, radius_px=6.0)
+        canvas.polyline(np.array([[x, y], [x + np.cos(yaw), y + np.sin(yaw)]]), START, closed=False, min_px=3)
+        drawn.append("open map start")
+        legend.append(LegendEntry("start (open map)", START))
     return canvas, geo, occ, drawn, legend
 
 
-def map_title(name: str, race: dict[str, Any], occ: Any) -> str:
+def map_title(name: str, race: dict[str, Any], occ: Any, open_map: bool = False) -> str:
     """``name: direction, lap length, map size``, the title of a map's picture."""
     h, w = occ.data.shape
     facts = [
-        race.get("direction", "direction unknown"),
+        "open map (walls only, no lap)" if open_map else race.get("direction", "direction unknown"),
         f"lap {race['lap_length_m']:.1f} m" if race else None,
         f"map {w * occ.resolution:.1f} x {h * occ.resolution:.1f} m at {occ.resolution:g} m/cell",
     ]

@@ -38,6 +38,12 @@ impl Progress {
     /// Update after the car moved to `xy` during `elapsed` seconds, having moved at most
     /// `max_move` metres. Returns true when a lap was completed.
     pub fn update(&mut self, c: &Centreline, xy: [f64; 2], elapsed: f64, max_move: f64) -> bool {
+        if c.is_anchor() {
+            // An open map: no reference path, so no progress and no laps (the lap time
+            // is the episode's time).
+            self.lap_time += elapsed;
+            return false;
+        }
         let window = 2.0 + 2.0 * max_move;
         let (segment, s) = c.project_local(xy, self.segment, window);
         let len = c.length();

@@ -19,30 +19,56 @@ use crate::geometry::polyline::cumulative_length;
 pub const MAX_WALL_HEIGHT_M: f64 = 10.0;
 
 /// Closed polyline with cumulative arc length, for projection and interpolation.
+///
+/// Or, for an *open map* (a floor plan with walls but no closed corridor), an *anchor*:
+/// two distinct points, the default start at the first heading to the second. An anchor
+/// has length 0: no progress, no laps; [`Centreline::pose_at`] moves along its heading
+/// (behind it for `s < 0`, where a grid of several cars lines up).
 #[derive(Debug, Clone)]
 pub struct Centreline {
     pts: Vec<[f64; 2]>,
     /// `cum[i]` = arc length at `pts[i]`; `cum[n]` = total length (closing edge included).
     cum: Vec<f64>,
+    /// The start pose (x, y, heading) of an open map's anchor.
+    anchor: Option<[f64; 3]>,
 }
 
 impl Centreline {
-    /// A closed centreline; a repeated closing point is dropped.
+    /// A closed centreline (a repeated closing point is dropped), or an open map's
+    /// anchor when it has exactly two distinct points.
     pub fn new(points: &[[f64; 2]]) -> Result<Self> {
         let pts = dedupe_closed(points);
-        if pts.len() < 3 {
-            return Err(ArenaError::invalid(
-                "centreline needs at least 3 distinct points",
-            ));
-        }
         if pts.iter().flatten().any(|v| !v.is_finite()) {
             return Err(ArenaError::invalid("centreline has non-finite coordinates"));
         }
+        if pts.len() == 2 {
+            let (a, b) = (pts[0], pts[1]);
+            let anchor = Some([a[0], a[1], (b[1] - a[1]).atan2(b[0] - a[0])]);
+            return Ok(Centreline {
+                pts,
+                cum: vec![0.0; 3],
+                anchor,
+            });
+        }
+        if pts.len() < 3 {
+            return Err(ArenaError::invalid(
+                "centreline needs at least 3 distinct points (2 for an open map's start anchor)",
+            ));
+        }
         let cum = cumulative_length(&pts, true);
-        Ok(Centreline { pts, cum })
+        Ok(Centreline {
+            pts,
+            cum,
+            anchor: None,
+        })
     }
 
-    /// Total (closed) length in metres.
+    /// True for an open map's anchor (no lap, no progress).
+    pub fn is_anchor(&self) -> bool {
+        self.anchor.is_some()
+    }
+
+    /// Total (closed) length in metres; 0 for an anchor.
     pub fn length(&self) -> f64 {
         self.cum[self.pts.len()]
     }
@@ -58,6 +84,10 @@ impl Centreline {
 
     /// Pose `(x, y, heading)` at arc length `s` (wrapped into `[0, length)`).
     pub fn pose_at(&self, s: f64) -> [f64; 3] {
+        if let Some([x, y, yaw]) = self.anchor {
+            let s = if s.is_finite() { s } else { 0.0 };
+            return [x + s * yaw.cos(), y + s * yaw.sin(), yaw];
+        }
         let len = self.length();
         let s = if s.is_finite() {
             s.rem_euclid(len)
@@ -100,8 +130,11 @@ impl Centreline {
         )
     }
 
-    /// Nearest point over all segments: (segment index, arc length).
+    /// Nearest point over all segments: (segment index, arc length); (0, 0) on an anchor.
     pub fn project_global(&self, p: [f64; 2]) -> (usize, f64) {
+        if self.is_anchor() {
+            return (0, 0.0);
+        }
         let mut best = (f64::INFINITY, 0usize, 0.0);
         for i in 0..self.pts.len() {
             let (d2, s) = self.project_segment(p, i);
@@ -116,6 +149,9 @@ impl Centreline {
     /// `hint` (the previous projection), so a car never jumps to a neighbouring pass of
     /// the track. Returns (segment index, arc length).
     pub fn project_local(&self, p: [f64; 2], hint: usize, window: f64) -> (usize, f64) {
+        if self.is_anchor() {
+            return (0, 0.0);
+        }
         let n = self.pts.len();
         let hint = hint % n;
         let mut best = {
@@ -270,7 +306,23 @@ mod tests {
         let t = Track::new(&[circle(3.0, 64), circle(1.5, 64)], &circle(2.25, 64), 0.5).unwrap();
         assert_eq!(t.grid.num_segments(), 128);
         assert!(Track::new(&[], &circle(2.0, 8), 0.5).is_err());
-        assert!(Track::new(&[circle(3.0, 8)], &[[0.0, 0.0], [1.0, 0.0]], 0.5).is_err());
+        assert!(Track::new(&[circle(3.0, 8)], &[[0.0, 0.0], [0.0, 0.0]], 0.5).is_err());
+    }
+
+    #[test]
+    fn an_anchor_has_no_length_and_poses_along_its_heading() {
+        let c = Centreline::new(&[[1.0, 2.0], [1.0, 3.0]]).unwrap();
+        assert!(c.is_anchor());
+        assert_eq!(c.length(), 0.0);
+        let p = c.pose_at(-1.0);
+        assert!((p[0] - 1.0).abs() < 1e-12 && (p[1] - 1.0).abs() < 1e-12);
+        assert!((p[2] - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        assert_eq!(c.pose_at(f64::NAN)[1], 2.0);
+        assert_eq!(c.project_global([5.0, 5.0]), (0, 0.0));
+        let mut pr = super::super::progress::Progress::reset(&c, [1.0, 2.0]);
+        assert!(!pr.update(&c, [4.0, 2.0], 0.1, 3.0));
+        assert_eq!((pr.travel, pr.laps), (0.0, 0));
+        assert!((pr.lap_time - 0.1).abs() < 1e-12);
     }
 
     #[test]

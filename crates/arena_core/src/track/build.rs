@@ -39,7 +39,8 @@ pub struct Geometry {
     pub walls: Vec<Polyline>,
     /// Centre lines of the visual ducts (closed).
     pub ducts: Vec<Polyline>,
-    /// Medial centreline: closed, counter-clockwise, evenly resampled.
+    /// Medial centreline: closed, counter-clockwise, evenly resampled; empty for an
+    /// open map (no corridor ring).
     pub centreline: Polyline,
     pub floor: TriMesh,
     pub wall_mesh: TriMesh,
@@ -125,6 +126,17 @@ pub fn build_geometry(
     params: &BuildParams,
     start: Option<[f64; 2]>,
 ) -> Result<Geometry> {
+    build_around(g, params, |g| isolate_corridor(g, start))
+}
+
+/// The pipeline on the drivable region `region` finds. A region with no infield (an
+/// open map's floor, `super::open`) gets walls, ducts and meshes but no centreline
+/// (an empty one).
+pub(super) fn build_around(
+    g: &OccupancyGrid,
+    params: &BuildParams,
+    region: impl FnOnce(&OccupancyGrid) -> Result<Corridor>,
+) -> Result<Geometry> {
     let t_start = Instant::now();
     let mut timings: Vec<(&'static str, f64)> = Vec::new();
     let mut t = Instant::now();
@@ -136,7 +148,8 @@ pub fn build_geometry(
     g.check()?;
     let p = params.effective(g.resolution);
     let res = g.resolution;
-    let corridor = isolate_corridor(g, start)?;
+    let corridor = region(g)?;
+    let ring = corridor.infield.contains(&true);
     lap("corridor", &mut timings);
 
     let radius = p.tube_diameter_m / 2.0;
@@ -201,23 +214,11 @@ pub fn build_geometry(
         .collect();
     lap("ducts", &mut timings);
 
-    let medial = medial_loop(&d_inf, &d_out, cw, ch).ok_or_else(|| {
-        ArenaError::Corridor("no closed centreline found between the inner and outer walls".into())
-    })?;
-    // The medial curve of a raster corridor zig-zags by up to half a cell: smooth it more.
-    let mut centreline = crop.to_world(
-        g,
-        &smooth_closed(&medial, CENTRELINE_SMOOTHING * p.smoothing_iterations),
-    );
-    if signed_area(&centreline) < 0.0 {
-        centreline.reverse();
-    }
-    crate::limits::derived_count(
-        "geometry.centreline_spacing_m",
-        crate::geometry::polyline_length(&centreline, true),
-        p.centreline_spacing_m,
-    )?;
-    let centreline = resample_closed(&centreline, p.centreline_spacing_m);
+    let centreline = if ring {
+        centreline_of(g, &crop, &d_inf, &d_out, &p)?
+    } else {
+        Vec::new()
+    };
     lap("centreline", &mut timings);
 
     if walls.is_empty() {
@@ -288,6 +289,33 @@ pub fn build_geometry(
         timings,
         params: p,
     })
+}
+
+/// The medial loop between infield and outer side, smoothed, counter-clockwise, resampled.
+fn centreline_of(
+    g: &OccupancyGrid,
+    crop: &Crop,
+    d_inf: &[f32],
+    d_out: &[f32],
+    p: &BuildParams,
+) -> Result<Polyline> {
+    let medial = medial_loop(d_inf, d_out, crop.w, crop.h).ok_or_else(|| {
+        ArenaError::Corridor("no closed centreline found between the inner and outer walls".into())
+    })?;
+    // The medial curve of a raster corridor zig-zags by up to half a cell: smooth it more.
+    let mut centreline = crop.to_world(
+        g,
+        &smooth_closed(&medial, CENTRELINE_SMOOTHING * p.smoothing_iterations),
+    );
+    if signed_area(&centreline) < 0.0 {
+        centreline.reverse();
+    }
+    crate::limits::derived_count(
+        "geometry.centreline_spacing_m",
+        crate::geometry::polyline_length(&centreline, true),
+        p.centreline_spacing_m,
+    )?;
+    Ok(resample_closed(&centreline, p.centreline_spacing_m))
 }
 
 /// An upper bound (cells) of the largest disc inside the corridor: at every corridor

@@ -4,5 +4,6 @@ pub mod centreline;
 pub mod corridor;
 pub mod features;
 pub mod metrics;
+pub mod open;
 pub mod params;
 pub mod validate;
