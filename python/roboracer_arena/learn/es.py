@@ -46,6 +46,7 @@ def env_kwargs(cfg: ESConfig, **extra: Any) -> dict[str, Any]:
     """The env configuration the policy is trained and evaluated with."""
     kw: dict[str, Any] = {
         "action_mode": "normalised",
+        "normalised_speed_range": None,  # the policy maps its own speed range (MLPPolicy.act)
         "observation": {"normalise": True, "odometry": ("speed", "steer")},
         "sim": {"lidar": {"num_beams": cfg.num_beams}},
         "collision_ends_episode": True,
