@@ -127,7 +127,7 @@ def train(args: argparse.Namespace) -> int:
     if args.png and curve.rows:
         from roboracer_arena.learn.curve import plot_curve
 
-        title = f"SB3 PPO on {args.track}: {model.num_timesteps} env-steps, {seconds / 60:.0f} min (last 20 episodes)"
+        title = f"SB3 PPO on {args.track}: {model.num_timesteps / 1e3:.0f}k env-steps, {seconds / 60:.0f} min"
         plot_curve(curve.rows, args.png, title)
     if args.json:
         from roboracer_arena.fileio import atomic_write_text
