@@ -33,7 +33,7 @@ class ESConfig:
     sigma: float = 0.1
     learning_rate: float = 0.05
     weight_decay: float = 0.005
-    episode_steps: int = 200
+    episode_steps: int = 300
     hidden: int = 32
     num_beams: int = 54
     min_speed_frac: float = 0.15
