@@ -8,7 +8,7 @@ export PATH := $(abspath $(BIN)):$(PATH)
 # Where the public track data lives (see ../shared/track-sources/SOURCES.md).
 export ROBORACER_ARENA_SOURCES ?= $(abspath ../shared/track-sources)
 
-.PHONY: demo test test-rust test-python test-dev wheel bench lint develop release clean
+.PHONY: demo test test-rust test-python test-dev wheel bench lint develop release clean docs-figures
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -48,6 +48,12 @@ wheel: $(BIN)/python
 bench: release
 	cargo bench -p arena_core --quiet -- --quick
 	$(BIN)/roboracer-arena bench all --json out/bench.json
+
+# Every figure in README.md / BENCHMARKS.md a script produces (ES curve and lap, generalisation
+# table), rerun on the current build and written with their data and pictures (docs/learning/);
+# tests/docs/test_docs_figures.py holds the deterministic ones. Several minutes on 2 cores.
+docs-figures: release
+	$(BIN)/python scripts/docs_figures.py
 
 # Every gate: clippy and rustfmt on the crates; ruff (lint and format), mypy (pydantic
 # plugin) on the package; stubtest checks _core.pyi against the built extension.

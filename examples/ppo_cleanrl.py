@@ -3,6 +3,7 @@
 (one file, torch, no framework). Needs ``pip install torch``; not run in CI.
 
     python examples/ppo_cleanrl.py --track gym-berlin --num-envs 32 --total-steps 2000000
+    python examples/ppo_cleanrl.py --sources DIR       # recorded maps (gym-berlin) from an installed wheel
 
 Env set-up an RL library can use as is: the native vector env (``make_vec`` with
 ``vectorization_mode="vector_entry_point"``), ``observation="normalise"`` (lidar ranges
@@ -15,16 +16,23 @@ expects). Like CleanRL, truncation is treated as termination (no bootstrap).
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 
 import gymnasium as gym
 import numpy as np
-import torch
-import torch.nn as nn
 from gymnasium.vector import AutoresetMode
-from torch.distributions.normal import Normal
 
 import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
+from roboracer_arena.scripting import add_sources_argument, apply_sources, run_script
+
+try:
+    import torch
+    import torch.nn as nn
+    from torch.distributions.normal import Normal
+except ImportError:
+    print("ppo_cleanrl.py: error: needs torch (pip install torch)", file=sys.stderr)
+    sys.exit(2)
 
 
 def parse_args() -> argparse.Namespace:
@@ -44,6 +52,7 @@ def parse_args() -> argparse.Namespace:
     p.add_argument("--vf-coef", type=float, default=0.5)
     p.add_argument("--max-grad-norm", type=float, default=0.5)
     p.add_argument("--num-beams", type=int, default=108, help="lidar beams (fewer = faster)")
+    add_sources_argument(p)
     return p.parse_args()
 
 
@@ -78,8 +87,13 @@ class Agent(nn.Module):
         return action, dist.log_prob(action).sum(1), dist.entropy().sum(1), self.critic(x)
 
 
-def main() -> None:
+def main() -> int:
     args = parse_args()
+    return run_script("ppo_cleanrl.py", lambda: train(args))
+
+
+def train(args: argparse.Namespace) -> None:
+    apply_sources(args.sources)
     torch.manual_seed(args.seed)
     envs = gym.make_vec(
         "RoboRacerArena-v0",
@@ -160,4 +174,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

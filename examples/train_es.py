@@ -5,6 +5,7 @@
     python examples/train_es.py --track generated:gen-l040-* --generations 40
     python examples/train_es.py --png curve.png --json result.json
     python examples/train_es.py --ray auto --ray-actors 2   # rollouts in Ray actors ([ray] extra)
+    python examples/train_es.py --sources DIR         # recorded maps (gym-berlin) from an installed wheel
 
 The trainer (roboracer_arena.learn.es) is ~200 lines of numpy: a 56 -> 32 -> 2 MLP on 54
 lidar beams (clipped to 10 m, scaled to [0, 1]) plus speed and steer, antithetic ES on
@@ -22,6 +23,7 @@ import sys
 from dataclasses import replace
 
 from roboracer_arena.learn import ESConfig, evaluate_laps, train
+from roboracer_arena.scripting import add_sources_argument, apply_sources, run_script
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -36,7 +38,13 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--no-lap", action="store_true", help="skip the final lap evaluation")
     p.add_argument("--ray", metavar="ADDRESS", help="roll out in Ray actors: auto, local or HOST:PORT")
     p.add_argument("--ray-actors", type=int, default=2, metavar="N", help="Ray actors (2 x pairs must divide by N)")
+    add_sources_argument(p)
     args = p.parse_args(argv)
+    return run_script("train_es.py", lambda: _run(args))
+
+
+def _run(args: argparse.Namespace) -> int:
+    apply_sources(args.sources)
     cfg = replace(
         ESConfig(), generations=args.generations, pairs=args.pairs, episode_steps=args.episode_steps, seed=args.seed
     )

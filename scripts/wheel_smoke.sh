@@ -102,6 +102,17 @@ if ROBORACER_ARENA_SOURCES= "$BIN/roboracer-arena" drive racetracks-spa 2> err.t
 fi
 grep -q ROBORACER_ARENA_SOURCES err.txt && sed 's/^/   /' err.txt
 
+step "examples/train_es.py from the wheel, outside the checkout (a short run, then without the sources)"
+"$BIN/python" "$ROOT/examples/train_es.py" --generations 2 --pairs 4 --episode-steps 20 --no-lap | tail -n 1
+if ROBORACER_ARENA_SOURCES= "$BIN/python" "$ROOT/examples/train_es.py" --generations 1 2> err.txt; then
+    echo "train_es.py on gym-berlin without the sources should fail" >&2; exit 1
+fi
+if [[ $(wc -l < err.txt) != 1 ]] || ! grep -q ROBORACER_ARENA_SOURCES err.txt; then
+    echo "train_es.py without the sources should say so in one line naming ROBORACER_ARENA_SOURCES:" >&2
+    cat err.txt >&2; exit 1
+fi
+sed 's/^/   /' err.txt
+
 step "smoke test passed"
 if [[ "$RUN_PYTEST" == 1 ]]; then
     # Last, so pytest's summary line closes the output.

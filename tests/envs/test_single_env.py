@@ -60,7 +60,7 @@ def test_same_seed_same_observations(oval):
 
 @pytest.mark.parametrize("mode", ["ackermann", "normalised"])
 def test_bad_actions_are_clipped_never_nan(oval, mode):
-    env = make(oval, action_mode=mode, reset_poses="grid")
+    env = make(oval, action_mode=mode, reset_poses="grid", normalised_speed_range=None)  # stop at 0
     env.reset(seed=0)
     for a in ([np.nan, np.nan], [np.inf, -np.inf], [-1e9, 1e9], [np.nan, 1.0], [5.0, 50.0]):
         obs, reward, *_ = env.step(np.array(a, np.float32))
@@ -74,7 +74,8 @@ def test_bad_actions_are_clipped_never_nan(oval, mode):
 
 
 def test_normalised_action_mapping(oval):
-    env = make(oval, action_mode="normalised")
+    """The piecewise map (normalised_speed_range=None); the default range: tests/envs/test_reward.py."""
+    env = make(oval, action_mode="normalised", normalised_speed_range=None)
     veh = env.config.sim.vehicle
     b = env._batch
     b.set_actions([0.5, 0.0])
@@ -87,7 +88,7 @@ def test_normalised_action_mapping(oval):
 
 
 def test_progress_reward_and_rest(oval):
-    env = make(oval, reset_poses="grid", time_limit_s=None)
+    env = make(oval, reset_poses="grid", time_limit_s=None, reward={"stall_penalty": 0.0})  # progress only
     env.reset(seed=0)
     rest = sum(env.step(np.array([0.0, 0.0], np.float32))[1] for _ in range(10))
     assert abs(rest) < 0.02  # a car at rest makes no progress

@@ -124,6 +124,9 @@ class SimBatch:
         veh, lid = config.sim.vehicle, config.sim.lidar
         self._lo = np.array([-veh.max_steer, veh.min_speed])
         self._hi = np.array([veh.max_steer, veh.max_speed])
+        frac = config.normalised_speed_range
+        #: (low, high) m/s of normalised speed actions -1 and +1, or None for the piecewise map.
+        self._speed_range = None if frac is None else (frac[0] * veh.max_speed, frac[1] * veh.max_speed)
         self._scalar_actions = E * V == 1
         self._bounds = (tuple(self._lo.tolist()), tuple(self._hi.tolist()))
         # "travel" (signed metres along the centreline since reset, wrap handled natively)
@@ -148,6 +151,7 @@ class SimBatch:
             length=self._len.reshape(-1),
         )
         self._reward = config.reward
+        self._stall_ds = config.reward.stall_speed * config.control_dt  # progress per step below which a car stalls
         self._wrong_way_distance = config.wrong_way_distance
         # The scanner runs at its own rate: under a faster control loop the observation
         # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control
@@ -202,7 +206,11 @@ class SimBatch:
             n = np.clip(a, -1.0, 1.0)
             out[..., 0] = n[..., 0] * self._hi[0]
             sp = n[..., 1]
-            out[..., 1] = np.where(sp >= 0.0, sp * self._hi[1], -sp * self._lo[1])
+            if self._speed_range is None:
+                out[..., 1] = np.where(sp >= 0.0, sp * self._hi[1], -sp * self._lo[1])
+            else:
+                lo, hi = self._speed_range
+                out[..., 1] = lo + (hi - lo) * 0.5 * (sp + 1.0)
         if np.isnan(out).any():
             out[np.isnan(out)] = 0.0
 
@@ -210,10 +218,12 @@ class SimBatch:
         """Convert [steer rad, speed m/s] commands to this env's action mode (float32)."""
         c = np.clip(np.asarray(cmds, dtype=np.float64), self._lo, self._hi)
         if self.config.action_mode == "normalised":
-            c = np.stack(
-                [c[..., 0] / self._hi[0], np.where(c[..., 1] >= 0, c[..., 1] / self._hi[1], -c[..., 1] / self._lo[1])],
-                axis=-1,
-            )
+            if self._speed_range is None:
+                v = np.where(c[..., 1] >= 0, c[..., 1] / self._hi[1], -c[..., 1] / self._lo[1])
+            else:  # speeds outside the range map to its ends
+                lo, hi = self._speed_range
+                v = np.clip(2.0 * (c[..., 1] - lo) / (hi - lo) - 1.0, -1.0, 1.0)
+            c = np.stack([c[..., 0] / self._hi[0], v], axis=-1)
         return c.astype(np.float32)
 
     # ------------------------------------------------------------------ reset
@@ -337,6 +347,8 @@ class SimBatch:
         r = self.config.reward
         vr = self.vehicle_rewards
         np.multiply(ds, r.progress, out=vr)
+        if r.stall_penalty:
+            vr -= (r.stall_penalty * self.config.control_dt) * (ds < self._stall_ds)
         if r.time_penalty:
             vr -= r.time_penalty * self.config.control_dt
         ends = self.vehicle_terminated
@@ -384,6 +396,8 @@ class SimBatch:
         f.elapsed[0] = elapsed
         r = self._reward
         reward = ds * r.progress
+        if r.stall_penalty and ds < self._stall_ds:
+            reward -= r.stall_penalty * self.config.control_dt
         if r.time_penalty:
             reward -= r.time_penalty * self.config.control_dt
         end = False

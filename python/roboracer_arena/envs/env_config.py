@@ -78,16 +78,37 @@ class ObservationConfig(NumbersAreNumbers):
 
 
 class RewardConfig(NumbersAreNumbers):
-    """Per vehicle and step: ``progress * Δs − collision_penalty * [contact] − time_penalty * dt``.
+    """Per vehicle and step of ``dt`` seconds::
+
+        progress * Δs
+        − stall_penalty * dt * [Δs < stall_speed * dt]
+        − time_penalty * dt
+        − collision_penalty * [contact]
+        − wrong_way_penalty * [wrong way]
 
     Δs is the signed progress along the centreline (m) during the step, wrapped at the lap.
     An env's reward is the sum over its vehicles (the per-vehicle terms are in ``info``).
+
+    The stall term makes standing still worse than driving: a car making less than
+    ``stall_speed`` m/s of progress pays ``stall_penalty`` per second, so a parked car loses
+    120 per 120 s episode while a slow driver gains its metres (before it, parking scored 0,
+    above any run that ended in a crash: PPO learned to park). ``stall_penalty=0`` restores
+    the old reward.
     """
 
     model_config = _FROZEN
 
     progress: float = Field(1.0, description="Weight of centreline progress (per metre).")
     collision_penalty: float = Field(10.0, ge=0, description="Subtracted on a step with a wall or vehicle contact.")
+    stall_penalty: float = Field(
+        1.0,
+        ge=0,
+        description="Subtracted per second while the vehicle makes less than stall_speed of centreline "
+        "progress (parked, crawling or going backwards); 0 turns it off (the reward before stall_penalty).",
+    )
+    stall_speed: float = Field(
+        0.5, ge=0, description="Progress rate (m/s along the centreline) below which stall_penalty applies."
+    )
     time_penalty: float = Field(0.0, ge=0, description="Subtracted per second of simulated time.")
     wrong_way_penalty: float = Field(0.0, ge=0, description="Subtracted on each step the vehicle drives the wrong way.")
 
@@ -159,7 +180,14 @@ class EnvConfig(NumbersAreNumbers):
     action_mode: Literal["ackermann", "normalised"] = Field(
         "ackermann",
         description="'ackermann': [steer (rad), speed (m/s)] like /drive; 'normalised': both in [-1, 1] "
-        "(steer * max_steer; speed piecewise linear: -1 -> min_speed, 0 -> stop, 1 -> max_speed).",
+        "(steer * max_steer; speed: see normalised_speed_range).",
+    )
+    normalised_speed_range: tuple[float, float] | None = Field(
+        (0.15, 0.7),
+        description="action_mode='normalised': the speeds, as fractions of sim.vehicle.max_speed, that speed "
+        "actions -1 and +1 map to (linear in between; the default 1.05-4.9 m/s cannot stop or reverse, so a "
+        "zero-mean policy starts by driving). None: the mapping before this option, piecewise linear "
+        "-1 -> min_speed (reverse), 0 -> stop, 1 -> max_speed.",
     )
     observation: ObservationConfig = Field(default_factory=ObservationConfig)
     reward: RewardConfig = Field(default_factory=RewardConfig)
@@ -219,6 +247,18 @@ class EnvConfig(NumbersAreNumbers):
             raise ValueError(
                 f"start_speed_noise {self.start_speed_noise} exceeds max_speed {self.sim.vehicle.max_speed}"
             )
+        return self
+
+    @model_validator(mode="after")
+    def _speed_range(self) -> EnvConfig:
+        r = self.normalised_speed_range
+        if r is not None:
+            floor = self.sim.vehicle.min_speed / self.sim.vehicle.max_speed
+            if not floor <= r[0] < r[1] <= 1.0:
+                raise ValueError(
+                    f"normalised_speed_range must be (low, high) fractions of max_speed with "
+                    f"{floor:g} <= low < high <= 1, got {r}"
+                )
         return self
 
     @property

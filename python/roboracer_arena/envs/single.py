@@ -8,8 +8,9 @@ Spaces (``V`` = vehicles per env; the vehicle axis is dropped when ``V == 1``):
   out-of-range values are clipped to the bounds. The observation never holds NaN.
 * observation: ``Dict(scan=(V, B) ranges, odometry=(V, K))`` as configured in
   :class:`~roboracer_arena.envs.env_config.ObservationConfig`.
-* reward: progress along the centreline (m) minus a collision penalty (and a wrong-way
-  penalty if set), summed over the env's vehicles; ``terminated`` on a contact (if
+* reward: progress along the centreline (m) minus a stall cost (per second below
+  ``stall_speed`` m/s of progress), a collision penalty (and time and wrong-way penalties
+  if set; see :class:`~.env_config.RewardConfig`), summed over the env's vehicles; ``terminated`` on a contact (if
   ``collision_ends_episode``) or wrong-way driving (if ``wrong_way_ends_episode``),
   ``truncated`` at the episode limit (see :mod:`.episode_limit`).
 

@@ -106,6 +106,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         self._seeded = False
         self._all = np.ones(self.num_envs, bool)
         self._spec: Any = None
+        self._track_names = np.array([t.name for t in self.tracks], dtype=object)
 
     @property
     def spec(self) -> Any:
@@ -197,6 +198,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         info = self._batch.info()
         if self._squeeze:
             info = {k: (v[:, 0] if v.ndim == 2 else v) for k, v in info.items()}
+        info["track"] = self._track_names[info["track_id"]]  # the single env's "track", per env
         return self._masked(info, self._all)
 
     @staticmethod

@@ -33,7 +33,7 @@ class ESConfig:
     sigma: float = 0.1
     learning_rate: float = 0.05
     weight_decay: float = 0.005
-    episode_steps: int = 200
+    episode_steps: int = 300
     hidden: int = 32
     num_beams: int = 54
     min_speed_frac: float = 0.15
@@ -46,6 +46,7 @@ def env_kwargs(cfg: ESConfig, **extra: Any) -> dict[str, Any]:
     """The env configuration the policy is trained and evaluated with."""
     kw: dict[str, Any] = {
         "action_mode": "normalised",
+        "normalised_speed_range": None,  # the policy maps its own speed range (MLPPolicy.act)
         "observation": {"normalise": True, "odometry": ("speed", "steer")},
         "sim": {"lidar": {"num_beams": cfg.num_beams}},
         "collision_ends_episode": True,

@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+"""Regenerate every figure in README.md and BENCHMARKS.md that a script produces, from the
+current build (``make docs-figures``), and check the docs against their data.
+
+    python scripts/docs_figures.py                 # run everything, write data, pictures and doc blocks
+    python scripts/docs_figures.py --only es       # only the README's ES figures (about a minute)
+    python scripts/docs_figures.py --check         # docs blocks == their committed data (no training)
+
+Each figure has a data file under docs/learning/ (JSON), maybe a picture beside it, and a
+block in a doc between ``<!-- docs-figures:NAME -->`` and ``<!-- /docs-figures:NAME -->``
+that is rendered from the data alone (never edit inside a block). The deterministic parts
+of the data (learning curves, lap results, clean-lap rates) are reproduced and compared by
+tests/docs/test_docs_figures.py; wall and CPU times are measurements and are not.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+LEARNING = ROOT / "docs" / "learning"
+ES_TRACK = "gym-berlin"
+
+
+def _timed(body: Callable[[], Any]) -> tuple[Any, dict[str, float]]:
+    load = os.getloadavg()[0]
+    t0, c0 = time.perf_counter(), time.process_time()
+    out = body()
+    timing = {
+        "wall_seconds": round(time.perf_counter() - t0, 1),
+        "cpu_seconds": round(time.process_time() - c0, 1),
+        "load_average": round((load + os.getloadavg()[0]) / 2, 1),
+    }
+    return out, timing
+
+
+# ---------------------------------------------------------------- ES on Berlin (README)
+def es_data() -> dict[str, Any]:
+    """``examples/train_es.py`` with its defaults on gym-berlin: curve, lap, parameters."""
+    from roboracer_arena.learn import ESConfig, evaluate_laps, train
+
+    cfg = ESConfig()
+    result, timing = _timed(lambda: train(ES_TRACK, cfg))
+    doc = result.summary()
+    doc["laps"] = evaluate_laps(result.theta, ES_TRACK, cfg)
+    doc["timing"] = timing
+    doc["theta"] = [float(x) for x in result.theta]
+    return doc
+
+
+def es_deterministic(doc: dict[str, Any]) -> dict[str, Any]:
+    """What must reproduce exactly on the same build: the curve (timings dropped) and the laps."""
+    return {
+        "curve": [{k: r[k] for k in ("generation", "mean_return", "max_return", "env_steps")} for r in doc["curve"]],
+        "laps": doc["laps"],
+    }
+
+
+def es_picture(doc: dict[str, Any]) -> None:
+    from roboracer_arena.learn.curve import plot_curve
+
+    secs = doc["timing"]["wall_seconds"]
+    plot_curve(
+        doc["curve"], LEARNING / "es_berlin.png", f"ES on {ES_TRACK}: {doc['env_steps']} env-steps, {secs:.0f} s"
+    )
+
+
+def es_block(doc: dict[str, Any]) -> str:
+    lap = doc["laps"][0]
+    t, gens = doc["timing"], len(doc["curve"])
+    verdict = (
+        f"the policy lapped Berlin cleanly from the grid start in {lap['lap_time']:.2f} s"
+        if lap["clean_lap"]
+        else f"the policy did not lap Berlin cleanly ({lap['progress']:.1f} m from the grid start)"
+    )
+    return (
+        f"{gens} generations ({doc['env_steps'] / 1e3:.0f}k env-steps, default reward) took {t['wall_seconds']:.0f} s "
+        f"of wall time ({t['cpu_seconds']:.0f} s CPU) on the shared 2-core machine (load average about "
+        f"{t['load_average']:.1f}), and {verdict}:\n\n"
+        f"![ES learning curve on Berlin](docs/learning/es_berlin.png)\n"
+    )
+
+
+# ---------------------------------------------------------------- generalisation (BENCHMARKS)
+def generalisation_data() -> dict[str, Any]:
+    """``roboracer-arena bench generalisation`` with its defaults."""
+    from roboracer_arena.bench import generalisation
+
+    res, timing = _timed(lambda: generalisation.run())
+    doc = res.model_dump(mode="json")
+    doc["timing"] = timing
+    return doc
+
+
+def generalisation_deterministic(doc: dict[str, Any]) -> dict[str, Any]:
+    keep = ("condition", "seed", "env_steps", "final_mean_return", "laps")
+    return {"summary": doc["summary"], "runs": [{k: r[k] for k in keep} for r in doc["runs"]]}
+
+
+def generalisation_block(doc: dict[str, Any]) -> str:
+    t, s, seeds = doc["timing"], doc["summary"], doc["seeds"]
+    laps = len(doc["held_out"]) * seeds
+    names = {"single": f"one track ({doc['single']})", "pool": "pool (" + " + ".join(doc["pool"]) + ")"}
+    rows = [
+        f"| {names[k]} | {v['mean_env_steps']:,} | **{v['clean_lap_rate']:.2f}** | "
+        + ("–" if v["mean_lap_time_s"] is None else f"{v['mean_lap_time_s']:.2f} s")
+        + " |"
+        for k, v in s.items()
+    ]
+    per = "; ".join(
+        f"{k} — " + ", ".join(f"{track} {n}" for track, n in v["clean_laps_per_track"].items()) for k, v in s.items()
+    )
+    return (
+        f"Whole command: {t['wall_seconds'] / 60:.1f} min wall, {t['cpu_seconds'] / 60:.1f} min CPU on the shared "
+        f"2-core machine (load average about {t['load_average']:.1f}; pool start-up included).\n\n"
+        f"| condition | env-steps/run | clean-lap rate ({laps} laps) | mean lap time of clean laps |\n"
+        f"|---|---:|---:|---:|\n" + "\n".join(rows) + "\n\n"
+        f"Per held-out map (clean laps / {seeds} seeds): {per}.\n"
+    )
+
+
+# ---------------------------------------------------------------- the registry
+FIGURES: dict[str, dict[str, Any]] = {
+    "es": {
+        "data": LEARNING / "es_berlin.json",
+        "run": es_data,
+        "picture": es_picture,
+        "deterministic": es_deterministic,
+        "blocks": [("README.md", "es-berlin", es_block)],
+    },
+    "generalisation": {
+        "data": LEARNING / "generalisation.json",
+        "run": generalisation_data,
+        "picture": None,
+        "deterministic": generalisation_deterministic,
+        "blocks": [("BENCHMARKS.md", "generalisation", generalisation_block)],
+    },
+}
+
+
+def _block_re(name: str) -> re.Pattern[str]:
+    return re.compile(rf"(<!-- docs-figures:{name} [^\n]*-->\n)(.*?)(<!-- /docs-figures:{name} -->)", re.S)
+
+
+def read_data(key: str) -> dict[str, Any]:
+    return json.loads(Path(FIGURES[key]["data"]).read_text())
+
+
+def check(keys: list[str] | None = None) -> list[str]:
+    """Problems: a doc block missing, or different from the rendering of its committed data."""
+    problems = []
+    for key in keys or list(FIGURES):
+        doc = read_data(key)
+        for file, name, render in FIGURES[key]["blocks"]:
+            m = _block_re(name).search((ROOT / file).read_text())
+            if m is None:
+                problems.append(f"{file}: no docs-figures:{name} block")
+            elif m.group(2) != render(doc):
+                problems.append(
+                    f"{file}: block {name} differs from {FIGURES[key]['data'].name} (run make docs-figures)"
+                )
+    return problems
+
+
+def write_blocks(key: str, doc: dict[str, Any]) -> None:
+    from roboracer_arena.fileio import atomic_write_text
+
+    for file, name, render in FIGURES[key]["blocks"]:
+        path = ROOT / file
+        body = render(doc)
+        text, n = _block_re(name).subn(lambda m, body=body: m.group(1) + body + m.group(3), path.read_text())
+        if n != 1:
+            raise SystemExit(f"docs_figures.py: {file} needs exactly one docs-figures:{name} block, found {n}")
+        atomic_write_text(path, text)
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--only", choices=list(FIGURES), action="append", help="only these figures (repeatable)")
+    p.add_argument("--check", action="store_true", help="only compare the doc blocks with the committed data")
+    args = p.parse_args(argv)
+    keys = args.only or list(FIGURES)
+    if args.check:
+        problems = check(keys)
+        for line in problems:
+            print(f"docs_figures.py: {line}", file=sys.stderr)
+        return 1 if problems else 0
+    from roboracer_arena.fileio import atomic_write_text
+
+    for key in keys:
+        fig = FIGURES[key]
+        print(f"== {key}", flush=True)
+        doc = fig["run"]()
+        atomic_write_text(fig["data"], json.dumps(doc, indent=1) + "\n")
+        if fig["picture"]:
+            fig["picture"](doc)
+        write_blocks(key, doc)
+        print(f"   {fig['data'].relative_to(ROOT)}: {json.dumps(doc['timing'])}", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
