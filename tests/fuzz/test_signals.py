@@ -142,7 +142,7 @@ def test_a_signal_during_tracks_generate_leaves_the_library_whole(library, tmp_p
     sweep = tmp_path / "s.json"
     sweep.write_text(json.dumps({**SWEEP, "base_seed": 4 + run}))
     before, sweep_before = _tree(lib), sweep.read_bytes()
-    args = ["tracks", "generate", "--sweep", "s.json", "--count", "200", "-o", "lib", "--jobs", "1"]
+    args = ["tracks", "generate", "--sweep", "s.json", "--count", "5000", "-o", "lib", "--jobs", "1"]
     t0 = time.time()
 
     def started() -> bool:  # a track of this run is written, wherever this code writes it
