@@ -10,9 +10,18 @@ request states; the rest keep these defaults.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
-from pydantic import ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import (
+    ConfigDict,
+    Field,
+    SerializationInfo,
+    SerializerFunctionWrapHandler,
+    ValidationError,
+    field_validator,
+    model_serializer,
+    model_validator,
+)
 
 from .errors import ArenaError, SpecError
 from .fileio import parse_json, read_text
@@ -110,6 +119,16 @@ class TrackSpec(NumbersAreNumbers):
         if isinstance(v, bool):
             raise ValueError("must be a finite number (metres or a count), not a boolean")
         return v
+
+    @model_serializer(mode="wrap")
+    def _leave_out_an_unset_cap(self, handler: SerializerFunctionWrapHandler, info: SerializationInfo) -> Any:
+        # Specs written before the cap existed stay byte for byte what they were (the
+        # packaged library and every spec.json users keep): in JSON an unstated cap is left
+        # out (it reads back as None); Python dumps keep every field.
+        data = handler(self)
+        if info.mode_is_json() and isinstance(data, dict) and data.get("max_straight_m", 0) is None:
+            del data["max_straight_m"]
+        return data
 
     @field_validator("name")
     @classmethod

@@ -20,7 +20,7 @@ from roboracer_arena.maps import OccupancyMap
 
 def test_time_budget_stops_a_2km_search_promptly():
     t0 = time.perf_counter()
-    out = generate_track(TrackSpec(lap_length_m=2000, hall_x_m=100, hall_y_m=100), timeout=0.5)
+    out = generate_track(TrackSpec(lap_length_m=2000, hall_x_m=100, hall_y_m=100), timeout=0.5, suggest_timeout=None)
     assert time.perf_counter() - t0 < 5
     assert isinstance(out, GenerationFailure) and out.stopped == "timeout"
     assert "time budget" in out.summary()

@@ -75,7 +75,7 @@ def test_every_check_reports_measured_bound_and_verdict(tmp_path):
     } <= names
     for c in report["checks"]:
         assert c["measured"] and c["bound"] and c["passed"] is True
-    assert json.loads(paths["spec_json"].read_text()) == SMALL.model_dump()
+    assert json.loads(paths["spec_json"].read_text()) == SMALL.model_dump(mode="json")
     # The written map loads back and re-validates to the same verdict.
     again, _ = validate_map(load_map(paths["map_yaml"]), SMALL)
     assert again.valid and [c.measured for c in again.checks] == [c["measured"] for c in report["checks"]]

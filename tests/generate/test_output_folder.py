@@ -44,7 +44,7 @@ def test_out_naming_a_file_exits_2_with_one_line(tmp_path, capsys):
     target.write_text("keep me")
     assert main(["generate", "--spec", str(_spec_file(tmp_path)), "-o", str(target)]) == 2
     err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "exists and is not a directory" in err
+    assert len(err.splitlines()) == 1 and "is not a directory" in err
     assert target.read_text() == "keep me"
 
 
