@@ -181,7 +181,7 @@ def _wheel_damping(sim: SimConfig) -> float:
     """Wheel damping rate (N m s/rad per wheel): PhysX's only speed-dependent loss on a
     basic-drive wheel, set so that at :data:`RESISTANCE_SPEED` it resists as much as our
     rolling resistance plus aerodynamic drag. (The former fixed 0.0025 cost 16 N at
-    4.5 m/s, ten times ours: the car topped out there on a 5 m/s command.)"""
+    4.5 m/s, 14 times ours: the car topped out there on a 5 m/s command.)"""
     v, g = sim.vehicle, 9.81
     force = v.rolling_resistance * v.mass * g + 0.5 * 1.2 * v.drag_area * RESISTANCE_SPEED**2
     omega = RESISTANCE_SPEED / v.wheel_radius
