@@ -35,8 +35,8 @@ def test_the_car_laps_berlin_in_physx(sources, tmp_path):
     physx = drive_physx_lap(stage_path, track, max_seconds=60.0)
     ours = drive_native_lap(track, max_seconds=60.0)
     assert physx.completed and ours.completed, (physx, ours)
-    # Same car, same driver, two engines: lap times within 15 % (measured 4 %), and the PhysX
-    # car keeps close to the line (measured 0.31 m at worst).
+    # Same car, same driver, two engines: lap times within 15 % (measured 1.4 %), and the PhysX
+    # car keeps close to the line (measured 0.29 m at worst).
     assert abs(physx.lap_time_s - ours.lap_time_s) <= 0.15 * ours.lap_time_s, (physx, ours)
     assert physx.max_deviation_m < 0.6 and physx.steps_per_second > 0
     # The sensor's own chassis does not blind the PhysX lidar; the stage with the car still holds.
