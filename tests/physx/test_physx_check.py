@@ -1,6 +1,6 @@
 """The stages ``build`` writes, loaded in PhysX (ovphysx, CPU): single-sided PhysX lidar
 parity with our scan and car-sized bodies that stay in the corridor, on a recorded map,
-a circuit and a generated track (issue #23). The control: the same stage with its wall
+a circuit and a generated track (issue #23), and an open map (levine's floor plan). The control: the same stage with its wall
 winding reversed (main's winding before the fix) must fail the check.
 
 Needs the ``physx`` extra; CI installs it (WHEEL_EXTRAS), locally the tests skip without it.
@@ -103,3 +103,51 @@ def test_cli_json_and_exit_codes(berlin_stage, tmp_path, capsys):
     (tmp_path / "plain.usda").write_text('#usda 1.0\ndef Xform "World" {}\n')
     assert main(["physx-check", str(tmp_path / "plain.usda")]) == 2
     assert "not a roboracer-arena stage" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def levine_stage(sources, tmp_path_factory):
+    """An open map: levine's hallways leak to the map border, so ``build`` makes it a floor plan."""
+    return _build(
+        sources / "f1tenth-gym-ros" / "maps" / "levine.yaml", tmp_path_factory.mktemp("levine") / "levine.usdc"
+    )
+
+
+def test_open_map_holds_in_physx(levine_stage, tmp_path):
+    from roboracer_arena.physx.check import check_stage, track_of_stage
+
+    track = track_of_stage(levine_stage)
+    assert track.is_open and track.source.start_pose == (0.0, 0.0, 0.0)  # the build's start, not a re-guess
+    report = check_stage(levine_stage, points=4, seconds=1.2)
+    assert report.map_kind == "open"
+    assert report.lidar.fraction >= 0.99 and report.lidar.pose == (0.0, 0.0, 0.0), report.summary()
+    assert report.containment.points == 4
+    assert report.containment.contained == report.containment.bodies == 4 * 8 * 3, report.summary()
+    assert report.ok and "free region" in report.summary()
+    # every station lies in the building, beside its walls, not on the empty margin by the map edge
+    from roboracer_arena.physx.check import probe_plan
+    from roboracer_arena.physx.open_probes import FreeRegion
+    from roboracer_arena.sim_config import SimConfig
+
+    free = FreeRegion.of_geometry(track.source, (0.0, 0.0))
+    xy = np.array(sorted({(x, y) for _, x, y, *_ in probe_plan(track, SimConfig(), 4, free)}))
+    assert len(xy) == 4 and np.abs(xy).max() < 30.0
+    assert (track.clearance(xy) > 0.5 * np.hypot(0.55, 0.29)).all()
+    # the controls: walls facing away fail the lidar (levine's walls are thin, so the far
+    # face of each still stops the bodies); with no collision walls at all the bodies escape
+    bad = check_stage(_reverse_wall_winding(levine_stage, tmp_path / "reversed.usdc"), points=1, seconds=0.5)
+    assert not bad.ok and bad.lidar.fraction < 0.5, bad.summary()
+    bad = check_stage(_without_walls(levine_stage, tmp_path / "no-walls.usdc"), points=2, seconds=1.2)
+    assert not bad.ok and bad.containment.contained < bad.containment.bodies, bad.summary()
+    assert all(e.start_xy is not None for e in bad.containment.escapes)
+    assert {e.reason for e in bad.containment.escapes} <= {"left the free region", "passed through a wall"}
+
+
+def _without_walls(src, dst):
+    """Copy a stage without its collision walls."""
+    from pxr import Usd
+
+    stage = Usd.Stage.Open(str(src))
+    stage.RemovePrim("/World/Track/Walls")
+    stage.GetRootLayer().Export(str(dst))
+    return dst

@@ -1,8 +1,8 @@
 """``roboracer-arena physx-check STAGE.usdc``: load a built stage in PhysX (ovphysx, CPU)
 and check that it holds: a single-sided PhysX lidar scan from the env's grid start equals
 our scan (at least 99 % of the beams within 1 cm), car-sized bodies sent at the walls at
-speeds up to the car's top speed all stay in the corridor and above the floor; reports the
-load time. Exit 0 when every part holds, 6 when one does not, 2 for bad input or a
+speeds up to the car's top speed all stay in the corridor and above the floor (on an open
+map: in the free region, from stations spread over the floor plan); reports the load time. Exit 0 when every part holds, 6 when one does not, 2 for bad input or a
 missing ``physx`` extra (pip install 'roboracer-arena[physx]')."""
 
 from __future__ import annotations

@@ -12,6 +12,12 @@ Loads the stage in PhysX (ovphysx, CPU) and measures what an Isaac Sim user reli
 
 The track our env drives is rebuilt from the stage's own metadata (source map and build
 configuration), so both sides see the walls of the same build.
+
+An open map (``map_kind`` "open" in the metadata: walls only, no centreline) is rebuilt
+as the build made it (the same start and ``unknown_cells``); our scan is taken at the
+env's start on it, the probes start from free points with room for the box spread over
+the floor plan, and "inside" is the free region connected to the start
+(:mod:`.open_probes`).
 """
 
 from __future__ import annotations
@@ -30,6 +36,7 @@ from pydantic import Field
 from ..errors import ConfigError, MapIOError
 from ..frozen_model import FrozenModel
 from ..sim_config import SimConfig
+from .open_probes import FreeRegion, crosses_walls, open_stations
 from .runtime import PhysxScene, require
 
 #: A beam agrees when PhysX and our lidar differ by at most this (m).
@@ -57,7 +64,8 @@ class LidarParity(FrozenModel):
 class Escape(FrozenModel):
     """One probe body that left the corridor."""
 
-    s_m: float = Field(description="Arc length of its start point along the centreline.")
+    s_m: float = Field(description="Arc length of its start point along the centreline (0 on an open map).")
+    start_xy: tuple[float, float] | None = Field(None, description="Its start point (map frame, m).")
     angle_deg: float = Field(description="Direction relative to the track heading.")
     speed_m_s: float
     final_xyz: tuple[float, float, float]
@@ -81,6 +89,7 @@ class PhysxCheckReport(FrozenModel):
     """The whole check; ``ok`` only when every part holds."""
 
     stage: str
+    map_kind: str = Field("track", description="'track' (a closed corridor) or 'open' (an open map).")
     physx_version: str
     load_seconds: float
     lidar: LidarParity
@@ -91,17 +100,22 @@ class PhysxCheckReport(FrozenModel):
     def summary(self) -> str:
         """Human-readable lines."""
         lid, con = self.lidar, self.containment
+        region = "free region" if self.map_kind == "open" else "corridor"
+        where = "stations over the floor plan" if self.map_kind == "open" else "points"
         lines = [
-            f"stage {self.stage} in PhysX {self.physx_version} (CPU): loaded in {self.load_seconds:.2f} s",
+            f"stage {self.stage} ({'open map' if self.map_kind == 'open' else 'track'}) in PhysX {self.physx_version} (CPU): loaded in {self.load_seconds:.2f} s",
             f"lidar parity: {lid.within_tolerance}/{lid.beams} single-sided beams within "
             f"{BEAM_TOLERANCE_M * 100:.0f} cm of our scan ({lid.fraction:.2%}, need {MIN_BEAM_FRACTION:.0%}; "
             f"max error {lid.max_abs_error_m:.4f} m) {'ok' if lid.ok else 'FAILED'}",
-            f"containment: {con.contained}/{con.bodies} car-sized bodies stayed in the corridor "
-            f"({con.points} points x {len(con.angles_deg)} angles x speeds {con.speeds_m_s} m/s, "
+            f"containment: {con.contained}/{con.bodies} car-sized bodies stayed in the {region} "
+            f"({con.points} {where} x {len(con.angles_deg)} angles x speeds {con.speeds_m_s} m/s, "
             f"{con.seconds_simulated:.1f} s) {'ok' if con.ok else 'FAILED'}",
         ]
         lines += [
-            f"  escaped: s={e.s_m:.1f} m angle={e.angle_deg:+.0f} deg {e.speed_m_s:.1f} m/s -> {e.reason} "
+            f"  escaped: from ({e.start_xy[0]:.2f}, {e.start_xy[1]:.2f}) angle={e.angle_deg:+.0f} deg "
+            f"{e.speed_m_s:.1f} m/s -> {e.reason} at ({e.final_xyz[0]:.2f}, {e.final_xyz[1]:.2f}, {e.final_xyz[2]:.2f})"
+            if self.map_kind == "open" and e.start_xy is not None
+            else f"  escaped: s={e.s_m:.1f} m angle={e.angle_deg:+.0f} deg {e.speed_m_s:.1f} m/s -> {e.reason} "
             f"at ({e.final_xyz[0]:.2f}, {e.final_xyz[1]:.2f}, {e.final_xyz[2]:.2f})"
             for e in con.escapes[:5]
         ]
@@ -111,11 +125,13 @@ class PhysxCheckReport(FrozenModel):
 
 def track_of_stage(stage_path: str | Path) -> Any:
     """The :class:`~roboracer_arena.track.Track` of a built stage (source map and build
-    configuration from its metadata), in the map's racing direction."""
+    configuration from its metadata), in the map's racing direction. An open map's stage
+    (``map_kind`` "open") gives the open map the build made: the same start pose and
+    ``unknown_cells``; its ``source`` is the corridor geometry (raster and free mask)."""
     from ..build_config import BuildConfig
     from ..corridor import extract_corridor
     from ..direction import direction_for_map
-    from ..track import Track
+    from ..track import Track, _from_corridor
     from ..usd import open_stage, stage_metadata
 
     path = Path(stage_path)
@@ -128,6 +144,12 @@ def track_of_stage(stage_path: str | Path) -> Any:
         raise MapIOError(f"{path}: the stage's source map {src} is not readable here (needed for our env's scan)")
     cfg = BuildConfig.from_dict(json.loads(str(cfg_json)), source=f"{path} metadata")
     start = meta.get("start")
+    if meta.get("map_kind") == "open":
+        unknown = str(meta.get("unknown_cells") or "occupied")
+        geo = extract_corridor(
+            src, params=cfg.geometry_params(), start=tuple(start) if start else None, open=True, unknown=unknown
+        )
+        return _from_corridor(geo, src.stem)
     geo = extract_corridor(src, params=cfg.geometry_params(), start=tuple(start) if start else None)
     track = Track.from_polylines(list(geo.walls), geo.centreline, name=src.stem, wall_height=cfg.geometry.wall_height_m)
     return track.oriented(direction_for_map(src))
@@ -193,18 +215,30 @@ def inside_corridor(walls: list[np.ndarray], xy: np.ndarray) -> np.ndarray:
     return inside
 
 
-def probe_plan(track: Any, sim: SimConfig, points: int) -> list[tuple[float, float, float, float, float, float]]:
+def probe_plan(
+    track: Any, sim: SimConfig, points: int, free: FreeRegion | None = None
+) -> list[tuple[float, float, float, float, float, float]]:
     """``(s, x, y, yaw, angle, speed)`` of each probe: ``points`` stations along the
-    centreline, eight directions about the local heading, three speeds up to the top speed."""
+    centreline, eight directions about the local heading, three speeds up to the top speed.
+    On an open map (``free``: its free region) the stations are :func:`open_stations`
+    (``s`` 0, the heading along the nearest wall)."""
     from ..start_grid import centreline_pose
 
     angles = (-150.0, -90.0, -45.0, -20.0, 20.0, 45.0, 90.0, 150.0)
     top = float(sim.vehicle.max_speed)
     speeds = (top / 3.0, 2.0 * top / 3.0, top)
+    if free is not None:
+        veh = sim.vehicle
+        x0, y0 = (float(v) for v in track.centreline[0])
+        half_diagonal = 0.5 * math.hypot(veh.chassis_length, veh.chassis_width)
+        stations = [(0.0, *p) for p in open_stations(free, (x0, y0), points, half_diagonal)]
+    else:
+        stations = [
+            (track.length * (i + 0.5) / points, *centreline_pose(track, track.length * (i + 0.5) / points))
+            for i in range(points)
+        ]
     plan = []
-    for i in range(points):
-        s = track.length * (i + 0.5) / points
-        x, y, yaw = centreline_pose(track, s)
+    for s, x, y, yaw in stations:
         for a in angles:
             for v in speeds:
                 plan.append((s, x, y, yaw, a, v))
@@ -259,19 +293,28 @@ def write_probe_stage(track_stage: Path, plan: Sequence[tuple[float, ...]], sim:
 def containment(
     stage_path: Path, track: Any, sim: SimConfig, points: int, seconds: float, workdir: Path
 ) -> Containment:
-    """Send the probes, step ``seconds`` at the simulator's dt, check every 10 steps."""
-    plan = probe_plan(track, sim, points)
+    """Send the probes, step ``seconds`` at the simulator's dt, check every 10 steps (every
+    2 on an open map, whose bodies must also not pass through a wall between checks)."""
+    free = FreeRegion.of_geometry(track.source, tuple(track.centreline[0])) if track.is_open else None
+    plan = probe_plan(track, sim, points, free)
+    if not plan:
+        raise ConfigError(f"{stage_path}: no free point of the open map has room for a car-sized probe body")
     probe_file = workdir / "probes.usda"
     paths = write_probe_stage(stage_path, plan, sim, probe_file)
     walls = [np.asarray(w, dtype=np.float64) for w in track.walls]
     dt = float(sim.physics.dt)
     steps = max(1, round(seconds / dt))
     reasons: dict[int, tuple[str, np.ndarray]] = {}
+    left = "left the free region" if free is not None else "left the corridor"
     index = {p: k for k, p in enumerate(paths)}
+    # an open map's bodies are also followed along their paths (crosses_walls), so they are
+    # sampled often enough that a bounce never spans a wall
+    every = 2 if free is not None else 10
+    last = np.array([(x, y) for _, x, y, *_ in plan], dtype=np.float64)
     with PhysxScene(probe_file) as scene:
         done = 0
         while done < steps:
-            n = min(10, steps - done)
+            n = min(every, steps - done)
             scene.step(dt, n)
             done += n
             bodies = scene.read_bodies(["position"])
@@ -279,13 +322,21 @@ def containment(
             for p, attrs in bodies.items():
                 if p in index:
                     pos[index[p]] = attrs["position"][:3]
-            out = ~inside_corridor(walls, pos[:, :2])
+            if free is None:
+                out = ~inside_corridor(walls, pos[:, :2])
+                through = np.zeros(len(pos), dtype=bool)
+            else:
+                out = ~free.contains(pos[:, :2])
+                through = crosses_walls(walls, last, pos[:, :2])
+                last = pos[:, :2].copy()
             low = pos[:, 2] < FLOOR_LIMIT_M
-            for k in np.flatnonzero(out | low):
-                reasons.setdefault(int(k), ("below the floor" if low[k] else "left the corridor", pos[k].copy()))
+            for k in np.flatnonzero(out | low | through):
+                why = "below the floor" if low[k] else left if out[k] else "passed through a wall"
+                reasons.setdefault(int(k), (why, pos[k].copy()))
     escapes = [
         Escape(
             s_m=plan[k][0],
+            start_xy=(plan[k][1], plan[k][2]),
             angle_deg=plan[k][4],
             speed_m_s=plan[k][5],
             final_xyz=(float(p[0]), float(p[1]), float(p[2])),
@@ -297,7 +348,7 @@ def containment(
         bodies=len(plan),
         contained=len(plan) - len(reasons),
         seconds_simulated=steps * dt,
-        points=points,
+        points=points if free is None else len({(x, y) for _, x, y, *_ in plan}),
         angles_deg=sorted({a for *_, a, _ in plan}),
         speeds_m_s=sorted({round(v, 3) for *_, v in plan}),
         escapes=escapes,
@@ -326,6 +377,7 @@ def check_stage(
         cont = containment(path, track, sim, points, seconds, Path(tmp))
     return PhysxCheckReport(
         stage=str(path),
+        map_kind=str(track.kind),
         physx_version=str(ovphysx.__version__),
         load_seconds=load,
         lidar=lidar,
