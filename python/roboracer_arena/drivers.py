@@ -389,6 +389,7 @@ def _drive(
         if terminated or truncated or len(lap_times) >= laps:
             break
     if bar is not None:
+        bar.refresh()  # a fast drive can end within tqdm's refresh interval: show the final state
         bar.close()
     out = None
     if video:
