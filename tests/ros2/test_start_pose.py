@@ -33,7 +33,9 @@ def _bridge_start(track, cars=1, config=None, **kw) -> np.ndarray:
     assert b.error is None
     f = b.src.fields
     observed = b.state[0][:, [f["x"], f["y"], f["yaw"]]]
-    assert np.allclose(observed, b.start_poses[0])  # the simulator holds the reported pose
+    # The simulator holds the reported pose: the loop may already have run a few idle
+    # steps before stop() (the car settles by micrometres), so within a tenth of a mm.
+    assert np.allclose(observed, b.start_poses[0], rtol=0, atol=1e-4)
     return b.start_poses[0]
 
 
