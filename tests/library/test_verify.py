@@ -68,5 +68,26 @@ def test_prune_moves_failed_recorded_maps_only():
     assert prune_catalog(cat, VerifySummary.tally(results, 0.0, 1)) == [rec.id]
     assert len(cat.entries) == n - 1 and cat.left_out[-1].id == rec.id
     assert "drive: lap not completed" in cat.left_out[-1].reason
-    assert cat.get(gen.id).verified == {"load": "pass", "drive": "FAIL"}
+    assert cat.get(gen.id).verified == {**(gen.verified or {}), "load": "pass", "drive": "FAIL"}
     assert cat.meta.counts == cat.counts()
+
+
+def test_a_partial_run_adds_its_column_and_keeps_the_others():
+    """``verify --no-drive --update-catalog`` records the checks it made (a new physx column)
+    and keeps the lap and its text from the earlier full run."""
+    from roboracer_arena.library.verify import prune_catalog
+    from roboracer_arena.library.verify_report import Check, TrackResult, VerifySummary
+
+    cat = load_catalog()
+    gen = cat.select("generated")[0]
+    assert gen.verified and gen.verified["drive"] == "pass" and gen.drive
+    checks = {
+        "load": Check(status="pass", detail=""),
+        "physx": Check(status="pass", detail="1081/1081 beams"),
+        "drive": Check(status="not run", detail="not run: --no-drive"),
+    }
+    result = TrackResult(id=gen.id, kind=gen.kind, passed=True, seconds=0.0, checks=checks)
+    assert prune_catalog(cat, VerifySummary.tally([result], 0.0, 1)) == []
+    after = cat.get(gen.id)
+    assert after.verified == {**gen.verified, "physx": "pass"}
+    assert after.drive == gen.drive

@@ -82,7 +82,8 @@ def register(sub) -> None:
     a.add_argument(
         "--update-catalog",
         action="store_true",
-        help="record the results in the catalog; recorded maps that fail move to left_out",
+        help="record the results in the catalog (checks not run keep their recorded verdict); "
+        "recorded maps that fail move to left_out",
     )
     _ray_flag(a)
     a.set_defaults(func=run_verify)

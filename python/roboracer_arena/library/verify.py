@@ -249,6 +249,19 @@ def verify(
     return VerifySummary.tally(results, time.perf_counter() - t0, ex.workers)
 
 
+def recorded_verdicts(entry: TrackEntry, result: TrackResult) -> dict[str, Any]:
+    """The ``verified`` and ``drive`` fields an entry records after ``result``: a check this
+    run did not make (``--no-drive``, ``--no-physx``, ...) keeps the entry's earlier verdict,
+    so a partial run adds a column without erasing the others."""
+    verified = dict(entry.verified or {})
+    for name, check in result.checks.items():
+        if check.status != NOT_RUN or name not in verified:
+            verified[name] = check.status
+    drive = result.checks.get("drive")
+    ran = drive is not None and drive.status != NOT_RUN
+    return {"verified": verified, "drive": drive.detail if ran else (entry.drive or "")}
+
+
 def prune_catalog(cat: Catalog, summary: VerifySummary) -> list[str]:
     """Move recorded maps that failed verify to ``left_out`` (with the failing check as the
     reason) and record each verified entry's drive result; returns the ids moved.
@@ -265,10 +278,7 @@ def prune_catalog(cat: Catalog, summary: VerifySummary) -> list[str]:
             cat.left_out.append(LeftOut(id=e.id, source_path=e.map, reason=reason))
             moved.append(e.id)
             continue
-        drive = r.checks.get("drive")
-        keep.append(
-            e.with_fields(verified={k: c.status for k, c in r.checks.items()}, drive=drive.detail if drive else "")
-        )
+        keep.append(e.with_fields(**recorded_verdicts(e, r)))
     cat.entries = keep
     cat.meta = cat.meta.model_copy(update={"counts": cat.counts()})
     return moved
