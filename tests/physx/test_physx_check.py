@@ -105,6 +105,19 @@ def test_cli_json_and_exit_codes(berlin_stage, tmp_path, capsys):
     assert "not a roboracer-arena stage" in capsys.readouterr().err
 
 
+def test_json_stdout_is_only_json_in_a_fresh_process(berlin_stage):
+    """Warp, under ovphysx, greets on stdout when it starts; a fresh process shows whether
+    that greeting reaches ``--json`` (in-process tests start Warp once, earlier)."""
+    import subprocess
+    import sys
+
+    main = "import sys; from roboracer_arena.cli import main; sys.exit(main())"
+    cmd = [sys.executable, "-c", main, "physx-check", str(berlin_stage), "--points", "1", "--seconds", "0.5", "--json"]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert json.loads(r.stdout)["ok"]
+
+
 @pytest.fixture(scope="module")
 def levine_stage(sources, tmp_path_factory):
     """An open map: levine's hallways leak to the map border, so ``build`` makes it a floor plan."""

@@ -22,8 +22,21 @@ EXTRA_HINT = "pip install 'roboracer-arena[physx]' (ovphysx + physx-usd-schemas,
 _REGISTERED: dict[str, bool] = {}
 
 
+def _quiet_warp() -> None:
+    """Keep Warp (an ovphysx dependency) off stdout: its start-up banner would corrupt
+    ``--json`` output. Its note that a CUDA build of Warp opens the (absent) CUDA driver in
+    CPU-only mode is harmless here and is not repeated to every user."""
+    warnings.filterwarnings("ignore", message="ovphysx is in CPU-only mode", category=RuntimeWarning)
+    try:
+        import warp
+    except ImportError:
+        return
+    warp.config.log_level = max(warp.config.log_level, getattr(warp, "LOG_WARNING", 30))
+
+
 def require() -> tuple[Any, Any]:
     """``(ovphysx, ovstage)``, or :class:`ConfigError` naming the extra to install."""
+    _quiet_warp()
     try:
         import ovphysx
         import ovstage
