@@ -55,12 +55,15 @@ bench: release
 docs-figures: release
 	$(BIN)/python scripts/docs_figures.py
 
-# Every gate: clippy and rustfmt on the crates; ruff (lint and format), mypy (pydantic
-# plugin) on the package; stubtest checks _core.pyi against the built extension.
+# Every gate: clippy and rustfmt on the crates, no module cycle in the Rust core; ruff (lint
+# and format), mypy (pydantic plugin) on the package; stubtest checks _core.pyi against the
+# built extension; import-linter holds the package's floors and finds no cycle (.importlinter).
 lint: develop
-	$(BIN)/pip install -q "ruff>=0.8" "mypy>=1.13"
+	$(BIN)/pip install -q "ruff>=0.8" "mypy>=1.13" "import-linter>=2.17"
 	cargo clippy -p arena_core -p arena_py --quiet -- -D warnings
 	cargo fmt --all -- --check
+	$(BIN)/python scripts/rust_module_cycles.py crates/arena_core/src
+	$(BIN)/lint-imports --no-cache
 	$(BIN)/ruff check --no-cache python tests examples
 	$(BIN)/ruff format --no-cache --check python tests examples
 	$(BIN)/mypy

@@ -13,12 +13,16 @@ from roboracer_arena import _core
 from roboracer_arena.errors import ArenaError, InternalError
 
 
-def test_a_core_panic_is_an_internal_error_not_a_panic_exception():
+@pytest.mark.parametrize("budgeted", [False, True], ids=["call", "worker-thread"])
+def test_a_core_panic_is_an_internal_error_not_a_panic_exception(budgeted):
+    # budgeted: the generator's time-bounded calls run on a worker thread through the
+    # same door, with the same one-line message naming the entry point and location.
     with pytest.raises(InternalError) as e:
-        _core._boundary_self_test()
+        _core._boundary_self_test(budgeted)
     assert isinstance(e.value, ArenaError)
     msg = str(e.value)
     assert "_boundary_self_test" in msg and "deliberate panic" in msg and "\n" not in msg
+    assert "boundary.rs:" in msg
     assert type(e.value).__name__ != "PanicException"
     # The extension still works after the panic was caught.
     assert _core.config_defaults("constructor")

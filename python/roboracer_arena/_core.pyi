@@ -348,8 +348,10 @@ def stadium_track(
 ) -> tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]:
     """Analytic stadium track ``(walls [outer, inner], centreline)`` for tests and benchmarks."""
 
-def _boundary_self_test() -> None:
-    """Panics inside the boundary on purpose (tests): raises InternalError."""
+def _boundary_self_test(budgeted: bool = False) -> None:
+    """Panics inside the boundary on purpose (tests): raises InternalError.
+
+    ``budgeted`` panics on the worker thread of the generator's time-bounded door."""
 
 # --- geometry (the one polyline toolbox: arena_core::geometry::polyline) -------------
 # xy is (N, 2) float64 in metres. Closed polylines need N ≥ 3 (open ones N ≥ 2); one

@@ -13,6 +13,11 @@ pub const MAX_PIXELS_ENV: &str = "ROBORACER_ARENA_MAX_PIXELS";
 /// Allowed map resolution (m per cell), inclusive. 1 mm to 1 m covers indoor SLAM maps
 /// (typically 0.025–0.1) and coarse outdoor ones.
 pub const RESOLUTION_RANGE_M: (f64, f64) = (1e-3, 1.0);
+/// Resolution range (m per cell) the raster validator measures at (wider than
+/// [`RESOLUTION_RANGE_M`], which bounds the maps read from disk): beyond it the
+/// arithmetic of the measurement loses meaning. The constructor builds at no finer
+/// resolution than its lower end. Here, below both, so neither depends on the other.
+pub const VALIDATOR_RESOLUTION_RANGE_M: (f64, f64) = (1e-4, 10.0);
 /// Largest side of a map in metres (cells × resolution): bounds every mesh and sample
 /// count derived from metres, whatever the resolution.
 pub const MAX_EXTENT_M: f64 = 5_000.0;

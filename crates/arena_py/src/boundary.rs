@@ -1,12 +1,16 @@
 //! The one door between Python and the core. Every `_core` entry point runs its core call
-//! through [`call`]: the GIL is released, an unwinding panic is caught and becomes a typed
+//! through [`call`] (or [`call_budgeted`] for the generator's time-bounded work, run on a
+//! worker thread): the GIL is released, an unwinding panic is caught and becomes a typed
 //! `InternalError` (an `ArenaError` subclass) with a one-line message, and every core error
 //! maps to its `roboracer_arena.errors` class. A `PanicException` reaching Python is a bug.
 
 use std::cell::RefCell;
 use std::panic::{self, AssertUnwindSafe};
-use std::sync::Once;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Condvar, Mutex, Once};
+use std::time::Duration;
 
+use arena_core::generate::budget::Budget;
 use pyo3::prelude::*;
 
 use crate::errors::{to_py, InternalError};
@@ -47,6 +51,29 @@ fn payload_text(payload: &(dyn std::any::Any + Send)) -> String {
     }
 }
 
+/// A core call's result, or the one-line message of the panic that unwound it.
+type Caught<T> = Result<arena_core::Result<T>, String>;
+
+/// Run `f` on this thread with unwinds caught; a panic becomes the message naming `what`,
+/// the cause and the source location the hook recorded on this thread.
+fn caught<T>(what: &str, f: impl FnOnce() -> arena_core::Result<T>) -> Caught<T> {
+    panic::catch_unwind(AssertUnwindSafe(f)).map_err(|payload| {
+        let cause = payload_text(payload.as_ref()).replace('\n', " ");
+        let at = LAST_PANIC
+            .with(|p| p.borrow_mut().take())
+            .unwrap_or_default();
+        format!("{what}: internal error on this input ({cause}; at {at}); please report it")
+    })
+}
+
+/// Core errors to their typed Python class, a caught panic to `InternalError`.
+fn to_python<T>(out: Caught<T>) -> PyResult<T> {
+    match out {
+        Ok(result) => result.map_err(to_py),
+        Err(message) => Err(InternalError::new_err(message)),
+    }
+}
+
 /// Run the core call `f` for the entry point `what` with the GIL released and unwinds
 /// caught. Core errors map to their typed Python class; a panic becomes `InternalError`
 /// naming `what`, the cause and the source location, on one line.
@@ -55,18 +82,7 @@ where
     T: Send,
     F: FnOnce() -> arena_core::Result<T> + Send,
 {
-    match py.detach(|| panic::catch_unwind(AssertUnwindSafe(f))) {
-        Ok(result) => result.map_err(to_py),
-        Err(payload) => {
-            let cause = payload_text(payload.as_ref()).replace('\n', " ");
-            let at = LAST_PANIC
-                .with(|p| p.borrow_mut().take())
-                .unwrap_or_default();
-            Err(InternalError::new_err(format!(
-                "{what}: internal error on this input ({cause}; at {at}); please report it"
-            )))
-        }
-    }
+    to_python(py.detach(|| caught(what, f)))
 }
 
 /// [`call`] for a core function that cannot fail except by panicking.
@@ -78,13 +94,86 @@ where
     call(py, what, move || Ok(f()))
 }
 
-/// Panics inside [`call`] on purpose, so a test can prove that a core panic reaches
-/// Python as `InternalError` (never `PanicException`) and leaves the process running.
+/// How often the waiting thread looks for Ctrl-C in [`call_budgeted`] (Python signal
+/// handlers only run on the main thread, so the core runs on a worker while it polls).
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Grace (s) past the deadline before [`call_budgeted`] stops waiting for a worker that is
+/// inside one long step (rasterising or validating a very large map).
+const DEADLINE_GRACE_S: f64 = 1.0;
+
+/// [`call`] for time-bounded generator work: `work` runs on a worker thread with a
+/// [`Budget`] of `timeout` seconds (checked by the core; `None` = unbounded) while this
+/// thread polls Python signals. On KeyboardInterrupt the budget's cancellation flag is set
+/// and the signal's exception raised at once; once the deadline (plus a short grace) has
+/// passed, `Ok(None)` is returned at once. Either way the worker is left to stop at its
+/// next budget check, its result discarded, so one long step cannot hold the caller.
+/// Errors and panics map as in [`call`].
+pub fn call_budgeted<T, F>(
+    py: Python<'_>,
+    what: &'static str,
+    timeout: Option<f64>,
+    work: F,
+) -> PyResult<Option<T>>
+where
+    T: Send + 'static,
+    F: FnOnce(&Budget) -> arena_core::Result<T> + Send + 'static,
+{
+    let flag = Arc::new(AtomicBool::new(false));
+    let cancel = flag.clone();
+    let budget = call(py, what, move || {
+        Budget::with_timeout(timeout, Some(cancel))
+    })?;
+    let hard_stop = Budget::new(timeout.map(|t| t + DEADLINE_GRACE_S), None);
+    // The worker's result slot: None while running.
+    type Slot<T> = (Mutex<Option<Caught<T>>>, Condvar);
+    let slot: Arc<Slot<T>> = Arc::new((Mutex::new(None), Condvar::new()));
+    let worker_slot = slot.clone();
+    std::thread::spawn(move || {
+        let out = caught(what, || work(&budget));
+        let (lock, cv) = &*worker_slot;
+        *lock.lock().unwrap_or_else(|e| e.into_inner()) = Some(out);
+        cv.notify_all();
+    });
+    loop {
+        // Wait up to `SIGNAL_POLL` (GIL released) for the worker; `None` = still running.
+        let s = slot.clone();
+        let done = py.detach(move || {
+            let (lock, cv) = &*s;
+            let g = lock.lock().unwrap_or_else(|e| e.into_inner());
+            let (mut g, _) = cv
+                .wait_timeout_while(g, SIGNAL_POLL, |v| v.is_none())
+                .unwrap_or_else(|e| e.into_inner());
+            g.take()
+        });
+        if let Some(out) = done {
+            return to_python(out).map(Some);
+        }
+        if let Err(e) = py.check_signals() {
+            flag.store(true, Ordering::Relaxed);
+            return Err(e);
+        }
+        if hard_stop.stopped().is_some() {
+            flag.store(true, Ordering::Relaxed);
+            return Ok(None);
+        }
+    }
+}
+
+/// Panics inside [`call`] (or, with `budgeted`, on [`call_budgeted`]'s worker thread) on
+/// purpose, so a test can prove that a core panic reaches Python as `InternalError`
+/// (never `PanicException`) and leaves the process running.
 #[pyfunction]
-fn _boundary_self_test(py: Python<'_>) -> PyResult<()> {
-    call(py, "_boundary_self_test", || -> arena_core::Result<()> {
+#[pyo3(signature = (budgeted=false))]
+fn _boundary_self_test(py: Python<'_>, budgeted: bool) -> PyResult<()> {
+    fn boom() -> arena_core::Result<()> {
         panic!("deliberate panic for the boundary self-test")
-    })
+    }
+    if budgeted {
+        call_budgeted(py, "_boundary_self_test", Some(60.0), |_| boom()).map(|_| ())
+    } else {
+        call(py, "_boundary_self_test", boom)
+    }
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

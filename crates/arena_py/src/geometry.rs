@@ -98,23 +98,9 @@ fn resample_closed_values<'py>(
     let p = points_from_py(&xy, "xy")?;
     let v: Vec<f64> = values.as_array().iter().copied().collect();
     let (pts, vals) = call(py, "resample_closed_values", move || {
-        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-            return Err(arena_core::ArenaError::invalid(format!(
-                "values[{i}] must be finite, got {}",
-                arena_core::limits::show(v[i])
-            )));
-        }
-        let given = p.len();
         let n = pl::check_points(&p, 3, true, "xy")?;
+        pl::check_values(&v, p.len(), n)?;
         let p = &p[..n];
-        // One per point of xy as given; a dropped repeated closing point keeps its value
-        // as the closing value, which is also how an unwrapped parameter is passed.
-        if !(v.len() == given || v.len() == p.len() + 1) {
-            return Err(arena_core::ArenaError::invalid(format!(
-                "values must have one entry per point of xy ({given}) or one more, got {}",
-                v.len()
-            )));
-        }
         pl::check_spacing(spacing, pl::polyline_length(p, true))?;
         Ok(pl::resample_closed_values(p, &v, spacing))
     })?;

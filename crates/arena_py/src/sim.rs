@@ -589,15 +589,11 @@ fn stadium_track<'py>(
     radius: f64,
     width: f64,
 ) -> PyResult<TrackArrays<'py>> {
-    let ok = |x: f64| x.is_finite() && x > 0.0;
-    if !(ok(radius) && ok(width) && straight.is_finite() && straight >= 0.0 && width < 2.0 * radius)
-    {
-        return Err(invalid(
-            "stadium_track needs straight >= 0, radius > 0 and 0 < width < 2 radius",
-        ));
-    }
-    let (walls, centre) = boundary::call_ok(py, "stadium_track", move || {
-        arena_core::sim::shapes::stadium_track(straight, radius, width)
+    let (walls, centre) = boundary::call(py, "stadium_track", move || {
+        arena_core::sim::shapes::check_stadium(straight, radius, width)?;
+        Ok(arena_core::sim::shapes::stadium_track(
+            straight, radius, width,
+        ))
     })?;
     let arr = |pts: &[[f64; 2]]| {
         PyArray2::from_vec2(py, &pts.iter().map(|p| p.to_vec()).collect::<Vec<_>>())

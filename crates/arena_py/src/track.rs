@@ -10,7 +10,7 @@ use arena_core::geometry::mesh::TriMesh;
 use arena_core::track::build;
 use arena_core::track::metrics;
 use arena_core::track::open;
-use arena_core::track::params::BuildParams;
+use arena_core::track::params::{self, BuildParams};
 use arena_core::track::{features, validate};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -46,20 +46,12 @@ fn build_geometry<'py>(
     params_json: &str,
     start: Option<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let start = match start.as_deref() {
-        None => None,
-        Some([x, y]) | Some([x, y, _]) if x.is_finite() && y.is_finite() => Some([*x, *y]),
-        Some(s) => {
-            return Err(crate::errors::InvalidArgumentError::new_err(format!(
-                "start must be (x, y) or (x, y, yaw) finite numbers, got {s:?}"
-            )))
-        }
-    };
     let g = crate::grid::grid_from_py(py, &data, resolution, origin)?;
     let (w, h) = (g.width, g.height);
     let geo = boundary::call(py, "build_geometry", move || {
+        let start = start.as_deref().map(params::start_point).transpose()?;
         let params = BuildParams::from_json(params_json)?;
-        build::build_geometry(&g, &params, start)
+        build::build_geometry(&g, &params, start.map(|[x, y, _]| [x, y]))
     })?;
     geometry_to_py(py, geo, w, h)
 }
@@ -79,20 +71,10 @@ fn build_open_geometry<'py>(
     unknown_free: bool,
     start: Option<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let start = match start.as_deref() {
-        None => None,
-        Some(s) if (2..=3).contains(&s.len()) && s.iter().all(|v| v.is_finite()) => {
-            Some([s[0], s[1], s.get(2).copied().unwrap_or(0.0)])
-        }
-        Some(s) => {
-            return Err(crate::errors::InvalidArgumentError::new_err(format!(
-                "start must be (x, y) or (x, y, yaw) finite numbers, got {s:?}"
-            )))
-        }
-    };
     let g = crate::grid::grid_from_py(py, &data, resolution, origin)?;
     let (w, h) = (g.width, g.height);
     let o = boundary::call(py, "build_open_geometry", move || {
+        let start = start.as_deref().map(params::start_point).transpose()?;
         let params = BuildParams::from_json(params_json)?;
         open::build_open_geometry(&g, &params, open::OpenOptions { unknown_free }, start)
     })?;
@@ -180,7 +162,7 @@ fn measure_map<'py>(
         infields: t.infields,
         mean_width_m: t.mean_width_m,
         extent_m: (t.extent_m[0], t.extent_m[1]),
-        centreline_length_m: arena_core::geometry::polyline_length(&t.centreline, true),
+        centreline_length_m: t.centreline_length_m,
         centreline: line_to_py(py, &t.centreline).unbind(),
         widths: PyArray1::from_vec(py, t.widths).unbind(),
     })
@@ -220,12 +202,11 @@ fn analyse_curve(
 ) -> PyResult<String> {
     let pts = points_from_py(&xy, "xy")?;
     boundary::call(py, "analyse_curve", move || {
-        features::check_curve_args(&pts, corner_radius, exclude_m)?;
-        let a = features::analyse_closed_curve(&pts, corner_radius);
-        let c = features::self_clearance(&pts, exclude_m, 0.1);
-        let mut v = serde_json::to_value(&a).expect("plain data");
-        v["self_clearance_m"] = serde_json::json!(if c.is_finite() { c } else { -1.0 });
-        Ok(v.to_string())
+        Ok(to_json(&features::analyse_curve(
+            &pts,
+            corner_radius,
+            exclude_m,
+        )?))
     })
 }
 

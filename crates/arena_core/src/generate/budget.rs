@@ -4,6 +4,8 @@
 
 use super::spec::{ConstructorConfig, Spec};
 use crate::error::{ArenaError, Result};
+use serde::Serialize;
+use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -13,8 +15,9 @@ use std::time::{Duration, Instant};
 /// labels take ~15 bytes per cell, so this keeps one candidate under ~0.6 GB.
 pub const MAX_RASTER_CELLS: f64 = 4.0e7;
 
-/// Why a generation stopped before its candidate cap.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Why a generation stopped before its candidate cap (`"timeout"`, `"cancelled"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Stop {
     /// The wall-clock budget ran out.
     Timeout,
@@ -38,6 +41,18 @@ impl Budget {
         Budget { deadline, cancel }
     }
 
+    /// [`Budget::new`] for a caller's timeout, refused unless positive and finite.
+    pub fn with_timeout(seconds: Option<f64>, cancel: Option<Arc<AtomicBool>>) -> Result<Budget> {
+        if let Some(t) = seconds {
+            if !(t.is_finite() && t > 0.0) {
+                return Err(ArenaError::invalid(format!(
+                    "timeout: must be a positive finite number of seconds (got {t})"
+                )));
+            }
+        }
+        Ok(Budget::new(seconds, cancel))
+    }
+
     /// `Some(reason)` once the work must stop.
     pub fn stopped(&self) -> Option<Stop> {
         if self
@@ -51,6 +66,28 @@ impl Budget {
             return Some(Stop::Timeout);
         }
         None
+    }
+}
+
+/// A bounded generation that ended without a track: candidates tried, each reason
+/// counted, and what stopped it early (`None` = it reached its candidate cap).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Failure {
+    pub tried: u32,
+    pub reasons: BTreeMap<String, u32>,
+    pub stopped: Option<Stop>,
+}
+
+impl Failure {
+    /// The failure a caller reports when the deadline passed inside one candidate and it
+    /// stopped waiting (how many candidates were tried is unknown).
+    pub fn abandoned() -> Failure {
+        let why = "time budget ran out inside one candidate (rasterising or validating)";
+        Failure {
+            tried: 0,
+            reasons: BTreeMap::from([(why.to_string(), 1)]),
+            stopped: Some(Stop::Timeout),
+        }
     }
 }
 
@@ -84,5 +121,22 @@ mod tests {
         assert_eq!(b.stopped(), Some(Stop::Cancelled));
         assert_eq!(Budget::new(Some(0.0), None).stopped(), Some(Stop::Timeout));
         assert_eq!(Budget::default().stopped(), None);
+    }
+
+    #[test]
+    fn a_callers_timeout_is_checked_and_a_failure_reads_as_json() {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = Budget::with_timeout(Some(bad), None).unwrap_err();
+            assert!(matches!(e, ArenaError::InvalidArgument(_)), "{bad}: {e}");
+            assert!(e.to_string().starts_with("timeout:"), "{e}");
+        }
+        assert!(Budget::with_timeout(None, None).is_ok());
+        assert!(Budget::with_timeout(Some(0.5), None).is_ok());
+        let v = serde_json::to_value(Failure::abandoned()).unwrap();
+        assert_eq!(v["tried"], 0);
+        assert_eq!(v["stopped"], "timeout");
+        assert_eq!(v["reasons"].as_object().unwrap().len(), 1);
+        let v = serde_json::to_value(Failure::default()).unwrap();
+        assert!(v["stopped"].is_null());
     }
 }

@@ -17,7 +17,8 @@ use super::polygon::polygon_candidate;
 use super::ring::ring_candidate;
 use super::rounding::{pitch_for_length, rounded_centreline};
 use super::screen::{screen, ScreenResult};
-use super::spec::{derive, ConstructorConfig, Derived, Spec};
+use super::spec::{centreline_box, derive, ConstructorConfig, Derived, Spec, STRAIGHT_CAP_MARGIN};
+use crate::geometry::polyline::extent;
 use crate::grid::rasterise::rasterise_constant;
 use crate::grid::OccupancyGrid;
 use crate::track::features::{analyse_closed_curve, is_cyclic_order, self_clearance, FeatureKind};
@@ -30,11 +31,6 @@ use std::f64::consts::PI;
 /// Pitch range relative to s_min: below 1 parallel runs would be closer than p, above
 /// 1.4 the one-edge gaps of hairpins/chicanes outgrow the detector's merge gap.
 pub const PITCH_RANGE: (f64, f64) = (1.0, 1.4);
-
-/// Share of the straight cap (`max_straight_m`) the constructors aim under: the raster
-/// validator measures the straight on the rasterised corridor, which may read a few
-/// centimetres longer than the analytic curve.
-pub const STRAIGHT_CAP_MARGIN: f64 = 0.95;
 
 /// A constructed, not yet validated, candidate.
 #[derive(Debug, Clone)]
@@ -95,16 +91,6 @@ fn source(k: u32, polygon: bool) -> Source {
 fn polygon_fits(spec: &Spec, cfg: &ConstructorConfig, d: &Derived) -> bool {
     let [x, y] = centreline_box(spec, cfg);
     spec.lap_length_m <= 2.0 * (x + y) + 2.0 * spec.chicanes as f64 * d.s_min
-}
-
-/// The box (x, y; m) the centreline must stay in: the hall less its margins and one
-/// wall-to-wall corridor width.
-pub(crate) fn centreline_box(spec: &Spec, cfg: &ConstructorConfig) -> [f64; 2] {
-    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
-    [
-        spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall,
-        spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall,
-    ]
 }
 
 /// Most lattice perimeters considered (the largest ones, which fit halls best).
@@ -336,18 +322,6 @@ fn finish(
         centreline: line,
         pitch_m: pitch,
     })
-}
-
-/// Bounding-box size (x, y) of a point set.
-pub(crate) fn extent(p: &[[f64; 2]]) -> [f64; 2] {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for q in p {
-        for k in 0..2 {
-            lo[k] = lo[k].min(q[k]);
-            hi[k] = hi[k].max(q[k]);
-        }
-    }
-    [hi[0] - lo[0], hi[1] - lo[1]]
 }
 
 /// Rasterise a candidate with the configured walls and resolution (Eq. 3).

@@ -72,6 +72,18 @@ pub struct NearestReport {
     pub exhausted: bool,
 }
 
+impl NearestReport {
+    /// The report when the deadline passed inside the first probe and the caller stopped
+    /// waiting: nothing found, the budget exhausted.
+    pub fn abandoned() -> NearestReport {
+        NearestReport {
+            suggestions: Vec::new(),
+            probes: 0,
+            exhausted: true,
+        }
+    }
+}
+
 fn round_to(x: f64, step: f64) -> f64 {
     (x / step).round() * step
 }

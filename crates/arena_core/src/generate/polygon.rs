@@ -21,9 +21,9 @@
 //! length L ([`spare_shares`]). Hall fit (any rotation), direction and the analytic checks
 //! are the caller's, as for the ring.
 
-use super::construct::STRAIGHT_CAP_MARGIN;
 use super::rounding::round_polygon_radii;
-use super::spec::{Derived, Spec};
+use super::spec::{Derived, Spec, STRAIGHT_CAP_MARGIN};
+use crate::geometry::polyline::extent;
 use crate::track::features::FeatureKind;
 use rand_chacha::rand_core::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -350,7 +350,7 @@ fn best_fit_rotation(line: &[[f64; 2]], spec: &Spec) -> Vec<[f64; 2]> {
             .collect()
     };
     let slack = |a: f64| {
-        let e = super::construct::extent(&rot(a));
+        let e = extent(&rot(a));
         let (l, s) = (e[0].max(e[1]), e[0].min(e[1]));
         (hl - l).min(hs - s)
     };

@@ -20,9 +20,9 @@
 //! four ordinary corners) in its long side, and inward hairpins are deepened, to one
 //! depth that `L` fixes.
 
-use super::construct::extent;
 use super::rounding::{round_polygon, savings};
-use super::spec::{ConstructorConfig, Derived, Spec};
+use super::spec::{centreline_box, ConstructorConfig, Derived, Spec};
+use crate::geometry::polyline::extent;
 use crate::track::features::FeatureKind;
 use rand_chacha::rand_core::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -216,7 +216,7 @@ pub fn ring_candidate(
     let depth = e * if rng.next_u32() % 3 == 0 { 1.5 } else { 1.0 };
     let mut lay =
         layout(order, rng, 75, e, depth).ok_or("ring: features do not fit the ring's slots")?;
-    let [bx, by] = super::construct::centreline_box(spec, cfg);
+    let [bx, by] = centreline_box(spec, cfg);
     let (ux, uy) = (bx.max(by), bx.min(by));
     let g_min = GAP_EDGES[(rng.next_u32() as usize) % GAP_EDGES.len()] * e;
     let (o, sw) = savings(rc);

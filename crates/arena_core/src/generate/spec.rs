@@ -8,6 +8,11 @@ use serde::{Deserialize, Serialize};
 /// Largest straight cap a spec may state (m), the schema's bound (`TrackSpec`).
 pub const MAX_STRAIGHT_CAP_M: f64 = 1_000.0;
 
+/// Share of the straight cap (`max_straight_m`) the constructors aim under: the raster
+/// validator measures the straight on the rasterised corridor, which may read a few
+/// centimetres longer than the analytic curve.
+pub const STRAIGHT_CAP_MARGIN: f64 = 0.95;
+
 /// The requirement specification (SI units): the paper's 12 fields and the optional
 /// speed cap `max_straight_m`. See `roboracer_arena.spec`.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -108,6 +113,16 @@ pub struct ConstructorConfig {
     pub max_candidates: u32,
 }
 
+/// The box (x, y; m) the centreline must stay in: the hall less its margins and one
+/// wall-to-wall corridor width. Shared by the constructors (lattice, ring, polygon).
+pub(crate) fn centreline_box(spec: &Spec, cfg: &ConstructorConfig) -> [f64; 2] {
+    let wall = spec.corridor_width_m + 2.0 * cfg.wall_thickness_m;
+    [
+        spec.hall_x_m - 2.0 * cfg.hall_margin_m - wall,
+        spec.hall_y_m - 2.0 * cfg.hall_margin_m - wall,
+    ]
+}
+
 impl Default for ConstructorConfig {
     fn default() -> Self {
         ConstructorConfig {
@@ -135,7 +150,7 @@ impl ConstructorConfig {
                 )));
             }
         }
-        let (lo, _) = crate::track::validate::RESOLUTION_RANGE;
+        let (lo, _) = crate::limits::VALIDATOR_RESOLUTION_RANGE_M;
         if !(lo..=1.0).contains(&c.resolution_m) || !(1..=800).contains(&c.max_candidates) {
             return Err(ArenaError::config(format!(
                 "constructor config: resolution_m must be in [{lo}, 1] m (got {}) and max_candidates in 1..=800 (got {})",

@@ -24,6 +24,18 @@ pub fn polyline_length(p: &[[f64; 2]], closed: bool) -> f64 {
     (0..edges).map(|i| dist(p[i], p[(i + 1) % n])).sum()
 }
 
+/// Bounding-box size (x, y) of a point set.
+pub fn extent(p: &[[f64; 2]]) -> [f64; 2] {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for q in p {
+        for k in 0..2 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    [hi[0] - lo[0], hi[1] - lo[1]]
+}
+
 /// Arc length at each vertex, starting at 0. Open: `n` values ending with the length;
 /// closed: `n + 1` values, the last being the full loop (back at point 0).
 pub fn cumulative_length(p: &[[f64; 2]], closed: bool) -> Vec<f64> {
@@ -352,6 +364,26 @@ pub fn check_points(p: &[[f64; 2]], min_points: usize, closed: bool, what: &str)
         )));
     }
     Ok(n)
+}
+
+/// The door for the values [`resample_closed_values`] carries along `given` points of
+/// which [`check_points`] kept the first `kept`: all finite, and one per given point or
+/// one more than kept (a dropped repeated closing point keeps its value as the closing
+/// value, which is also how an unwrapped parameter is passed).
+pub fn check_values(values: &[f64], given: usize, kept: usize) -> Result<()> {
+    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+        return Err(ArenaError::invalid(format!(
+            "values[{i}] must be finite, got {}",
+            crate::limits::show(values[i])
+        )));
+    }
+    if !(values.len() == given || values.len() == kept + 1) {
+        return Err(ArenaError::invalid(format!(
+            "values must have one entry per point of xy ({given}) or one more, got {}",
+            values.len()
+        )));
+    }
+    Ok(())
 }
 
 /// The door for a resampling spacing (m) on a loop of `length_m`: finite, > 0, and not

@@ -17,6 +17,18 @@ pub fn stadium(straight: f64, r: f64, n_arc: usize) -> Vec<[f64; 2]> {
     pts
 }
 
+/// The door of [`stadium_track`] for sizes from outside: `straight` ≥ 0, `r` > 0 and
+/// 0 < `width` < 2 `r` (so the inner wall keeps a positive radius), all finite.
+pub fn check_stadium(straight: f64, r: f64, width: f64) -> crate::Result<()> {
+    let ok = |x: f64| x.is_finite() && x > 0.0;
+    if !(ok(r) && ok(width) && straight.is_finite() && straight >= 0.0 && width < 2.0 * r) {
+        return Err(crate::ArenaError::invalid(
+            "stadium_track needs straight >= 0, radius > 0 and 0 < width < 2 radius",
+        ));
+    }
+    Ok(())
+}
+
 /// A stadium track: (walls [outer, inner], centreline) for a corridor of width `width`
 /// around a centreline stadium of straight `straight` and radius `r`.
 pub fn stadium_track(straight: f64, r: f64, width: f64) -> (Vec<Vec<[f64; 2]>>, Vec<[f64; 2]>) {

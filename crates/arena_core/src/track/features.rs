@@ -313,6 +313,38 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
     }
 }
 
+/// Sampling step (m) of the self-clearance in [`analyse_curve`].
+pub const CLEARANCE_STEP_M: f64 = 0.1;
+
+/// [`CurveAnalysis`] with the curve's [`self_clearance`] outside `exclude_m`.
+#[derive(Debug, Clone, Serialize)]
+pub struct CurveReport {
+    #[serde(flatten)]
+    pub analysis: CurveAnalysis,
+    /// Self-clearance (m); -1 when no two points are more than `exclude_m` apart along
+    /// the curve (no non-local pass), so the value stays a finite JSON number.
+    pub self_clearance_m: f64,
+}
+
+/// The curve analysis of a closed curve from outside (the door [`check_curve_args`]
+/// first): features, turns and radius, plus its self-clearance outside `exclude_m`.
+pub fn analyse_curve(
+    points: &[[f64; 2]],
+    corner_radius: f64,
+    exclude_m: f64,
+) -> Result<CurveReport> {
+    check_curve_args(points, corner_radius, exclude_m)?;
+    let clearance = self_clearance(points, exclude_m, CLEARANCE_STEP_M);
+    Ok(CurveReport {
+        analysis: analyse_closed_curve(points, corner_radius),
+        self_clearance_m: if clearance.is_finite() {
+            clearance
+        } else {
+            -1.0
+        },
+    })
+}
+
 /// Smallest distance between two points of a closed curve that are more than `exclude_m`
 /// apart along it (m): the centreline-to-centreline clearance of non-local sections.
 pub fn self_clearance(points: &[[f64; 2]], exclude_m: f64, ds: f64) -> f64 {

@@ -22,6 +22,8 @@ pub struct RasterTrack {
     pub infields: usize,
     /// Closed, counter-clockwise centreline (map metres, no repeated end point).
     pub centreline: Vec<[f64; 2]>,
+    /// Length (m) of the closed centreline.
+    pub centreline_length_m: f64,
     /// Local free width (m) at each centreline vertex: distance between the nearest wall
     /// cell centres on either side minus one cell (exact on axis-aligned runs, up to ~Δ
     /// low on oblique ones).
@@ -110,12 +112,13 @@ fn measure_with_cap(g: &OccupancyGrid, cap: f64) -> Result<RasterTrack> {
         .map(|&[u, v]| bilinear_with(w, h, u, v, width_at) * g.resolution)
         .collect();
     let area = tree.size[corridor as usize] as f64 * g.resolution * g.resolution;
-    let mean_width_m =
-        area / crate::geometry::polyline_length(&centreline, true) + g.resolution / 2.0;
+    let centreline_length_m = crate::geometry::polyline_length(&centreline, true);
+    let mean_width_m = area / centreline_length_m + g.resolution / 2.0;
     Ok(RasterTrack {
         corridor_components,
         infields,
         centreline,
+        centreline_length_m,
         widths,
         mean_width_m,
         extent_m: known_extent(g),

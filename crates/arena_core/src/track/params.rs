@@ -136,9 +136,35 @@ impl BuildParams {
     }
 }
 
+/// The door for a start point from outside: `(x, y)` or `(x, y, yaw)`, all finite;
+/// returned as `[x, y, yaw]` (yaw 0 when not given).
+pub fn start_point(s: &[f64]) -> Result<[f64; 3]> {
+    if !((2..=3).contains(&s.len()) && s.iter().all(|v| v.is_finite())) {
+        return Err(ArenaError::invalid(format!(
+            "start must be (x, y) or (x, y, yaw) finite numbers, got {s:?}"
+        )));
+    }
+    Ok([s[0], s[1], s.get(2).copied().unwrap_or(0.0)])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn start_point_takes_two_or_three_finite_numbers() {
+        assert_eq!(start_point(&[1.0, 2.0]).unwrap(), [1.0, 2.0, 0.0]);
+        assert_eq!(start_point(&[1.0, 2.0, 0.5]).unwrap(), [1.0, 2.0, 0.5]);
+        for bad in [
+            &[1.0][..],
+            &[1.0, 2.0, 3.0, 4.0],
+            &[f64::NAN, 0.0],
+            &[0.0, 0.0, f64::INFINITY],
+        ] {
+            let e = start_point(bad).unwrap_err();
+            assert!(matches!(e, ArenaError::InvalidArgument(_)), "{bad:?}: {e}");
+        }
+    }
 
     #[test]
     fn json_defaults_unknown_fields_and_validation() {

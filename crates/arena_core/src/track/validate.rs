@@ -6,6 +6,7 @@ use super::features::{analyse_closed_curve, is_cyclic_order, self_clearance, Fea
 use super::metrics::measure_raster;
 use crate::generate::spec::{derive, ConstructorConfig, Spec};
 use crate::grid::OccupancyGrid;
+use crate::limits::VALIDATOR_RESOLUTION_RANGE_M;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -78,15 +79,15 @@ fn check(name: &str, measured: String, bound: String, passed: bool) -> Check {
     }
 }
 
-/// Resolution range (m per cell) the validator measures at, and the largest origin
-/// coordinate (m): beyond them the arithmetic of the measurement loses meaning.
-pub const RESOLUTION_RANGE: (f64, f64) = (1e-4, 10.0);
+/// Largest origin coordinate (m) the validator measures at: beyond it the arithmetic of
+/// the measurement loses meaning (the resolution's bound is
+/// [`VALIDATOR_RESOLUTION_RANGE_M`]).
 pub const MAX_ORIGIN_M: f64 = 1e7;
 
 /// Refuse a map frame the validator cannot measure: a resolution outside
-/// [`RESOLUTION_RANGE`] or an origin beyond ±[`MAX_ORIGIN_M`] or not finite.
+/// [`VALIDATOR_RESOLUTION_RANGE_M`] or an origin beyond ±[`MAX_ORIGIN_M`] or not finite.
 pub fn check_frame(resolution: f64, origin: [f64; 3]) -> crate::Result<()> {
-    let (lo, hi) = RESOLUTION_RANGE;
+    let (lo, hi) = VALIDATOR_RESOLUTION_RANGE_M;
     if !(resolution.is_finite() && (lo..=hi).contains(&resolution)) {
         return Err(crate::ArenaError::invalid(format!(
             "resolution: must be within [{lo}, {hi}] m per cell (got {resolution})"
