@@ -107,3 +107,12 @@ def test_bad_start_geometry_is_a_typed_error(oval):
         grid_start_s(oval, 0)
     with pytest.raises(InvalidArgumentError, match="s must be finite"):
         centreline_pose(oval, float("nan"))
+
+
+def test_a_track_still_pickles_after_its_start_grid_is_built(oval):
+    """The core object lives beside the Track, not in it (vector envs ship tracks to workers)."""
+    import pickle
+
+    s = grid_start_s(oval, 2)
+    copy = pickle.loads(pickle.dumps(oval))
+    assert grid_start_s(copy, 2) == s and copy.start_grid is not oval.start_grid
