@@ -48,6 +48,8 @@ __all__ = [
     "Simulator",
     "stadium_track",
     "STATE_FIELDS",
+    "StartGrid",
+    "StartSpec",
 ]
 
 __version__: str
@@ -281,13 +283,9 @@ class Simulator:
         """(world steps through the rapier pipeline, contact-free shortcut steps), summed over envs."""
     def set_tracks(self, track_ids: npt.ArrayLike) -> None:
         """Track of each env, shape (num_envs,); reset the env afterwards."""
-    def set_start_spec(self, spec_json: str) -> None:
-        """Configure ``reset_drawn``: a JSON object with ``random_s`` (bool), ``s0`` (first
-        grid slot arc length per track), ``track_weights`` (per track, or []),
-        ``grid_spacing``, ``grid_offset``, ``lateral_noise``, ``heading_noise``,
-        ``side_clearance`` (m kept between the wall and the car's centre by the lateral
-        noise), ``speed_noise`` (m/s), ``noise_std`` ([low, high] m, per-episode extra lidar
-        noise) and ``dropout`` (probability a beam reads range_max)."""
+    def set_start_spec(self, spec: StartSpec) -> None:
+        """Configure ``reset_drawn`` (``InvalidArgumentError`` unless ``spec`` has one ``s0``,
+        and one weight if any, per track)."""
     def reset_drawn(
         self,
         env_mask: npt.NDArray[np.bool_],
@@ -389,3 +387,101 @@ def self_intersections(
 ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
     """Crossings of a closed polyline: ``(segments (K, 2) as i < j, points (K, 2))``,
     segment i running from point i to i + 1, sorted by (i, j)."""
+
+# --- start grid and reset draws --------------------------------------------------------
+@final
+class StartGrid:
+    """The start geometry of one track (``Track.start_grid``; ``start_grid.py`` is its
+    typed view): wall edges (each wall closes back to its first point unless it has two
+    points or already ends there), and the closed ``centreline`` ring in the racing
+    direction without a repeated closing point, or with ``open_map`` an open map's start
+    anchor (two distinct points: the start, and a point it heads to). ``source_start``:
+    s = 0 is the source's own start line, kept whenever the grid is clear there. Bad
+    geometry raises ``InvalidArgumentError``. Grid starts are cached per (slots, spacing)."""
+
+    def __new__(
+        cls,
+        walls: Sequence[npt.NDArray[np.float64]],
+        centreline: npt.NDArray[np.float64],
+        *,
+        open_map: bool = False,
+        source_start: bool = False,
+    ) -> StartGrid: ...
+    @property
+    def length(self) -> float:
+        """Lap length (m); 0 for an open map."""
+    def pose_at(self, s: float) -> tuple[float, float, float]:
+        """(x, y, heading) on the centreline at arc length ``s`` (finite; wrapped at the lap);
+        on an open map, ``s`` m along the start heading (behind it for ``s < 0``)."""
+    def free_run_ahead(self, x: float, y: float, heading: float) -> float:
+        """Distance (m) from (x, y) along ``heading`` to the first wall (inf if none)."""
+    def clearance(self, points: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        """Distance (m) from each of ``points`` (N, 2) to the nearest wall, (N,)."""
+    def grid_start_s(self, slots: int, spacing: float) -> float:
+        """Arc length (m) of the first slot of a grid of ``slots`` (>= 1) cars ``spacing``
+        (in [0, 1e4]) m apart: candidates every max(0.25 m, lap / 400); those whose slots
+        all keep 75 % of the median candidate clearance qualify; the longest free run ahead
+        wins (then the larger clearance, then the later candidate); none qualifying, the
+        largest clearance. s = 0 when ``source_start`` and it qualifies; 0 on an open map."""
+    def grid_poses(self, slots: int, spacing: float, offset: float, s0: float | None = None) -> npt.NDArray[np.float64]:
+        """Poses (slots, 3) of the staggered grid: the first at ``s0`` (default
+        ``grid_start_s(slots, spacing)``), each next ``spacing`` behind and, with more than
+        one car, ``offset`` left and right of the centreline in turn."""
+
+@final
+class StartSpec:
+    """How ``Simulator.reset_drawn`` places the cars (``start_grid.start_spec`` builds it
+    as the env config says). Keyword arguments; the core checks the ranges
+    (``InvalidArgumentError``): ``s0`` finite, ``track_weights`` finite, >= 0 and not all 0
+    (None: uniform), distances and noises finite in [0, 1e4], ``noise_std`` low <= high,
+    ``dropout`` in [0, 1). Read-only attributes; equal when every field is."""
+
+    def __new__(
+        cls,
+        *,
+        random_s: bool,
+        s0: Sequence[float],
+        grid_spacing: float,
+        grid_offset: float,
+        lateral_noise: float,
+        heading_noise: float,
+        side_clearance: float,
+        speed_noise: float,
+        noise_std: tuple[float, float],
+        dropout: float,
+        track_weights: Sequence[float] | None = None,
+    ) -> StartSpec: ...
+    @property
+    def random_s(self) -> bool:
+        """First grid slot at a uniformly random arc length (else at ``s0[track]``)."""
+    @property
+    def s0(self) -> list[float]:
+        """Arc length (m) of the first grid slot, per track."""
+    @property
+    def track_weights(self) -> list[float]:
+        """Track draw weights, per track (empty: uniform)."""
+    @property
+    def grid_spacing(self) -> float:
+        """Longitudinal gap between grid slots (m)."""
+    @property
+    def grid_offset(self) -> float:
+        """Lateral offset of the staggered grid slots (m)."""
+    @property
+    def lateral_noise(self) -> float:
+        """Uniform lateral start offset in +-this (m), capped by the room to the wall."""
+    @property
+    def heading_noise(self) -> float:
+        """Uniform heading offset in +-this (rad)."""
+    @property
+    def side_clearance(self) -> float:
+        """Metres kept between the wall and the car's centre by the lateral noise."""
+    @property
+    def speed_noise(self) -> float:
+        """Rolling start speed drawn from [0, this] (m/s)."""
+    @property
+    def noise_std(self) -> tuple[float, float]:
+        """(low, high) per-episode extra lidar noise std (m)."""
+    @property
+    def dropout(self) -> float:
+        """Probability a beam reads range_max."""
+    def __eq__(self, value: object, /) -> bool: ...

@@ -7,6 +7,7 @@ all use it, and it imports none of them.
 from __future__ import annotations
 
 import os
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
@@ -150,23 +151,22 @@ class Track:
         lo, hi = pts.min(axis=0), pts.max(axis=0)
         return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
 
-    @cached_property
-    def _segments(self) -> tuple[np.ndarray, np.ndarray]:
-        """(starts (S, 2), deltas (S, 2)) of every wall edge, closing edges included."""
-        rings = [np.vstack([w, w[:1]]) if len(w) > 2 and not np.allclose(w[0], w[-1]) else w for w in self.walls]
-        starts = np.vstack([r[:-1] for r in rings])
-        return starts, np.vstack([r[1:] for r in rings]) - starts
+    @property
+    def start_grid(self) -> _core.StartGrid:
+        """This track's start geometry in the core (wall clearance, free run ahead, the grid
+        start and its poses; :mod:`~roboracer_arena.start_grid` is its typed view), built on
+        first use."""
+        grid = _START_GRIDS.get(self)
+        if grid is None:
+            walls = [np.asarray(w, dtype=np.float64) for w in self.walls]
+            line = np.asarray(self.centreline if self.is_open else self.loop, dtype=np.float64)
+            grid = _core.StartGrid(walls, line, open_map=self.is_open, source_start=self.source_start)
+            _START_GRIDS[self] = grid
+        return grid
 
     def clearance(self, points: Any) -> np.ndarray:
         """Distance (m) from each of ``points`` ((N, 2)) to the nearest wall (walls are closed rings)."""
-        p = np.atleast_2d(np.asarray(points, dtype=np.float64))
-        a, d = self._segments
-        l2 = np.maximum((d * d).sum(axis=1), 1e-18)
-        out = np.empty(len(p))
-        for i, q in enumerate(p):
-            t = np.clip(((q - a) * d).sum(axis=1) / l2, 0.0, 1.0)
-            out[i] = np.sqrt((((a + t[:, None] * d) - q) ** 2).sum(axis=1).min())
-        return out
+        return self.start_grid.clearance(np.atleast_2d(np.asarray(points, dtype=np.float64)))
 
     def corridor_width_near(self, x: float, y: float, radius: float = 1.0) -> float:
         """Narrowest corridor width (2 × wall clearance of the centreline) within ``radius`` of (x, y)."""
@@ -179,6 +179,11 @@ class Track:
     def native(self) -> tuple[list[np.ndarray], np.ndarray, float]:
         """The ``(walls, centreline, wall_height)`` the native simulator takes."""
         return list(self.walls), self.centreline, self.wall_height
+
+
+#: Each track's core start geometry (``Track.start_grid``), kept beside the Track rather
+#: than in it so that a Track still pickles (the core object does not).
+_START_GRIDS: weakref.WeakKeyDictionary[Track, _core.StartGrid] = weakref.WeakKeyDictionary()
 
 
 def _checked_walls(walls: Sequence[Any], name: str) -> tuple[np.ndarray, ...]:

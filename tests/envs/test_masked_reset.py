@@ -16,6 +16,7 @@ from roboracer_arena.envs.env_config import EnvConfig
 from roboracer_arena.envs.single import RoboRacerEnv
 from roboracer_arena.envs.vector import RoboRacerVectorEnv
 from roboracer_arena.errors import ConfigError, InvalidArgumentError
+from roboracer_arena.start_grid import start_spec
 
 NOISY = {
     "sim": {"lidar": {"num_beams": 61, "noise_std": 0.01}},
@@ -131,8 +132,10 @@ def test_simulator_refuses_fractional_and_bool_track_ids(oval):
         sim.observe(None, state, events, np.ones(3, bool))
     with pytest.raises(InvalidArgumentError, match="start spec"):
         sim.reset_drawn(mask, np.zeros(2, np.int64), np.zeros((2, 1, 3)), np.zeros((2, 1)))
-    with pytest.raises(InvalidArgumentError, match="start spec"):
-        sim.set_start_spec('{"random_s": true}')
+    with pytest.raises(InvalidArgumentError, match="start spec: s0 has 2 entries, expected one per track"):
+        sim.set_start_spec(start_spec([None, None], 1, reset_poses="centreline_start"))
+    with pytest.raises(TypeError):
+        sim.set_start_spec('{"random_s": true}')  # no JSON crosses the boundary
 
 
 def test_simulator_integer_arguments_are_checked(oval):

@@ -12,6 +12,7 @@ mod generate;
 mod geometry;
 mod grid;
 mod sim;
+mod start_grid;
 mod track;
 
 #[pymodule]
@@ -26,5 +27,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     track::register(m)?;
     config::register(m)?;
     sim::register(m)?;
+    start_grid::register(m)?;
     Ok(())
 }

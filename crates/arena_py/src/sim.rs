@@ -5,8 +5,7 @@
 use std::sync::Arc;
 
 use arena_core::sim::{
-    ResetGiven, ResetOut, SimParams, Simulator as CoreSim, StartSpec, Track, STATE_FIELDS,
-    STATE_SIZE,
+    ResetGiven, ResetOut, SimParams, Simulator as CoreSim, Track, STATE_FIELDS, STATE_SIZE,
 };
 use arena_core::track::params::DEFAULT_WALL_HEIGHT_M;
 use arena_core::ArenaError as CoreError;
@@ -19,6 +18,7 @@ use pyo3::types::{PyBool, PyFloat, PyTuple};
 
 use crate::boundary;
 use crate::errors::to_py;
+use crate::start_grid::StartSpec;
 
 /// (vertices (V, 3) float32, triangles (T, 3) uint32) of a mesh.
 type MeshArrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
@@ -309,10 +309,9 @@ impl Simulator {
         boundary::call(py, "set_tracks", move || inner.set_tracks(&ids))
     }
 
-    /// Configure `reset_drawn` from a JSON object (see `arena_core::sim::StartSpec`).
-    fn set_start_spec(&mut self, py: Python<'_>, spec_json: &str) -> PyResult<()> {
-        let spec: StartSpec =
-            serde_json::from_str(spec_json).map_err(|e| invalid(format!("start spec: {e}")))?;
+    /// Configure `reset_drawn` (a `StartSpec`; the core checks it against the tracks).
+    fn set_start_spec(&mut self, py: Python<'_>, spec: PyRef<'_, StartSpec>) -> PyResult<()> {
+        let spec = spec.inner.clone();
         let inner = &mut self.inner;
         boundary::call(py, "set_start_spec", move || inner.set_start_spec(spec))
     }

@@ -19,6 +19,7 @@ from typing import Any, cast
 import numpy as np
 from gymnasium import spaces
 
+from .._core import StartSpec
 from ..start_grid import SIDE_MARGIN, start_spec
 from ..track import Track
 from .env_config import EnvConfig
@@ -88,7 +89,7 @@ class SimBatch:
         self.open_maps = np.array([t.is_open for t in tracks], dtype=bool)
         self.seed = int(seed)
         self.env_index_offset = int(env_index_offset)  # env e draws from the streams of env offset + e
-        self._start_json = self._start_spec(tracks, probs=track_probs)
+        self._start = self._start_spec(tracks, probs=track_probs)
         self.sim = self._new_sim(self.seed)
         self.never_reset = np.ones(E, bool)  # an env observes nothing until its first reset
         self.num_beams = B = int(self.sim.num_beams)
@@ -240,8 +241,8 @@ class SimBatch:
             steer[e], throttle[e] = veh.steer_time_constant * lag, veh.throttle_time_constant * lag
         self.sim.set_vehicle_params(mask, friction, mass, steer, throttle)
 
-    def _start_spec(self, tracks: list[Track], probs: np.ndarray | None) -> str:
-        """The simulator's reset draws (``_core.Simulator.set_start_spec``) as JSON."""
+    def _start_spec(self, tracks: list[Track], probs: np.ndarray | None) -> StartSpec:
+        """The simulator's reset draws (``_core.Simulator.set_start_spec``)."""
         cfg = self.config
         rnd = cfg.randomisation
         return start_spec(
@@ -268,7 +269,7 @@ class SimBatch:
             seed,
             env_index_offset=self.env_index_offset,
         )
-        sim.set_start_spec(self._start_json)
+        sim.set_start_spec(self._start)
         # Vehicle factors (tyre friction, mass, lags) per episode, from each env's own stream
         # seeded from (seed, env index): the same episodes whatever num_envs.
         self._vehicle_rngs = (

@@ -19,7 +19,7 @@ import numpy as np
 from ..errors import ConfigError
 from ..sim_config import SimConfig
 from ..start_grid import start_spec
-from .start import StartConfig, spec_json
+from .start import StartConfig, bridge_start_spec
 
 
 @dataclass
@@ -113,6 +113,6 @@ def sim_source(
         raise ConfigError(f"--cars must be in 1..64, got {cars}")
     cfg = config or SimConfig()
     sim = _core.Simulator([track.native()], 1, n, cfg.to_json(), seed)
-    sim.set_start_spec(spec_json(track, n, start or StartConfig(), cfg.vehicle.chassis_width))
+    sim.set_start_spec(bridge_start_spec(track, n, start or StartConfig(), cfg.vehicle.chassis_width))
     src = track.source if track.source is not None else env_or_sim
     return SimSource(sim, n, cfg, np.asarray(track.centreline), occupancy_map=_load_map(src), name=track.name)

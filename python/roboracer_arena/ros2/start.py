@@ -16,9 +16,11 @@ from typing import Any, Literal
 import numpy as np
 from pydantic import ConfigDict, Field
 
+from .._core import StartSpec
 from ..errors import InvalidArgumentError
 from ..start_grid import GRID_OFFSET, GRID_SPACING, SIDE_MARGIN, start_spec
 from ..strict import NumbersAreNumbers
+from ..track import Track
 
 
 class StartConfig(NumbersAreNumbers):
@@ -36,8 +38,8 @@ class StartConfig(NumbersAreNumbers):
     start_speed_noise: float = Field(0.0, ge=0, description="Rolling start speed drawn from [0, this] (m/s).")
 
 
-def spec_json(track: Any, vehicles: int, config: StartConfig, chassis_width: float) -> str:
-    """The ``set_start_spec`` JSON of a bridge on ``track`` (a ``Track``), as the env makes it."""
+def bridge_start_spec(track: Track, vehicles: int, config: StartConfig, chassis_width: float) -> StartSpec:
+    """The ``set_start_spec`` of a bridge on ``track``, as the env makes it."""
     return start_spec(
         [track],
         vehicles,

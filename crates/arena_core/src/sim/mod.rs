@@ -7,6 +7,7 @@
 //! * [`segments`]: wall segments indexed for beam walks, clearance and sweep culling
 //! * [`lidar`]: exact ray casting against wall segments and other vehicles
 //! * [`sweep`]: the same scan by angular sweep over segments (chosen for small tracks)
+//! * [`start_grid`]: the grid start of a track (clearance, free run ahead, grid poses)
 //! * [`starts`]: reset draws (track, start poses, speeds, lidar randomisation) per env
 //! * [`progress`]: arc length along the centreline and lap counting
 //! * [`world`]: one rapier world per environment
@@ -18,6 +19,7 @@ pub mod params;
 pub mod progress;
 pub mod segments;
 pub mod shapes;
+pub mod start_grid;
 pub mod starts;
 pub mod sweep;
 pub mod track;
@@ -33,6 +35,7 @@ mod tests_resets;
 
 pub use batch::{ResetGiven, ResetOut, Simulator, MAX_ABS_YAW, POSE_MARGIN};
 pub use params::{LidarParams, PhysicsParams, SimParams, VehicleParams};
+pub use start_grid::StartGrid;
 pub use starts::StartSpec;
 pub use track::{Centreline, Track};
 pub use world::{EVENT_FAULT, EVENT_LAP, EVENT_VEHICLE, EVENT_WALL, STATE_FIELDS, STATE_SIZE};

@@ -8,22 +8,20 @@
 
 use rand_chacha::rand_core::Rng;
 use rand_chacha::ChaCha8Rng;
-use serde::Deserialize;
 
 use super::lidar::ScanNoise;
 use super::track::Track;
 use crate::error::{ArenaError, Result};
 
-/// How resets place the cars (mirrors the env config; see `roboracer_arena.envs`).
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// How resets place the cars (mirrors the env config; see `roboracer_arena.envs`). The
+/// binding builds it from keyword arguments (`_core.StartSpec`), checked by [`Self::check`].
+#[derive(Debug, Clone, PartialEq)]
 pub struct StartSpec {
     /// First grid slot at a uniformly random arc length (else at `s0[track]`).
     pub random_s: bool,
     /// Arc length of the first grid slot per track (when not `random_s`).
     pub s0: Vec<f64>,
     /// Track draw weights (empty: uniform).
-    #[serde(default)]
     pub track_weights: Vec<f64>,
     pub grid_spacing: f64,
     pub grid_offset: f64,
@@ -38,8 +36,10 @@ pub struct StartSpec {
 }
 
 impl StartSpec {
-    /// Check against the number of tracks: finite, non-negative, in range.
+    /// Check against the number of tracks: one `s0` (and weight, if any) per track, and
+    /// the ranges of [`Self::check`].
     pub fn validate(&self, num_tracks: usize) -> Result<()> {
+        self.check()?;
         let bad = |what: &str| Err(ArenaError::invalid(format!("start spec: {what}")));
         if self.s0.len() != num_tracks {
             return bad(&format!(
@@ -47,14 +47,25 @@ impl StartSpec {
                 self.s0.len()
             ));
         }
+        if !self.track_weights.is_empty() && self.track_weights.len() != num_tracks {
+            return bad(&format!(
+                "track_weights has {} entries, expected one per track ({num_tracks})",
+                self.track_weights.len()
+            ));
+        }
+        Ok(())
+    }
+
+    /// The ranges, whatever the tracks: finite arc lengths, non-negative weights not all
+    /// 0, distances and noises finite in [0, 1e4], `noise_std` low <= high, dropout in [0, 1).
+    pub fn check(&self) -> Result<()> {
+        let bad = |what: &str| Err(ArenaError::invalid(format!("start spec: {what}")));
         if self.s0.iter().any(|s| !s.is_finite()) {
             return bad("s0 must be finite");
         }
         let w = &self.track_weights;
         if !w.is_empty()
-            && (w.len() != num_tracks
-                || w.iter().any(|x| !(x.is_finite() && *x >= 0.0))
-                || w.iter().sum::<f64>() <= 0.0)
+            && (w.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || w.iter().sum::<f64>() <= 0.0)
         {
             return bad("track_weights must be one finite weight >= 0 per track, not all 0");
         }

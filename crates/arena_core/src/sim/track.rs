@@ -94,22 +94,7 @@ impl Centreline {
         } else {
             0.0
         };
-        let i = match self.cum.binary_search_by(|c| c.partial_cmp(&s).unwrap()) {
-            Ok(i) => i.min(self.pts.len() - 1),
-            Err(i) => i - 1,
-        };
-        let (a, b) = (self.pts[i], self.pts[(i + 1) % self.pts.len()]);
-        let seg = self.cum[i + 1] - self.cum[i];
-        let t = if seg > 0.0 {
-            (s - self.cum[i]) / seg
-        } else {
-            0.0
-        };
-        [
-            a[0] + t * (b[0] - a[0]),
-            a[1] + t * (b[1] - a[1]),
-            (b[1] - a[1]).atan2(b[0] - a[0]),
-        ]
+        pose_on_ring(&self.pts, &self.cum, s)
     }
 
     /// Project `p` on segment `i`: (squared distance, arc length).
@@ -175,6 +160,25 @@ impl Centreline {
         }
         (best.1, best.2)
     }
+}
+
+/// Pose `(x, y, heading)` at arc length `s` (already wrapped into `[0, length]`) on the
+/// closed ring `pts` with cumulative lengths `cum` (one more than `pts`): on the last
+/// segment that starts at or before `s` (numpy's `searchsorted(cum, s, "right") - 1`).
+pub(crate) fn pose_on_ring(pts: &[[f64; 2]], cum: &[f64], s: f64) -> [f64; 3] {
+    let n = pts.len();
+    let i = cum
+        .partition_point(|&c| c <= s)
+        .saturating_sub(1)
+        .min(n - 1);
+    let (a, b) = (pts[i], pts[(i + 1) % n]);
+    let seg = cum[i + 1] - cum[i];
+    let t = if seg > 0.0 { (s - cum[i]) / seg } else { 0.0 };
+    [
+        a[0] + t * (b[0] - a[0]),
+        a[1] + t * (b[1] - a[1]),
+        (b[1] - a[1]).atan2(b[0] - a[0]),
+    ]
 }
 
 /// Drop consecutive duplicates and a closing point equal to the first.
