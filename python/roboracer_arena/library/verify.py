@@ -258,8 +258,9 @@ def recorded_verdicts(entry: TrackEntry, result: TrackResult) -> dict[str, Any]:
         if check.status != NOT_RUN or name not in verified:
             verified[name] = check.status
     drive = result.checks.get("drive")
-    ran = drive is not None and drive.status != NOT_RUN
-    return {"verified": verified, "drive": drive.detail if ran else (entry.drive or "")}
+    if drive is None or drive.status == NOT_RUN:
+        return {"verified": verified, "drive": entry.drive or ""}
+    return {"verified": verified, "drive": drive.detail}
 
 
 def prune_catalog(cat: Catalog, summary: VerifySummary) -> list[str]:
