@@ -18,7 +18,8 @@
 //! `L` in closed form once `B` is drawn, because every corner's saving is known (see
 //! `rounding`). A lap longer than the hall's rectangle gets plain notches (wide U's with
 //! four ordinary corners) in its long side, and inward hairpins are deepened, to one
-//! depth that `L` fixes.
+//! depth that `L` fixes. A featureless lap too long for any notch count gets the
+//! side-notch shape instead (`side_notch`).
 
 use super::construct::extent;
 use super::rounding::{round_polygon, savings};
@@ -348,6 +349,10 @@ pub fn ring_candidate(
             fits.push((l, a, b));
         }
         if fits.is_empty() {
+            // A featureless lap may still fit the side-notch shape.
+            if order.is_empty() {
+                return super::side_notch::side_notch_loop(spec, d, ux, uy, rng);
+            }
             return Err("ring: no notch count fits the lap");
         }
         let (l, a, b) = fits.swap_remove((rng.next_u32() as usize) % fits.len());

@@ -1,0 +1,150 @@
+//! The ring's last resort for a featureless lap too long for its comb: two shallow
+//! notches in the long side under one notch from the short side that runs across the hall.
+//!
+//! The comb holds two plain notches in a 17.9 m side (three need four gaps and three
+//! widths of ≥ 3.5 r_c each), and notches from both long sides need more length than the
+//! side has; a 110 m lap at w = 0.8 m in a 20 × 15 m hall needs ≈ 107 m. Here the short
+//! side's notch takes most of the hall's length, and the long side's two notches stay
+//! under it, one pitch below its lower leg:
+//!
+//! ```text
+//!  +-----------------------------+
+//!  |  +--------------------------+  ← the side notch, `dr` deep, one gap wide
+//!  |  +--------------------------+
+//!  |     +--+          +--+      |  ← two notches `du` deep, one gap wide
+//!  +-----+  +----------+  +------+
+//! ```
+//!
+//! Same-sense corners stay [`GAP`] r_c apart (centre to centre, so the detector keeps
+//! them apart), passes one pitch (plus [`CLEAR`]) apart. The lap is exact when the shape
+//! holds it, else as long as the shape allows down to [`SHORT_SLACK`] below L (the
+//! validator allows 3 %).
+
+use super::rounding::{round_polygon, savings};
+use super::spec::{Derived, Spec};
+use rand_chacha::rand_core::Rng;
+use rand_chacha::ChaCha8Rng;
+
+/// Corner spacing, centre to centre, in r_c: drawn in this range (1.6–1.8 r_c of
+/// straight between the fillets; the detector merges plain 90° arcs at 1.5 r_c).
+const GAP: (f64, f64) = (3.6, 3.8);
+/// Extra clearance between parallel passes, as a share of the pitch.
+const CLEAR: f64 = 0.02;
+/// Largest relative shortfall of the lap: two thirds of the validator's 3 %.
+pub const SHORT_SLACK: f64 = 0.02;
+
+/// Candidate centreline (counter-clockwise, in the centreline box `ux` × `uy`, `ux ≥ uy`)
+/// and its feature edge.
+pub fn side_notch_loop(
+    spec: &Spec,
+    d: &Derived,
+    ux: f64,
+    uy: f64,
+    rng: &mut ChaCha8Rng,
+) -> Result<(Vec<[f64; 2]>, f64), &'static str> {
+    let rc = d.corner_radius;
+    let u = (rng.next_u32() % 1000) as f64 / 999.0;
+    let g = (GAP.0 + (GAP.1 - GAP.0) * u) * rc;
+    let p = d.pitch * (1.0 + CLEAR);
+    let (x, y) = (ux, uy);
+    // Heights: the long side's notches `du` deep, one pitch under the side notch (one gap
+    // wide), one gap under the top side.
+    let du_max = y - 2.0 * g - p;
+    let dr_max = x - p;
+    // Legs at least one gap long (no chicane), room for both notches and their gaps.
+    if du_max < g || x < 5.0 * g {
+        return Err("ring: side notch does not fit the hall");
+    }
+    let o = savings(rc).0;
+    let length = |du: f64, dr: f64| 2.0 * (x + y) + 4.0 * du + 2.0 * dr - 16.0 * o;
+    let lap = spec.lap_length_m;
+    let longest = length(du_max, dr_max);
+    if longest < lap * (1.0 - SHORT_SLACK) {
+        return Err("ring: side notch too short for the lap");
+    }
+    // The side notch gives up length first (it stays at least half the hall long).
+    let dr = ((lap - length(du_max, 0.0)) / 2.0).clamp(x / 2.0, dr_max);
+    let du = ((lap - length(0.0, dr)) / 4.0).clamp(g, du_max);
+    if (length(du, dr) - lap).abs() > lap * SHORT_SLACK && length(du, dr) > lap {
+        return Err("ring: side notch too long for the lap");
+    }
+    let (x1, x2) = (g, x - 2.0 * g);
+    let y1 = du + p;
+    let verts = vec![
+        [0.0, 0.0],
+        [x1, 0.0],
+        [x1, du],
+        [x1 + g, du],
+        [x1 + g, 0.0],
+        [x2, 0.0],
+        [x2, du],
+        [x2 + g, du],
+        [x2 + g, 0.0],
+        [x, 0.0],
+        [x, y1],
+        [x - dr, y1],
+        [x - dr, y1 + g],
+        [x, y1 + g],
+        [x, y],
+        [0.0, y],
+    ];
+    let line = round_polygon(&verts, &[false; 16], rc, 0.02).ok_or("fillets overlap")?;
+    Ok((line, d.s_min))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::budget::Budget;
+    use crate::generate::construct::{centreline_box, generate, Outcome};
+    use crate::generate::spec::{derive, ConstructorConfig};
+    use crate::geometry::{polyline_length, signed_area};
+    use rand_chacha::rand_core::SeedableRng;
+
+    fn spec(l: f64, hx: f64, hy: f64) -> Spec {
+        Spec {
+            name: "s".into(),
+            lap_length_m: l,
+            corridor_width_m: 0.8,
+            hall_x_m: hx,
+            hall_y_m: hy,
+            direction: "counterclockwise".into(),
+            hairpins: 0,
+            chicanes: 0,
+            sweepers: 0,
+            feature_order: vec![],
+            min_radius_m: 0.0,
+            longest_straight_m: 0.0,
+            max_straight_m: None,
+        }
+    }
+
+    #[test]
+    fn a_110_m_featureless_lap_in_20_by_15_m_builds_and_validates() {
+        // The sweep's miss at fill 0.5997: the comb holds ≈ 102.8 m, the side notch ≈ 108 m.
+        let s = spec(110.0, 20.0, 15.0);
+        let cfg = ConstructorConfig::default();
+        let d = derive(&s, &cfg);
+        let [bx, by] = centreline_box(&s, &cfg);
+        let mut rng = ChaCha8Rng::seed_from_u64(0);
+        let (line, _) = side_notch_loop(&s, &d, bx.max(by), bx.min(by), &mut rng).unwrap();
+        let l = polyline_length(&line, true);
+        assert!((110.0 * (1.0 - SHORT_SLACK)..=110.0).contains(&l), "{l}");
+        assert!(signed_area(&line) > 0.0);
+        match generate(&s, &cfg, 1, &Budget::default()).unwrap() {
+            Outcome::Accepted { report, .. } => assert!(report.valid),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_lap_beyond_the_shape_or_a_small_hall_is_refused() {
+        let cfg = ConstructorConfig::default();
+        let mut rng = ChaCha8Rng::seed_from_u64(0);
+        for s in [spec(115.0, 20.0, 15.0), spec(40.0, 8.0, 6.0)] {
+            let d = derive(&s, &cfg);
+            let [bx, by] = centreline_box(&s, &cfg);
+            assert!(side_notch_loop(&s, &d, bx.max(by), bx.min(by), &mut rng).is_err());
+        }
+    }
+}
