@@ -349,11 +349,9 @@ pub fn ring_candidate(
             fits.push((l, a, b));
         }
         if fits.is_empty() {
-            // A featureless lap may still fit the side-notch shape.
-            if order.is_empty() {
-                return super::side_notch::side_notch_loop(spec, d, ux, uy, rng);
-            }
-            return Err("ring: no notch count fits the lap");
+            // The side-notch shape may still hold it (featureless, or one chicane and at
+            // most one hairpin).
+            return super::side_notch::side_notch_loop(spec, d, ux, uy, rng);
         }
         let (l, a, b) = fits.swap_remove((rng.next_u32() as usize) % fits.len());
         lay = l;

@@ -1,9 +1,12 @@
-//! The ring's last resort for a featureless lap too long for its comb: two shallow
-//! notches in the long side under one notch from the short side that runs across the hall.
+//! The ring's last resort for a lap too long for its comb: two shallow notches in the
+//! long side under one notch from the short side that runs across the hall. It holds no
+//! features, or one chicane (a step in the top side) and at most one hairpin (the side
+//! notch one feature edge wide, so its two tip corners merge).
 //!
 //! The comb holds two plain notches in a 17.9 m side (three need four gaps and three
 //! widths of ≥ 3.5 r_c each), and notches from both long sides need more length than the
-//! side has; a 110 m lap at w = 0.8 m in a 20 × 15 m hall needs ≈ 107 m. Here the short
+//! side has: of a 110 m lap at w = 0.8 m in a 20 × 15 m hall the comb holds ≈ 103 m, and
+//! the validator wants ≥ 106.7 m. Here the short
 //! side's notch takes most of the hall's length, and the long side's two notches stay
 //! under it, one pitch below its lower leg:
 //!
@@ -29,6 +32,9 @@ use rand_chacha::ChaCha8Rng;
 /// straight between the fillets; the detector merges plain 90° arcs at 1.5 r_c). A lap
 /// at the shape's limit fits only the tighter draws; the others are refused.
 const GAP: (f64, f64) = (3.6, 3.8);
+/// Feature edge (hairpin width, chicane step) as a multiple of `s_min`, the ring's
+/// smallest: its two turns merge (hairpin) or pair (chicane) in the detector.
+const FEATURE_EDGE: f64 = 1.05;
 /// Extra clearance between parallel passes, as a share of the pitch.
 const CLEAR: f64 = 0.02;
 /// Largest relative shortfall of the lap: two thirds of the validator's 3 %.
@@ -43,21 +49,35 @@ pub fn side_notch_loop(
     uy: f64,
     rng: &mut ChaCha8Rng,
 ) -> Result<(Vec<[f64; 2]>, f64), &'static str> {
+    // Featureless, or one chicane (a step in the top side) with at most one hairpin (the
+    // side notch one feature edge wide). A lone hairpin stays with the comb, which
+    // deepens it.
+    let (hairpin, chicane) = (spec.hairpins == 1, spec.chicanes == 1);
+    if spec.sweepers > 0 || spec.hairpins > 1 || spec.chicanes > 1 || (hairpin && !chicane) {
+        return Err("ring: no notch count fits the lap");
+    }
     let rc = d.corner_radius;
     let u = (rng.next_u32() % 1000) as f64 / 999.0;
     let g = (GAP.0 + (GAP.1 - GAP.0) * u) * rc;
     let p = d.pitch * (1.0 + CLEAR);
+    let e = FEATURE_EDGE * d.s_min;
     let (x, y) = (ux, uy);
-    // Heights: the long side's notches `du` deep, one pitch under the side notch (one gap
-    // wide), one gap under the top side.
-    let du_max = y - 2.0 * g - p;
+    // Heights: the long side's notches `du` deep, one pitch under the side notch (`wr`
+    // wide), one gap under the top side; with a chicane the top side's left part steps
+    // down by `e` and stays one pitch above the side notch.
+    let wr = if hairpin { e } else { g };
+    let mut du_max = y - g - wr - p;
+    if chicane {
+        du_max = du_max.min(y - e - wr - 2.0 * p);
+    }
     let dr_max = x - p;
     // Legs at least one gap long (no chicane), room for both notches and their gaps.
     if du_max < g || x < 5.0 * g {
         return Err("ring: side notch does not fit the hall");
     }
+    let corners = if chicane { 18.0 } else { 16.0 };
     let o = savings(rc).0;
-    let length = |du: f64, dr: f64| 2.0 * (x + y) + 4.0 * du + 2.0 * dr - 16.0 * o;
+    let length = |du: f64, dr: f64| 2.0 * (x + y) + 4.0 * du + 2.0 * dr - corners * o;
     let lap = spec.lap_length_m;
     let longest = length(du_max, dr_max);
     if longest < lap * (1.0 - SHORT_SLACK) {
@@ -71,7 +91,7 @@ pub fn side_notch_loop(
     }
     let (x1, x2) = (g, x - 2.0 * g);
     let y1 = du + p;
-    let verts = vec![
+    let mut verts = vec![
         [0.0, 0.0],
         [x1, 0.0],
         [x1, du],
@@ -84,12 +104,20 @@ pub fn side_notch_loop(
         [x, 0.0],
         [x, y1],
         [x - dr, y1],
-        [x - dr, y1 + g],
-        [x, y1 + g],
+        [x - dr, y1 + wr],
+        [x, y1 + wr],
         [x, y],
-        [0.0, y],
     ];
-    let line = round_polygon(&verts, &[false; 16], rc, 0.02).ok_or("fillets overlap")?;
+    if chicane {
+        // The step: a left and a right turn one feature edge apart, a gap or more from
+        // the corners either side.
+        let xs = x / 2.0;
+        verts.extend([[xs, y], [xs, y - e], [0.0, y - e]]);
+    } else {
+        verts.push([0.0, y]);
+    }
+    let line =
+        round_polygon(&verts, &vec![false; verts.len()], rc, 0.02).ok_or("fillets overlap")?;
     Ok((line, d.s_min))
 }
 
@@ -142,6 +170,25 @@ mod tests {
         match generate(&s, &cfg, 1, &Budget::default()).unwrap() {
             Outcome::Accepted { report, .. } => assert!(report.valid),
             other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_hairpin_and_a_chicane_fit_the_shape_and_other_features_do_not() {
+        // The hairpin is the side notch one feature edge wide, the chicane a step in the top.
+        let mut s = spec(110.0, 20.0, 15.0);
+        (s.hairpins, s.chicanes) = (1, 1);
+        let cfg = ConstructorConfig::default();
+        match generate(&s, &cfg, 0, &Budget::default()).unwrap() {
+            Outcome::Accepted { report, .. } => assert!(report.valid),
+            other => panic!("{other:?}"),
+        }
+        let d = derive(&s, &cfg);
+        let [bx, by] = centreline_box(&s, &cfg);
+        for (h, c, sw) in [(1, 0, 0), (2, 1, 0), (0, 1, 1), (0, 2, 0)] {
+            (s.hairpins, s.chicanes, s.sweepers) = (h, c, sw);
+            let mut rng = ChaCha8Rng::seed_from_u64(0);
+            assert!(side_notch_loop(&s, &d, bx.max(by), bx.min(by), &mut rng).is_err());
         }
     }
 
