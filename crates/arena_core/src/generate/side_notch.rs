@@ -1,7 +1,8 @@
 //! The ring's last resort for a lap too long for its comb: two shallow notches in the
 //! long side under one notch from the short side that runs across the hall. It holds no
-//! features, or one chicane (a step in the top side) and at most one hairpin (the side
-//! notch one feature edge wide, so its two tip corners merge).
+//! features, or one chicane (a step in the top side) with at most two hairpins (the side
+//! notch, then the first bottom notch, one feature edge wide, so their tip corners merge)
+//! and at most one sweeper (the bottom-left corner, chamfered as the ring's).
 //!
 //! The comb holds two plain notches in a 17.9 m side (three need four gaps and three
 //! widths of ≥ 3.5 r_c each), and notches from both long sides need more length than the
@@ -35,6 +36,8 @@ const GAP: (f64, f64) = (3.6, 3.8);
 /// Feature edge (hairpin width, chicane step) as a multiple of `s_min`, the ring's
 /// smallest: its two turns merge (hairpin) or pair (chicane) in the detector.
 const FEATURE_EDGE: f64 = 1.05;
+/// Room (in r_c) a sweeper corner's chamfer takes from each adjacent side (the ring's).
+const SWEEPER_ROOM: f64 = 1.6;
 /// Extra clearance between parallel passes, as a share of the pitch.
 const CLEAR: f64 = 0.02;
 /// Largest relative shortfall of the lap: two thirds of the validator's 3 %.
@@ -52,8 +55,9 @@ pub fn side_notch_loop(
     // Featureless, or one chicane (a step in the top side) with at most one hairpin (the
     // side notch one feature edge wide). A lone hairpin stays with the comb, which
     // deepens it.
-    let (hairpin, chicane) = (spec.hairpins == 1, spec.chicanes == 1);
-    if spec.sweepers > 0 || spec.hairpins > 1 || spec.chicanes > 1 || (hairpin && !chicane) {
+    let (hairpin, chicane, sweeper) = (spec.hairpins >= 1, spec.chicanes == 1, spec.sweepers == 1);
+    let features = spec.hairpins + spec.chicanes + spec.sweepers;
+    if features > 0 && !chicane || spec.hairpins > 2 || spec.chicanes > 1 || spec.sweepers > 1 {
         return Err("ring: no notch count fits the lap");
     }
     let rc = d.corner_radius;
@@ -71,13 +75,22 @@ pub fn side_notch_loop(
         du_max = du_max.min(y - e - wr - 2.0 * p);
     }
     let dr_max = x - p;
-    // Legs at least one gap long (no chicane), room for both notches and their gaps.
-    if du_max < g || x < 5.0 * g {
+    // Legs at least one gap long (no chicane).
+    if du_max < g {
+        return Err("ring: side notch does not fit the hall");
+    }
+    // A second hairpin is the first bottom notch one feature edge wide; a sweeper is the
+    // bottom-left corner, chamfered, with the ring's room on its sides.
+    let w1 = if spec.hairpins == 2 { e } else { g };
+    let room = if sweeper { SWEEPER_ROOM * rc } else { 0.0 };
+    if x < 4.0 * g + w1 + room {
         return Err("ring: side notch does not fit the hall");
     }
     let corners = if chicane { 18.0 } else { 16.0 };
-    let o = savings(rc).0;
-    let length = |du: f64, dr: f64| 2.0 * (x + y) + 4.0 * du + 2.0 * dr - corners * o;
+    let (o, sw) = savings(rc);
+    let n_sw = if sweeper { 1.0 } else { 0.0 };
+    let saved = (corners - n_sw) * o + n_sw * sw;
+    let length = |du: f64, dr: f64| 2.0 * (x + y) + 4.0 * du + 2.0 * dr - saved;
     let lap = spec.lap_length_m;
     let longest = length(du_max, dr_max);
     if longest < lap * (1.0 - SHORT_SLACK) {
@@ -89,14 +102,14 @@ pub fn side_notch_loop(
     if (length(du, dr) - lap).abs() > lap * SHORT_SLACK && length(du, dr) > lap {
         return Err("ring: side notch too long for the lap");
     }
-    let (x1, x2) = (g, x - 2.0 * g);
+    let (x1, x2) = (g + room, x - 2.0 * g);
     let y1 = du + p;
     let mut verts = vec![
         [0.0, 0.0],
         [x1, 0.0],
         [x1, du],
-        [x1 + g, du],
-        [x1 + g, 0.0],
+        [x1 + w1, du],
+        [x1 + w1, 0.0],
         [x2, 0.0],
         [x2, du],
         [x2 + g, du],
@@ -116,8 +129,9 @@ pub fn side_notch_loop(
     } else {
         verts.push([0.0, y]);
     }
-    let line =
-        round_polygon(&verts, &vec![false; verts.len()], rc, 0.02).ok_or("fillets overlap")?;
+    let mut is_sweeper = vec![false; verts.len()];
+    is_sweeper[0] = sweeper;
+    let line = round_polygon(&verts, &is_sweeper, rc, 0.02).ok_or("fillets overlap")?;
     Ok((line, d.s_min))
 }
 
@@ -174,7 +188,7 @@ mod tests {
     }
 
     #[test]
-    fn a_hairpin_and_a_chicane_fit_the_shape_and_other_features_do_not() {
+    fn a_hairpin_and_a_chicane_fit_the_shape_and_features_without_a_chicane_do_not() {
         // The hairpin is the side notch one feature edge wide, the chicane a step in the top.
         let mut s = spec(110.0, 20.0, 15.0);
         (s.hairpins, s.chicanes) = (1, 1);
@@ -185,7 +199,7 @@ mod tests {
         }
         let d = derive(&s, &cfg);
         let [bx, by] = centreline_box(&s, &cfg);
-        for (h, c, sw) in [(1, 0, 0), (2, 1, 0), (0, 1, 1), (0, 2, 0)] {
+        for (h, c, sw) in [(1, 0, 0), (0, 0, 1), (3, 1, 0), (0, 2, 0), (2, 1, 2)] {
             (s.hairpins, s.chicanes, s.sweepers) = (h, c, sw);
             let mut rng = ChaCha8Rng::seed_from_u64(0);
             assert!(side_notch_loop(&s, &d, bx.max(by), bx.min(by), &mut rng).is_err());
