@@ -10,4 +10,5 @@ pub mod polygon;
 pub mod ring;
 pub mod rounding;
 pub mod screen;
+pub mod side_notch;
 pub mod spec;

@@ -18,7 +18,8 @@
 //! `L` in closed form once `B` is drawn, because every corner's saving is known (see
 //! `rounding`). A lap longer than the hall's rectangle gets plain notches (wide U's with
 //! four ordinary corners) in its long side, and inward hairpins are deepened, to one
-//! depth that `L` fixes.
+//! depth that `L` fixes. A lap too long for any notch count gets the side-notch shape
+//! instead when it is featureless or has a chicane (`side_notch`).
 
 use super::rounding::{round_polygon, savings};
 use super::spec::{centreline_box, ConstructorConfig, Derived, Spec};
@@ -348,7 +349,9 @@ pub fn ring_candidate(
             fits.push((l, a, b));
         }
         if fits.is_empty() {
-            return Err("ring: no notch count fits the lap");
+            // The side-notch shape may still hold it (featureless, or one chicane with at
+            // most two hairpins and one sweeper).
+            return super::side_notch::side_notch_loop(spec, d, ux, uy, rng);
         }
         let (l, a, b) = fits.swap_remove((rng.next_u32() as usize) % fits.len());
         lay = l;
