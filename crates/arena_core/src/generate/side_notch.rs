@@ -139,8 +139,8 @@ pub fn side_notch_loop(
 mod tests {
     use super::*;
     use crate::generate::budget::Budget;
-    use crate::generate::construct::{centreline_box, generate, Outcome};
-    use crate::generate::spec::{derive, ConstructorConfig};
+    use crate::generate::construct::{generate, Outcome};
+    use crate::generate::spec::{centreline_box, derive, ConstructorConfig};
     use crate::geometry::{polyline_length, signed_area};
     use rand_chacha::rand_core::SeedableRng;
 
