@@ -17,7 +17,7 @@ import signal
 import stat
 import tempfile
 import weakref
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import Any
@@ -296,11 +296,14 @@ def read_json(
 
 
 @contextmanager
-def atomic_dir(path: str | Path) -> Iterator[Path]:
+def atomic_dir(path: str | Path, also: Callable[[], object] | None = None) -> Iterator[Path]:
     """Yield a fresh temporary sibling directory of ``path``; when the block succeeds it
     replaces ``path`` by rename (a previous ``path`` is moved aside first and deleted after),
     so readers see the old folder or the new one, never a mix. On any error the temporary
-    folder is removed and ``path`` is left as it was."""
+    folder is removed and ``path`` is left as it was. ``also`` (e.g. the
+    :meth:`StagedFile.commit` of a file describing the folder) runs in the same step as the
+    swap, signals held: if it fails the earlier folder is put back, so both land or
+    neither."""
     path = Path(path)
     parent = path.absolute().parent
     try:
@@ -317,6 +320,12 @@ def atomic_dir(path: str | Path) -> Iterator[Path]:
                 old = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".old", dir=parent))
                 os.replace(path, old / "previous")
             os.replace(tmp, path)
+            if also is not None:
+                try:
+                    also()
+                except BaseException:
+                    os.replace(path, tmp)  # undo the swap; the handler below restores the old one
+                    raise
     except BaseException:
         with signals_held():
             if old is not None and not path.exists():
@@ -327,6 +336,25 @@ def atomic_dir(path: str | Path) -> Iterator[Path]:
         if old is not None:
             with signals_held():
                 shutil.rmtree(old, ignore_errors=True)
+
+
+def link_tree(src: Path, dst: Path) -> None:
+    """Reproduce ``src`` (a file, a symlink or a folder tree) at ``dst`` by hard links,
+    copying where a link is impossible: how a staged folder carries over, at no cost,
+    what the job does not rewrite."""
+
+    def link(a: str, b: str) -> None:
+        try:
+            os.link(a, b)
+        except OSError:
+            shutil.copy2(a, b)
+
+    if src.is_dir() and not src.is_symlink():
+        shutil.copytree(src, dst, symlinks=True, copy_function=link)
+    elif src.is_symlink():
+        os.symlink(os.readlink(src), dst)
+    else:
+        link(str(src), str(dst))
 
 
 def atomic_write_dir(path: str | Path, files: dict[str, bytes]) -> None:
