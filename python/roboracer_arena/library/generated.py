@@ -22,7 +22,7 @@ import numpy as np
 
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
-from ..fileio import atomic_dir, atomic_write_dir, atomic_write_text, check_output, link_tree
+from ..fileio import atomic_update_dir, atomic_write_dir, atomic_write_text, check_output
 from ..pool import Progress, local_unless, map_ordered
 from ..spec import TrackSpec
 from .sweep_report import GeneratedSweepSummary, SweepRecord, count_outcome
@@ -125,18 +125,12 @@ def build_generated(
 
 @contextmanager
 def staged_generated(outdir: str | Path, also: Callable[[], object] | None = None) -> Iterator[Path]:
-    """A stage for the generated folder ``outdir`` (:func:`~roboracer_arena.fileio.atomic_dir`,
-    swapped in with ``also`` when the block succeeds), holding hard links to what
-    ``outdir`` has that is not this sweep's: other folders and files. This sweep's tracks
-    are all written afresh, so one it no longer keeps (or no longer tries) is gone."""
-    old = Path(outdir)
-    check_output(old, directory=True)
-    ours = {tid for tid, _, _ in sweep()} | {"sweep.json"}
-    with atomic_dir(old, also=also) as stage:
-        if old.is_dir():
-            for item in old.iterdir():
-                if item.name not in ours:
-                    link_tree(item, stage / item.name)
+    """A stage for the generated folder ``outdir``, swapped in with ``also`` when the block
+    succeeds (:func:`~roboracer_arena.fileio.atomic_update_dir`): what ``outdir`` has that
+    is not this sweep's (other folders and files) is kept; this sweep's tracks are all
+    written afresh, so one it no longer keeps (or no longer tries) is gone."""
+    check_output(outdir, directory=True)
+    with atomic_update_dir(outdir, {tid for tid, _, _ in sweep()} | {"sweep.json"}, also) as stage:
         yield stage
 
 

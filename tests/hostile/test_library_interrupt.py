@@ -3,7 +3,8 @@ the catalog out of step: the sweep's tracks were written into ``tracks/generated
 one and the ones not kept removed, and only then was ``tracks/catalog.json`` rebuilt, so
 a signal in between left a catalog naming tracks that no longer existed. The folder and
 the catalog are now staged and swapped in together: a signal at any moment leaves both
-as they were (or both new), and no staging folder."""
+as they were (or both new), and no staging folder. ``circuits`` wrote each circuit's
+files into the library in place the same way; its folder is staged too."""
 
 from __future__ import annotations
 
@@ -84,9 +85,31 @@ def test_an_interrupted_catalog_generate_leaves_the_library_as_it_was(library, t
 
 def test_a_finished_catalog_generate_swaps_both_in(library, tmp_path):
     shutil.copytree(library, tmp_path, dirs_exist_ok=True)
-    p = catalog_run(tmp_path, "--generate", "--count", "30", "--jobs", "1")
+    p = catalog_run(tmp_path, "--generate", "--count", "6", "--max-requests", "12", "--jobs", "1")
     _, err = p.communicate(timeout=240)
     assert p.returncode == 0, err
     assert whole(tmp_path) and (tmp_path / "tracks" / "generated" / "mine.txt").exists()
-    assert len([d for d in (tmp_path / "tracks" / "generated").iterdir() if d.is_dir()]) == 30
+    assert len([d for d in (tmp_path / "tracks" / "generated").iterdir() if d.is_dir()]) == 6
     assert strays(tmp_path / "tracks") == [] and strays(tmp_path / "tracks" / "generated") == []
+
+
+def test_an_interrupted_circuits_rebuild_leaves_the_library_as_it_was(sources, tmp_path):
+    out = tmp_path / "circuits"
+    base = ["circuits", "--sources", str(sources), "-o", str(out), "--only", "monaco", "--jobs", "1"]
+    p = cli(*base)
+    _, err = p.communicate(timeout=240)
+    assert p.returncode == 0, err
+    (out / "mine.txt").write_text("a file of the user's\n")
+    before = tree(tmp_path)
+    t0 = time.time()
+    p = cli(*base, "--resolution", "0.1")  # a different map: the old code overwrote it in place
+    deadline = time.monotonic() + 120
+    while p.poll() is None and time.monotonic() < deadline:
+        maps = [*tmp_path.glob("circuits/monaco/map.yaml"), *tmp_path.glob(".circuits.*/monaco/map.yaml")]
+        if any(m.stat().st_mtime >= t0 for m in maps if m.exists()):
+            break
+        time.sleep(0.02)
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 130 and "Traceback" not in err, err[-800:]
+    assert tree(tmp_path) == before and strays(tmp_path) == [] and strays(out) == []
