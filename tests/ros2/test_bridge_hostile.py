@@ -112,3 +112,27 @@ def test_the_python_api_applies_the_same_rule(ellipse_map):
     assert stats["error"] is None and stats["sim_time_s"] == pytest.approx(0.25, abs=1e-9)
     assert stats["rejected"]["/initialpose: position inside a wall or off the track"] == 4
     assert sum(stats["rejected"].values()) == 6
+
+
+def test_an_open_map_pose_must_be_in_its_free_space():
+    """On an open map (walls only: a 10 x 8 m room with a 2 m pillar) the free space is the
+    room around the start: the pillar and the outside (still inside the world's box) are
+    refused, any free spot is taken."""
+    import numpy as np
+
+    from roboracer_arena.ros2.bridge import Bridge
+    from roboracer_arena.track import Track
+
+    def box(x0, y0, x1, y1):
+        return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], float)
+
+    room = Track.open_map([box(-5, -4, 5, 4), box(1, -1, 3, 1)], (-3.0, 0.0, 0.0), name="room")
+    b = Bridge(room, dds=False, rate=None, stop_at=0.1)
+    b.start()
+    for x, y in ((2.0, 0.0), (7.0, 0.0), (0.0, -6.0)):  # the pillar; outside the room, inside the box
+        assert b.reset_ego(x, y, 0.0) is False, (x, y)
+    assert b.reset_ego(0.0, 3.0, 0.0) and b.reset_ego(4.0, -3.0, 1.0)
+    assert b.wait(30)
+    stats = b.stop()
+    assert stats["error"] is None
+    assert stats["rejected"] == {"/initialpose: position inside a wall or off the track": 3}
