@@ -360,15 +360,22 @@ mod tests {
 
     #[test]
     fn free_space_is_the_region_of_the_start() {
-        // A ring track (outer r 3, inner r 1.5) with a 0.3 m square block on the track.
-        let block = vec![[2.1, -0.15], [2.4, -0.15], [2.4, 0.15], [2.1, 0.15]];
+        // A ring track (outer r 3, inner r 1.5) with a 0.3 m square block on the track,
+        // a quarter lap from the start (2.25, 0).
+        let block = vec![[-0.15, 2.1], [0.15, 2.1], [0.15, 2.4], [-0.15, 2.4]];
         let t = Track::new(
             &[circle(3.0, 64), circle(1.5, 64), block],
             &circle(2.25, 64),
             0.5,
         )
         .unwrap();
-        for p in [[-2.25, 0.0], [0.0, 2.0], [0.0, -2.8], [2.0, 0.0]] {
+        for p in [
+            [-2.25, 0.0],
+            [0.0, -2.0],
+            [0.0, -2.8],
+            [2.0, 0.0],
+            [0.0, 2.6],
+        ] {
             assert!(t.is_free(p), "{p:?} is on the track");
         }
         // In the infield, beyond the outer wall, inside the block, non-finite.
@@ -377,7 +384,7 @@ mod tests {
             [0.5, 0.5],
             [3.5, 0.0],
             [0.0, -40.0],
-            [2.25, 0.0],
+            [0.0, 2.25],
             [f64::NAN, 2.0],
         ] {
             assert!(!t.is_free(p), "{p:?} is not free");
