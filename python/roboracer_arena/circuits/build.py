@@ -19,7 +19,7 @@ import numpy as np
 from .. import _core
 from ..direction import direction_of
 from ..errors import CorridorError
-from ..fileio import atomic_update_dir, atomic_write_text
+from ..fileio import atomic_update_dir, atomic_write_text, check_output
 from ..maps import OccupancyMap
 from ..pool import Progress, pool_map
 from .geometry import MIN_RADIUS_SPAN_M, reduce_widths, smooth_resample
@@ -166,6 +166,7 @@ def build_all(
     ``outdir/index.json`` and return the summary with per-circuit reports. ``outdir`` is
     staged and swapped in whole, keeping the folders of circuits not built."""
     t0 = time.perf_counter()
+    check_output(outdir, directory=True)  # a file there is refused, never swapped away
     inputs, skipped = circuit_inputs(sources)
     if only:
         inputs = [c for c in inputs if c.id in set(only)]
