@@ -46,7 +46,11 @@ __all__ = [
     "measure_map",
     "RasterMeasurement",
     "Simulator",
+    "FreeSpace",
     "stadium_track",
+    "check_sim_size",
+    "SIM_MAX_VEHICLES",
+    "SIM_MAX_SCAN_VALUES",
     "STATE_FIELDS",
     "StartGrid",
     "StartSpec",
@@ -336,15 +340,33 @@ class Simulator:
         ``env_mask`` is True (other rows untouched, their noise streams not advanced)."""
     def centreline_pose(self, track_id: int, s: float) -> tuple[float, float, float]:
         """Pose (x, y, heading) on the centreline at arc length ``s`` (finite; wrapped)."""
+    def free_space(self, track_id: int) -> FreeSpace:
+        """The track's free space (usable from any thread while the simulator steps)."""
     def centreline_length(self, track_id: int) -> float: ...
     def centreline(self, track_id: int) -> npt.NDArray[np.float64]: ...
     def wall_mesh(self, track_id: int) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]:
         """The collision wall mesh as the physics engine holds it (shared by every env on the track)."""
 
+@final
+class FreeSpace:
+    """One track's free space as the simulator holds it (``Simulator.free_space``)."""
+
+    def contains(self, x: float, y: float) -> bool:
+        """True when (x, y) is in the free space: enclosed by the same closed walls as the
+        centreline's start (not inside a wall, an infield or beyond the outer wall)."""
+
 def stadium_track(
     straight: float = 6.0, radius: float = 3.0, width: float = 2.0
 ) -> tuple[list[npt.NDArray[np.float64]], npt.NDArray[np.float64]]:
     """Analytic stadium track ``(walls [outer, inner], centreline)`` for tests and benchmarks."""
+
+def check_sim_size(num_envs: int, vehicles_per_env: int, beams: int, frames: int) -> None:
+    """The simulator's size budget (the one rule; ``Simulator`` applies it with one frame):
+    ``ConfigError`` when envs x vehicles > SIM_MAX_VEHICLES or the scan values
+    (vehicles x beams x frames) > SIM_MAX_SCAN_VALUES."""
+
+SIM_MAX_VEHICLES: int
+SIM_MAX_SCAN_VALUES: int
 
 def _boundary_self_test(budgeted: bool = False) -> None:
     """Panics inside the boundary on purpose (tests): raises InternalError.

@@ -17,7 +17,7 @@ import signal
 import stat
 import tempfile
 import weakref
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Container, Iterable, Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import Any
@@ -296,37 +296,91 @@ def read_json(
 
 
 @contextmanager
-def atomic_dir(path: str | Path) -> Iterator[Path]:
+def atomic_dir(path: str | Path, also: Callable[[], object] | None = None) -> Iterator[Path]:
     """Yield a fresh temporary sibling directory of ``path``; when the block succeeds it
     replaces ``path`` by rename (a previous ``path`` is moved aside first and deleted after),
     so readers see the old folder or the new one, never a mix. On any error the temporary
-    folder is removed and ``path`` is left as it was."""
+    folder is removed and ``path`` is left as it was. ``also`` (e.g. the
+    :meth:`StagedFile.commit` of a file describing the folder) runs in the same step as the
+    swap, signals held: if it fails the earlier folder is put back, so both land or
+    neither."""
     path = Path(path)
     parent = path.absolute().parent
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent))
-        os.chmod(tmp, 0o777 & ~_UMASK)  # mkdtemp makes 0700; the folder is a normal output
-    except OSError as e:
-        raise MapIOError(f"{path}: cannot create the output directory: {_why(e)}") from None
+    stage = _Stage()
+    with signals_held():  # the stage and its clean-up come into being together
+        try:
+            parent.mkdir(parents=True, exist_ok=True)
+            tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent))
+            os.chmod(tmp, 0o777 & ~_UMASK)  # mkdtemp makes 0700; the folder is a normal output
+        except OSError as e:
+            raise MapIOError(f"{path}: cannot create the output directory: {_why(e)}") from None
+        # However this block is left (an interrupt between any two bytecodes included),
+        # the stage goes when ``stage`` does; after the swap its name no longer exists.
+        weakref.finalize(stage, shutil.rmtree, tmp, True)
     old: Path | None = None
     try:
         yield tmp
-        with signals_held():  # the two renames happen both or neither
+        with signals_held():  # the renames (and ``also``) happen all or none
             if path.exists():
                 old = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".old", dir=parent))
                 os.replace(path, old / "previous")
             os.replace(tmp, path)
+            if also is not None:
+                try:
+                    also()
+                except BaseException:
+                    os.replace(path, tmp)  # undo the swap; the handler below restores the old one
+                    raise
+            if old is not None:  # in the same held step: no moment leaves it behind
+                shutil.rmtree(old, ignore_errors=True)
     except BaseException:
         with signals_held():
-            if old is not None and not path.exists():
-                os.replace(old / "previous", path)  # put the earlier folder back
+            if old is not None:
+                if not path.exists():
+                    os.replace(old / "previous", path)  # put the earlier folder back
+                shutil.rmtree(old, ignore_errors=True)
             shutil.rmtree(tmp, ignore_errors=True)
         raise
-    finally:
-        if old is not None:
-            with signals_held():
-                shutil.rmtree(old, ignore_errors=True)
+
+
+@contextmanager
+def atomic_update_dir(
+    path: str | Path, rewritten: Container[str], also: Callable[[], object] | None = None
+) -> Iterator[Path]:
+    """:func:`atomic_dir` for a job that rewrites some entries of the folder ``path``: the
+    stage starts with hard links (:func:`link_tree`) to everything ``path`` holds whose
+    name is not in ``rewritten``, so the swap keeps the rest and a rewritten entry is
+    whatever the job made of it (nothing, if it made none)."""
+    old = Path(path)
+    with atomic_dir(old, also=also) as stage:
+        if old.is_dir():
+            for item in old.iterdir():
+                if item.name not in rewritten:
+                    link_tree(item, stage / item.name)
+        yield stage
+
+
+class _Stage:
+    """A token whose lifetime is one :func:`atomic_dir` block (its stage's clean-up hangs on it)."""
+
+
+def link_tree(src: Path, dst: Path) -> None:
+    """Reproduce ``src`` (a file, a symlink or a folder tree) at ``dst`` by hard links,
+    copying where a link is impossible: how a staged folder carries over, at no cost,
+    what the job does not rewrite."""
+
+    def link(a: str, b: str) -> None:
+        try:
+            os.link(a, b)
+        except OSError:
+            shutil.copy2(a, b)
+
+    if src.is_dir() and not src.is_symlink():
+        shutil.copytree(src, dst, symlinks=True, copy_function=link)
+    elif src.is_symlink():
+        os.symlink(os.readlink(src), dst)
+    else:
+        link(str(src), str(dst))
 
 
 def atomic_write_dir(path: str | Path, files: dict[str, bytes]) -> None:

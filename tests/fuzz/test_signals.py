@@ -1,5 +1,6 @@
 """Round 2 (issue 25): SIGINT or SIGTERM at random moments (seeded, so the same moments
-on every run) during ``drive --mcap``, ``ros2 --record`` and ``tracks generate``. After
+on every run) during ``drive --mcap``, ``ros2 --record``, ``tracks generate`` and
+``tracks catalog --generate``. After
 every signal: the inputs are byte for byte what they were, the output is either whole
 and readable or absent, and no temporary or staging file is left. A signal can land
 anywhere, including during the interpreter's imports (then the process dies of it
@@ -155,3 +156,58 @@ def test_a_signal_during_tracks_generate_leaves_the_library_whole(library, tmp_p
     assert _strays(tmp_path) == [] and _strays(lib / "generated") == []
     cat = load_catalog(lib / "catalog.json")
     assert all(sha256_file(lib / Path(e.map).parent / "map.png") == e.sha256 for e in cat.entries)
+
+
+@pytest.fixture(scope="module")
+def catalog_library(tmp_path_factory) -> Path:
+    """A tracks folder with 60 generated tracks (the shipped ones), a file of the user's and
+    its catalog; an empty sources folder (no recorded maps), made once."""
+    import shutil
+
+    from roboracer_arena.paths import tracks_dir
+
+    root = tmp_path_factory.mktemp("catalog")
+    shutil.copytree(tracks_dir() / "generated", root / "tracks" / "generated")
+    (root / "tracks" / "generated" / "mine.txt").write_text("a file of the user's\n")
+    (root / "src").mkdir()
+    p = _cli(["tracks", "catalog", "--tracks", "tracks", "--sources", "src", "--jobs", "1"], root)
+    _, err = p.communicate(timeout=240)
+    assert p.returncode == 0, err
+    return root
+
+
+def _catalog_whole(tracks: Path, kept: int) -> bool:
+    """``catalog.json`` and ``generated/`` describe each other, with ``kept`` generated tracks."""
+    from roboracer_arena.library.catalog import load_catalog, sha256_file
+
+    cat = load_catalog(tracks / "catalog.json")
+    ids = {e.id for e in cat.entries if e.kind == "generated"}
+    folders = {d.name for d in (tracks / "generated").iterdir() if d.is_dir()}
+    sums = all(sha256_file(tracks / Path(e.map).parent / "map.png") == e.sha256 for e in cat.entries)
+    return ids == folders and len(ids) == kept and sums and (tracks / "generated" / "mine.txt").exists()
+
+
+@pytest.mark.parametrize("run", range(3))
+def test_a_signal_during_tracks_catalog_generate_leaves_old_or_new_whole(catalog_library, tmp_path, run):
+    """The rerun (the sweep's first 12 requests, to stay quick) keeps 6 of the 60 tracks: a
+    signal leaves the old library byte for byte, or (landing after the swap) the new one
+    whole; the sources are never touched."""
+    import shutil
+
+    shutil.copytree(catalog_library, tmp_path, dirs_exist_ok=True)
+    tracks = tmp_path / "tracks"
+    before = _tree(tmp_path)
+    t0 = time.time()
+
+    def started() -> bool:  # a track of this run is written, wherever this code writes it
+        specs = [*tracks.glob("generated/*/spec.json"), *tracks.glob(".generated.*/*/spec.json")]
+        return any(p.stat().st_mtime >= t0 for p in specs if p.exists())
+
+    args = ["tracks", "catalog", "--tracks", "tracks", "--sources", "src", "--generate", "--count", "6"]
+    code, err = _interrupt(_cli([*args, "--max-requests", "12", "--jobs", "1"], tmp_path), started, run, 1.0)
+    assert code in AFTER_SIGNAL, err[-800:]
+    if code in (0, 130):
+        assert "Traceback" not in err, err[-800:]
+    assert not any((tmp_path / "src").iterdir())  # the input folder
+    assert _strays(tracks) == [] and _strays(tracks / "generated") == []
+    assert _tree(tmp_path) == before or _catalog_whole(tracks, 6)

@@ -41,6 +41,46 @@ def test_an_env_too_large_is_a_typed_error_not_an_abort(kwargs):
     assert r.returncode == 0 and r.stdout.startswith("typed:"), (r.returncode, r.stderr[-500:])
 
 
+@pytest.mark.parametrize(
+    "size",
+    [
+        "num_envs=10**6, vehicles_per_env=1",
+        "num_envs=4096, vehicles_per_env=8",
+        'num_envs=16384, vehicles_per_env=1, config_json=\'{"lidar": {"num_beams": 100000}}\'',
+    ],
+)
+def test_the_core_simulator_refuses_a_size_over_budget_without_aborting(size):
+    """Straight to ``_core``: no Python budget in between, the core's own check answers."""
+    code = (
+        "from roboracer_arena import _core\n"
+        "from roboracer_arena.errors import ConfigError\n"
+        "track = _core.stadium_track()\n"
+        "try:\n"
+        f"    _core.Simulator([track], {size})\n"
+        "except ConfigError as e:\n"
+        "    print('typed:', e)\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, env=_env())
+    assert r.returncode == 0 and r.stdout.startswith("typed:"), (r.returncode, r.stderr[-500:])
+
+
+def test_the_env_budget_is_the_cores():
+    """One rule: the env refuses exactly one vehicle over the core's exported limit."""
+    from roboracer_arena import _core
+    from roboracer_arena.envs.batch import check_size_budget
+    from roboracer_arena.envs.env_config import EnvConfig
+
+    cfg = EnvConfig(vehicles_per_env=2, observation={"scan": False})
+    check_size_budget(_core.SIM_MAX_VEHICLES // 2, cfg)
+    with pytest.raises(ConfigError, match=str(_core.SIM_MAX_VEHICLES)):
+        check_size_budget(_core.SIM_MAX_VEHICLES // 2 + 1, cfg)
+    stacked = EnvConfig(observation={"frame_stack": 3}, sim={"lidar": {"num_beams": 100_000}})
+    fits = _core.SIM_MAX_SCAN_VALUES // (100_000 * 4)  # (frame_stack + 1) scans a vehicle
+    check_size_budget(fits, stacked)
+    with pytest.raises(ConfigError, match="scan"):
+        check_size_budget(fits + 1, stacked)
+
+
 def _env() -> dict:
     import os
 

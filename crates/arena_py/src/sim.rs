@@ -182,6 +182,24 @@ pub struct Simulator {
     inner: CoreSim,
 }
 
+/// One track's free space as the simulator holds it (`Simulator.free_space`): immutable
+/// and shared, so a caller checks points while another thread steps the simulator.
+#[pyclass(module = "roboracer_arena._core", frozen)]
+pub struct FreeSpace {
+    track: Arc<Track>,
+}
+
+#[pymethods]
+impl FreeSpace {
+    /// True when (x, y) lies in the track's free space: enclosed by the same closed walls
+    /// as the start of its centreline (not inside a wall, an infield or beyond the outer
+    /// wall). Non-finite points are not free.
+    fn contains(&self, py: Python<'_>, x: f64, y: f64) -> PyResult<bool> {
+        let track = self.track.clone();
+        boundary::call_ok(py, "FreeSpace.contains", move || track.is_free([x, y]))
+    }
+}
+
 #[pymethods]
 impl Simulator {
     #[new]
@@ -471,6 +489,14 @@ impl Simulator {
         Ok((p[0], p[1], p[2]))
     }
 
+    /// The free space of track `track_id` (a [`FreeSpace`] sharing the track, usable from
+    /// any thread while the simulator steps).
+    fn free_space(&self, track_id: &Bound<'_, PyAny>) -> PyResult<FreeSpace> {
+        Ok(FreeSpace {
+            track: self.track_arg(track_id)?.clone(),
+        })
+    }
+
     fn centreline_length(&self, py: Python<'_>, track_id: &Bound<'_, PyAny>) -> PyResult<f64> {
         let track = self.track_arg(track_id)?;
         boundary::call_ok(py, "centreline_length", move || track.centreline.length())
@@ -604,9 +630,32 @@ fn stadium_track<'py>(
     ))
 }
 
+/// check_sim_size(num_envs, vehicles_per_env, beams, frames): the simulator's size budget
+/// (`arena_core::sim::budget`), the one rule the Python env applies before allocating:
+/// ``ConfigError`` when envs x vehicles or the scan values are over it.
+#[pyfunction]
+fn check_sim_size(
+    num_envs: &Bound<'_, PyAny>,
+    vehicles_per_env: &Bound<'_, PyAny>,
+    beams: &Bound<'_, PyAny>,
+    frames: &Bound<'_, PyAny>,
+) -> PyResult<()> {
+    arena_core::sim::check_size(
+        uint_arg(num_envs, "num_envs", u64::MAX)?,
+        uint_arg(vehicles_per_env, "vehicles_per_env", u64::MAX)?,
+        uint_arg(beams, "beams", u64::MAX)?,
+        uint_arg(frames, "frames", u64::MAX)?,
+    )
+    .map_err(to_py)
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Simulator>()?;
+    m.add_class::<FreeSpace>()?;
     m.add_function(wrap_pyfunction!(stadium_track, m)?)?;
+    m.add_function(wrap_pyfunction!(check_sim_size, m)?)?;
+    m.add("SIM_MAX_VEHICLES", arena_core::sim::MAX_VEHICLES)?;
+    m.add("SIM_MAX_SCAN_VALUES", arena_core::sim::MAX_SCAN_VALUES)?;
     m.add("STATE_FIELDS", PyTuple::new(m.py(), STATE_FIELDS)?)?;
     Ok(())
 }

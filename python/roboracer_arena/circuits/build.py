@@ -19,7 +19,7 @@ import numpy as np
 from .. import _core
 from ..direction import direction_of
 from ..errors import CorridorError
-from ..fileio import atomic_write_text
+from ..fileio import atomic_update_dir, atomic_write_text, check_output
 from ..maps import OccupancyMap
 from ..pool import Progress, pool_map
 from .geometry import MIN_RADIUS_SPAN_M, reduce_widths, smooth_resample
@@ -163,18 +163,35 @@ def build_all(
     progress: Progress | None = None,
 ) -> CircuitBuildSummary:
     """Build every circuit (optionally ``only`` some ids) in ``jobs`` threads; write
-    ``outdir/index.json`` and return the summary with per-circuit reports."""
+    ``outdir/index.json`` and return the summary with per-circuit reports. ``outdir`` is
+    staged and swapped in whole, keeping the folders of circuits not built."""
     t0 = time.perf_counter()
+    check_output(outdir, directory=True)  # a file there is refused, never swapped away
     inputs, skipped = circuit_inputs(sources)
     if only:
         inputs = [c for c in inputs if c.id in set(only)]
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(inputs) or 1))
     # Biggest first keeps the pool busy to the end.
     inputs.sort(key=lambda c: -c.length_m)
-    tasks = [(c, str(outdir), cfg) for c in inputs]
-    Path(outdir).mkdir(parents=True, exist_ok=True)
     if jobs > 1:
         _keep_freed_memory()
+    # The library is staged and swapped in whole (other circuits' folders kept): an
+    # interrupt or an error at any moment leaves the previous one as it was.
+    with atomic_update_dir(outdir, {c.id for c in inputs} | {"index.json"}) as stage:
+        summary = _build_into(stage, inputs, skipped, cfg, jobs, progress, t0)
+    return summary
+
+
+def _build_into(
+    stage: Path,
+    inputs: list[CircuitInput],
+    skipped: list[dict],
+    cfg: CircuitConfig,
+    jobs: int,
+    progress: Progress | None,
+    t0: float,
+) -> CircuitBuildSummary:
+    tasks = [(c, str(stage), cfg) for c in inputs]
     # Threads, not processes: the heavy steps (rasterise, measure, PNG) release the
     # GIL, and threads skip each worker's interpreter start-up and imports.
     results = pool_map(_work, tasks, jobs, progress, threads=True)
@@ -198,5 +215,5 @@ def build_all(
     for k in ("results", "seconds", "jobs"):
         del index[k]
     index["ids"] = [r.id for r in results]
-    atomic_write_text(Path(outdir) / "index.json", json.dumps(index, indent=2) + "\n")
+    atomic_write_text(stage / "index.json", json.dumps(index, indent=2) + "\n")
     return summary

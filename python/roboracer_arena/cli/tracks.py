@@ -123,8 +123,19 @@ def register(sub) -> None:
         help="tracks directory read (circuits/, generated/) and written (catalog.json); "
         "default: the package's tracks/ in a source checkout, required for an installed package",
     )
-    a.add_argument("--generate", action="store_true", help="rerun the generated-track sweep first")
+    a.add_argument(
+        "--generate",
+        action="store_true",
+        help="rerun the generated-track sweep first (staged: generated/ and catalog.json are swapped in together)",
+    )
     a.add_argument("--count", type=int, default=60, help="generated tracks to keep (default 60)")
+    a.add_argument(
+        "--max-requests",
+        type=int,
+        default=None,
+        metavar="M",
+        help="with --generate: try only the sweep's first M requests (default all 96)",
+    )
     a.add_argument("--jobs", type=int, default=None, metavar="N", help="worker processes (default: all cores)")
     a.add_argument(
         "--rejudge",
@@ -336,8 +347,8 @@ def run_sheet(args) -> int:
 def run_catalog(args) -> int:
     import os
 
-    from ..library.generated import build_generated
-    from ..library.index import build_catalog
+    from ..errors import InvalidArgumentError
+    from ..library.index import build_catalog, build_catalog_generating
     from ..paths import sources_dir, writable_tracks_dir
 
     tracks = writable_tracks_dir(args.tracks or (args.catalog.parent if args.catalog else None), "--tracks")
@@ -345,14 +356,25 @@ def run_catalog(args) -> int:
     jobs = args.jobs or os.cpu_count() or 1
     if args.rejudge:
         return _rejudge(args, Path(sources), jobs)
+    if args.max_requests is not None and not args.generate:
+        raise InvalidArgumentError("--max-requests needs --generate")
     if args.generate:
-        g = build_generated(tracks / "generated", count=args.count, jobs=jobs, progress=_progress("generate"))
+        g, cat = build_catalog_generating(
+            Path(sources),
+            Path(tracks),
+            count=args.count,
+            jobs=jobs,
+            progress=_progress("recorded maps"),
+            generate_progress=_progress("generate"),
+            max_requests=args.max_requests,
+        )
         if not args.json:
             print(
                 f"generated sweep: {g.specs_tried} specs, {g.accepted} accepted, {g.failed} failed, "
                 f"{g.rejected} rejected; kept {g.kept} ({g.seconds:.1f} s)"
             )
-    cat = build_catalog(Path(sources), Path(tracks), jobs=jobs, progress=_progress("recorded maps"))
+    else:
+        cat = build_catalog(Path(sources), Path(tracks), jobs=jobs, progress=_progress("recorded maps"))
     if args.json:
         print_json(
             {

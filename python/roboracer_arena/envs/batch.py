@@ -34,33 +34,17 @@ STATE_INFO = ("laps", "lap_time", "last_lap_time", "progress_s")
 BACKWARDS_EPS = 1e-3
 
 
-#: Most vehicles (envs x vehicles per env) one simulator holds: each is a rapier world
-#: of its own plus its buffers (measured: see README "Limits").
-MAX_VEHICLES = 16_384
-#: Most float32 scan values the observation buffers hold (envs x vehicles x beams x
-#: frame stack): 2**28 values, 1 GiB.
-MAX_SCAN_VALUES = 1 << 28
-
-
 def check_size_budget(num_envs: int, config: EnvConfig) -> None:
     """Refuse an env whose size would exhaust memory, before anything is allocated (the
-    native allocator aborts the process on failure, which Python cannot catch)."""
-    from ..errors import ConfigError
+    native allocator aborts the process on failure, which Python cannot catch). The rule
+    and its limits are the core's (``_core.check_sim_size``, ``SIM_MAX_VEHICLES``,
+    ``SIM_MAX_SCAN_VALUES``); the observation's buffers hold ``frame_stack + 1`` scans
+    per vehicle."""
+    from .._core import check_sim_size
 
-    V, B = config.vehicles_per_env, config.sim.lidar.num_beams
-    k = config.observation.frame_stack
-    vehicles = num_envs * V
-    if vehicles > MAX_VEHICLES:
-        raise ConfigError(
-            f"num_envs x vehicles_per_env = {num_envs} x {V} = {vehicles} vehicles, more than the {MAX_VEHICLES} "
-            "one simulator holds; use fewer envs or several processes (Ray)"
-        )
-    values = vehicles * B * (k + 1) if config.observation.scan else 0
-    if values > MAX_SCAN_VALUES:
-        raise ConfigError(
-            f"scan buffers of {vehicles} vehicles x {B} beams x (frame_stack {k} + 1) = {values} values, "
-            f"more than the {MAX_SCAN_VALUES} allowed; use fewer envs, beams or stacked frames"
-        )
+    obs = config.observation
+    frames = obs.frame_stack + 1 if obs.scan else 0
+    check_sim_size(num_envs, config.vehicles_per_env, config.sim.lidar.num_beams, frames)
 
 
 class SimBatch:

@@ -19,9 +19,14 @@ def entry_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = None
     return direction_for_map(cat.map_path(entry, sources))
 
 
-def derive_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = None) -> TrackEntry:
-    """``entry`` with its direction fields derived from the data beside its map."""
+def derive_direction(
+    cat: Catalog, entry: TrackEntry, sources: Path | None = None, generated: Path | None = None
+) -> TrackEntry:
+    """``entry`` with its direction fields derived from the data beside its map (a
+    generated track's in ``generated`` when given: a stage of ``generated/``)."""
     yaml_path = cat.map_path(entry, sources)
+    if generated is not None and entry.kind == "generated":
+        yaml_path = generated / Path(entry.map).relative_to("generated")
     how = direction_for_map(yaml_path)
     if entry.kind == "circuit":
         what = f"point order of the source centreline {entry.source.path} (kept in {how.source})"
@@ -36,6 +41,6 @@ def derive_direction(cat: Catalog, entry: TrackEntry, sources: Path | None = Non
     return entry.with_fields(direction=how.direction, start=start, direction_source=what)
 
 
-def annotate_directions(cat: Catalog, sources: Path | None = None) -> None:
+def annotate_directions(cat: Catalog, sources: Path | None = None, generated: Path | None = None) -> None:
     """Set ``direction``, ``direction_source`` and ``start`` on every entry."""
-    cat.entries = [derive_direction(cat, e, sources) for e in cat.entries]
+    cat.entries = [derive_direction(cat, e, sources, generated) for e in cat.entries]

@@ -4,22 +4,25 @@ seeds, each turned into a validated map with :func:`roboracer_arena.generate_tra
 The sweep crosses eight venues (lap length, corridor width, hall size: ``VENUES``) with
 six feature mixes and directions (``FEATURES``) and two seeds (``SEEDS``): 96 requests.
 The first ``count`` acceptances are kept, every seed-0 one before any seed-1 one. Each
-track goes to ``tracks/generated/<id>/`` with its map, centreline, spec and report."""
+track goes to ``tracks/generated/<id>/`` with its map, centreline, spec and report. The
+folder is built in a stage and swapped in whole, so an interrupt (SIGINT, SIGTERM) or an
+error at any moment leaves the previous one as it was."""
 
 from __future__ import annotations
 
 import itertools
 import json
-import shutil
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ..distributed.executor import Executor
-from ..fileio import atomic_write_dir, atomic_write_text
+from ..errors import InvalidArgumentError
+from ..fileio import atomic_update_dir, atomic_write_dir, atomic_write_text, check_output
 from ..pool import Progress, local_unless, map_ordered
 from ..spec import TrackSpec
 from .sweep_report import GeneratedSweepSummary, SweepRecord, count_outcome
@@ -112,22 +115,49 @@ def build_generated(
     progress: Progress | None = None,
     executor: Executor | None = None,
 ) -> GeneratedSweepSummary:
-    """Run the whole sweep (on ``executor``, default a local pool of ``jobs`` processes), keep
-    the first ``count`` acceptances (outputs of dropped acceptances are removed), write
-    ``outdir/sweep.json`` with every outcome, and return it."""
+    """Run the whole sweep on ``executor`` (default a local pool of ``jobs`` processes),
+    keep the first ``count`` acceptances, write ``outdir/sweep.json`` with every outcome,
+    and return it. The folder is staged and swapped in whole (:func:`staged_generated`):
+    an interrupt or an error leaves the previous ``outdir`` as it was."""
+    with staged_generated(outdir) as stage:
+        return generate_into(stage, count, jobs, progress, executor)
+
+
+@contextmanager
+def staged_generated(outdir: str | Path, also: Callable[[], object] | None = None) -> Iterator[Path]:
+    """A stage for the generated folder ``outdir``, swapped in with ``also`` when the block
+    succeeds (:func:`~roboracer_arena.fileio.atomic_update_dir`): what ``outdir`` has that
+    is not this sweep's (other folders and files) is kept; this sweep's tracks are all
+    written afresh, so one it no longer keeps (or no longer tries) is gone."""
+    check_output(outdir, directory=True)
+    with atomic_update_dir(outdir, {tid for tid, _, _ in sweep()} | {"sweep.json"}, also) as stage:
+        yield stage
+
+
+def generate_into(
+    stage: Path,
+    count: int = 60,
+    jobs: int = 1,
+    progress: Progress | None = None,
+    executor: Executor | None = None,
+    max_requests: int | None = None,
+) -> GeneratedSweepSummary:
+    """The body of :func:`build_generated`, writing into the (staged) folder ``stage``;
+    ``max_requests``: try only the sweep's first ones (default all)."""
     t0 = time.perf_counter()
     tasks = list(sweep())
-    Path(outdir).mkdir(parents=True, exist_ok=True)
+    if max_requests is not None:
+        if max_requests < 1:
+            raise InvalidArgumentError(f"--max-requests must be >= 1, got {max_requests}")
+        tasks = tasks[:max_requests]
     with local_unless(executor, jobs) as ex:
         results = map_ordered(ex, generate_files, tasks, progress)
     # Every seed-0 acceptance first (one per spec: the widest spread), then seed 1.
     accepted = sorted((r for r, _ in results if r.outcome == "accepted"), key=lambda r: r.seed)
     kept = {r.id for r in accepted[:count]}
-    for rec, files in results:  # a dropped acceptance leaves no directory, not even an old one
+    for rec, files in results:  # a dropped acceptance leaves no directory (the stage has none)
         if rec.id in kept:
-            atomic_write_dir(Path(outdir) / rec.id, files)
-        elif rec.outcome == "accepted":
-            shutil.rmtree(Path(outdir) / rec.id, ignore_errors=True)
+            atomic_write_dir(stage / rec.id, files)
     recs = [r.with_fields(kept=r.id in kept) for r, _ in results]
     summary = GeneratedSweepSummary(
         sweep={"venues": VENUES, "features": FEATURES, "seeds": list(SEEDS)},
@@ -139,5 +169,5 @@ def build_generated(
         seconds=round(time.perf_counter() - t0, 2),
         records=recs,
     )
-    atomic_write_text(Path(outdir) / "sweep.json", json.dumps(summary.to_json_dict(), indent=2) + "\n")
+    atomic_write_text(stage / "sweep.json", json.dumps(summary.to_json_dict(), indent=2) + "\n")
     return summary

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..circuits.report import CircuitReport
-from ..fileio import atomic_write_text
+from ..fileio import StagedFile, atomic_write_text
 from ..maps import load_map
 from ..pool import Progress
 from .catalog import SCHEMA, Catalog, count_kinds, provenance, sha256_file
@@ -18,6 +18,7 @@ from .directions import annotate_directions
 from .entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
 from .open_maps import open_maps
 from .recorded import RecordedMap, assess_all
+from .sweep_report import GeneratedSweepSummary
 
 PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
 
@@ -70,9 +71,11 @@ def _circuit_entries(tracks: Path, sources: Path) -> list[TrackEntry]:
     return out
 
 
-def _generated_entries(tracks: Path) -> list[TrackEntry]:
+def _generated_entries(tracks: Path, folder: Path | None = None) -> list[TrackEntry]:
+    """Entries of the generated tracks in ``folder`` (default ``tracks/generated``; a stage
+    of it before the swap), named as ``generated/<id>/...`` relative to ``tracks``."""
     out = []
-    for spec_f in sorted((tracks / "generated").glob("*/spec.json")):
+    for spec_f in sorted((folder or tracks / "generated").glob("*/spec.json")):
         d = spec_f.parent
         spec = json.loads(spec_f.read_text(encoding="utf-8"))
         rep = json.loads((d / "report.json").read_text(encoding="utf-8"))
@@ -150,11 +153,47 @@ def recorded_entry(sources: Path, r: RecordedMap) -> TrackEntry:
 
 def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress | None = None) -> Catalog:
     """Assemble every entry and write ``tracks/catalog.json`` atomically."""
+    cat = assemble_catalog(sources, tracks, jobs, progress)
+    atomic_write_text(tracks / "catalog.json", cat.to_json())
+    return cat
+
+
+def build_catalog_generating(
+    sources: Path,
+    tracks: Path,
+    count: int = 60,
+    jobs: int = 1,
+    progress: Progress | None = None,
+    generate_progress: Progress | None = None,
+    max_requests: int | None = None,
+) -> tuple[GeneratedSweepSummary, Catalog]:
+    """``tracks catalog --generate``: rerun the generated sweep (:mod:`.generated`) into a
+    stage of ``tracks/generated`` (its first ``max_requests`` requests, default all), assemble the catalog from that stage, and swap the
+    folder and ``tracks/catalog.json`` in together, signals held. An interrupt (SIGINT,
+    SIGTERM) or an error at any moment leaves both as they were, and no stage behind."""
+    from .generated import generate_into, staged_generated
+
+    out = StagedFile(tracks / "catalog.json")
+    try:
+        with staged_generated(tracks / "generated", also=out.commit) as stage:
+            summary = generate_into(stage, count, jobs, generate_progress, max_requests=max_requests)
+            cat = assemble_catalog(sources, tracks, jobs, progress, generated=stage)
+            out.tmp.write_text(cat.to_json(), encoding="utf-8")
+    finally:
+        out.discard()  # (a no-op once committed)
+    return summary, cat
+
+
+def assemble_catalog(
+    sources: Path, tracks: Path, jobs: int = 1, progress: Progress | None = None, generated: Path | None = None
+) -> Catalog:
+    """Every entry of ``tracks/catalog.json`` (generated tracks read from ``generated``,
+    default ``tracks/generated``), nothing written."""
     t0 = time.perf_counter()
     circuits = _circuit_entries(tracks, sources)
-    generated = _generated_entries(tracks)
+    generated_entries = _generated_entries(tracks, generated)
     recorded, left_out = _recorded_entries(sources, jobs, progress)
-    entries = circuits + recorded + generated
+    entries = circuits + recorded + generated_entries
     ids = [e.id for e in entries]
     dup = {i for i in ids if ids.count(i) > 1}
     if dup:
@@ -170,6 +209,5 @@ def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress
     )
     cat = Catalog(entries=entries, left_out=left_out, meta=meta, path=tracks / "catalog.json")
     cat.open_maps = open_maps(sources, left_out, jobs)
-    annotate_directions(cat, sources)
-    atomic_write_text(tracks / "catalog.json", cat.to_json())
+    annotate_directions(cat, sources, generated)
     return cat

@@ -20,16 +20,14 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
-import shutil
 import time
 from pathlib import Path
 
 from .. import __version__
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
-from ..fileio import atomic_dir, atomic_write_dir, atomic_write_text, check_output
+from ..fileio import atomic_dir, atomic_write_dir, atomic_write_text, check_output, link_tree
 from ..pool import Progress, map_ordered
 from .catalog import SCHEMA, Catalog, count_kinds
 from .directions import annotate_directions
@@ -84,24 +82,9 @@ def _carry_over(old: Path, stage: Path, name: str) -> None:
             (stage / "generated").mkdir(exist_ok=True)
             for d in item.iterdir():
                 if not mine.match(d.name):  # this sweep's tracks are generated afresh
-                    _link_tree(d, stage / "generated" / d.name)
+                    link_tree(d, stage / "generated" / d.name)
         else:
-            _link_tree(item, stage / item.name)
-
-
-def _link_tree(src: Path, dst: Path) -> None:
-    def link(a: str, b: str) -> None:
-        try:
-            os.link(a, b)
-        except OSError:
-            shutil.copy2(a, b)
-
-    if src.is_dir() and not src.is_symlink():
-        shutil.copytree(src, dst, symlinks=True, copy_function=link)
-    elif src.is_symlink():
-        os.symlink(os.readlink(src), dst)
-    else:
-        link(str(src), str(dst))
+            link_tree(item, stage / item.name)
 
 
 def _generate_into(

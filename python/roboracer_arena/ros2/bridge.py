@@ -15,7 +15,8 @@ monotonic).
 
 Messages from other DDS participants follow one rule: validate, count, log once per
 kind, keep running. A non-finite ``/drive`` command or ``/initialpose``, or a pose
-outside the world (the track's extent plus a margin), is dropped; ``stats()["rejected"]``
+outside the world (the track's extent plus a margin) or off its free space (inside a
+wall, in an infield, beyond the outer wall: ``_core.Simulator.free_space``), is dropped; ``stats()["rejected"]``
 counts them by kind and the first of each kind is logged as a warning. An error inside
 the bridge stops it, but a recording is still finished (whole and readable up to then).
 """
@@ -127,6 +128,7 @@ class Bridge:
         lo, hi = line.min(axis=0), line.max(axis=0)
         margin = max(_POSE_MARGIN_M, 0.5 * float(np.max(hi - lo)))
         self._world = (lo - margin, hi + margin)
+        self._free = self.src.sim.free_space(self.src.track_id)  # checked from any thread
         self.rejected: collections.Counter = collections.Counter()
         lid = self.src.config.lidar
         self._odom_packers = [OdometryPacker(n) for n in self.names]
@@ -355,7 +357,8 @@ class Bridge:
 
     def reset_ego(self, x: float, y: float, yaw: float) -> bool:
         """Put the ego at rest at (x, y, yaw) at the next step (what ``/initialpose`` does).
-        A non-finite pose or one outside the world is dropped and counted (False)."""
+        A non-finite pose, one outside the world or one off the track's free space is
+        dropped and counted (False)."""
         x, y, yaw = float(x), float(y), float(yaw)
         lo, hi = self._world
         if not all(math.isfinite(v) for v in (x, y, yaw)):
@@ -363,6 +366,9 @@ class Bridge:
             return False
         if not (lo[0] <= x <= hi[0] and lo[1] <= y <= hi[1]):
             self._reject(INITIALPOSE, "position outside the world", (x, y))
+            return False
+        if not self._free.contains(x, y):  # the walls the simulator holds
+            self._reject(INITIALPOSE, "position inside a wall or off the track", (x, y))
             return False
         self._reset_pose = (x, y, yaw)
         return True

@@ -108,11 +108,13 @@ impl Simulator {
                 "num_envs and vehicles_per_env must be at least 1",
             ));
         }
-        if num_envs.saturating_mul(vehicles_per_env) > 1 << 20 {
-            return Err(ArenaError::invalid(
-                "num_envs * vehicles_per_env must be at most 2^20",
-            ));
-        }
+        // Before any world or buffer exists: a failed allocation would abort the process.
+        super::budget::check_size(
+            num_envs as u64,
+            vehicles_per_env as u64,
+            params.lidar.num_beams as u64,
+            1,
+        )?;
         let model = VehicleModel::new(&params.vehicle, &params.physics);
         let mut scanner = Scanner::new(&params.lidar);
         scanner.split = num_envs == 1;

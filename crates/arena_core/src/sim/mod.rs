@@ -12,8 +12,10 @@
 //! * [`progress`]: arc length along the centreline and lap counting
 //! * [`world`]: one rapier world per environment
 //! * [`batch`]: N worlds stepped with rayon, deterministic for any N and thread count
+//! * [`budget`]: the size budget of a simulator, checked before allocation
 
 pub mod batch;
+pub mod budget;
 pub mod lidar;
 pub mod params;
 pub mod progress;
@@ -34,6 +36,7 @@ mod tests;
 mod tests_resets;
 
 pub use batch::{ResetGiven, ResetOut, Simulator, MAX_ABS_YAW, POSE_MARGIN};
+pub use budget::{check_size, MAX_SCAN_VALUES, MAX_VEHICLES};
 pub use params::{LidarParams, PhysicsParams, SimParams, VehicleParams};
 pub use start_grid::StartGrid;
 pub use starts::StartSpec;

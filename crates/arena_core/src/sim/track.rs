@@ -274,6 +274,39 @@ impl Track {
             centreline,
         })
     }
+
+    /// True when `p` lies in the free region of the track's start: enclosed by exactly
+    /// the closed walls (rings of 3+ points) that enclose the centreline's first point.
+    /// Inside a wall block, in a track's infield, beyond its outer wall or in a pocket
+    /// cut off by walls is false. The walls are the map's occupancy boundaries as the
+    /// simulator holds them, so this is the map's free space for any track source
+    /// (a map, walls from Python, a bare simulator's tracks). O(wall vertices).
+    pub fn is_free(&self, p: [f64; 2]) -> bool {
+        if !(p[0].is_finite() && p[1].is_finite()) {
+            return false;
+        }
+        let start = self.centreline.point(0);
+        self.walls
+            .iter()
+            .filter(|w| w.len() >= 3)
+            .all(|w| ring_contains(w, p) == ring_contains(w, start))
+    }
+}
+
+/// Even-odd point-in-polygon test of the closed ring `w` (half-open in y, so a ray
+/// through a vertex counts once).
+fn ring_contains(w: &[[f64; 2]], p: [f64; 2]) -> bool {
+    let mut inside = false;
+    for (i, &a) in w.iter().enumerate() {
+        let b = w[(i + 1) % w.len()];
+        if (a[1] > p[1]) != (b[1] > p[1]) {
+            let x = a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+            if p[0] < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
 }
 
 #[cfg(test)]
@@ -327,6 +360,39 @@ mod tests {
         assert!(!pr.update(&c, [4.0, 2.0], 0.1, 3.0));
         assert_eq!((pr.travel, pr.laps), (0.0, 0));
         assert!((pr.lap_time - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn free_space_is_the_region_of_the_start() {
+        // A ring track (outer r 3, inner r 1.5) with a 0.3 m square block on the track,
+        // a quarter lap from the start (2.25, 0).
+        let block = vec![[-0.15, 2.1], [0.15, 2.1], [0.15, 2.4], [-0.15, 2.4]];
+        let t = Track::new(
+            &[circle(3.0, 64), circle(1.5, 64), block],
+            &circle(2.25, 64),
+            0.5,
+        )
+        .unwrap();
+        for p in [
+            [-2.25, 0.0],
+            [0.0, -2.0],
+            [0.0, -2.8],
+            [2.0, 0.0],
+            [0.0, 2.6],
+        ] {
+            assert!(t.is_free(p), "{p:?} is on the track");
+        }
+        // In the infield, beyond the outer wall, inside the block, non-finite.
+        for p in [
+            [0.0, 0.0],
+            [0.5, 0.5],
+            [3.5, 0.0],
+            [0.0, -40.0],
+            [0.0, 2.25],
+            [f64::NAN, 2.0],
+        ] {
+            assert!(!t.is_free(p), "{p:?} is not free");
+        }
     }
 
     #[test]
