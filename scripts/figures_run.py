@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
+SOURCES = ("crates", "python", "Cargo.toml", "Cargo.lock", "pyproject.toml")
 
 
 def _git(*args: str) -> str:
@@ -30,13 +31,14 @@ def _git(*args: str) -> str:
 
 
 def build_info(profile: str) -> dict[str, Any]:
-    """The package version, the commit it was built from (``+`` when the package's sources,
-    ``crates/`` or ``python/``, had uncommitted changes) and the build profile the caller
-    states (``make docs-figures`` builds ``release``)."""
+    """The package version, the last commit that changed the package's sources (``+`` when
+    they have uncommitted changes) and the build profile the caller states (``make
+    docs-figures`` builds ``release``)."""
     from importlib.metadata import version
 
-    commit = _git("rev-parse", "--short", "HEAD")
-    dirty = bool(_git("status", "--porcelain", "--untracked-files=no", "--", "crates", "python"))
+    # The last commit that changed what the build is made of (docs and scripts commits do not).
+    commit = _git("log", "-1", "--format=%h", "--", *SOURCES)
+    dirty = bool(_git("status", "--porcelain", "--untracked-files=no", "--", *SOURCES))
     return {"version": version("roboracer-arena"), "commit": commit + ("+" if dirty else ""), "profile": profile}
 
 
