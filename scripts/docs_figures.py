@@ -33,6 +33,7 @@ from typing import Any
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "scripts"))
 from figures_bench import BENCH_FIGURES  # noqa: E402  (a sibling module of this script)
+
 LEARNING = ROOT / "docs" / "learning"
 ES_TRACK = "gym-berlin"
 
@@ -171,7 +172,9 @@ def check(keys: list[str] | None = None) -> list[str]:
     problems = []
     for key in keys or list(FIGURES):
         if not Path(FIGURES[key]["data"]).is_file():
-            problems.append(f"{Path(FIGURES[key]['data']).relative_to(ROOT)}: missing (make docs-figures FIGURES='--only {key}')")
+            problems.append(
+                f"{Path(FIGURES[key]['data']).relative_to(ROOT)}: missing (make docs-figures FIGURES='--only {key}')"
+            )
             continue
         doc = read_data(key)
         for file, name, render in FIGURES[key]["blocks"]:

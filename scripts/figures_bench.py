@@ -185,8 +185,7 @@ def library_block(doc: Doc) -> str:
     r = doc["result"]
     p = r["paper"]
     head = (
-        header(doc, "library")
-        + "\n| | ours | paper |\n|---|---:|---:|\n"
+        header(doc, "library") + "\n| | ours | paper |\n|---|---:|---:|\n"
         f"| circuits built | {r['built']} | {p['circuits']} |\n"
         f"| wall time, whole set ({r['jobs']} threads) | {r['seconds']:.2f} s | {p['seconds']} s |\n"
         f"| centreline-length error, mean over {r['measured_circuits']} | {r['mean_error_pct']:.3f} % | {p['mean_error_pct']} % |\n"
@@ -208,7 +207,16 @@ def library_block(doc: Doc) -> str:
 
 def library_deterministic(doc: Doc) -> Any:
     r = doc["result"]
-    keep = ("id", "source", "lap_length_m", "length_error", "width_mean_m", "width_min_m", "narrowed_fraction", "raster")
+    keep = (
+        "id",
+        "source",
+        "lap_length_m",
+        "length_error",
+        "width_mean_m",
+        "width_min_m",
+        "narrowed_fraction",
+        "raster",
+    )
     return {
         "built": r["built"],
         "mean_error_pct": r["mean_error_pct"],
@@ -227,7 +235,10 @@ def physics_block(doc: Doc) -> str:
         "| `bench physics` | vehicles (envs × cars) | rapier steps | vehicle-steps/s | paper (Isaac Sim) | target |",
         "|---|---|---:|---:|---:|---:|",
     ]
-    for key, label in (("shortcut", "contact-free shortcut (default)"), ("no_shortcut", "rapier pipeline every step (`--no-shortcut`)")):
+    for key, label in (
+        ("shortcut", "contact-free shortcut (default)"),
+        ("no_shortcut", "rapier pipeline every step (`--no-shortcut`)"),
+    ):
         for i, row in enumerate(res[key]["rows"]):
             n, target = row["vehicles"], TARGETS.get(row["vehicles"])
             ok = "–" if target is None else f"≥ {target:,.0f} " + ("✓" if row["vehicle_steps_per_s"] >= target else "✗")
@@ -260,7 +271,11 @@ def env_block(doc: Doc) -> str:
     for row in r["rows"]:
         b = row["breakdown_us_per_call"]
         if row["num_envs"] == 1:
-            t = f"≤ {TARGET_SINGLE_US:.0f} µs/step " + ("✓" if row["us_per_step"] <= TARGET_SINGLE_US else "✗") if row["workload"] == "constant" else "–"
+            t = (
+                f"≤ {TARGET_SINGLE_US:.0f} µs/step " + ("✓" if row["us_per_step"] <= TARGET_SINGLE_US else "✗")
+                if row["workload"] == "constant"
+                else "–"
+            )
             rate = f"{_n(row['env_steps_per_s'])} ({row['us_per_step']:.1f} µs/step)"
         else:
             tv = TARGET_VECTOR.get(row["workload"])
@@ -351,7 +366,16 @@ def constructors_block(doc: Doc) -> str:
 
 
 def constructors_deterministic(doc: Doc) -> Any:
-    keep = ("constructor", "trials", "built", "valid", "candidates_median", "candidates_max", "failed_checks", "not_built")
+    keep = (
+        "constructor",
+        "trials",
+        "built",
+        "valid",
+        "candidates_median",
+        "candidates_max",
+        "failed_checks",
+        "not_built",
+    )
     return [{k: s[k] for k in keep} for s in doc["result"]["summary"]]
 
 
@@ -373,7 +397,7 @@ def sweep_readme_block(doc: Doc) -> str:
     r = doc["result"]
     return (
         f"Generator acceptance on this build (`roboracer-arena bench constructors --sweep`, {doc['measured']['utc']}; "
-        f"BENCHMARKS.md, \"Acceptance sweep\"): **{r['accepted']} of {r['specs']} admissible specs ({r['acceptance']:.1%})**, "
+        f'BENCHMARKS.md, "Acceptance sweep"): **{r["accepted"]} of {r["specs"]} admissible specs ({r["acceptance"]:.1%})**, '
         f"{r['obvious_accepted']} of the {r['obvious_specs']} that have an obvious construction, and "
         f"{r['practical_accepted']} of the {r['practical_specs']} below 0.6 L_max.\n"
     )
@@ -381,7 +405,17 @@ def sweep_readme_block(doc: Doc) -> str:
 
 def sweep_deterministic(doc: Doc) -> Any:
     r = doc["result"]
-    keep = ("specs", "accepted", "obvious_specs", "obvious_accepted", "by_lap", "by_width", "by_hall", "by_features", "by_fill")
+    keep = (
+        "specs",
+        "accepted",
+        "obvious_specs",
+        "obvious_accepted",
+        "by_lap",
+        "by_width",
+        "by_hall",
+        "by_features",
+        "by_fill",
+    )
     return {k: r[k] for k in keep} | {"outcomes": [[x["spec"], x["seed"], x["outcome"]] for x in r["rows"]]}
 
 
@@ -423,7 +457,9 @@ def ray_block(doc: Doc) -> str:
         "|---:|---:|---:|---:|",
     ]
     for p in pr["rows"]:
-        lines.append(f"| {p['workers']} | {p['requests_per_s']:.1f} | {_n(p['env_steps_per_s'])} | {p['step_overhead_ms']:.1f} |")
+        lines.append(
+            f"| {p['workers']} | {p['requests_per_s']:.1f} | {_n(p['env_steps_per_s'])} | {p['step_overhead_ms']:.1f} |"
+        )
     return "\n".join(lines) + "\n"
 
 
@@ -495,7 +531,10 @@ BENCH_FIGURES: dict[str, dict[str, Any]] = {
     "catalog": {
         "about": "catalog counts (README recorded-maps table, BENCHMARKS catalog line)",
         "run": catalog_run,
-        "blocks": [("README.md", "catalog-counts", catalog_readme_block), ("BENCHMARKS.md", "catalog-counts", catalog_bench_block)],
+        "blocks": [
+            ("README.md", "catalog-counts", catalog_readme_block),
+            ("BENCHMARKS.md", "catalog-counts", catalog_bench_block),
+        ],
         "deterministic": catalog_deterministic,
         "ci": "rerun",
     },
@@ -561,7 +600,10 @@ BENCH_FIGURES: dict[str, dict[str, Any]] = {
     "generator-bands": {
         "about": "bench constructors --sweep: acceptance of the 360-spec sweep by fill band",
         "run": _cmd(("sweep", ["bench", "constructors", "--sweep", "--jobs", "2"])),
-        "blocks": [("BENCHMARKS.md", "generator-bands", sweep_block), ("README.md", "generator-acceptance", sweep_readme_block)],
+        "blocks": [
+            ("BENCHMARKS.md", "generator-bands", sweep_block),
+            ("README.md", "generator-acceptance", sweep_readme_block),
+        ],
         "deterministic": sweep_deterministic,
         "ci": "long",
     },
