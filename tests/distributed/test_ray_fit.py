@@ -47,7 +47,7 @@ def test_the_message_says_what_is_asked_what_there_is_and_what_fits():
 
 def test_too_many_local_actors_fail_in_under_5_s_before_ray_starts(tmp_path):
     code = textwrap.dedent(
-        f"""
+        """
         import sys, time
         from roboracer_arena.distributed import RayVectorEnv
         from roboracer_arena.distributed.ray_fit import local_cpus
