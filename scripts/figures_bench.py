@@ -510,17 +510,20 @@ def physx_block(doc: Doc) -> str:
         "| track | lap (m) | engine | lap time (s) | mean / max deviation (m) | physics steps/s |",
         "|---|---:|---|---:|---:|---:|",
     ]
-    for row in doc["result"]:
-        lap = "–" if row.get("lap_time") is None else f"{row['lap_time']:.2f}"
-        lines.append(
-            f"| {row['track']} | {row['lap_length_m']:.1f} | {row['engine']} | {lap} | "
-            f"{row['mean_dev']:.3f} / {row['max_dev']:.3f} | {_n(row['steps_per_s'])} |"
-        )
+    for r in doc["result"]:
+        for key in ("ours", "physx"):
+            run = r[key]
+            lap = f"{run['lap_time_s']:.2f}" if run["completed"] else "no lap"
+            lines.append(
+                f"| {r['track']} | {r['length_m']:.1f} | {run['engine']} | {lap} | "
+                f"{run['mean_deviation_m']:.3f} / {run['max_deviation_m']:.3f} | {_n(run['steps_per_second'])} |"
+            )
     return "\n".join(lines) + "\n"
 
 
 def physx_deterministic(doc: Doc) -> Any:
-    return [{k: row[k] for k in ("track", "engine", "lap_time", "mean_dev", "max_dev")} for row in doc["result"]]
+    keep = ("engine", "completed", "lap_time_s", "mean_deviation_m", "max_deviation_m")
+    return [{"track": r["track"]} | {k: {f: r[k][f] for f in keep} for k in ("ours", "physx")} for r in doc["result"]]
 
 
 # ---------------------------------------------------------------- the registry of bench figures

@@ -148,8 +148,8 @@ def header(doc: dict[str, Any], name: str, what: str = "", timed: bool = True) -
         f"{b['profile']} build of {b['version']} at `{b['commit']}`, {mach['cpu']} ({mach['cores']} cores, "
         f"{mach['memory_gib']} GiB), {loadtxt} while it ran, {m['wall_seconds']:.0f} s wall, {m['cpu_seconds']:.0f} s CPU.*"
         + (
-            f" **Measured under a load above the core count: wall-clock figures show the CPU share the command got,"
-            f" not the code; rerun `make docs-figures` on a quiet machine.**\n"
+            " **Measured under a load above the core count: wall-clock figures show the CPU share the command got,"
+            " not the code; rerun `make docs-figures` on a quiet machine.**\n"
             if timed and mach["cores"] and load["mean"] > mach["cores"]
             else "\n"
         )
