@@ -475,13 +475,20 @@ def ray_readme_block(doc: Doc) -> str:
         f"{m['load_average']['mean']:.1f}; `docs/figures/ray.json`, BENCHMARKS.md):\n\n"
         f"- **Track generation and verification pay off.** Requests are independent, so the projection grows "
         f"with workers until the driver's task rate binds: "
-        + ", ".join(f"{pr[w]['requests_per_s']:.0f} requests/s on {w} workers" for w in ws)
-        + f", against {one['requests_per_s']:.1f} on one core.\n"
+        + ", ".join(f"{pr[w]['requests_per_s']:.3g} requests/s on {w} workers" for w in ws)
+        + f", against {one['requests_per_s']:.2g} on one core.\n"
         f"- **Rollouts through `RayVectorEnv` do not**, on one machine or many: every `step` is a round trip to "
         f"every actor, and that cost grows with the actors and with the size of each actor's result. The "
         f"projection levels off near {pr[ws[-1]]['env_steps_per_s'] / 1e3:.0f}k env-steps/s at "
         f"{r['rollouts']['beams']} beams, against {local['env_steps_per_s'] / 1e3:.0f}k for one native vector env "
         f"on one core of this machine.\n"
+        + (
+            f"\nThat run shared {m['machine']['cores']} cores with other jobs at a load above the core count, so its "
+            "absolute figures are far below a quiet machine's (BENCHMARKS.md keeps a quieter run in its history); "
+            "the two conclusions held in both.\n"
+            if m["load_average"]["mean"] > m["machine"]["cores"]
+            else ""
+        )
     )
 
 
