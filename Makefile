@@ -49,11 +49,14 @@ bench: release
 	cargo bench -p arena_core --quiet -- --quick
 	$(BIN)/roboracer-arena bench all --json out/bench.json
 
-# Every figure in README.md / BENCHMARKS.md a script produces (ES curve and lap, generalisation
-# table), rerun on the current build and written with their data and pictures (docs/learning/);
-# tests/docs/test_docs_figures.py holds the deterministic ones. Several minutes on 2 cores.
+# Every figure in README.md / BENCHMARKS.md a script produces (the bench tables, catalog counts,
+# ES curve and lap, generalisation, PhysX laps), rerun on the current release build and written
+# with their data (docs/figures/, docs/learning/) and pictures; `scripts/docs_figures.py --list`
+# names them, FIGURES="--only NAME" picks some. tests/docs/test_docs_figures.py holds the
+# deterministic ones. About an hour on 2 cores (the sweep, Table 3's DE, generalisation).
+FIGURES ?=
 docs-figures: release
-	$(BIN)/python scripts/docs_figures.py
+	$(BIN)/python scripts/docs_figures.py --build release $(FIGURES)
 
 # Every gate: clippy and rustfmt on the crates, no module cycle in the Rust core; ruff (lint
 # and format), mypy (pydantic plugin) on the package; stubtest checks _core.pyi against the

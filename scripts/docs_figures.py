@@ -3,14 +3,19 @@
 current build (``make docs-figures``), and check the docs against their data.
 
     python scripts/docs_figures.py                 # run everything, write data, pictures and doc blocks
+    python scripts/docs_figures.py --list          # every figure: its blocks, data file and how CI holds it
     python scripts/docs_figures.py --only es       # only the README's ES figures (about a minute)
     python scripts/docs_figures.py --check         # docs blocks == their committed data (no training)
 
-Each figure has a data file under docs/learning/ (JSON), maybe a picture beside it, and a
-block in a doc between ``<!-- docs-figures:NAME -->`` and ``<!-- /docs-figures:NAME -->``
-that is rendered from the data alone (never edit inside a block). The deterministic parts
-of the data (learning curves, lap results, clean-lap rates) are reproduced and compared by
-tests/docs/test_docs_figures.py; wall and CPU times are measurements and are not.
+Each figure has a data file (docs/learning/ for the learning runs, docs/figures/ for the
+``bench`` commands: their JSON wrapped with the command, build, machine and the load
+average sampled while it ran), maybe a picture, and one or more blocks in a doc between
+``<!-- docs-figures:BLOCK ... -->`` and ``<!-- /docs-figures:BLOCK -->`` rendered from the
+data alone (never edit inside a block). tests/docs/test_docs_figures.py checks every block
+against its data, and reruns the figures whose deterministic part takes seconds (``ci``
+"rerun") or that are learning runs (es, generalisation) and compares; "long" figures
+(minutes: sweeps, Table 3's DE, PhysX laps) are rerun only here; "measured" figures are
+timings, which no rerun reproduces.
 """
 
 from __future__ import annotations
@@ -26,6 +31,9 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "scripts"))
+from figures_bench import BENCH_FIGURES  # noqa: E402  (a sibling module of this script)
+
 LEARNING = ROOT / "docs" / "learning"
 ES_TRACK = "gym-berlin"
 
@@ -43,7 +51,7 @@ def _timed(body: Callable[[], Any]) -> tuple[Any, dict[str, float]]:
 
 
 # ---------------------------------------------------------------- ES on Berlin (README)
-def es_data() -> dict[str, Any]:
+def es_data(profile: str = "") -> dict[str, Any]:
     """``examples/train_es.py`` with its defaults on gym-berlin: curve, lap, parameters."""
     from roboracer_arena.learn import ESConfig, evaluate_laps, train
 
@@ -90,7 +98,7 @@ def es_block(doc: dict[str, Any]) -> str:
 
 
 # ---------------------------------------------------------------- generalisation (BENCHMARKS)
-def generalisation_data() -> dict[str, Any]:
+def generalisation_data(profile: str = "") -> dict[str, Any]:
     """``roboracer-arena bench generalisation`` with its defaults."""
     from roboracer_arena.bench import generalisation
 
@@ -135,6 +143,8 @@ FIGURES: dict[str, dict[str, Any]] = {
         "picture": es_picture,
         "deterministic": es_deterministic,
         "blocks": [("README.md", "es-berlin", es_block)],
+        "about": "examples/train_es.py defaults on gym-berlin: curve, env-steps, lap (README)",
+        "ci": "rerun",
     },
     "generalisation": {
         "data": LEARNING / "generalisation.json",
@@ -142,7 +152,10 @@ FIGURES: dict[str, dict[str, Any]] = {
         "picture": None,
         "deterministic": generalisation_deterministic,
         "blocks": [("BENCHMARKS.md", "generalisation", generalisation_block)],
+        "about": "bench generalisation: ES on one track vs a pool, held-out clean-lap rates (minutes)",
+        "ci": "rerun",
     },
+    **BENCH_FIGURES,
 }
 
 
@@ -158,6 +171,11 @@ def check(keys: list[str] | None = None) -> list[str]:
     """Problems: a doc block missing, or different from the rendering of its committed data."""
     problems = []
     for key in keys or list(FIGURES):
+        if not Path(FIGURES[key]["data"]).is_file():
+            problems.append(
+                f"{Path(FIGURES[key]['data']).relative_to(ROOT)}: missing (make docs-figures FIGURES='--only {key}')"
+            )
+            continue
         doc = read_data(key)
         for file, name, render in FIGURES[key]["blocks"]:
             m = _block_re(name).search((ROOT / file).read_text())
@@ -186,8 +204,29 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--only", choices=list(FIGURES), action="append", help="only these figures (repeatable)")
     p.add_argument("--check", action="store_true", help="only compare the doc blocks with the committed data")
+    p.add_argument("--list", action="store_true", help="list the figures, their blocks and how CI holds them")
+    p.add_argument(
+        "--blocks-only",
+        action="store_true",
+        help="rewrite the doc blocks from the committed data without rerunning anything (e.g. after a merge)",
+    )
+    p.add_argument(
+        "--build",
+        default=os.environ.get("DOCS_FIGURES_BUILD", "unstated"),
+        help="the build profile to record with the measurements (make docs-figures: release)",
+    )
     args = p.parse_args(argv)
     keys = args.only or list(FIGURES)
+    if args.list:
+        for key in keys:
+            fig = FIGURES[key]
+            blocks = ", ".join(f"{f}:{b}" for f, b, _ in fig["blocks"])
+            print(f"{key:<16} ci={fig['ci']:<9} {Path(fig['data']).relative_to(ROOT)}  [{blocks}]  {fig['about']}")
+        return 0
+    if args.blocks_only:
+        for key in keys:
+            write_blocks(key, read_data(key))
+        return 0
     if args.check:
         problems = check(keys)
         for line in problems:
@@ -198,12 +237,14 @@ def main(argv: list[str] | None = None) -> int:
     for key in keys:
         fig = FIGURES[key]
         print(f"== {key}", flush=True)
-        doc = fig["run"]()
+        doc = fig["run"](args.build)
+        Path(fig["data"]).parent.mkdir(parents=True, exist_ok=True)
         atomic_write_text(fig["data"], json.dumps(doc, indent=1) + "\n")
-        if fig["picture"]:
+        if fig.get("picture"):
             fig["picture"](doc)
         write_blocks(key, doc)
-        print(f"   {fig['data'].relative_to(ROOT)}: {json.dumps(doc['timing'])}", flush=True)
+        timing = doc.get("timing") or doc["measured"]
+        print(f"   {fig['data'].relative_to(ROOT)}: {json.dumps(timing)}", flush=True)
     return 0
 
 

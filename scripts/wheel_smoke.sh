@@ -65,6 +65,12 @@ ls "$BIN"/../lib/python*/site-packages/roboracer_arena-*.dist-info/licenses/ | s
 
 step "tracks list"
 "$BIN/roboracer-arena" tracks list --kind circuit | tail -n 3
+step "tracks show (units, no None)"
+"$BIN/roboracer-arena" tracks show monaco > show.txt
+if grep -q None show.txt || ! grep -Eq "^lap length +333\.[0-9]+ m$" show.txt; then
+    echo "tracks show monaco should print units and no None:" >&2; cat show.txt >&2; exit 1
+fi
+head -n 3 show.txt | sed 's/^/   /'
 step "a catalog track in gym.make (clockwise monza, and reversed)"
 "$BIN/python" - <<'EOF'
 import gymnasium as gym

@@ -47,13 +47,13 @@ def test_the_message_says_what_is_asked_what_there_is_and_what_fits():
 
 def test_too_many_local_actors_fail_in_under_5_s_before_ray_starts(tmp_path):
     code = textwrap.dedent(
-        f"""
+        """
         import sys, time
         from roboracer_arena.distributed import RayVectorEnv
         from roboracer_arena.distributed.ray_fit import local_cpus
         t0 = time.perf_counter()
         try:
-            RayVectorEnv(num_actors=4 * local_cpus(), envs_per_actor=256, address="local", track="{SMALL}")
+            RayVectorEnv(num_actors=4 * local_cpus(), envs_per_actor=256, address="local", track="generated")
         except Exception as e:
             print(type(e).__name__, round(time.perf_counter() - t0, 3), "ray" in sys.modules, sep="|")
             print(e)
@@ -64,7 +64,8 @@ def test_too_many_local_actors_fail_in_under_5_s_before_ray_starts(tmp_path):
     total = time.perf_counter() - t0
     head, msg = out.stdout.strip().split("\n")
     kind, seconds, ray_imported = head.split("|")
-    assert kind == "InvalidArgumentError" and float(seconds) < 5.0, out
+    # The fit is checked first, before the track check's imports: no work in the constructor.
+    assert kind == "InvalidArgumentError" and float(seconds) < 1.0, out
     assert ray_imported == "False"  # decided before Ray was even imported, let alone started
     assert "this machine (address='local')" in msg and "num_actors=" in msg and "--ray" not in msg
     assert total < 60  # the whole process, imports included (a loaded CI machine has slack)

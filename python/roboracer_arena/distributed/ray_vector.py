@@ -127,10 +127,13 @@ class RayVectorEnv(VectorEnv):
             raise ValueError(f"num_actors and envs_per_actor must be >= 1, got {num_actors} and {envs_per_actor}")
         if "num_envs" in env_kwargs or "env_index_offset" in env_kwargs:
             raise ValueError("pass num_actors and envs_per_actor, not num_envs / env_index_offset")
+        self.num_actors, self.envs_per_actor = int(num_actors), int(envs_per_actor)
+        # First, before the track check's imports (seconds on a busy machine): the issue's
+        # 8 x 256 request on 2 cores must fail within seconds, in one line.
+        self._check_local_fit(address, float(num_cpus_per_actor))
         from ..envs.track_pool import check_track_names
 
         check_track_names(env_kwargs.get("track"))  # an unknown id: the local env's typed error, no actor started
-        self.num_actors, self.envs_per_actor = int(num_actors), int(envs_per_actor)
         self._owns = self._connect_fitting(address, float(num_cpus_per_actor))
         ray = import_ray()
         self.num_envs = self.num_actors * self.envs_per_actor
@@ -164,15 +167,24 @@ class RayVectorEnv(VectorEnv):
         self._seeded = False
         self._chunks = 1
 
-    def _connect_fitting(self, address: str | None, cpus: float) -> bool:
-        """Connect (see :func:`.ray_cluster.connect`) and fail at once, in one line, if the
-        actors' CPUs do not fit the cluster: Ray would otherwise queue them forever. With
-        ``address="local"`` the check runs before Ray starts (it can take tens of seconds)."""
-        n, m = self.num_actors, self.envs_per_actor
+    def _check_local_fit(self, address: str | None, cpus: float) -> None:
+        """With ``address="local"`` and no Ray running yet, check the actors fit this
+        machine's CPUs before even importing Ray (seconds on a busy machine), let alone
+        starting it (it can take tens of seconds)."""
         loaded = sys.modules.get("ray")
         if address == "local" and not (loaded is not None and loaded.is_initialized()):
-            # Before even importing Ray (seconds on a busy machine), let alone starting it.
-            check_actors_fit(n, cpus, local_cpus(), envs_per_actor=m, where="this machine (address='local')")
+            check_actors_fit(
+                self.num_actors,
+                cpus,
+                local_cpus(),
+                envs_per_actor=self.envs_per_actor,
+                where="this machine (address='local')",
+            )
+
+    def _connect_fitting(self, address: str | None, cpus: float) -> bool:
+        """Connect (see :func:`.ray_cluster.connect`) and fail at once, in one line, if the
+        actors' CPUs do not fit the cluster: Ray would otherwise queue them forever."""
+        n, m = self.num_actors, self.envs_per_actor
         ray = import_ray()
         owns = connect(address or "auto")
         try:
