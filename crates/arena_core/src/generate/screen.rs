@@ -112,21 +112,7 @@ mod tests {
     use super::*;
 
     pub(crate) fn spec(l: f64, bx: f64, by: f64) -> Spec {
-        Spec {
-            name: "t".into(),
-            lap_length_m: l,
-            corridor_width_m: 1.5,
-            hall_x_m: bx,
-            hall_y_m: by,
-            direction: "counterclockwise".into(),
-            hairpins: 0,
-            chicanes: 0,
-            sweepers: 0,
-            feature_order: vec![],
-            min_radius_m: 0.0,
-            longest_straight_m: 0.0,
-            max_straight_m: None,
-        }
+        Spec::plain(l, 1.5, bx, by)
     }
 
     #[test]

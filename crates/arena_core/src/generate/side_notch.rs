@@ -145,21 +145,7 @@ mod tests {
     use rand_chacha::rand_core::SeedableRng;
 
     fn spec(l: f64, hx: f64, hy: f64) -> Spec {
-        Spec {
-            name: "s".into(),
-            lap_length_m: l,
-            corridor_width_m: 0.8,
-            hall_x_m: hx,
-            hall_y_m: hy,
-            direction: "counterclockwise".into(),
-            hairpins: 0,
-            chicanes: 0,
-            sweepers: 0,
-            feature_order: vec![],
-            min_radius_m: 0.0,
-            longest_straight_m: 0.0,
-            max_straight_m: None,
-        }
+        Spec::plain(l, 0.8, hx, hy)
     }
 
     #[test]

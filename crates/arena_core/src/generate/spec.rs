@@ -38,6 +38,27 @@ pub struct Spec {
 }
 
 impl Spec {
+    /// A featureless counter-clockwise spec (tests): a `lap` m lap, `width` m wide, in a
+    /// `hall_x` × `hall_y` m hall.
+    #[cfg(test)]
+    pub(crate) fn plain(lap: f64, width: f64, hall_x: f64, hall_y: f64) -> Spec {
+        Spec {
+            name: "test".into(),
+            lap_length_m: lap,
+            corridor_width_m: width,
+            hall_x_m: hall_x,
+            hall_y_m: hall_y,
+            direction: "counterclockwise".into(),
+            hairpins: 0,
+            chicanes: 0,
+            sweepers: 0,
+            feature_order: vec![],
+            min_radius_m: 0.0,
+            longest_straight_m: 0.0,
+            max_straight_m: None,
+        }
+    }
+
     /// Parse the JSON produced by `TrackSpec.model_dump_json()`.
     pub fn from_json(text: &str) -> Result<Spec> {
         let s: Spec =

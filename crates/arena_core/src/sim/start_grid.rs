@@ -308,12 +308,7 @@ mod tests {
     use super::*;
 
     fn circle(r: f64, n: usize) -> Vec<[f64; 2]> {
-        (0..n)
-            .map(|i| {
-                let a = i as f64 / n as f64 * std::f64::consts::TAU;
-                [r * a.cos(), r * a.sin()]
-            })
-            .collect()
+        crate::geometry::test_circle(n, r)
     }
 
     /// A stadium: two 10 m straights joined by half circles; walls 1 m either side.

@@ -289,19 +289,9 @@ mod tests {
 
     fn spec() -> Spec {
         Spec {
-            name: "m".into(),
-            lap_length_m: 40.0,
-            corridor_width_m: 1.2,
-            hall_x_m: 20.0,
-            hall_y_m: 15.0,
             direction: "clockwise".into(),
             hairpins: 1,
-            chicanes: 0,
-            sweepers: 0,
-            feature_order: vec![],
-            min_radius_m: 0.0,
-            longest_straight_m: 0.0,
-            max_straight_m: None,
+            ..Spec::plain(40.0, 1.2, 20.0, 15.0)
         }
     }
 
