@@ -60,7 +60,7 @@ def test_the_start_spec_is_a_typed_object_checked_by_the_core(oval):
     assert spec == start_spec([oval], 2, lateral_noise=0.1, noise_std=(0.0, 0.02), dropout=0.05)
     assert spec != start_spec([oval], 2, reset_poses="random")
     assert start_spec([oval, oval], 1, track_weights=np.array([1.0, 3.0])).track_weights == [1.0, 3.0]
-    sim = _core.Simulator([oval.native()], 1, 2, '{"lidar": {"num_beams": 11}}', 0)
+    sim = _core.Simulator([oval.native()], 1, 2, {"lidar": {"num_beams": 11}}, 0)
     sim.set_start_spec(spec)
 
 

@@ -1,8 +1,8 @@
 """Type stubs for the Rust extension ``roboracer_arena._core``."""
 
 import os
-from collections.abc import Sequence
-from typing import TypedDict, final
+from collections.abc import Mapping, Sequence
+from typing import Any, Protocol, TypeAlias, TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
@@ -58,6 +58,18 @@ __all__ = [
 
 __version__: str
 
+# Specs and configs cross as objects, never as JSON text: a mapping of the schema's fields
+# (``model.model_dump()``) or the pydantic model itself (the binding dumps it); the core
+# reads it into its serde type and checks the schema's ranges (``SpecError`` /
+# ``ConfigError`` naming the field). Results cross as dicts and lists of plain values
+# (the core's serde structs, via pythonize); ``roboracer_arena.generate.report`` holds the
+# typed models built from them (``extra="forbid"``: a field the core adds or drops fails).
+class _Dumps(Protocol):
+    def model_dump(self) -> dict[str, Any]: ...
+
+_Doc: TypeAlias = Mapping[str, Any] | _Dumps
+_Result: TypeAlias = dict[str, Any]
+
 class ArenaError(Exception): ...
 class MapIOError(ArenaError): ...
 class MapFormatError(ArenaError): ...
@@ -84,57 +96,60 @@ def rasterise_centreline(
 ) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]]:
     """Eq. 3 with per-vertex full widths; returns (data (H, W) uint8, origin (x, y, yaw))."""
 
-def screen(spec_json: str, config_json: str) -> str:
-    """Admissibility screen (Eqs. 1–2) as JSON: passed, violations, r_min_m, pitch_m, l_max_m, …"""
+def screen(spec: _Doc, config: _Doc | None = None) -> _Result:
+    """Admissibility screen (Eqs. 1–2): passed, violations, r_min_m, pitch_m, l_max_m, … (``ScreenResult``)."""
 
-def derived_geometry(spec_json: str, config_json: str) -> str:
-    """Derived geometry as JSON: r_min, pitch, l_max, s_min, corner_radius."""
+def derived_geometry(spec: _Doc, config: _Doc | None = None) -> _Result:
+    """Derived geometry: r_min, pitch, l_max, s_min, corner_radius (``DerivedGeometry``)."""
 
-def nearest_specs(spec_json: str, config_json: str, seed: int, timeout: float) -> str:
-    """Nearest specs that build after a failure: JSON {suggestions: [{field, spec, seed,
+def nearest_specs(spec: _Doc, config: _Doc | None, seed: int, timeout: float) -> _Result:
+    """Nearest specs that build after a failure: {suggestions: [{field, spec, seed,
     candidate_index}], probes, exhausted}; ``timeout`` seconds bound the search."""
 
 def generate_lattice(
-    spec_json: str, config_json: str, seed: int, timeout: float | None = None
+    spec: _Doc, config: _Doc | None, seed: int, timeout: float | None = None
 ) -> tuple[
     str,
-    str,
+    _Result,
     tuple[npt.NDArray[np.uint8], tuple[float, float, float]] | None,
     npt.NDArray[np.float64] | None,
 ]:
-    """Algorithm 1 (lattice + ring): (kind "accepted"|"rejected"|"failed", info_json, map | None, centreline | None).
+    """Algorithm 1 (lattice + ring): (kind "accepted"|"rejected"|"failed", info, map | None, centreline | None).
 
-    ``timeout`` seconds (None = unbounded) bounds the loop (info ``stopped: "timeout"``);
-    Ctrl-C stops it between candidates and raises KeyboardInterrupt."""
+    info: accepted {report, candidate_index, tried, pitch_m}; rejected the screen's result;
+    failed {tried, reasons, stopped}. ``timeout`` seconds (None = unbounded) bounds the loop
+    (info ``stopped: "timeout"``); Ctrl-C stops it between candidates and raises KeyboardInterrupt."""
 
 def construct_lattice(
-    spec_json: str, config_json: str, seed: int, timeout: float | None = None
-) -> tuple[str, npt.NDArray[np.float64] | None]:
-    """Lattice constructor without raster validation in the loop: (info_json, centreline | None)."""
+    spec: _Doc, config: _Doc | None, seed: int, timeout: float | None = None
+) -> tuple[_Result, npt.NDArray[np.float64] | None]:
+    """Lattice constructor without raster validation in the loop: (info {tried, pitch_m |
+    reasons}, centreline | None)."""
 
 def validate_map(
     data: npt.NDArray[np.uint8],
     resolution: float,
     origin: tuple[float, float, float],
-    spec_json: str,
-    config_json: str,
-) -> tuple[str, npt.NDArray[np.float64]]:
-    """Raster validator: (report_json, measured centreline (N, 2) in the driving direction)."""
+    spec: _Doc,
+    config: _Doc | None = None,
+) -> tuple[_Result, npt.NDArray[np.float64]]:
+    """Raster validator: (report (``ValidationReport``), measured centreline (N, 2) in the driving direction)."""
 
-def config_defaults(kind: str) -> str:
-    """The core's defaults for ``kind`` ("sim", "build", "constructor") as JSON."""
+def config_defaults(kind: str) -> _Result:
+    """The core's defaults for ``kind`` ("sim", "build", "constructor")."""
 
-def check_config(kind: str, json: str) -> str:
-    """Parse and validate a config as the core does (raises ConfigError); returns it normalised."""
+def check_config(kind: str, config: _Doc) -> _Result:
+    """Read and validate a document as the core does (``kind`` "sim", "build", "constructor"
+    or "spec"; raises ConfigError, SpecError for a spec); returns it normalised."""
 
-def analyse_curve(xy: npt.NDArray[np.float64], corner_radius: float, exclude_m: float) -> str:
-    """Curvature analysis of a closed curve as JSON (turns, features, min radius, self_clearance_m).
+def analyse_curve(xy: npt.NDArray[np.float64], corner_radius: float, exclude_m: float) -> _Result:
+    """Curvature analysis of a closed curve (``CurveAnalysis``: turns, features, min radius, self_clearance_m).
     InvalidArgumentError unless ≥ 3 finite points span a length in (0, 5000] m and
     ``corner_radius`` / ``exclude_m`` are finite and in range."""
 
 # --- grid (grid.rs): ROS map YAML + PGM/PNG, nav2 rules, distance transform ---------
-def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], str]:
-    """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta_json)``.
+def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], _Result]:
+    """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta)``.
     The YAML and image must be regular files; the image size is checked against the pixel
     budget from its header, resolution and origin against ``arena_core::limits``."""
 
@@ -159,13 +174,13 @@ class _Geometry(TypedDict):
     corridor_mask: npt.NDArray[np.bool_]
     border_contact_cells: int
     timings: dict[str, float]
-    params_json: str
+    params: dict[str, Any]
 
 def build_geometry(
     data: npt.NDArray[np.uint8],
     resolution: float,
     origin: tuple[float, float, float],
-    params_json: str = "{}",
+    params: _Doc | None = None,
     start: Sequence[float] | None = None,
 ) -> _Geometry:
     """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
@@ -178,7 +193,7 @@ def build_open_geometry(
     data: npt.NDArray[np.uint8],
     resolution: float,
     origin: tuple[float, float, float],
-    params_json: str = "{}",
+    params: _Doc | None = None,
     unknown_free: bool = False,
     start: Sequence[float] | None = None,
 ) -> _OpenGeometry:
@@ -233,7 +248,7 @@ class Simulator:
     height of the extruded collision walls (``Track.native()`` passes the build's own). A
     centreline of exactly two points is an open map's start anchor (start, heading towards
     the second point): length 0, no progress, no laps (``Track.open_map``).
-    ``config_json``: ``SimConfig().to_json()``. Every env starts on track 0.
+    ``config``: a ``SimConfig`` or a mapping of its fields (None = defaults). Every env starts on track 0.
     ``seed`` (None = 0) and ``env_index_offset`` (None = 0; the index of env 0 in a larger
     batch, so that a shard draws the same per-env streams as the whole) are ints >= 0.
 
@@ -264,7 +279,7 @@ class Simulator:
         ],
         num_envs: int,
         vehicles_per_env: int,
-        config_json: str = "{}",
+        config: _Doc | None = None,
         seed: int | None = None,
         env_index_offset: int | None = None,
     ) -> Simulator: ...
@@ -281,7 +296,8 @@ class Simulator:
     @property
     def dt(self) -> float: ...
     @property
-    def config_json(self) -> str: ...
+    def config(self) -> _Result:
+        """The validated configuration in use (``SimConfig`` fields)."""
     def track_ids(self) -> npt.NDArray[np.int64]: ...
     def step_counts(self) -> tuple[int, int]:
         """(world steps through the rapier pipeline, contact-free shortcut steps), summed over envs."""

@@ -35,8 +35,8 @@ raise :class:`~roboracer_arena.errors.InvalidArgumentError`.
 
 from __future__ import annotations
 
-import json
-from collections.abc import Sequence
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -52,7 +52,7 @@ Mesh = tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
 
 #: The builder's geometry defaults (one source of truth: the Rust ``BuildParams``;
 #: mirrored by ``BuildConfig.geometry``).
-DEFAULT_PARAMS: dict[str, Any] = json.loads(_core.config_defaults("build"))
+DEFAULT_PARAMS: dict[str, Any] = _core.config_defaults("build")
 
 
 @dataclass(frozen=True, eq=False)
@@ -147,9 +147,9 @@ def extract_corridor(
     if open:
         return extract_open(m, params, start, unknown)
     s = None if start is None else [float(v) for v in start]
-    params_json = _params_json(params)
+    core_params = _params(params)
     try:
-        out = _core.build_geometry(m.data, m.resolution, m.origin, params_json, s)
+        out = _core.build_geometry(m.data, m.resolution, m.origin, core_params, s)
     except CorridorError as e:
         err = CorridorError(f"{m.path}: {e}" if m.path is not None else str(e))
         if open is None:
@@ -201,7 +201,7 @@ def extract_open(
     s = None if start is None else [float(v) for v in start]
     try:
         out = _core.build_open_geometry(
-            m.data, m.resolution, m.origin, _params_json(params), unknown_free=unknown == "free", start=s
+            m.data, m.resolution, m.origin, _params(params), unknown_free=unknown == "free", start=s
         )
     except CorridorError as e:
         raise CorridorError(f"{where}{e}") from None
@@ -235,11 +235,17 @@ def _default_start(geo: CorridorGeometry, farthest: Any) -> tuple[float, float, 
     return x, y, yaw
 
 
-def _params_json(params: dict[str, Any] | None) -> str:
-    try:
-        return json.dumps(params or {}, allow_nan=False)
-    except (TypeError, ValueError) as e:
-        raise InvalidArgumentError(f"params must be a JSON-able mapping of finite numbers: {e}") from None
+def _params(params: Mapping[str, Any] | None) -> dict[str, Any]:
+    """``params`` as the core reads them: a mapping whose numbers are finite (the core
+    checks the names, types and ranges: ``ConfigError``)."""
+    if params is None:
+        return {}
+    if not isinstance(params, Mapping):
+        raise InvalidArgumentError(f"params must be a mapping of finite numbers, got {type(params).__name__}")
+    bad = {k: v for k, v in params.items() if isinstance(v, float) and not math.isfinite(v)}
+    if bad:
+        raise InvalidArgumentError(f"params must be a mapping of finite numbers: {bad}")
+    return dict(params)
 
 
 def _geometry(out: Any, m: OccupancyMap) -> CorridorGeometry:
@@ -254,7 +260,7 @@ def _geometry(out: Any, m: OccupancyMap) -> CorridorGeometry:
         corridor_mask=out["corridor_mask"],
         border_contact_cells=int(out["border_contact_cells"]),
         timings=dict(out["timings"]),
-        params=json.loads(out["params_json"]),
+        params=dict(out["params"]),
         map=m,
     )
 

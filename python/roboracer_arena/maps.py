@@ -15,7 +15,6 @@ percentages become unknown).
 
 from __future__ import annotations
 
-import json
 import math
 import re
 from dataclasses import dataclass, field
@@ -100,8 +99,8 @@ def load_map(path: str | Path) -> OccupancyMap:
             YAML does), or the image is corrupt or empty.
     """
     path = Path(path)
-    data, resolution, origin, meta_json = _core.load_map(path)
-    return OccupancyMap(data, resolution, origin, path, json.loads(meta_json))
+    data, resolution, origin, meta = _core.load_map(path)
+    return OccupancyMap(data, resolution, origin, path, meta)
 
 
 def save_map(

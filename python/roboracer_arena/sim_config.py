@@ -1,8 +1,8 @@
 """Configuration of the native simulator (``_core.Simulator``): vehicle, lidar, physics.
 
 The three models mirror the Rust structs ``arena_core::sim::{VehicleParams, LidarParams,
-PhysicsParams}`` field for field (same names, SI units); :meth:`SimConfig.to_json`
-produces the ``config_json`` the simulator takes. Defaults reproduce the paper's
+PhysicsParams}`` field for field (same names, SI units); ``_core.Simulator`` takes a
+``SimConfig`` (or a mapping of its fields) as its ``config``. Defaults reproduce the paper's
 Traxxas 1:10 RoboRacer vehicle table (see ``DESIGN.md``); where the paper gives no
 figure, the docstring of the field says where the value comes from.
 """
@@ -261,5 +261,5 @@ class SimConfig(NumbersAreNumbers):
     physics: PhysicsConfig = Field(default_factory=PhysicsConfig)
 
     def to_json(self) -> str:
-        """The ``config_json`` argument of ``_core.Simulator``."""
+        """The config as JSON text (files, logs); ``_core.Simulator`` takes the model itself."""
         return json.dumps(self.model_dump(mode="json"))

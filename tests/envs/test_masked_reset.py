@@ -111,7 +111,7 @@ def test_bad_reset_inputs_are_refused_with_typed_errors(oval):
 
 
 def test_simulator_refuses_fractional_and_bool_track_ids(oval):
-    sim = _core.Simulator([oval.native()], 2, 1, '{"lidar": {"num_beams": 11}}', 0)
+    sim = _core.Simulator([oval.native()], 2, 1, {"lidar": {"num_beams": 11}}, 0)
     for bad in ([0.7, 0], np.array([0.7, 0.0]), [True, 0], np.array([True, False])):
         with pytest.raises(InvalidArgumentError, match="track_ids"):
             sim.set_tracks(bad)
@@ -148,10 +148,10 @@ def test_simulator_integer_arguments_are_checked(oval):
         ({"num_envs": 1.5}, "num_envs"),
         ({"vehicles_per_env": True}, "vehicles_per_env"),
     ):
-        args = {"num_envs": 1, "vehicles_per_env": 1, "config_json": "{}", **kwargs}
+        args = {"num_envs": 1, "vehicles_per_env": 1, "config": {}, **kwargs}
         with pytest.raises(InvalidArgumentError, match=name):
             _core.Simulator(native, **args)
-    sim = _core.Simulator(native, np.int64(1), 1, "{}", 2**64 - 1)
+    sim = _core.Simulator(native, np.int64(1), 1, {}, 2**64 - 1)
     state, events = np.zeros((1, 1, len(sim.state_fields))), np.zeros((1, 1), np.uint8)
     for bad in (-1, 2.5, 10**6):
         with pytest.raises(InvalidArgumentError, match="substeps"):

@@ -17,7 +17,7 @@ STADIUM = _core.stadium_track(6.0, 3.0, 2.0)
 
 
 def make(num_envs=2, vehicles=2, config=None, seed=0, tracks=(STADIUM,)):
-    return _core.Simulator(list(tracks), num_envs, vehicles, (config or SimConfig()).to_json(), seed)
+    return _core.Simulator(list(tracks), num_envs, vehicles, (config or SimConfig()), seed)
 
 
 def buffers(sim):
@@ -96,11 +96,11 @@ def test_wrong_shapes_and_dtypes_raise():
     with pytest.raises(InvalidArgumentError):
         sim.centreline_length(5)
     with pytest.raises(ConfigError, match="config"):  # a config mistake is a ConfigError on either side
-        _core.Simulator([STADIUM], 1, 1, '{"vehicle": {"mas": 1}}', 0)
+        _core.Simulator([STADIUM], 1, 1, {"vehicle": {"mas": 1}}, 0)
     with pytest.raises(InvalidArgumentError):
-        _core.Simulator([([np.zeros((3, 3))], STADIUM[1])], 1, 1, "{}", 0)
+        _core.Simulator([([np.zeros((3, 3))], STADIUM[1])], 1, 1, {}, 0)
     with pytest.raises(InvalidArgumentError):
-        _core.Simulator([STADIUM], 0, 1, "{}", 0)
+        _core.Simulator([STADIUM], 0, 1, {}, 0)
 
 
 def run(num_envs: int, seed: int = 3):
@@ -180,7 +180,7 @@ def test_physics_walls_are_the_builders_wall_mesh(berlin_geometry, sources):
     ):
         track = _from_corridor(geo, "berlin")
         assert track.wall_height == geo.params["wall_height_m"]
-        sim = _core.Simulator([track.native()], 2, 1, SimConfig().to_json(), 0)
+        sim = _core.Simulator([track.native()], 2, 1, SimConfig(), 0)
         vertices, triangles = sim.wall_mesh(0)
         usd_vertices, usd_triangles = geo.meshes["walls"]
         assert np.array_equal(vertices, usd_vertices) and np.array_equal(triangles, usd_triangles)
@@ -203,7 +203,7 @@ def _reference_ranges(walls, origin, angles, range_max):
 
 def test_lidar_on_berlin_matches_brute_force(berlin):
     walls, centre = berlin
-    sim = _core.Simulator([(walls, centre)], 1, 1, SimConfig().to_json(), 0)
+    sim = _core.Simulator([(walls, centre)], 1, 1, SimConfig(), 0)
     lidar = SimConfig().lidar
     scans, state, events = buffers(sim)
     for s in np.linspace(0.0, sim.centreline_length(0), 7, endpoint=False):
@@ -222,7 +222,7 @@ def test_lidar_on_berlin_matches_brute_force(berlin):
 def test_drives_a_lap_of_berlin_without_touching_a_wall(berlin):
     from roboracer_arena.bench.physics import _Driver
 
-    sim = _core.Simulator([berlin], 1, 1, SimConfig().to_json(), 0)
+    sim = _core.Simulator([berlin], 1, 1, SimConfig(), 0)
     sim.reset(np.ones(1, bool), np.array([[sim.centreline_pose(0, 0.0)]]))
     scans, state, events = buffers(sim)
     sim.observe(None, state, events)
@@ -246,4 +246,4 @@ def test_drives_a_lap_of_berlin_without_touching_a_wall(berlin):
 def test_a_bad_wall_height_is_refused_naming_it(height):
     walls, centre = _core.stadium_track()
     with pytest.raises(InvalidArgumentError, match=r"tracks\[0\]:? wall_height"):
-        _core.Simulator([(walls, centre, height)], 1, 1, "{}", 0)
+        _core.Simulator([(walls, centre, height)], 1, 1, {}, 0)

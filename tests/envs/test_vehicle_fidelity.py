@@ -21,7 +21,7 @@ def _stop_distances(friction: np.ndarray, mass: np.ndarray) -> np.ndarray:
     """Two envs on a long straight: roll at 5 m/s, then a 0 m/s command for 2 s."""
     walls = [np.array([[-100.0, -5.0], [100.0, -5.0], [100.0, 5.0], [-100.0, 5.0]])]
     centre = np.array([[-50.0, 0.0], [50.0, 0.0], [50.0, 1.0], [-50.0, 1.0]])
-    sim = _core.Simulator([(walls, centre)], 2, 1, SimConfig().to_json(), 0)
+    sim = _core.Simulator([(walls, centre)], 2, 1, SimConfig(), 0)
     mask = np.ones(2, bool)
     v = VehicleConfig()
     sim.set_vehicle_params(
@@ -40,7 +40,7 @@ def test_per_env_friction_changes_the_stop_and_bad_values_are_refused():
     d = _stop_distances(np.array([0.83, 0.415]), np.full(2, 4.885))
     # friction-limited: v^2 / (2 mu g) is 1.54 m and 3.07 m
     assert 1.5 < d[0] < 1.9 and d[1] > 1.5 * d[0], d
-    sim = _core.Simulator([_core.stadium_track()], 2, 1, "{}", 0)
+    sim = _core.Simulator([_core.stadium_track()], 2, 1, {}, 0)
     ok = np.ones(2)
     with pytest.raises(InvalidArgumentError, match="mass"):
         sim.set_vehicle_params(np.ones(2, bool), ok, np.array([4.0, -1.0]), ok * 0.05, ok * 0.02)

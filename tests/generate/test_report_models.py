@@ -3,8 +3,6 @@ model field (``extra="forbid"``), so drift between the Rust structs and the mode
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
 from pydantic import ValidationError
@@ -26,7 +24,7 @@ SPEC = TrackSpec(lap_length_m=45, corridor_width_m=1.2, hairpins=1)
 
 
 def _raw(fn) -> dict:
-    return json.loads(fn(SPEC.model_dump_json(), ConstructorConfig().model_dump_json()))
+    return fn(SPEC, ConstructorConfig())
 
 
 @pytest.mark.parametrize(("fn", "model"), [(_core.screen, ScreenResult), (_core.derived_geometry, DerivedGeometry)])

@@ -46,7 +46,7 @@ def test_an_env_too_large_is_a_typed_error_not_an_abort(kwargs):
     [
         "num_envs=10**6, vehicles_per_env=1",
         "num_envs=4096, vehicles_per_env=8",
-        'num_envs=16384, vehicles_per_env=1, config_json=\'{"lidar": {"num_beams": 100000}}\'',
+        'num_envs=16384, vehicles_per_env=1, config={"lidar": {"num_beams": 100000}}',
     ],
 )
 def test_the_core_simulator_refuses_a_size_over_budget_without_aborting(size):

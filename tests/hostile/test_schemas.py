@@ -32,7 +32,7 @@ def test_sim_steps_and_rates_have_a_floor_on_both_sides(sim):
     with pytest.raises(ValueError):
         SimConfig.model_validate(sim)
     with pytest.raises(ArenaError, match="at least"):
-        _core.check_config("sim", json.dumps(sim))
+        _core.check_config("sim", sim)
 
 
 def test_gym_make_refuses_a_vanishing_step_and_rate(oval):

@@ -135,7 +135,7 @@ def test_library_bridge_on_an_env_and_on_a_simulator(ellipse_map, domain_id):
     assert np.hypot(*(xy - left)) < 0.2  # ...and the env's next 50 ms step starts there
 
     walls, centre = _core.stadium_track()
-    sim = _core.Simulator([(walls, centre)], 1, 2, SimConfig().to_json(), 0)
+    sim = _core.Simulator([(walls, centre)], 1, 2, SimConfig(), 0)
     b = Bridge(sim, rate=None, dds=False).start()
     while b.sim_time < 0.2:
         time.sleep(0.01)

@@ -1,53 +1,73 @@
 //! The core's own reading of every configuration schema the Python layer also models
-//! (pydantic): its defaults, and its verdict on a JSON document. The parity tests
+//! (pydantic): its defaults, and its verdict on a document. The parity tests
 //! (`tests/test_config_parity.py`) hold the two sides to the same defaults and limits.
+//! Documents cross as Python mappings (or the pydantic models), never as JSON text.
 
-use arena_core::generate::spec::ConstructorConfig;
+use arena_core::generate::spec::{ConstructorConfig, Spec};
 use arena_core::sim::SimParams;
 use arena_core::track::params::BuildParams;
 use arena_core::ArenaError;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::boundary;
+use crate::convert::{from_py, to_dict};
 
-const KINDS: &str = "'sim', 'build' or 'constructor'";
+const KINDS: &str = "'sim', 'build', 'constructor' or 'spec'";
 
-fn normalised(kind: &str, json: &str) -> arena_core::Result<String> {
-    let text = match kind {
-        "sim" => serde_json::to_string(&SimParams::from_json(json)?),
-        "build" => Ok(BuildParams::from_json(json)?.to_json()),
-        "constructor" => serde_json::to_string(&ConstructorConfig::from_json(json)?),
-        _ => {
-            return Err(ArenaError::invalid(format!(
-                "config kind {kind:?}: expected {KINDS}"
-            )))
+fn unknown(kind: &str) -> PyErr {
+    crate::errors::to_py(ArenaError::invalid(format!(
+        "config kind {kind:?}: expected {KINDS}"
+    )))
+}
+
+fn config_error(message: String) -> ArenaError {
+    ArenaError::config(message)
+}
+
+/// The core's defaults for one schema, as a dict (``"spec"`` has no defaults of its own:
+/// the schema's defaults live in ``TrackSpec``).
+#[pyfunction]
+fn config_defaults<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> {
+    match kind {
+        "sim" => to_dict(py, &SimParams::default()),
+        "build" => to_dict(py, &BuildParams::default()),
+        "constructor" => to_dict(py, &ConstructorConfig::default()),
+        _ => Err(unknown(kind)),
+    }
+}
+
+/// Read and validate ``config`` (a mapping or the pydantic model) as the core does;
+/// returns it normalised (defaults filled in). ``ConfigError`` (``SpecError`` for a spec)
+/// naming the field when the core refuses it.
+#[pyfunction]
+fn check_config<'py>(
+    py: Python<'py>,
+    kind: &str,
+    config: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let c = Some(config);
+    match kind {
+        "sim" => {
+            let p: SimParams = from_py(py, c, "simulator config", config_error)?;
+            let p = boundary::call(py, "check_config", move || p.validate().map(|_| p))?;
+            to_dict(py, &p)
         }
-    };
-    Ok(text.expect("plain data serialises"))
-}
-
-/// The core's defaults for one schema, as JSON.
-#[pyfunction]
-fn config_defaults(py: Python<'_>, kind: &str) -> PyResult<String> {
-    boundary::call(py, "config_defaults", || {
-        let text = match kind {
-            "sim" => serde_json::to_string(&SimParams::default()),
-            "build" => Ok(BuildParams::default().to_json()),
-            "constructor" => serde_json::to_string(&ConstructorConfig::default()),
-            _ => {
-                return Err(ArenaError::invalid(format!(
-                    "config kind {kind:?}: expected {KINDS}"
-                )))
-            }
-        };
-        Ok(text.expect("plain data serialises"))
-    })
-}
-
-/// Parse and validate `json` as the core does; returns it normalised (defaults filled in).
-#[pyfunction]
-fn check_config(py: Python<'_>, kind: &str, json: &str) -> PyResult<String> {
-    boundary::call(py, "check_config", || normalised(kind, json))
+        "build" => {
+            let p: BuildParams = from_py(py, c, "build params", config_error)?;
+            let p = boundary::call(py, "check_config", move || p.validate().map(|_| p))?;
+            to_dict(py, &p)
+        }
+        "constructor" => {
+            let p: ConstructorConfig = from_py(py, c, "constructor config", config_error)?;
+            to_dict(py, &boundary::call(py, "check_config", move || p.check())?)
+        }
+        "spec" => {
+            let s: Spec = from_py(py, c, "spec", ArenaError::Spec)?;
+            to_dict(py, &boundary::call(py, "check_config", move || s.check())?)
+        }
+        _ => Err(unknown(kind)),
+    }
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

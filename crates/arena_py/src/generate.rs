@@ -6,71 +6,88 @@
 
 use numpy::PyArray2;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::boundary;
-use crate::convert::{grid_to_py, line_to_py, to_json, MapTuple};
+use crate::convert::{from_py, grid_to_py, line_to_py, to_dict, to_py, MapTuple};
 use arena_core::generate::budget::Failure;
 use arena_core::generate::construct::{self, Outcome};
 use arena_core::generate::nearest::{self, NearestReport};
 use arena_core::generate::spec::{ConstructorConfig, Spec};
+use arena_core::ArenaError;
 
+/// A centreline (N, 2) as returned to Python.
+type Line<'py> = Bound<'py, PyArray2<f64>>;
+
+/// The spec (``TrackSpec``, or its ``model_dump()``) and the constructor config
+/// (``ConstructorConfig`` or its dump; None = defaults) as the core's types, each checked
+/// with the schema's ranges (``SpecError`` / ``ConfigError`` naming the field).
 pub(crate) fn parse(
     py: Python<'_>,
-    spec_json: &str,
-    config_json: &str,
+    spec: &Bound<'_, PyAny>,
+    config: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<(Spec, ConstructorConfig)> {
-    boundary::call(py, "spec/config", || {
-        Ok((
-            Spec::from_json(spec_json)?,
-            ConstructorConfig::from_json(config_json)?,
-        ))
-    })
+    let spec: Spec = from_py(py, Some(spec), "spec", ArenaError::Spec)?;
+    let cfg: ConstructorConfig = from_py(py, config, "constructor config", ArenaError::config)?;
+    boundary::call(py, "spec/config", move || Ok((spec.check()?, cfg.check()?)))
 }
 
-/// The admissibility screen (Eqs. 1–2) as JSON: passed, violations and every quantity.
+/// The admissibility screen (Eqs. 1–2): passed, violations and every quantity (a dict).
 #[pyfunction]
-fn screen(py: Python<'_>, spec_json: &str, config_json: &str) -> PyResult<String> {
-    let (spec, cfg) = parse(py, spec_json, config_json)?;
-    boundary::call_ok(py, "screen", move || {
-        to_json(&arena_core::generate::screen::screen(&spec, &cfg))
-    })
+#[pyo3(signature = (spec, config=None))]
+fn screen<'py>(
+    py: Python<'py>,
+    spec: &Bound<'py, PyAny>,
+    config: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (spec, cfg) = parse(py, spec, config)?;
+    let out = boundary::call_ok(py, "screen", move || {
+        arena_core::generate::screen::screen(&spec, &cfg)
+    })?;
+    to_dict(py, &out)
 }
 
-/// Derived geometry (r_min, pitch, L_max, s_min, corner radius) as JSON.
+/// Derived geometry (r_min, pitch, L_max, s_min, corner radius), a dict.
 #[pyfunction]
-fn derived_geometry(py: Python<'_>, spec_json: &str, config_json: &str) -> PyResult<String> {
-    let (spec, cfg) = parse(py, spec_json, config_json)?;
-    boundary::call_ok(py, "derived_geometry", move || {
-        to_json(&arena_core::generate::spec::derive(&spec, &cfg))
-    })
+#[pyo3(signature = (spec, config=None))]
+fn derived_geometry<'py>(
+    py: Python<'py>,
+    spec: &Bound<'py, PyAny>,
+    config: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (spec, cfg) = parse(py, spec, config)?;
+    let out = boundary::call_ok(py, "derived_geometry", move || {
+        arena_core::generate::spec::derive(&spec, &cfg)
+    })?;
+    to_dict(py, &out)
 }
 
-/// Algorithm 1 (lattice and ring constructors). Returns ``(kind, info_json, data,
-/// origin, centreline)`` with kind ``"accepted" | "rejected" | "failed"``; the last three
-/// are None unless accepted. ``timeout`` (seconds, None = unbounded) bounds the loop; a
-/// failure it cut short has ``"stopped": "timeout"`` in its info. Ctrl-C stops the loop
-/// between candidates and raises KeyboardInterrupt.
+/// Algorithm 1 (lattice and ring constructors). Returns ``(kind, info, map,
+/// centreline)`` with kind ``"accepted" | "rejected" | "failed"`` and info a dict; the
+/// last two are None unless accepted. ``timeout`` (seconds, None = unbounded) bounds the
+/// loop; a failure it cut short has ``"stopped": "timeout"`` in its info. Ctrl-C stops
+/// the loop between candidates and raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (spec_json, config_json, seed, timeout=None))]
+#[pyo3(signature = (spec, config, seed, timeout=None))]
 #[allow(clippy::type_complexity)]
 fn generate_lattice<'py>(
     py: Python<'py>,
-    spec_json: &str,
-    config_json: &str,
+    spec: &Bound<'py, PyAny>,
+    config: Option<&Bound<'py, PyAny>>,
     seed: u64,
     timeout: Option<f64>,
 ) -> PyResult<(
     &'static str,
-    String,
+    Bound<'py, PyDict>,
     Option<MapTuple<'py>>,
     Option<Bound<'py, PyArray2<f64>>>,
 )> {
-    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    let (spec, cfg) = parse(py, spec, config)?;
     let Some(out) = boundary::call_budgeted(py, "generate_lattice", timeout, move |b| {
         construct::generate(&spec, &cfg, seed, b)
     })?
     else {
-        return Ok(("failed", to_json(&Failure::abandoned()), None, None));
+        return Ok(("failed", to_dict(py, &Failure::abandoned())?, None, None));
     };
     Ok(match out {
         Outcome::Accepted {
@@ -80,29 +97,29 @@ fn generate_lattice<'py>(
             candidate_index,
             tried,
         } => {
-            let info = serde_json::json!({
-                "report": report, "candidate_index": candidate_index, "tried": tried, "pitch_m": candidate.pitch_m,
-            });
+            let info = PyDict::new(py);
+            info.set_item("report", to_py(py, &report)?)?;
+            info.set_item("candidate_index", candidate_index)?;
+            info.set_item("tried", tried)?;
+            info.set_item("pitch_m", candidate.pitch_m)?;
             let line = line_to_py(py, &candidate.centreline);
-            (
-                "accepted",
-                info.to_string(),
-                Some(grid_to_py(py, grid)),
-                Some(line),
-            )
+            ("accepted", info, Some(grid_to_py(py, grid)), Some(line))
         }
-        Outcome::Rejected(sr) => ("rejected", to_json(&sr), None, None),
+        Outcome::Rejected(sr) => ("rejected", to_dict(py, &sr)?, None, None),
         Outcome::Failed {
             tried,
             reasons,
             stopped,
         } => (
             "failed",
-            to_json(&Failure {
-                tried,
-                reasons,
-                stopped,
-            }),
+            to_dict(
+                py,
+                &Failure {
+                    tried,
+                    reasons,
+                    stopped,
+                },
+            )?,
             None,
             None,
         ),
@@ -110,54 +127,58 @@ fn generate_lattice<'py>(
 }
 
 /// The constructor without the raster validator in its loop (the paper's
-/// constructor-comparison protocol). Returns ``(info_json, centreline | None)``; info has
-/// ``tried`` and, when no candidate passed the constructor's checks, ``reasons``.
+/// constructor-comparison protocol). Returns ``(info, centreline | None)``; info (a dict)
+/// has ``tried`` and ``pitch_m``, or, when no candidate passed the constructor's checks,
+/// ``tried`` and ``reasons``.
 #[pyfunction]
-#[pyo3(signature = (spec_json, config_json, seed, timeout=None))]
+#[pyo3(signature = (spec, config, seed, timeout=None))]
 fn construct_lattice<'py>(
     py: Python<'py>,
-    spec_json: &str,
-    config_json: &str,
+    spec: &Bound<'py, PyAny>,
+    config: Option<&Bound<'py, PyAny>>,
     seed: u64,
     timeout: Option<f64>,
-) -> PyResult<(String, Option<Bound<'py, PyArray2<f64>>>)> {
-    let (spec, cfg) = parse(py, spec_json, config_json)?;
+) -> PyResult<(Bound<'py, PyDict>, Option<Line<'py>>)> {
+    let (spec, cfg) = parse(py, spec, config)?;
     let Some(out) = boundary::call_budgeted(py, "construct_lattice", timeout, move |b| {
         Ok(construct::first_candidate(&spec, &cfg, seed, b))
     })?
     else {
-        return Ok((to_json(&Failure::abandoned()), None));
+        return Ok((to_dict(py, &Failure::abandoned())?, None));
     };
+    let info = PyDict::new(py);
     Ok(match out {
-        Ok((c, tried)) => (
-            serde_json::json!({"tried": tried, "pitch_m": c.pitch_m}).to_string(),
-            Some(line_to_py(py, &c.centreline)),
-        ),
-        Err((tried, reasons)) => (
-            serde_json::json!({"tried": tried, "reasons": reasons}).to_string(),
-            None,
-        ),
+        Ok((c, tried)) => {
+            info.set_item("tried", tried)?;
+            info.set_item("pitch_m", c.pitch_m)?;
+            (info, Some(line_to_py(py, &c.centreline)))
+        }
+        Err((tried, reasons)) => {
+            info.set_item("tried", tried)?;
+            info.set_item("reasons", to_py(py, &reasons)?)?;
+            (info, None)
+        }
     })
 }
 
-/// Nearest specs that build after a generation failure (`generate::nearest`), as JSON
+/// Nearest specs that build after a generation failure (`generate::nearest`), a dict
 /// ``{"suggestions": [{field, spec, seed, candidate_index}], "probes", "exhausted"}``.
 /// ``timeout`` (seconds) bounds the search; when it passes inside one probe the search
 /// reports what it found so far. Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (spec_json, config_json, seed, timeout))]
-fn nearest_specs(
-    py: Python<'_>,
-    spec_json: &str,
-    config_json: &str,
+#[pyo3(signature = (spec, config, seed, timeout))]
+fn nearest_specs<'py>(
+    py: Python<'py>,
+    spec: &Bound<'py, PyAny>,
+    config: Option<&Bound<'py, PyAny>>,
     seed: u64,
     timeout: f64,
-) -> PyResult<String> {
-    let (spec, cfg) = parse(py, spec_json, config_json)?;
+) -> PyResult<Bound<'py, PyDict>> {
+    let (spec, cfg) = parse(py, spec, config)?;
     let out = boundary::call_budgeted(py, "nearest_specs", Some(timeout), move |b| {
         Ok(nearest::nearest_specs(&spec, &cfg, seed, b))
     })?;
-    Ok(to_json(&out.unwrap_or_else(NearestReport::abandoned)))
+    to_dict(py, &out.unwrap_or_else(NearestReport::abandoned))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

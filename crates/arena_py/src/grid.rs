@@ -38,22 +38,22 @@ pub(crate) fn grid_from_py(
     })
 }
 
-/// `(data, resolution, origin, meta_json)` as returned to Python.
-type LoadedMap<'py> = (Bound<'py, PyArray2<u8>>, f64, (f64, f64, f64), String);
+/// `(data, resolution, origin, meta)` as returned to Python (meta a dict).
+type LoadedMap<'py> = (
+    Bound<'py, PyArray2<u8>>,
+    f64,
+    (f64, f64, f64),
+    Bound<'py, pyo3::types::PyDict>,
+);
 
 /// Load a ROS map YAML and its image (nav2 rules for mode, negate and thresholds).
-/// Returns ``(data uint8 (H, W), resolution, origin (x, y, yaw), meta_json)``.
+/// Returns ``(data uint8 (H, W), resolution, origin (x, y, yaw), meta)``, meta a dict.
 #[pyfunction]
 fn load_map<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<LoadedMap<'py>> {
     let (g, meta) = boundary::call(py, "load_map", move || mapfile::load_map(&path))?;
     let res = g.resolution;
     let (data, origin) = grid_to_py(py, g);
-    Ok((
-        data,
-        res,
-        origin,
-        serde_json::to_string(&meta).expect("meta serialises"),
-    ))
+    Ok((data, res, origin, crate::convert::to_dict(py, &meta)?))
 }
 
 /// Write a trinary map: ``STEM.png|pgm`` beside ``yaml_path``, then the YAML (atomically).

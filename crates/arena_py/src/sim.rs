@@ -203,13 +203,13 @@ impl FreeSpace {
 #[pymethods]
 impl Simulator {
     #[new]
-    #[pyo3(signature = (tracks, num_envs, vehicles_per_env, config_json = "{}", seed = None, env_index_offset = None))]
+    #[pyo3(signature = (tracks, num_envs, vehicles_per_env, config = None, seed = None, env_index_offset = None))]
     fn new(
         py: Python<'_>,
         tracks: &Bound<'_, PyAny>,
         num_envs: &Bound<'_, PyAny>,
         vehicles_per_env: &Bound<'_, PyAny>,
-        config_json: &str,
+        config: Option<&Bound<'_, PyAny>>,
         seed: Option<&Bound<'_, PyAny>>,
         env_index_offset: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
@@ -225,7 +225,9 @@ impl Simulator {
             Some(s) if !s.is_none() => uint_arg(s, "seed", u64::MAX)?,
             _ => 0,
         };
-        let params = boundary::call(py, "Simulator", || SimParams::from_json(config_json))?;
+        let params: SimParams =
+            crate::convert::from_py(py, config, "simulator config", CoreError::config)?;
+        let params = boundary::call(py, "Simulator", move || params.validate().map(|_| params))?;
         let mut raw = Vec::new();
         for (i, item) in tracks.try_iter()?.enumerate() {
             let item = item?;
@@ -300,10 +302,10 @@ impl Simulator {
     fn dt(&self) -> f64 {
         self.inner.params().physics.dt
     }
-    /// The validated configuration actually in use, as JSON.
+    /// The validated configuration actually in use (a dict of ``SimConfig`` fields).
     #[getter]
-    fn config_json(&self) -> String {
-        serde_json::to_string(self.inner.params()).unwrap_or_default()
+    fn config<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        crate::convert::to_dict(py, self.inner.params())
     }
 
     /// (world steps through the rapier pipeline, contact-free shortcut steps) so far,

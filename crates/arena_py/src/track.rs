@@ -4,7 +4,7 @@
 //! analysis (`track::features`); GIL released for the heavy work.
 
 use crate::boundary;
-use crate::convert::{line_to_py, points_from_py, to_json};
+use crate::convert::{from_py, line_to_py, points_from_py, to_dict, to_py};
 use crate::generate::parse;
 use arena_core::geometry::mesh::TriMesh;
 use arena_core::track::build;
@@ -12,6 +12,7 @@ use arena_core::track::metrics;
 use arena_core::track::open;
 use arena_core::track::params::{self, BuildParams};
 use arena_core::track::{features, validate};
+use arena_core::ArenaError;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -35,22 +36,29 @@ fn mesh_to_py<'py>(
     )
 }
 
+/// Build parameters from Python (a mapping of `GeometryConfig` fields or the model; None =
+/// defaults); the core's range check runs in the caller's boundary call.
+fn build_params(py: Python<'_>, params: Option<&Bound<'_, PyAny>>) -> PyResult<BuildParams> {
+    from_py(py, params, "build params", ArenaError::config)
+}
+
 /// Build the environment geometry of a map; see ``roboracer_arena.corridor`` for the keys.
 #[pyfunction]
-#[pyo3(signature = (data, resolution, origin, params_json="{}", start=None))]
+#[pyo3(signature = (data, resolution, origin, params=None, start=None))]
 fn build_geometry<'py>(
     py: Python<'py>,
     data: PyReadonlyArray2<'py, u8>,
     resolution: f64,
     origin: (f64, f64, f64),
-    params_json: &str,
+    params: Option<&Bound<'py, PyAny>>,
     start: Option<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let params = build_params(py, params)?;
     let g = crate::grid::grid_from_py(py, &data, resolution, origin)?;
     let (w, h) = (g.width, g.height);
     let geo = boundary::call(py, "build_geometry", move || {
         let start = start.as_deref().map(params::start_point).transpose()?;
-        let params = BuildParams::from_json(params_json)?;
+        params.validate()?;
         build::build_geometry(&g, &params, start.map(|[x, y, _]| [x, y]))
     })?;
     geometry_to_py(py, geo, w, h)
@@ -61,21 +69,22 @@ fn build_geometry<'py>(
 /// (``start`` (x, y[, yaw]) checked to lie on a drivable cell, else the free cell farthest
 /// from the walls) and ``start_clearance_m`` (NaN for a given start).
 #[pyfunction]
-#[pyo3(signature = (data, resolution, origin, params_json="{}", unknown_free=false, start=None))]
+#[pyo3(signature = (data, resolution, origin, params=None, unknown_free=false, start=None))]
 fn build_open_geometry<'py>(
     py: Python<'py>,
     data: PyReadonlyArray2<'py, u8>,
     resolution: f64,
     origin: (f64, f64, f64),
-    params_json: &str,
+    params: Option<&Bound<'py, PyAny>>,
     unknown_free: bool,
     start: Option<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let params = build_params(py, params)?;
     let g = crate::grid::grid_from_py(py, &data, resolution, origin)?;
     let (w, h) = (g.width, g.height);
     let o = boundary::call(py, "build_open_geometry", move || {
         let start = start.as_deref().map(params::start_point).transpose()?;
-        let params = BuildParams::from_json(params_json)?;
+        params.validate()?;
         open::build_open_geometry(&g, &params, open::OpenOptions { unknown_free }, start)
     })?;
     let d = geometry_to_py(py, o.geometry, w, h)?;
@@ -122,7 +131,7 @@ fn geometry_to_py(
         timings.set_item(*k, *v)?;
     }
     d.set_item("timings", timings)?;
-    d.set_item("params_json", geo.params.to_json())?;
+    d.set_item("params", to_py(py, &geo.params)?)?;
     Ok(d)
 }
 
@@ -169,17 +178,18 @@ fn measure_map<'py>(
 }
 
 /// Validate an occupancy grid against a spec, measuring the raster only. Returns
-/// ``(report_json, measured centreline (N, 2) in the driving direction)``.
+/// ``(report (a dict), measured centreline (N, 2) in the driving direction)``.
 #[pyfunction]
+#[pyo3(signature = (data, resolution, origin, spec, config=None))]
 fn validate_map<'py>(
     py: Python<'py>,
     data: PyReadonlyArray2<'py, u8>,
     resolution: f64,
     origin: (f64, f64, f64),
-    spec_json: &str,
-    config_json: &str,
-) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
-    let (spec, cfg) = parse(py, spec_json, config_json)?;
+    spec: &Bound<'py, PyAny>,
+    config: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyArray2<f64>>)> {
+    let (spec, cfg) = parse(py, spec, config)?;
     boundary::call(py, "validate_map", || {
         validate::check_frame(resolution, [origin.0, origin.1, origin.2])
     })?;
@@ -187,27 +197,24 @@ fn validate_map<'py>(
     let report = boundary::call_ok(py, "validate_map", move || {
         validate::validate_map(&grid, &spec, &cfg)
     })?;
-    Ok((to_json(&report), line_to_py(py, &report.centreline)))
+    Ok((to_dict(py, &report)?, line_to_py(py, &report.centreline)))
 }
 
 /// Curvature analysis of a closed curve (driving direction): turns, features, minimum
 /// radius, longest straight, total turn; plus its self-clearance outside `exclude_m`.
 #[pyfunction]
 #[pyo3(signature = (xy, corner_radius, exclude_m))]
-fn analyse_curve(
-    py: Python<'_>,
-    xy: PyReadonlyArray2<'_, f64>,
+fn analyse_curve<'py>(
+    py: Python<'py>,
+    xy: PyReadonlyArray2<'py, f64>,
     corner_radius: f64,
     exclude_m: f64,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyDict>> {
     let pts = points_from_py(&xy, "xy")?;
-    boundary::call(py, "analyse_curve", move || {
-        Ok(to_json(&features::analyse_curve(
-            &pts,
-            corner_radius,
-            exclude_m,
-        )?))
-    })
+    let out = boundary::call(py, "analyse_curve", move || {
+        features::analyse_curve(&pts, corner_radius, exclude_m)
+    })?;
+    to_dict(py, &out)
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

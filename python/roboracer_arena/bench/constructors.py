@@ -145,10 +145,10 @@ def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConf
         reasons: dict[str, int] = getattr(out, "reasons", {}) or {out.kind: 1}
         return None, max(reasons, key=lambda k: reasons[k]), getattr(out, "candidates_tried", 0)
     if constructor == "lattice-raw":
-        info, line = _core.construct_lattice(spec.model_dump_json(), config.model_dump_json(), seed)
-        tried = json.loads(info)["tried"]
+        info, line = _core.construct_lattice(spec, config, seed)
+        tried = info["tried"]
         if line is None:
-            reasons = json.loads(info)["reasons"]
+            reasons = info["reasons"]
             return None, max(reasons, key=lambda k: reasons[k]), tried
         return rasterise(line, spec, config), "", tried
     line = construct_baseline(spec, config, seed, constructor)

@@ -265,7 +265,7 @@ def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seco
     from ..start_grid import centreline_pose, grid_start_s
 
     cfg = EnvConfig.build(None, **_env_kwargs(beams))
-    sim = Simulator([track.native()], n, 1, cfg.sim.to_json(), 0)
+    sim = Simulator([track.native()], n, 1, cfg.sim, 0)
     start = np.array(centreline_pose(track, grid_start_s(track, 1, cfg.grid_spacing)))
     poses = np.broadcast_to(start, (n, 1, 3)).copy()
     sim.reset(np.ones(n, bool), poses)
@@ -296,7 +296,7 @@ def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: 
     from ..start_grid import centreline_pose
 
     cfg = EnvConfig.build(None, **_env_kwargs(beams))
-    sim = Simulator([track.native()], 1, 1, cfg.sim.to_json(), 0)
+    sim = Simulator([track.native()], 1, 1, cfg.sim, 0)
     scans = np.zeros((1, 1, sim.num_beams), np.float32)
     state, events, mask = np.zeros((1, 1, len(sim.state_fields))), np.zeros((1, 1), np.uint8), np.ones(1, bool)
 

@@ -131,7 +131,7 @@ class _Car:
         h = HALL
         walls = [np.array([[-h, -h], [h, -h], [h, h], [-h, h]], float)]
         centre = np.array([[-5.0, -5.0], [5.0, -5.0], [5.0, 5.0], [-5.0, 5.0]])
-        self.sim = _core.Simulator([(walls, centre)], 1, 1, config.to_json(), 0)
+        self.sim = _core.Simulator([(walls, centre)], 1, 1, config, 0)
         self.dt = config.physics.dt
         mask = np.ones(1, bool)
         self.sim.reset(mask, np.array([[[x, 0.0, 0.0]]]))

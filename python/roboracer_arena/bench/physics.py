@@ -93,7 +93,7 @@ def measure(
     per_env = max(1, min(per_env, vehicles))
     envs = max(1, vehicles // per_env)
     config = SimConfig(physics=PhysicsConfig(dt=dt, shortcut_free_steps=shortcut))
-    sim = _core.Simulator([_track()], envs, per_env, config.to_json(), 0)
+    sim = _core.Simulator([_track()], envs, per_env, config, 0)
     length = sim.centreline_length(0)
     poses = np.zeros((envs, per_env, 3))
     for v in range(per_env):
@@ -136,7 +136,7 @@ def measure(
 
 def measure_scan(seconds: float = 1.0, beams: int = 1081) -> ScanTiming:
     """Median time of one full scan by one vehicle on the stadium track."""
-    sim = _core.Simulator([_track()], 1, 1, SimConfig().to_json(), 0)
+    sim = _core.Simulator([_track()], 1, 1, SimConfig(), 0)
     sim.reset(np.ones(1, bool), np.array([[sim.centreline_pose(0, 5.0)]]))
     scans = np.zeros((1, 1, sim.num_beams), np.float32)
     state = np.zeros((1, 1, len(sim.state_fields)))

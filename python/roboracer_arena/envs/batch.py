@@ -249,7 +249,7 @@ class SimBatch:
             self._natives,
             self.num_envs,
             self.vehicles,
-            self.config.sim.to_json(),
+            self.config.sim,
             seed,
             env_index_offset=self.env_index_offset,
         )

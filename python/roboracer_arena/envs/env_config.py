@@ -140,8 +140,10 @@ class RandomisationConfig(NumbersAreNumbers):
     @model_validator(mode="after")
     def _ranges(self) -> RandomisationConfig:
         lo, hi = self.lidar_noise_std
-        if not 0 <= lo <= hi:
-            raise ValueError(f"randomisation.lidar_noise_std must be (low, high) with 0 <= low <= high, got {(lo, hi)}")
+        if not 0 <= lo <= hi <= 1e4:
+            raise ValueError(
+                f"randomisation.lidar_noise_std must be (low, high) with 0 <= low <= high <= 1e4, got {(lo, hi)}"
+            )
         for name in ("friction_scale", "mass_scale", "lag_scale"):
             lo, hi = getattr(self, name)
             if not (0 < lo <= hi if name != "lag_scale" else 0 <= lo <= hi):
@@ -205,13 +207,16 @@ class EnvConfig(NumbersAreNumbers):
         "s = 0 of the centreline as extracted. Further vehicles line up behind the first in a staggered grid.",
     )
     start_lateral_noise: float = Field(
-        0.0, ge=0, description="Start pose: uniform lateral offset in +-this (m), capped to keep the car off the walls."
+        0.0,
+        ge=0,
+        le=1e4,
+        description="Start pose: uniform lateral offset in +-this (m), capped to keep the car off the walls.",
     )
     start_heading_noise: float = Field(
         0.0, ge=0, le=3.2, description="Start pose: uniform heading offset in +-this (rad)."
     )
     start_speed_noise: float = Field(
-        0.0, ge=0, description="Rolling start: forward speed drawn uniformly from [0, this] m/s (<= max_speed)."
+        0.0, ge=0, le=1e4, description="Rolling start: forward speed drawn uniformly from [0, this] m/s (<= max_speed)."
     )
     wrong_way_distance: float = Field(
         2.0,
@@ -221,8 +226,8 @@ class EnvConfig(NumbersAreNumbers):
     )
     wrong_way_ends_episode: bool = Field(False, description="Driving the wrong way terminates the episode.")
     randomisation: RandomisationConfig = Field(default_factory=lambda: RandomisationConfig())
-    grid_spacing: float = Field(GRID_SPACING, gt=0, description="Longitudinal gap between grid slots (m).")
-    grid_offset: float = Field(GRID_OFFSET, ge=0, description="Lateral offset of the staggered grid slots (m).")
+    grid_spacing: float = Field(GRID_SPACING, gt=0, le=1e4, description="Longitudinal gap between grid slots (m).")
+    grid_offset: float = Field(GRID_OFFSET, ge=0, le=1e4, description="Lateral offset of the staggered grid slots (m).")
     reverse: bool = Field(
         False,
         description="Drive every track against its racing direction (the centreline reversed; "

@@ -13,7 +13,6 @@ steps or budget.
 
 from __future__ import annotations
 
-import json
 import time
 from typing import Literal
 
@@ -94,7 +93,7 @@ def nearest_specs(
     the search, which then reports what it found so far."""
     cfg = config or ConstructorConfig()
     t0 = time.perf_counter()
-    raw = json.loads(_core.nearest_specs(spec.model_dump_json(), cfg.model_dump_json(), seed, timeout))
+    raw = _core.nearest_specs(spec, cfg, seed, timeout)
     found = []
     for s in raw["suggestions"]:
         new = TrackSpec.model_validate({**s["spec"], "name": spec.name})

@@ -4,7 +4,6 @@ every acceptance passed the raster validator."""
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from typing import Literal
@@ -35,18 +34,14 @@ def check_timeout(timeout: object, what: str = "timeout") -> float | None:
     return float(timeout)
 
 
-def _jsons(spec: TrackSpec, config: ConstructorConfig) -> tuple[str, str]:
-    return spec.model_dump_json(), config.model_dump_json()
-
-
 def screen(spec: TrackSpec, config: ConstructorConfig | None = None) -> ScreenResult:
     """The admissibility screen (Eqs. 1–2): ``passed``, ``violations`` and every quantity."""
-    return ScreenResult.model_validate_json(_core.screen(*_jsons(spec, config or ConstructorConfig())))
+    return ScreenResult.model_validate(_core.screen(spec, config))
 
 
 def derived_geometry(spec: TrackSpec, config: ConstructorConfig | None = None) -> DerivedGeometry:
     """r_min, pitch p, L_max, lattice pitch bound s_min and corner radius r_c for a spec."""
-    return DerivedGeometry.model_validate_json(_core.derived_geometry(*_jsons(spec, config or ConstructorConfig())))
+    return DerivedGeometry.model_validate(_core.derived_geometry(spec, config))
 
 
 def validate_map(
@@ -57,9 +52,10 @@ def validate_map(
         np.ascontiguousarray(m.data, np.uint8),
         m.resolution,
         m.origin,
-        *_jsons(spec, config or ConstructorConfig()),
+        spec,
+        config,
     )
-    return ValidationReport.model_validate_json(report), line
+    return ValidationReport.model_validate(report), line
 
 
 def rasterise(centreline: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> OccupancyMap:
@@ -109,8 +105,7 @@ def generate_track(
     if not sr.passed:
         return Rejection(spec, list(sr.violations), sr, time.perf_counter() - t0)
     if constructor == "lattice":
-        kind, info, grid, line = _core.generate_lattice(*_jsons(spec, config), seed, timeout)
-        info = json.loads(info)
+        kind, info, grid, line = _core.generate_lattice(spec, config, seed, timeout)
         if kind == "accepted":
             if grid is None or line is None:  # the core returns both with every acceptance
                 raise InternalError("generate_lattice accepted without a map and centreline")

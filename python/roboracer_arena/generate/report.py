@@ -5,7 +5,6 @@ fails loudly here instead of drifting (``tests/generate/test_report_models.py``)
 
 from __future__ import annotations
 
-import json
 from typing import Literal
 
 import numpy as np
@@ -114,7 +113,7 @@ class CurveAnalysis(_Result):
     @classmethod
     def of(cls, xy: npt.ArrayLike, corner_radius: float, exclude_m: float) -> CurveAnalysis:
         """Analyse the closed curve ``xy`` (N, 2) with the core."""
-        raw = json.loads(_core.analyse_curve(np.ascontiguousarray(xy, np.float64), corner_radius, exclude_m))
+        raw = _core.analyse_curve(np.ascontiguousarray(xy, np.float64), corner_radius, exclude_m)
         if raw["self_clearance_m"] < 0:  # the core's "no non-local pass"
             raw["self_clearance_m"] = None
         return cls.model_validate(raw)

@@ -9,7 +9,6 @@ the env starts them (:meth:`SimSource.reset`, see :mod:`.start`).
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -87,7 +86,7 @@ def sim_source(
         return SimSource(
             sim,
             int(sim.vehicles_per_env),
-            SimConfig.model_validate(json.loads(sim.config_json)),
+            SimConfig.model_validate(sim.config),
             np.asarray(sim.centreline(tid)),
             track_id=tid,
         )
@@ -112,7 +111,7 @@ def sim_source(
     if not 1 <= n <= 64:
         raise ConfigError(f"--cars must be in 1..64, got {cars}")
     cfg = config or SimConfig()
-    sim = _core.Simulator([track.native()], 1, n, cfg.to_json(), seed)
+    sim = _core.Simulator([track.native()], 1, n, cfg, seed)
     sim.set_start_spec(bridge_start_spec(track, n, start or StartConfig(), cfg.vehicle.chassis_width))
     src = track.source if track.source is not None else env_or_sim
     return SimSource(sim, n, cfg, np.asarray(track.centreline), occupancy_map=_load_map(src), name=track.name)

@@ -31,11 +31,11 @@ class StartConfig(NumbersAreNumbers):
     reset_poses: Literal["grid", "centreline_start", "random"] = Field(
         "grid", description="As EnvConfig.reset_poses: the grid start, s = 0 of the centreline, or random."
     )
-    grid_spacing: float = Field(GRID_SPACING, gt=0, description="Longitudinal gap between grid slots (m).")
-    grid_offset: float = Field(GRID_OFFSET, ge=0, description="Lateral offset of the staggered grid slots (m).")
-    start_lateral_noise: float = Field(0.0, ge=0, description="Uniform lateral start offset in +-this (m).")
+    grid_spacing: float = Field(GRID_SPACING, gt=0, le=1e4, description="Longitudinal gap between grid slots (m).")
+    grid_offset: float = Field(GRID_OFFSET, ge=0, le=1e4, description="Lateral offset of the staggered grid slots (m).")
+    start_lateral_noise: float = Field(0.0, ge=0, le=1e4, description="Uniform lateral start offset in +-this (m).")
     start_heading_noise: float = Field(0.0, ge=0, le=3.2, description="Uniform heading offset in +-this (rad).")
-    start_speed_noise: float = Field(0.0, ge=0, description="Rolling start speed drawn from [0, this] (m/s).")
+    start_speed_noise: float = Field(0.0, ge=0, le=1e4, description="Rolling start speed drawn from [0, this] (m/s).")
 
 
 def bridge_start_spec(track: Track, vehicles: int, config: StartConfig, chassis_width: float) -> StartSpec:

@@ -440,7 +440,7 @@ mod tests {
             corridor_width_m: 1.5,
             hall_x_m: 20.0,
             hall_y_m: 15.0,
-            direction: "counterclockwise".into(),
+            direction: crate::generate::spec::Direction::Counterclockwise,
             hairpins: h,
             chicanes: c,
             sweepers: sw,
@@ -493,14 +493,17 @@ mod tests {
     #[test]
     fn clockwise_laps_run_clockwise() {
         let mut s = spec(50.0, 1, 1, 0);
-        for (dir, sign) in [("counterclockwise", 1.0), ("clockwise", -1.0)] {
-            s.direction = dir.into();
+        for (dir, sign) in [
+            (crate::generate::spec::Direction::Counterclockwise, 1.0),
+            (crate::generate::spec::Direction::Clockwise, -1.0),
+        ] {
+            s.direction = dir;
             let (c, _) = first_candidate(&s, &ConstructorConfig::default(), 3, &Budget::default())
                 .expect("a candidate");
             assert_eq!(
                 crate::geometry::signed_area(&c.centreline).signum(),
                 sign,
-                "{dir}"
+                "{dir:?}"
             );
         }
     }

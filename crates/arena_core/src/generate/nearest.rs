@@ -339,7 +339,7 @@ mod tests {
             corridor_width_m: w,
             hall_x_m: bx,
             hall_y_m: by,
-            direction: "counterclockwise".into(),
+            direction: crate::generate::spec::Direction::Counterclockwise,
             hairpins: h,
             chicanes: c,
             sweepers: s,

@@ -374,7 +374,7 @@ mod tests {
             corridor_width_m: w,
             hall_x_m: 20.0,
             hall_y_m: 15.0,
-            direction: "counterclockwise".into(),
+            direction: crate::generate::spec::Direction::Counterclockwise,
             hairpins: h,
             chicanes: c,
             sweepers: s,

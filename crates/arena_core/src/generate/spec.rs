@@ -1,5 +1,6 @@
-//! The core's view of a `TrackSpec` (validated in Python by pydantic, passed as JSON) and
-//! of the constructor's own constants.
+//! The core's view of a `TrackSpec` (validated in Python by pydantic, passed across the
+//! binding as an object and checked again here with the same ranges) and of the
+//! constructor's own constants.
 
 use crate::error::{ArenaError, Result};
 use crate::track::features::FeatureKind;
@@ -13,16 +14,31 @@ pub const MAX_STRAIGHT_CAP_M: f64 = 1_000.0;
 /// centimetres longer than the analytic curve.
 pub const STRAIGHT_CAP_MARGIN: f64 = 0.95;
 
+/// Driving direction seen from above (`TrackSpec.direction`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Direction {
+    Clockwise,
+    Counterclockwise,
+}
+
+/// Longest spec name (characters), the schema's bound (`TrackSpec.name`).
+pub const MAX_NAME_CHARS: usize = 120;
+
+/// Largest feature count of each kind, the schema's bound (`TrackSpec.hairpins` …).
+pub const MAX_FEATURES: u32 = 50;
+
 /// The requirement specification (SI units): the paper's 12 fields and the optional
 /// speed cap `max_straight_m`. See `roboracer_arena.spec`.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Spec {
     pub name: String,
     pub lap_length_m: f64,
     pub corridor_width_m: f64,
     pub hall_x_m: f64,
     pub hall_y_m: f64,
-    pub direction: String,
+    pub direction: Direction,
     pub hairpins: u32,
     pub chicanes: u32,
     pub sweepers: u32,
@@ -48,7 +64,7 @@ impl Spec {
             corridor_width_m: width,
             hall_x_m: hall_x,
             hall_y_m: hall_y,
-            direction: "counterclockwise".into(),
+            direction: Direction::Counterclockwise,
             hairpins: 0,
             chicanes: 0,
             sweepers: 0,
@@ -59,52 +75,93 @@ impl Spec {
         }
     }
 
-    /// Parse the JSON produced by `TrackSpec.model_dump_json()`.
+    /// Parse the JSON produced by `TrackSpec.model_dump_json()` and [`check`](Self::check) it.
     pub fn from_json(text: &str) -> Result<Spec> {
         let s: Spec =
             serde_json::from_str(text).map_err(|e| ArenaError::Spec(format!("spec JSON: {e}")))?;
-        for (name, v) in [
-            ("lap_length_m", s.lap_length_m),
-            ("corridor_width_m", s.corridor_width_m),
-            ("hall_x_m", s.hall_x_m),
-            ("hall_y_m", s.hall_y_m),
+        s.check()
+    }
+
+    /// The schema's ranges (`TrackSpec`, held equal by `tests/test_config_parity.py`):
+    /// a spec outside them is a `SpecError` naming the field.
+    pub fn check(self) -> Result<Spec> {
+        let s = self;
+        let bad = |name: &str, rule: String, got: String| {
+            Err(ArenaError::Spec(format!(
+                "{name}: must be {rule} (got {got})"
+            )))
+        };
+        let chars = s.name.chars().count();
+        if !(1..=MAX_NAME_CHARS).contains(&chars)
+            || s.name.trim().is_empty()
+            || s.name.chars().any(|c| (c as u32) < 32)
+        {
+            return bad(
+                "name",
+                format!("non-blank printable text of 1 to {MAX_NAME_CHARS} characters"),
+                format!("{:?}", s.name),
+            );
+        }
+        for (name, v, lo, hi) in [
+            ("lap_length_m", s.lap_length_m, 1.0, 2_000.0),
+            ("corridor_width_m", s.corridor_width_m, 0.2, 20.0),
+            ("hall_x_m", s.hall_x_m, 1.0, 1_000.0),
+            ("hall_y_m", s.hall_y_m, 1.0, 1_000.0),
+            ("min_radius_m", s.min_radius_m, 0.0, 100.0),
+            (
+                "longest_straight_m",
+                s.longest_straight_m,
+                0.0,
+                MAX_STRAIGHT_CAP_M,
+            ),
         ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(ArenaError::Spec(format!(
-                    "{name}: must be a positive finite number (got {v})"
-                )));
+            if !(lo..=hi).contains(&v) {
+                return bad(
+                    name,
+                    format!("a finite number in [{lo}, {hi}]"),
+                    v.to_string(),
+                );
             }
         }
-        if !(s.min_radius_m.is_finite() && s.min_radius_m >= 0.0) {
-            return Err(ArenaError::Spec(format!(
-                "min_radius_m: must be ≥ 0 (got {})",
-                s.min_radius_m
-            )));
-        }
-        if !(s.longest_straight_m.is_finite() && s.longest_straight_m >= 0.0) {
-            return Err(ArenaError::Spec(format!(
-                "longest_straight_m: must be ≥ 0 (got {})",
-                s.longest_straight_m
-            )));
+        for (name, n) in [
+            ("hairpins", s.hairpins),
+            ("chicanes", s.chicanes),
+            ("sweepers", s.sweepers),
+        ] {
+            if n > MAX_FEATURES {
+                return bad(name, format!("in 0..={MAX_FEATURES}"), n.to_string());
+            }
         }
         if let Some(cap) = s.max_straight_m {
             if !(cap.is_finite() && cap > 0.0 && cap <= MAX_STRAIGHT_CAP_M) {
-                return Err(ArenaError::Spec(format!(
-                    "max_straight_m: must be in (0, {MAX_STRAIGHT_CAP_M}] m or null (got {cap})"
-                )));
+                return bad(
+                    "max_straight_m",
+                    format!("in (0, {MAX_STRAIGHT_CAP_M}] m or null"),
+                    cap.to_string(),
+                );
             }
         }
-        if s.direction != "clockwise" && s.direction != "counterclockwise" {
-            return Err(ArenaError::Spec(format!(
-                "direction: must be clockwise or counterclockwise (got {:?})",
-                s.direction
-            )));
+        if !s.feature_order.is_empty() {
+            for kind in [
+                FeatureKind::Hairpin,
+                FeatureKind::Chicane,
+                FeatureKind::Sweeper,
+            ] {
+                let listed = s.feature_order.iter().filter(|k| **k == kind).count();
+                if listed != s.target(kind) as usize {
+                    let (f, n) = (kind.name(), s.target(kind));
+                    return Err(ArenaError::Spec(format!(
+                        "feature_order lists {listed} {f}(s) but {f}s = {n}; \
+                         the order must name every requested feature exactly once"
+                    )));
+                }
+            }
         }
         Ok(s)
     }
 
     pub fn clockwise(&self) -> bool {
-        self.direction == "clockwise"
+        self.direction == Direction::Clockwise
     }
 
     pub fn target(&self, kind: FeatureKind) -> u32 {
@@ -119,6 +176,7 @@ impl Spec {
 /// The constructor's constants (not part of the request). Defaults are the paper's:
 /// `p = w + 2 t_w + d_c = 2.15 m` at the default 1.5 m width, `m_h = 0.5 m`, Δ = 0.05 m.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct ConstructorConfig {
     /// Wall thickness t_w (m): one air-duct radius.
     pub wall_thickness_m: f64,
@@ -158,9 +216,17 @@ impl Default for ConstructorConfig {
 }
 
 impl ConstructorConfig {
+    /// Parse a JSON document and [`check`](Self::check) it.
     pub fn from_json(text: &str) -> Result<ConstructorConfig> {
         let c: ConstructorConfig = serde_json::from_str(text)
             .map_err(|e| ArenaError::config(format!("constructor config JSON: {e}")))?;
+        c.check()
+    }
+
+    /// The schema's ranges (`roboracer_arena.constructor_config`, held equal by the
+    /// parity test).
+    pub fn check(self) -> Result<ConstructorConfig> {
+        let c = self;
         for (name, v) in [
             ("wall_thickness_m", c.wall_thickness_m),
             ("resolution_m", c.resolution_m),

@@ -13,6 +13,12 @@ use super::lidar::ScanNoise;
 use super::track::Track;
 use crate::error::{ArenaError, Result};
 
+/// Largest start distance or noise the core accepts (m, rad, m/s).
+pub const MAX_START_VALUE: f64 = 1e4;
+
+/// Largest start heading noise (rad), the env config's bound (`start_heading_noise`).
+pub const MAX_HEADING_NOISE_RAD: f64 = 3.2;
+
 /// How resets place the cars (mirrors the env config; see `roboracer_arena.envs`). The
 /// binding builds it from keyword arguments (`_core.StartSpec`), checked by [`Self::check`].
 #[derive(Debug, Clone, PartialEq)]
@@ -57,7 +63,9 @@ impl StartSpec {
     }
 
     /// The ranges, whatever the tracks: finite arc lengths, non-negative weights not all
-    /// 0, distances and noises finite in [0, 1e4], `noise_std` low <= high, dropout in [0, 1).
+    /// 0, distances and noises finite in [0, 1e4] (the grid spacing > 0, the heading noise
+    /// at most [`MAX_HEADING_NOISE_RAD`]), `noise_std` low <= high <= 1e4, dropout in [0, 1).
+    /// The env's pydantic start fields state the same ranges (`tests/test_config_parity.py`).
     pub fn check(&self) -> Result<()> {
         let bad = |what: &str| Err(ArenaError::invalid(format!("start spec: {what}")));
         if self.s0.iter().any(|s| !s.is_finite()) {
@@ -79,12 +87,24 @@ impl StartSpec {
             ("noise_std low", self.noise_std[0]),
         ];
         for (name, v) in nonneg {
-            if !(v.is_finite() && (0.0..=1e4).contains(&v)) {
+            if !(v.is_finite() && (0.0..=MAX_START_VALUE).contains(&v)) {
                 return bad(&format!("{name} must be finite and in [0, 1e4], got {v}"));
             }
         }
-        if !(self.noise_std[1].is_finite() && self.noise_std[1] >= self.noise_std[0]) {
-            return bad("noise_std must be (low, high) with low <= high");
+        if !(self.noise_std[1].is_finite()
+            && self.noise_std[1] >= self.noise_std[0]
+            && self.noise_std[1] <= MAX_START_VALUE)
+        {
+            return bad("noise_std must be (low, high) with low <= high <= 1e4");
+        }
+        if self.grid_spacing <= 0.0 {
+            return bad("grid_spacing must be > 0");
+        }
+        if self.heading_noise > MAX_HEADING_NOISE_RAD {
+            return bad(&format!(
+                "heading_noise must be at most {MAX_HEADING_NOISE_RAD} rad, got {}",
+                self.heading_noise
+            ));
         }
         if !(self.dropout.is_finite() && (0.0..1.0).contains(&self.dropout)) {
             return bad("dropout must be in [0, 1)");

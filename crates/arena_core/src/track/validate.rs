@@ -289,7 +289,7 @@ mod tests {
 
     fn spec() -> Spec {
         Spec {
-            direction: "clockwise".into(),
+            direction: crate::generate::spec::Direction::Clockwise,
             hairpins: 1,
             ..Spec::plain(40.0, 1.2, 20.0, 15.0)
         }

@@ -1,0 +1,102 @@
+"""No JSON text crosses ``_core`` (issue 24): specs, configs and params go in as Python
+objects and results come out as objects. Checked on ``_core.pyi``, which stubtest (``make
+lint``) holds to the extension's real signatures: no parameter named ``json`` or
+``*_json``, and ``str`` only where the value is genuinely text (a path, a kind, a name).
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import roboracer_arena
+from roboracer_arena import _core
+
+STUB = Path(roboracer_arena.__file__).with_name("_core.pyi")
+
+#: (function or Class.method, parameter) pairs whose ``str`` is text, not a document.
+TEXT_PARAMS = {
+    ("load_map", "path"),
+    ("save_map", "yaml_path"),
+    ("save_map", "image_format"),
+    ("config_defaults", "kind"),
+    ("check_config", "kind"),
+}
+#: Functions whose result holds ``str`` as text: an image path, an outcome kind, names.
+TEXT_RESULTS = {"save_map", "generate_lattice", "Simulator.state_fields"}
+
+
+def _defs() -> list[tuple[str, ast.FunctionDef]]:
+    tree = ast.parse(STUB.read_text(encoding="utf-8"))
+    out = []
+    for node in tree.body:
+        if isinstance(node, ast.FunctionDef):
+            out.append((node.name, node))
+        elif isinstance(node, ast.ClassDef) and not node.name.startswith("_"):  # (stub-only helpers)
+            out += [(f"{node.name}.{f.name}", f) for f in node.body if isinstance(f, ast.FunctionDef)]
+    return out
+
+
+def _mentions_str(annotation: ast.expr | None) -> bool:
+    """The value (or one alternative of it, or an element of a tuple) is a ``str``; keys
+    of a mapping and items of other containers are not looked at."""
+    match annotation:
+        case ast.Name(id="str"):
+            return True
+        case ast.BinOp(op=ast.BitOr()):
+            return _mentions_str(annotation.left) or _mentions_str(annotation.right)
+        case ast.Subscript(value=ast.Name(id="tuple"), slice=ast.Tuple(elts=elts)):
+            return any(_mentions_str(e) for e in elts)
+        case ast.Subscript(value=ast.Name(id="tuple"), slice=one):
+            return _mentions_str(one)
+    return False
+
+
+def test_the_stub_declares_every_entry_point():
+    names = {name for name, _ in _defs()}
+    assert {"screen", "validate_map", "generate_lattice", "check_config", "Simulator.__new__"} <= names
+
+
+def test_no_core_entry_point_takes_or_returns_json_text():
+    problems = []
+    for name, fn in _defs():
+        args = fn.args
+        for a in [*args.posonlyargs, *args.args, *args.kwonlyargs]:
+            if a.arg == "json" or a.arg.endswith("_json"):
+                problems.append(f"{name}({a.arg}): a JSON parameter")
+            elif _mentions_str(a.annotation) and (name.split(".")[-1], a.arg) not in TEXT_PARAMS:
+                problems.append(f"{name}({a.arg}: str): text where an object belongs?")
+        if name.endswith("_json"):
+            problems.append(f"{name}: a JSON result")
+        elif _mentions_str(fn.returns) and name not in TEXT_RESULTS:
+            problems.append(f"{name} -> str: text where an object belongs?")
+    assert not problems, "\n".join(problems)
+
+
+def test_results_are_objects_at_runtime():
+    """The stub is checked by stubtest for names and parameters, not for what a call
+    returns: the results are dicts here, not strings."""
+    from roboracer_arena import TrackSpec
+
+    spec = TrackSpec(lap_length_m=45, corridor_width_m=1.2, hairpins=1)
+    assert isinstance(_core.screen(spec), dict)
+    assert isinstance(_core.derived_geometry(spec.model_dump()), dict)
+    assert isinstance(_core.config_defaults("sim"), dict)
+    assert isinstance(_core.check_config("spec", spec), dict)
+    t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
+    assert isinstance(_core.analyse_curve(np.c_[5 * np.cos(t), 5 * np.sin(t)], 1.0, 2.0), dict)
+    sim = _core.Simulator([_core.stadium_track()], 1, 1)
+    assert isinstance(sim.config, dict) and sim.config["lidar"]["num_beams"] > 0
+
+
+@pytest.mark.parametrize("text", ["{}", '{"lap_length_m": 60}'])
+def test_json_text_is_refused_where_an_object_belongs(text):
+    from roboracer_arena.errors import ArenaError
+
+    with pytest.raises(ArenaError):
+        _core.screen(text)
+    with pytest.raises(ArenaError):
+        _core.Simulator([_core.stadium_track()], 1, 1, text)
