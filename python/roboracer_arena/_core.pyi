@@ -2,7 +2,7 @@
 
 import os
 from collections.abc import Mapping, Sequence
-from typing import Any, Protocol, TypeAlias, TypedDict, final
+from typing import Any, Protocol, TypeAlias, final
 
 import numpy as np
 import numpy.typing as npt
@@ -45,6 +45,7 @@ __all__ = [
     "check_config",
     "measure_map",
     "RasterMeasurement",
+    "Geometry",
     "Simulator",
     "FreeSpace",
     "stadium_track",
@@ -163,18 +164,50 @@ def save_map(
     """Write a trinary map image (png/pgm) beside ``yaml_path`` and the YAML, atomically; returns the image path."""
 
 # --- track (track.rs): map → walls, ducts, centreline, meshes, round-trip check ------
-class _Geometry(TypedDict):
-    walls: list[npt.NDArray[np.float64]]
-    ducts: list[npt.NDArray[np.float64]]
-    centreline: npt.NDArray[np.float64]
-    meshes: dict[str, tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]]
-    duct_st: tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
-    iou: float
-    max_wall_deviation_cells: float
-    corridor_mask: npt.NDArray[np.bool_]
-    border_contact_cells: int
-    timings: dict[str, float]
-    params: dict[str, Any]
+@final
+class Geometry:
+    """The geometry of one built map (``roboracer_arena.corridor.CorridorGeometry`` is its
+    public view; read-only)."""
+
+    @property
+    def walls(self) -> list[npt.NDArray[np.float64]]:
+        """Closed wall polylines (N, 2), map metres."""
+    @property
+    def ducts(self) -> list[npt.NDArray[np.float64]]:
+        """Air-duct centre polylines (N, 2)."""
+    @property
+    def centreline(self) -> npt.NDArray[np.float64]:
+        """The closed centreline (N, 2); empty for an open map."""
+    @property
+    def meshes(self) -> dict[str, tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]]:
+        """name ("floor", "walls", "ducts", "rings") -> (vertices (V, 3), triangles (T, 3))."""
+    @property
+    def duct_st(self) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]:
+        """Duct texture coordinates: (st (U, 2), one index per triangle corner)."""
+    @property
+    def iou(self) -> float:
+        """Raster round-trip intersection over union."""
+    @property
+    def max_wall_deviation_cells(self) -> float:
+        """Largest wall deviation of the round trip (cells)."""
+    @property
+    def corridor_mask(self) -> npt.NDArray[np.bool_]:
+        """The corridor's free cells (H, W)."""
+    @property
+    def border_contact_cells(self) -> int:
+        """Corridor cells touching the map border."""
+    @property
+    def timings(self) -> dict[str, float]:
+        """Seconds per build stage."""
+    @property
+    def params(self) -> dict[str, Any]:
+        """The build parameters used (``GeometryConfig`` fields)."""
+    @property
+    def start_pose(self) -> tuple[float, float, float] | None:
+        """An open map's start pose (the given start, else the free cell farthest from the walls); None for a track."""
+    @property
+    def start_clearance_m(self) -> float | None:
+        """Clearance (m) of that default start (NaN for a given start); None for a track."""
 
 def build_geometry(
     data: npt.NDArray[np.uint8],
@@ -182,12 +215,8 @@ def build_geometry(
     origin: tuple[float, float, float],
     params: _Doc | None = None,
     start: Sequence[float] | None = None,
-) -> _Geometry:
+) -> Geometry:
     """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
-
-class _OpenGeometry(_Geometry):
-    start_pose: tuple[float, float, float]
-    start_clearance_m: float
 
 def build_open_geometry(
     data: npt.NDArray[np.uint8],
@@ -196,9 +225,9 @@ def build_open_geometry(
     params: _Doc | None = None,
     unknown_free: bool = False,
     start: Sequence[float] | None = None,
-) -> _OpenGeometry:
+) -> Geometry:
     """An open map's geometry: walls around every non-drivable region, no centreline (empty),
-    plus the default start pose (the free cell farthest from the walls) and its clearance (m)."""
+    plus ``start_pose`` (the free cell farthest from the walls unless ``start`` is given) and its clearance (m)."""
 
 # --- track (track.rs): raster measurement for the library ---------------------------
 @final

@@ -206,7 +206,7 @@ def extract_open(
     except CorridorError as e:
         raise CorridorError(f"{where}{e}") from None
     geo = _geometry(out, m)
-    x, y, yaw = (float(v) for v in out["start_pose"]) if s is not None else _default_start(geo, out["start_pose"])
+    x, y, yaw = (float(v) for v in out.start_pose or ()) if s is not None else _default_start(geo, out.start_pose)
     return replace(geo, kind="open", start_pose=(x, y, yaw))
 
 
@@ -248,19 +248,19 @@ def _params(params: Mapping[str, Any] | None) -> dict[str, Any]:
     return dict(params)
 
 
-def _geometry(out: Any, m: OccupancyMap) -> CorridorGeometry:
+def _geometry(out: _core.Geometry, m: OccupancyMap) -> CorridorGeometry:
     return CorridorGeometry(
-        walls=list(out["walls"]),
-        ducts=list(out["ducts"]),
-        centreline=out["centreline"],
-        meshes={k: (v, t) for k, (v, t) in out["meshes"].items()},
-        duct_st=out["duct_st"],
-        iou=float(out["iou"]),
-        max_wall_deviation_cells=float(out["max_wall_deviation_cells"]),
-        corridor_mask=out["corridor_mask"],
-        border_contact_cells=int(out["border_contact_cells"]),
-        timings=dict(out["timings"]),
-        params=dict(out["params"]),
+        walls=list(out.walls),
+        ducts=list(out.ducts),
+        centreline=out.centreline,
+        meshes={k: (v, t) for k, (v, t) in out.meshes.items()},
+        duct_st=out.duct_st,
+        iou=out.iou,
+        max_wall_deviation_cells=out.max_wall_deviation_cells,
+        corridor_mask=out.corridor_mask,
+        border_contact_cells=out.border_contact_cells,
+        timings=dict(out.timings),
+        params=dict(out.params),
         map=m,
     )
 

@@ -4,7 +4,7 @@
 //! analysis (`track::features`); GIL released for the heavy work.
 
 use crate::boundary;
-use crate::convert::{from_py, line_to_py, points_from_py, to_dict, to_py};
+use crate::convert::{from_py, line_to_py, points_from_py, to_dict};
 use crate::generate::parse;
 use arena_core::geometry::mesh::TriMesh;
 use arena_core::track::build;
@@ -15,7 +15,7 @@ use arena_core::track::{features, validate};
 use arena_core::ArenaError;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyTuple};
 
 fn mesh_to_py<'py>(
     py: Python<'py>,
@@ -36,13 +36,47 @@ fn mesh_to_py<'py>(
     )
 }
 
+/// The geometry of one built map (``build_geometry`` / ``build_open_geometry``;
+/// ``roboracer_arena.corridor.CorridorGeometry`` is its public view): read-only.
+#[pyclass(module = "roboracer_arena._core", frozen, get_all)]
+pub struct Geometry {
+    /// Closed wall polylines (N, 2), map metres.
+    walls: Py<PyList>,
+    /// Air-duct centre polylines (N, 2).
+    ducts: Py<PyList>,
+    /// The closed centreline (N, 2); empty for an open map.
+    centreline: Py<PyArray2<f64>>,
+    /// name ("floor", "walls", "ducts", "rings") -> (vertices (V, 3) float32, triangles (T, 3) uint32).
+    meshes: Py<PyDict>,
+    /// Duct texture coordinates: (st (U, 2) float32, one index per triangle corner uint32).
+    duct_st: Py<PyTuple>,
+    /// Raster round-trip intersection over union.
+    iou: f64,
+    /// Largest wall deviation of the round trip (cells).
+    max_wall_deviation_cells: f64,
+    /// The corridor's free cells (H, W) bool.
+    corridor_mask: Py<PyArray2<bool>>,
+    /// Corridor cells touching the map border.
+    border_contact_cells: usize,
+    /// Seconds per build stage.
+    timings: Py<PyDict>,
+    /// The build parameters used (`GeometryConfig` fields).
+    params: Py<PyDict>,
+    /// An open map's start pose (x, y, yaw): the given start, else the free cell farthest
+    /// from the walls; None for a track.
+    start_pose: Option<(f64, f64, f64)>,
+    /// Clearance (m) of that default start (NaN for a given start); None for a track.
+    start_clearance_m: Option<f64>,
+}
+
 /// Build parameters from Python (a mapping of `GeometryConfig` fields or the model; None =
 /// defaults); the core's range check runs in the caller's boundary call.
 fn build_params(py: Python<'_>, params: Option<&Bound<'_, PyAny>>) -> PyResult<BuildParams> {
     from_py(py, params, "build params", ArenaError::config)
 }
 
-/// Build the environment geometry of a map; see ``roboracer_arena.corridor`` for the keys.
+/// Build the environment geometry of a map (walls, ducts, centreline, meshes and the
+/// raster round-trip check).
 #[pyfunction]
 #[pyo3(signature = (data, resolution, origin, params=None, start=None))]
 fn build_geometry<'py>(
@@ -52,7 +86,7 @@ fn build_geometry<'py>(
     origin: (f64, f64, f64),
     params: Option<&Bound<'py, PyAny>>,
     start: Option<Vec<f64>>,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Geometry> {
     let params = build_params(py, params)?;
     let g = crate::grid::grid_from_py(py, &data, resolution, origin)?;
     let (w, h) = (g.width, g.height);
@@ -61,13 +95,13 @@ fn build_geometry<'py>(
         params.validate()?;
         build::build_geometry(&g, &params, start.map(|[x, y, _]| [x, y]))
     })?;
-    geometry_to_py(py, geo, w, h)
+    geometry_to_py(py, geo, w, h, None)
 }
 
 /// Build an open map's geometry (a floor plan: every free cell drivable, every other
-/// cell a wall, no centreline); the keys of ``build_geometry`` plus ``start_pose``
-/// (``start`` (x, y[, yaw]) checked to lie on a drivable cell, else the free cell farthest
-/// from the walls) and ``start_clearance_m`` (NaN for a given start).
+/// cell a wall, no centreline), with ``start_pose`` (``start`` (x, y[, yaw]) checked to lie
+/// on a drivable cell, else the free cell farthest from the walls) and
+/// ``start_clearance_m`` (NaN for a given start).
 #[pyfunction]
 #[pyo3(signature = (data, resolution, origin, params=None, unknown_free=false, start=None))]
 fn build_open_geometry<'py>(
@@ -78,7 +112,7 @@ fn build_open_geometry<'py>(
     params: Option<&Bound<'py, PyAny>>,
     unknown_free: bool,
     start: Option<Vec<f64>>,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Geometry> {
     let params = build_params(py, params)?;
     let g = crate::grid::grid_from_py(py, &data, resolution, origin)?;
     let (w, h) = (g.width, g.height);
@@ -87,10 +121,14 @@ fn build_open_geometry<'py>(
         params.validate()?;
         open::build_open_geometry(&g, &params, open::OpenOptions { unknown_free }, start)
     })?;
-    let d = geometry_to_py(py, o.geometry, w, h)?;
-    d.set_item("start_pose", (o.start[0], o.start[1], o.start[2]))?;
-    d.set_item("start_clearance_m", o.start_clearance_m)?;
-    Ok(d)
+    let s = o.start;
+    geometry_to_py(
+        py,
+        o.geometry,
+        w,
+        h,
+        Some(((s[0], s[1], s[2]), o.start_clearance_m)),
+    )
 }
 
 fn geometry_to_py(
@@ -98,41 +136,45 @@ fn geometry_to_py(
     geo: build::Geometry,
     w: usize,
     h: usize,
-) -> PyResult<Bound<'_, PyDict>> {
-    let d = PyDict::new(py);
+    start: Option<((f64, f64, f64), f64)>,
+) -> PyResult<Geometry> {
     let lines = |ls: &[Vec<[f64; 2]>]| PyList::new(py, ls.iter().map(|l| line_to_py(py, l)));
-    d.set_item("walls", lines(&geo.walls)?)?;
-    d.set_item("ducts", lines(&geo.ducts)?)?;
-    d.set_item("centreline", line_to_py(py, &geo.centreline))?;
     let meshes = PyDict::new(py);
     meshes.set_item("floor", mesh_to_py(py, geo.floor))?;
     meshes.set_item("walls", mesh_to_py(py, geo.wall_mesh))?;
     meshes.set_item("ducts", mesh_to_py(py, geo.duct_mesh))?;
+    meshes.set_item("rings", mesh_to_py(py, geo.ring_mesh))?;
     let (st, st_idx) = geo.duct_st;
     let st =
         numpy::ndarray::Array2::from_shape_vec((st.len(), 2), st.into_iter().flatten().collect())
             .expect("shape");
-    d.set_item(
-        "duct_st",
-        (
-            PyArray2::from_owned_array(py, st),
-            numpy::PyArray1::from_vec(py, st_idx),
-        ),
+    let duct_st = PyTuple::new(
+        py,
+        [
+            PyArray2::from_owned_array(py, st).into_any(),
+            numpy::PyArray1::from_vec(py, st_idx).into_any(),
+        ],
     )?;
-    meshes.set_item("rings", mesh_to_py(py, geo.ring_mesh))?;
-    d.set_item("meshes", meshes)?;
-    d.set_item("iou", geo.iou)?;
-    d.set_item("max_wall_deviation_cells", geo.max_wall_deviation_cells)?;
-    d.set_item("border_contact_cells", geo.corridor.border_contact)?;
     let mask = numpy::ndarray::Array2::from_shape_vec((h, w), geo.corridor.mask).expect("shape");
-    d.set_item("corridor_mask", PyArray2::from_owned_array(py, mask))?;
     let timings = PyDict::new(py);
     for (k, v) in &geo.timings {
         timings.set_item(*k, *v)?;
     }
-    d.set_item("timings", timings)?;
-    d.set_item("params", to_py(py, &geo.params)?)?;
-    Ok(d)
+    Ok(Geometry {
+        walls: lines(&geo.walls)?.unbind(),
+        ducts: lines(&geo.ducts)?.unbind(),
+        centreline: line_to_py(py, &geo.centreline).unbind(),
+        meshes: meshes.unbind(),
+        duct_st: duct_st.unbind(),
+        iou: geo.iou,
+        max_wall_deviation_cells: geo.max_wall_deviation_cells,
+        corridor_mask: PyArray2::from_owned_array(py, mask).unbind(),
+        border_contact_cells: geo.corridor.border_contact,
+        timings: timings.unbind(),
+        params: to_dict(py, &geo.params)?.unbind(),
+        start_pose: start.map(|(p, _)| p),
+        start_clearance_m: start.map(|(_, c)| c),
+    })
 }
 
 /// What `measure_map` found on a trinary grid, as the validator measures it: plain
@@ -224,5 +266,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(validate_map, m)?)?;
     m.add_function(wrap_pyfunction!(analyse_curve, m)?)?;
     m.add_class::<RasterMeasurement>()?;
+    m.add_class::<Geometry>()?;
     Ok(())
 }
