@@ -433,6 +433,33 @@ mod tests {
     }
 
     #[test]
+    fn a_lap_too_short_for_every_loop_falls_back_to_the_teardrop_only_with_a_hairpin() {
+        // 20 m at w = 2 m with a chicane: every polygon loop needs > 20.6 m.
+        use crate::geometry::polyline_length;
+        let order = [FeatureKind::Hairpin, FeatureKind::Chicane];
+        let s = spec(20.0, 2.0, 1, 1, 0);
+        let d = derive(&s, &ConstructorConfig::default());
+        let built = (0..5)
+            .filter_map(|k| {
+                polygon_candidate(&s, &d, &order, &mut ChaCha8Rng::seed_from_u64(k)).ok()
+            })
+            .inspect(|(line, _)| {
+                let l = polyline_length(line, true);
+                assert!(
+                    (20.0..=20.0 * (1.0 + teardrop::LONG_SLACK) + 0.01).contains(&l),
+                    "{l}"
+                );
+            })
+            .count();
+        assert!(built > 0);
+        // Without a hairpin the teardrop does not apply: the polygon's own reason stays.
+        let s = spec(20.0, 2.0, 0, 1, 0);
+        let mut rng = ChaCha8Rng::seed_from_u64(0);
+        let got = polygon_candidate(&s, &d, &[FeatureKind::Chicane], &mut rng);
+        assert_eq!(got.err(), Some(TOO_SHORT));
+    }
+
+    #[test]
     fn three_hairpins_too_many_features_or_a_sweeper_without_a_corner_are_refused() {
         let mut rng = ChaCha8Rng::seed_from_u64(0);
         assert!(turns(&[FeatureKind::Hairpin; 3], false, &mut rng).is_none());
