@@ -18,7 +18,8 @@
 //! La and its right turn Rb, H = 360° − C − La + Rb. Between Rb and H only a short link:
 //! they turn opposite ways, so nothing merges there. With every angle and both short links
 //! drawn, the straights s0 and s3 close the loop (two linear equations); the corner angle
-//! is scanned for the loop whose length is nearest the lap. A 20 m lap at w = 2 m
+//! is scanned for the shortest closing loop at least as long as the lap, and at most
+//! [`LONG_SLACK`] longer. A 20 m lap at w = 2 m
 //! (r_c = 1.5 m) needs about 20.0–20.5 m this way, against ≥ 21.4 m for the polygon's
 //! loops with three gaps (`benches/spacing_floor.py`). Hall fit, direction and the
 //! analytic checks are the caller's.
