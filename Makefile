@@ -33,7 +33,7 @@ test-rust:
 
 # The release wheel users install, built once (dist/), installed into a fresh venv in a
 # temporary directory outside the checkout, smoke-tested there (CLI, gym.make, generate,
-# build, demo, bench parser), then the Python suite runs against it: tests test what
+# build, demo, bench physics, the benchmarks' parser), then the Python suite runs against it: tests test what
 # users get, and CI compiles the extension once.
 test-python: $(BIN)/python
 	MATURIN=$(abspath $(BIN))/maturin scripts/wheel_smoke.sh --pytest -- -q
@@ -45,9 +45,11 @@ test-dev: develop
 wheel: $(BIN)/python
 	rm -rf dist && $(BIN)/maturin build --release --quiet --out dist
 
+# The criterion benches and every benchmark of the checkout's benchmarks/ package (the
+# paper's tables, the peer comparisons; not in the wheel) with their quick defaults.
 bench: release
 	cargo bench -p arena_core --quiet -- --quick
-	$(BIN)/roboracer-arena bench all --json out/bench.json
+	$(BIN)/python -m benchmarks all --json out/bench.json
 
 # Every figure in README.md / BENCHMARKS.md a script produces (the bench tables, catalog counts,
 # ES curve and lap, generalisation, PhysX laps), rerun on the current release build and written
@@ -67,8 +69,8 @@ lint: develop
 	cargo fmt --all -- --check
 	$(BIN)/python scripts/rust_module_cycles.py crates/arena_core/src
 	$(BIN)/lint-imports --no-cache
-	$(BIN)/ruff check --no-cache python tests examples
-	$(BIN)/ruff format --no-cache --check python tests examples
+	$(BIN)/ruff check --no-cache python tests examples benchmarks
+	$(BIN)/ruff format --no-cache --check python tests examples benchmarks
 	$(BIN)/mypy
 	$(BIN)/python -m mypy.stubtest roboracer_arena._core
 

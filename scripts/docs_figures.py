@@ -32,6 +32,7 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "scripts"))
+sys.path.insert(1, str(ROOT))  # the benchmarks package (a checkout's, not in the wheel)
 from figures_bench import BENCH_FIGURES  # noqa: E402  (a sibling module of this script)
 
 LEARNING = ROOT / "docs" / "learning"
@@ -99,8 +100,8 @@ def es_block(doc: dict[str, Any]) -> str:
 
 # ---------------------------------------------------------------- generalisation (BENCHMARKS)
 def generalisation_data(profile: str = "") -> dict[str, Any]:
-    """``roboracer-arena bench generalisation`` with its defaults."""
-    from roboracer_arena.bench import generalisation
+    """``python -m benchmarks generalisation`` with its defaults."""
+    from benchmarks import generalisation
 
     res, timing = _timed(lambda: generalisation.run())
     doc = res.model_dump(mode="json")

@@ -1,4 +1,4 @@
-"""The documented figures that ``roboracer-arena bench ...`` (and the package's catalog)
+"""The documented figures that ``python -m benchmarks ...`` (and the package's catalog)
 produce: for each, the command, how its JSON renders as a doc block, and which part of it
 is deterministic. ``scripts/docs_figures.py`` runs, writes and checks them; each data file
 ``docs/figures/NAME.json`` holds the command's JSON with the build, machine and load it
@@ -227,7 +227,8 @@ def library_deterministic(doc: Doc) -> Any:
 
 # ---------------------------------------------------------------- bench physics (measured)
 def physics_block(doc: Doc) -> str:
-    from roboracer_arena.bench.physics import PAPER, TARGETS
+    from benchmarks.physics import PAPER
+    from roboracer_arena.bench.physics import TARGETS
 
     res = doc["result"]
     lines = [
@@ -339,7 +340,7 @@ def ros2_block(doc: Doc) -> str:
 
 # ---------------------------------------------------------------- bench constructors: Table 3 (counts deterministic)
 def constructors_block(doc: Doc) -> str:
-    from roboracer_arena.bench.constructors import PAPER
+    from benchmarks.constructors import PAPER
 
     r = doc["result"]
     names = {
@@ -396,7 +397,7 @@ def sweep_block(doc: Doc) -> str:
 def sweep_readme_block(doc: Doc) -> str:
     r = doc["result"]
     return (
-        f"Generator acceptance on this build (`roboracer-arena bench constructors --sweep`, {doc['measured']['utc']}; "
+        f"Generator acceptance on this build (`python -m benchmarks constructors --sweep`, {doc['measured']['utc']}; "
         f'BENCHMARKS.md, "Acceptance sweep"): **{r["accepted"]} of {r["specs"]} admissible specs ({r["acceptance"]:.1%})**, '
         f"{r['obvious_accepted']} of the {r['obvious_specs']} that have an obvious construction, and "
         f"{r['practical_accepted']} of the {r['practical_specs']} below 0.6 L_max.\n"

@@ -112,13 +112,22 @@ def cli_path() -> str:
     return str(exe) if exe.exists() else "roboracer-arena"
 
 
+def command_argv(args: list[str]) -> list[str]:
+    """``bench KIND ...`` is the checkout's benchmarks (``python -m benchmarks KIND ...``,
+    not in the wheel); anything else is the ``roboracer-arena`` CLI."""
+    if args[:1] == ["bench"]:
+        return [sys.executable, "-m", "benchmarks", *args[1:]]
+    return [cli_path(), *args]
+
+
 def run_cli_json(args: list[str], log: Path | None = None) -> dict[str, Any]:
-    """``roboracer-arena ARGS --json TMP``; the JSON it wrote. Its stdout goes to ``log``
-    (or is dropped); a failure raises with the command's last lines."""
+    """The command of ``ARGS --json TMP`` (:func:`command_argv`); the JSON it wrote. Its
+    stdout goes to ``log`` (or is dropped); a failure raises with the command's last lines."""
     with tempfile.TemporaryDirectory(prefix="docs-figures-") as tmp:
         out = Path(tmp) / "result.json"
-        argv = [cli_path(), *args, "--json", str(out)]
-        proc = subprocess.run(argv, cwd=tmp, capture_output=True, text=True)
+        argv = [*command_argv(args), "--json", str(out)]
+        path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)
+        proc = subprocess.run(argv, cwd=tmp, capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=path))
         if log is not None:
             log.parent.mkdir(parents=True, exist_ok=True)
             log.write_text(proc.stdout + proc.stderr)
@@ -129,6 +138,8 @@ def run_cli_json(args: list[str], log: Path | None = None) -> dict[str, Any]:
 
 
 def command_text(args: list[str]) -> str:
+    if args[:1] == ["bench"]:
+        return shlex.join(["python", "-m", "benchmarks", *args[1:], "--json", "FILE"])
     return shlex.join(["roboracer-arena", *args, "--json", "FILE"])
 
 

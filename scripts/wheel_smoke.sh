@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Build the release wheel, install it into a fresh venv in a temporary directory outside the
 # checkout, and use it there as a user would: `tracks list`, a catalog track in gym.make,
-# `generate`, `build`, the demo, `bench parser`. With --pytest, then run the Python test
+# `generate`, `build`, the demo, `bench physics`, and the checkout's `python -m benchmarks`
+# parser and constructors on it. With --pytest, then run the Python test
 # suite against that installed wheel (so the tests test what users get, with one compile).
 #
 # Usage: scripts/wheel_smoke.sh [--pytest] [--wheel FILE.whl] [-- PYTEST ARGS...]
@@ -98,10 +99,11 @@ print('   gen/map.yaml runs', d)"
 step "demo"
 "$BIN/python" -m roboracer_arena.demo --out demo
 ls demo
-step "bench parser"
-"$BIN/roboracer-arena" bench parser --backend rules --repeats 1 | tail -n 6
-step "bench constructors (the shipped spec set, lattice, seed 0)"
-"$BIN/roboracer-arena" bench constructors --seeds 0 --constructors lattice --json constructors.json | tail -n 4
+step "bench physics (the wheel's machine benchmark, tiny budget)"
+"$BIN/roboracer-arena" bench physics --vehicles 1 4 --seconds 0.05 | tail -n 3
+step "the checkout's benchmarks on the installed wheel: parser, constructors (lattice, seed 0)"
+PYTHONPATH="$ROOT" "$BIN/python" -m benchmarks parser --backend rules --repeats 1 | tail -n 6
+PYTHONPATH="$ROOT" "$BIN/python" -m benchmarks constructors --seeds 0 --constructors lattice --json constructors.json | tail -n 4
 step "recorded maps need the sources: the message names the setting"
 if ROBORACER_ARENA_SOURCES= "$BIN/roboracer-arena" drive racetracks-spa 2> err.txt; then
     echo "drive of a recorded map without the sources should fail" >&2; exit 1

@@ -8,7 +8,6 @@
   ``$ROBORACER_ARENA_SOURCES``, else, when running from a source checkout,
   ``../shared/track-sources`` beside the checkout. An installed wheel has no default:
   commands that need the sources say to set ``ROBORACER_ARENA_SOURCES``.
-* :func:`bench_data` -- benchmark inputs shipped with the package (``bench/data``).
 """
 
 from __future__ import annotations
@@ -80,15 +79,9 @@ def sources_dir(explicit: str | os.PathLike[str] | None = None, need: str = "thi
     return d
 
 
-def bench_data(name: str) -> Path:
-    """A benchmark input shipped with the package (``roboracer_arena/bench/data/<name>``)."""
-    return PACKAGE_DIR / "bench" / "data" / name
-
-
 __all__ = [
     "SOURCES_ENV",
     "TRACKS_ENV",
-    "bench_data",
     "checkout_dir",
     "default_sources_dir",
     "sources_dir",

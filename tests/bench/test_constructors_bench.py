@@ -3,10 +3,10 @@ dump (the trial counting itself is tested in tests/generate/test_bench_construct
 
 from __future__ import annotations
 
-from roboracer_arena.bench.constructor_sweep import SweepResult, run_sweep
-from roboracer_arena.bench.constructors import ConstructorsResult
+from benchmarks.__main__ import main
+from benchmarks.constructor_sweep import SweepResult, run_sweep
+from benchmarks.constructors import ConstructorsResult
 from roboracer_arena.bench.output import json_text
-from roboracer_arena.cli import main
 from roboracer_arena.spec import TrackSpec
 
 SMALL = TrackSpec(name="small", lap_length_m=40, hall_x_m=15, hall_y_m=12, hairpins=1)
@@ -15,7 +15,7 @@ SMALL = TrackSpec(name="small", lap_length_m=40, hall_x_m=15, hall_y_m=12, hairp
 def test_constructors_json_is_the_model(tmp_path, capsys):
     specs, out = tmp_path / "specs.jsonl", tmp_path / "r.json"
     specs.write_text(SMALL.model_dump_json() + '\n{"name": "too-long", "lap_length_m": 200}\n')
-    argv = ["bench", "constructors", "--specs", str(specs), "--seeds", "0", "--constructors", "lattice-raw", "random"]
+    argv = ["constructors", "--specs", str(specs), "--seeds", "0", "--constructors", "lattice-raw", "random"]
     assert main([*argv, "--json", str(out)]) == 0
     assert f"wrote {out}" in capsys.readouterr().out
     text = out.read_text()

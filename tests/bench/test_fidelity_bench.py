@@ -3,14 +3,14 @@ physics checks of the manoeuvres live in tests/envs/test_vehicle_fidelity.py).""
 
 from __future__ import annotations
 
-from roboracer_arena.bench.fidelity import FidelityResult
+from benchmarks.__main__ import main
+from benchmarks.fidelity import FidelityResult
 from roboracer_arena.bench.output import json_text
-from roboracer_arena.cli import main
 
 
 def test_bench_fidelity_cli_writes_its_model(tmp_path, capsys):
     out = tmp_path / "fidelity.json"
-    assert main(["bench", "fidelity", "--quick", "--json", str(out)]) == 0
+    assert main(["fidelity", "--quick", "--json", str(out)]) == 0
     assert "dt sensitivity" in capsys.readouterr().out
     text = out.read_text()
     res = FidelityResult.model_validate_json(text)

@@ -2,9 +2,9 @@
 
 import pytest
 
-from roboracer_arena.bench.generalisation import GeneralisationResult, HeldOutLap, TrainingRun, run, summarise
+from benchmarks.__main__ import main
+from benchmarks.generalisation import GeneralisationResult, HeldOutLap, TrainingRun, run, summarise
 from roboracer_arena.bench.output import json_text
-from roboracer_arena.cli import main
 from roboracer_arena.errors import ConfigError
 
 
@@ -53,4 +53,4 @@ def test_summary_counts_clean_laps_and_times():
 def test_training_track_in_held_out_is_refused():
     with pytest.raises(ConfigError, match="held-out"):
         run(seeds=1, generations=1, pairs=1, single="gym-skirk", held_out=["gym-skirk"], verbose=False)
-    assert main(["bench", "generalisation", "--seeds", "0"]) == 2
+    assert main(["generalisation", "--seeds", "0"]) == 2

@@ -5,15 +5,15 @@ from __future__ import annotations
 
 import pytest
 
-from roboracer_arena.bench.library import LibraryResult
+from benchmarks.__main__ import main
+from benchmarks.library import LibraryResult
 from roboracer_arena.bench.output import json_text
-from roboracer_arena.cli import main
 
 
 @pytest.mark.slow
 def test_bench_library_cli_writes_its_model(sources, tmp_path, capsys):
     out = tmp_path / "library.json"
-    assert main(["bench", "library", "--sources", str(sources), "--jobs", "2", "--json", str(out)]) == 0
+    assert main(["library", "--sources", str(sources), "--jobs", "2", "--json", str(out)]) == 0
     assert "length error mean (%)" in capsys.readouterr().out
     text = out.read_text()
     res = LibraryResult.model_validate_json(text)

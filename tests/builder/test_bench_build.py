@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from benchmarks import build as bench
 from roboracer_arena import load_map
-from roboracer_arena.bench import build as bench
 from roboracer_arena.bench.output import json_text
 from shared_data import sources_dir  # tests/ is on sys.path (rootdir conftest)
 

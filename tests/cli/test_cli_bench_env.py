@@ -29,9 +29,11 @@ def test_bench_env_smoke(sources, tmp_path, capsys):
     )
     assert code == 0
     text = capsys.readouterr().out
-    assert "F1TENTH Gym" in text and "physics" in text and "python" in text
+    assert "physics" in text and "python" in text
+    assert "F1TENTH Gym" not in text  # the peer's figure is the checkout's (python -m benchmarks env)
     assert json_text(EnvResult.model_validate_json(out.read_text())) == out.read_text()
     res = json.loads(out.read_text())
+    assert res["f1tenth_gym_env_steps_per_s"] == []
     assert [(r["workload"], r["num_envs"]) for r in res["rows"]] == [
         (w, n) for w in ("constant", "lap", "random") for n in (1, 2)
     ]

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
+from benchmarks import fidelity, fidelity_limit
+from benchmarks.f1tenth_st import GYM_PARAMS, SingleTrack
 from roboracer_arena import _core
-from roboracer_arena.bench import fidelity, fidelity_limit
-from roboracer_arena.bench.f1tenth_st import GYM_PARAMS, SingleTrack
 from roboracer_arena.envs.env_config import RandomisationConfig
 from roboracer_arena.envs.single import RoboRacerEnv
 from roboracer_arena.errors import InvalidArgumentError

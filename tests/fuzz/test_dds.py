@@ -14,9 +14,7 @@ import random
 import subprocess
 import sys
 import time
-from pathlib import Path
 
-import numpy as np
 import pytest
 from hypothesis import strategies as st
 
@@ -48,17 +46,6 @@ def _bad_pose(x, y, qx, qy, qz, qw) -> bool:
     return not all(math.isfinite(v) for v in values) or not any(values[2:]) or abs(x) > 100 or abs(y) > 100
 
 
-@pytest.fixture(scope="module")
-def ring_map(tmp_path_factory) -> Path:
-    from roboracer_arena import _core
-    from roboracer_arena.maps import OccupancyMap
-
-    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
-    xy = np.column_stack([6.0 * np.cos(t), 3.5 * np.sin(t)])
-    data, origin = _core.rasterise_centreline(xy, np.full(len(xy), 1.8), resolution=0.05)
-    return OccupancyMap(data, 0.05, origin).save(tmp_path_factory.mktemp("map") / "ellipse.yaml")
-
-
 def _writer(dp, name: str, typename: str):
     from cyclonedds.pub import DataWriter
     from cyclonedds.topic import Topic
@@ -80,7 +67,7 @@ def _wait(pred, timeout: float, what: str) -> None:
     pytest.fail(f"timed out waiting for {what}")
 
 
-def test_hostile_samples_from_another_participant(ring_map, tmp_path):
+def test_hostile_samples_from_another_participant(ellipse_map, tmp_path):
     from cyclonedds.sub import DataReader
     from mcap.reader import make_reader
 
@@ -93,7 +80,7 @@ def test_hostile_samples_from_another_participant(ring_map, tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "CYCLONEDDS_URI"}
     proc = subprocess.Popen(
         [sys.executable, "-c", "import sys; from roboracer_arena.cli import main; sys.exit(main())", "ros2"]
-        + [str(ring_map), "--domain-id", str(domain), "--record", str(rec), "--loopback", "--json"]
+        + [str(ellipse_map), "--domain-id", str(domain), "--record", str(rec), "--loopback", "--json"]
         + ["--duration", "120"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,

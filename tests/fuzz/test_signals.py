@@ -18,7 +18,6 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 pytestmark = [pytest.mark.slow, pytest.mark.timeout(300)]
@@ -76,33 +75,22 @@ def _interrupt(p: subprocess.Popen, started, run: int, within: float) -> tuple[i
     return p.returncode, err
 
 
-@pytest.fixture(scope="module")
-def ring_map(tmp_path_factory) -> Path:
-    from roboracer_arena import _core
-    from roboracer_arena.maps import OccupancyMap
-
-    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
-    xy = np.column_stack([6.0 * np.cos(t), 3.5 * np.sin(t)])
-    data, origin = _core.rasterise_centreline(xy, np.full(len(xy), 1.8), resolution=0.05)
-    return OccupancyMap(data, 0.05, origin).save(tmp_path_factory.mktemp("map") / "ellipse.yaml")
-
-
 @pytest.mark.parametrize("run", range(4))
 @pytest.mark.parametrize("command", ["drive", "ros2"])
-def test_a_signal_during_a_recording_leaves_it_whole_or_absent(ring_map, tmp_path, command, run):
+def test_a_signal_during_a_recording_leaves_it_whole_or_absent(ellipse_map, tmp_path, command, run):
     pytest.importorskip("mcap")
     inputs = tmp_path / "in"
     inputs.mkdir()
-    for p in ring_map.parent.iterdir():
+    for p in ellipse_map.parent.iterdir():
         (inputs / p.name).write_bytes(p.read_bytes())
     before = _tree(inputs)
     out = tmp_path / "out"
     out.mkdir()
     target = out / "run.mcap"
     if command == "drive":
-        args = ["drive", str(inputs / ring_map.name), "--laps", "100", "--mcap", str(target), "--json"]
+        args = ["drive", str(inputs / ellipse_map.name), "--laps", "100", "--mcap", str(target), "--json"]
     else:
-        args = ["ros2", str(inputs / ring_map.name), "--record", str(target), "--loopback", "--json"]
+        args = ["ros2", str(inputs / ellipse_map.name), "--record", str(target), "--loopback", "--json"]
         args += ["--domain-id", str(RNG.randint(1, 200))]
     code, err = _interrupt(_cli(args, out), lambda: bool(_strays(out)), run, 3.0)  # the temporary exists
     assert code in AFTER_SIGNAL, err[-800:]

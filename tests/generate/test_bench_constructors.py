@@ -5,8 +5,8 @@ import json
 
 import pytest
 
-from roboracer_arena.bench import constructors as bc
-from roboracer_arena.cli import main
+from benchmarks import constructors as bc
+from benchmarks.__main__ import main
 from roboracer_arena.errors import SpecError
 
 SPECS = [
@@ -35,7 +35,6 @@ def test_cli_prints_the_table_and_writes_json(tmp_path, capsys):
     out = tmp_path / "r.json"
     code = main(
         [
-            "bench",
             "constructors",
             "--specs",
             str(path),

@@ -1,8 +1,13 @@
 """A spec that passes the screen but cannot be built ends in GenerationFailure with the
 candidates tried and a reason histogram — never in a map."""
 
+import importlib.util
+
+import pytest
+
 from roboracer_arena import TrackSpec
-from roboracer_arena.cli import main
+from roboracer_arena.cli import EXIT_BAD_INPUT, main
+from roboracer_arena.errors import InvalidArgumentError
 from roboracer_arena.generate import GenerationFailure, generate_track, screen
 
 # r_req = 0.1 m makes a hairpin cheap for the screen (Σℓ_min = 13.9 m ≤ 20.2 m), but the
@@ -34,12 +39,15 @@ def test_cli_exit_4_writes_no_map(tmp_path, capsys):
     assert not outdir.exists() or not any(outdir.iterdir())
 
 
-def test_baselines_never_return_an_invalid_map():
-    spec = TrackSpec(name="random-small", lap_length_m=40, hall_x_m=15, hall_y_m=12, hairpins=1)
-    for seed in range(3):
-        out = generate_track(spec, seed=seed, constructor="random")
-        if isinstance(out, GenerationFailure):
-            assert out.candidates_tried == 1 and out.reasons
-            assert out.built_invalid_report is None or not out.built_invalid_report.valid
-        else:
-            assert out.report.valid
+@pytest.mark.parametrize("constructor", ["de", "random"])
+def test_the_paper_baselines_left_the_package_with_a_pointer(constructor, tmp_path, capsys):
+    """The DE / random baselines live in the checkout's benchmarks/ now: generate_track and
+    ``generate --constructor`` name where they went, and the package has no copy."""
+    spec = TrackSpec(name="small", lap_length_m=40, hall_x_m=15, hall_y_m=12, hairpins=1)
+    with pytest.raises(InvalidArgumentError, match=f"python -m benchmarks constructors --constructors {constructor}"):
+        generate_track(spec, constructor=constructor)
+    argv = ["generate", "a 40 m lap in a 15 by 12 m hall", "--constructor", constructor, "-o", str(tmp_path / "o")]
+    assert main(argv) == EXIT_BAD_INPUT
+    err = capsys.readouterr().err
+    assert "python -m benchmarks" in err.strip().splitlines()[-1]  # after the parse it prints
+    assert importlib.util.find_spec("roboracer_arena.generate.baselines") is None

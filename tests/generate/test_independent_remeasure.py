@@ -9,9 +9,9 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from independent_measure import assert_independently_valid
 
+from benchmarks import bench_data
 from roboracer_arena import TrackSpec
 from roboracer_arena.generate import Acceptance, GenerationFailure, generate_track, screen
-from roboracer_arena.paths import bench_data
 
 
 def _bench_specs() -> list[TrackSpec]:

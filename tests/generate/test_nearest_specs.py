@@ -6,8 +6,8 @@ import json
 
 import pytest
 
+from benchmarks.constructor_sweep import load_sweep_file, run_sweep
 from roboracer_arena import TrackSpec
-from roboracer_arena.bench.constructor_sweep import load_sweep_file, run_sweep
 from roboracer_arena.cli import main
 from roboracer_arena.generate import Acceptance, GenerationFailure, generate_track, nearest_specs
 

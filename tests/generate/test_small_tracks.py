@@ -6,8 +6,8 @@ constructor and judged by the same raster validator; the sweep's spec file is th
 import pytest
 from independent_measure import assert_independently_valid
 
+from benchmarks.constructor_sweep import SWEEP_FILE, load_sweep_file, obvious_construction, sweep_specs
 from roboracer_arena import TrackSpec
-from roboracer_arena.bench.constructor_sweep import SWEEP_FILE, load_sweep_file, obvious_construction, sweep_specs
 from roboracer_arena.generate import Acceptance, generate_track, screen
 
 ISSUE_CASE = TrackSpec(lap_length_m=30, corridor_width_m=1.0, hall_x_m=12, hall_y_m=9, sweepers=1)
@@ -103,7 +103,7 @@ def test_shipped_sweep_file_is_the_defined_sweep():
 def test_sweep_runner_counts_and_writes_remeasurable_maps(tmp_path):
     from independent_measure import problems
 
-    from roboracer_arena.bench.constructor_sweep import run_sweep
+    from benchmarks.constructor_sweep import run_sweep
 
     specs = [ISSUE_CASE.model_copy(update={"name": "issue-case"}), TrackSpec(name="paper-200m", lap_length_m=200.0)]
     result = run_sweep(specs, maps=tmp_path, progress=False)

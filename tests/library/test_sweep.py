@@ -13,7 +13,7 @@ from roboracer_arena.cli import main
 from roboracer_arena.distributed import LocalExecutor
 from roboracer_arena.errors import SpecError
 from roboracer_arena.library import load_catalog
-from roboracer_arena.library.sweep import SweepFile, load_sweep
+from roboracer_arena.library.sweep import GridSweep, SweepFile, SweepRequest, load_sweep
 from roboracer_arena.library.sweep_run import generate_library
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "sweep.json"
@@ -191,3 +191,25 @@ def test_packaged_generated_library_is_what_the_sweep_builds(tmp_path):
     assert [r.model_copy(update={"seconds": 0.0}).to_json_dict() for r in s.records] == [
         {**r, "seconds": 0.0} for r in old
     ]
+
+
+def test_grid_sweep_crosses_its_axes_then_admits_thins_and_seeds():
+    """GridSweep, the one grid builder (the generated library's and the benchmarks' sweeps):
+    the last axis varies fastest, directions alternate by grid index before ``admit``,
+    the admitted requests are thinned evenly, and a request without a seed gets k % cycle."""
+    grid = GridSweep(
+        axes=([{"lap_length_m": 40.0}, {"lap_length_m": 50.0}], [{"hairpins": h} for h in range(3)]),
+        name=lambda f: f"g-{f['lap_length_m']:g}-{f['hairpins']}-{f['direction'][:3]}",
+        directions=("clockwise", "counterclockwise"),
+        admit=lambda spec: spec.hairpins != 1,
+        count=3,
+        seed_cycle=2,
+    )
+    reqs = grid.requests()
+    assert all(isinstance(r, SweepRequest) and r.spec.name == r.id for r in reqs)
+    # grid: (40,0,cw) (40,1,ccw) (40,2,cw) (50,0,ccw) (50,1,cw) (50,2,ccw); admitted 4, thinned to 3
+    assert [r.id for r in reqs] == ["g-40-0-clo", "g-40-2-clo", "g-50-0-cou"]
+    assert [r.seed for r in reqs] == [0, 1, 0]
+    seeded = GridSweep(axes=([{"lap_length_m": 40.0}], [{"seed": 7}, {"seed": 9}]), name=lambda f: f"s{f['seed']}")
+    assert [(r.id, r.seed) for r in seeded.requests()] == [("s7", 7), ("s9", 9)]
+    assert grid.requests() == reqs  # a pure function of the sweep

@@ -31,7 +31,25 @@ def test_catalog_maps_of_circuits_and_generated_tracks_ship_in_the_package():
             assert rel is not None, e.id
             f = cat.file_path(e, rel)
             assert f.is_file() and f.is_relative_to(paths.PACKAGE_DIR), f
-    assert paths.bench_data("requests.jsonl").is_file() and paths.bench_data("specs.jsonl").is_file()
+
+
+def test_the_package_carries_no_paper_benchmark_or_baseline(capsys):
+    """Only the machine benchmarks (``bench physics``, ``bench env``) ship; the paper's
+    harnesses, peer comparisons, their data and the baselines are the checkout's benchmarks/."""
+    bench = paths.PACKAGE_DIR / "bench"
+    assert sorted(p.name for p in bench.iterdir() if p.name != "__pycache__") == [
+        "__init__.py",
+        "env.py",
+        "output.py",
+        "physics.py",
+    ]
+    assert not (paths.PACKAGE_DIR / "generate" / "baselines.py").exists()
+    assert main(["bench", "build", "--repeat", "1"]) == EXIT_BAD_INPUT
+    assert "python -m benchmarks build" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["bench", "--help"])
+    listed = capsys.readouterr().out
+    assert "physics" in listed and "env" in listed and "constructors" not in listed
 
 
 def test_recorded_maps_need_the_sources_setting(monkeypatch):

@@ -7,8 +7,9 @@ from pathlib import Path
 
 from fake_ollama import Reply
 
-from roboracer_arena.bench.output import json_text
-from roboracer_arena.bench.parser import (
+from benchmarks import bench_data
+from benchmarks.__main__ import main
+from benchmarks.parser import (
     REPO_REQUESTS,
     ParserResult,
     ParserRow,
@@ -18,9 +19,9 @@ from roboracer_arena.bench.parser import (
     run_sets,
     score,
 )
-from roboracer_arena.cli import EXIT_OK, main
+from roboracer_arena.bench.output import json_text
+from roboracer_arena.cli import EXIT_OK
 from roboracer_arena.parse.result import DEFAULTS
-from roboracer_arena.paths import bench_data
 from roboracer_arena.spec import TrackSpec
 
 
@@ -72,7 +73,7 @@ def test_ollama_row_counts_inventions_and_guard(tmp_path, fake_ollama, capsys):
 
 def test_unreachable_ollama_is_a_row_not_a_failure(tmp_path, dead_url, capsys):
     out = tmp_path / "b.json"
-    argv = ["bench", "parser", "--requests", str(_small_set(tmp_path)), "--backend", "rules", "ollama",
+    argv = ["parser", "--requests", str(_small_set(tmp_path)), "--backend", "rules", "ollama",
             "--ollama-host", dead_url, "--json", str(out)]  # fmt: skip
     assert main(argv) == EXIT_OK
     assert "not reachable" in capsys.readouterr().out

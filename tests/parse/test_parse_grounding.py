@@ -6,9 +6,9 @@ import json
 
 import pytest
 
+from benchmarks import bench_data
 from roboracer_arena.errors import GroundingError
 from roboracer_arena.parse import ground, parse_request
-from roboracer_arena.paths import bench_data
 from roboracer_arena.spec import TrackSpec
 
 PAPER = "a 38 m lap for a small 15 by 12 hall"

@@ -9,22 +9,12 @@ import numpy as np
 import pytest
 from PIL import Image, ImageDraw
 
-from roboracer_arena import _core
 from roboracer_arena.drivers import drive_laps
-from roboracer_arena.maps import OccupancyMap
 from roboracer_arena.render.drive_view import HUD_PX, DriveView, HudState, drive_subtitle, hud_text
 from roboracer_arena.render.frame import PAD
 from roboracer_arena.render.race_marks import ARROW, CAR
 from roboracer_arena.render.topdown import font
 from roboracer_arena.track import track_from_map_path
-
-
-@pytest.fixture(scope="module")
-def ellipse_map(tmp_path_factory):
-    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
-    xy = np.column_stack([6.0 * np.cos(t), 3.5 * np.sin(t)])
-    data, origin = _core.rasterise_centreline(xy, np.full(len(xy), 1.8), resolution=0.05)
-    return OccupancyMap(data, 0.05, origin).save(tmp_path_factory.mktemp("map") / "ellipse.yaml")
 
 
 def near(img: np.ndarray, colour, tol: int = 40) -> np.ndarray:

@@ -9,24 +9,10 @@ import subprocess
 import sys
 import threading
 import time
-from pathlib import Path
 
-import numpy as np
 import pytest
 
 pytest.importorskip("cyclonedds", reason="needs the [ros2] extra")
-
-
-@pytest.fixture(scope="session")
-def ellipse_map(tmp_path_factory) -> Path:
-    """A 12 x 7 m elliptical track, 1.8 m wide, as a ROS map YAML."""
-    from roboracer_arena import _core
-    from roboracer_arena.maps import OccupancyMap
-
-    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
-    xy = np.column_stack([6.0 * np.cos(t), 3.5 * np.sin(t)])
-    data, origin = _core.rasterise_centreline(xy, np.full(len(xy), 1.8), resolution=0.05)
-    return OccupancyMap(data, 0.05, origin).save(tmp_path_factory.mktemp("map") / "ellipse.yaml")
 
 
 @pytest.fixture

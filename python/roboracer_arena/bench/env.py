@@ -2,7 +2,8 @@
 every step at 0.01 s physics (one physics step per env step, as F1TENTH Gym does), for a
 single env and for the native vector env, in three workloads:
 
-* ``constant``: the action [0 rad, 1 m/s] every step (the F1TENTH Gym comparison);
+* ``constant``: the action [0 rad, 1 m/s] every step (``python -m benchmarks env``, in a
+  checkout, sets F1TENTH Gym's figure for it beside ours);
 * ``lap``: a recorded pure-pursuit lap of the map replayed open loop (the simulator is
   deterministic, so the replay drives the same lap; restarted at the end of the lap);
 * ``random``: uniformly random actions over the action space (crash-heavy, as early
@@ -36,7 +37,6 @@ import numpy as np
 
 from .output import BenchModel, add_bench_parser, write_json
 
-F1TENTH_GYM = (5264.0, 5476.0)  # env-steps/s, constant action, Spielberg, 1080 beams, 0.01 s (issue 14)
 #: Targets (issue 14): single env µs per step; vector env env-steps/s per workload.
 TARGET_SINGLE_US = 35.0
 TARGET_SCAN_US = 15.0  # one 1081-beam scan, median over a lap
@@ -89,11 +89,12 @@ class EnvResult(BenchModel):
     load_average_1min: list[float | None]
     recorded_lap_steps: int
     scan_over_lap: ScanOverLap
-    f1tenth_gym_env_steps_per_s: list[float]
+    f1tenth_gym_env_steps_per_s: list[float] = []  # the peer's figure, when a comparison passed it
     rows: list[EnvRow]
 
 
-def register(kinds) -> None:
+def register(kinds, reference: tuple[float, float] | None = None) -> None:
+    """The ``env`` subcommand; ``reference`` as in :func:`run`."""
     p = add_bench_parser(
         kinds, "env", "gymnasium step throughput, full lidar every 0.01 s step, three workloads", __doc__
     )
@@ -112,7 +113,13 @@ def register(kinds) -> None:
         default=list(WORKLOADS),
         help="workloads to run (default: all three)",
     )
-    p.set_defaults(func=_run_cli)
+
+    def cli(args: argparse.Namespace) -> int:
+        res = run(args.map, args.num_envs, args.seconds, args.beams, args.workloads, reference)
+        write_json(args.json, res)
+        return 0
+
+    p.set_defaults(func=cli)
 
 
 def _default_map() -> Path:
@@ -328,8 +335,10 @@ def run(
     seconds: float = 3.0,
     beams: int = 1080,
     workloads: list[str] | None = None,
+    reference: tuple[float, float] | None = None,
 ) -> EnvResult:
-    """Measure and print the table; returns the results."""
+    """Measure and print the table; returns the results. ``reference``: F1TENTH Gym's
+    (low, high) env-steps/s on the constant workload, printed and stored beside ours."""
     from .. import envs
     from ..envs.env_config import EnvConfig
     from ..envs.tracks import resolve_tracks
@@ -353,7 +362,7 @@ def run(
             rows.append(row.model_copy(update={"breakdown_us_per_call": breakdown}))
     scan = scan_over_lap(track)
     load = _load()
-    _print_table(track.name, beams, rows, threads=os.cpu_count() or 1, loads=(load_before, load))
+    _print_table(track.name, beams, rows, os.cpu_count() or 1, (load_before, load), reference)
     print(
         f"one {scan.beams}-beam scan at {scan.poses} centreline poses around the lap: median "
         f"{scan.median_us:.1f} µs, p90 {scan.p90_us:.1f}, max {scan.max_us:.1f}  "
@@ -367,7 +376,7 @@ def run(
         load_average_1min=[load_before, load],
         recorded_lap_steps=len(lap),
         scan_over_lap=scan,
-        f1tenth_gym_env_steps_per_s=list(F1TENTH_GYM),
+        f1tenth_gym_env_steps_per_s=list(reference or ()),
         rows=rows,
     )
 
@@ -385,14 +394,20 @@ def _verdict(r: EnvRow) -> str:
 
 
 def _print_table(
-    name: str, beams: int, rows: list[EnvRow], threads: int, loads: tuple[float | None, float | None]
+    name: str,
+    beams: int,
+    rows: list[EnvRow],
+    threads: int,
+    loads: tuple[float | None, float | None],
+    reference: tuple[float, float] | None,
 ) -> None:
-    lo, hi = F1TENTH_GYM
     print(
         f"gymnasium step throughput: map {name}, {beams}-beam lidar every step, 0.01 s physics step, "
         f"autoreset on collision, {threads} threads, load average {loads[0]} before / {loads[1]} after"
     )
-    print(f"F1TENTH Gym reference (constant action, single env): {lo:,.0f}–{hi:,.0f} env-steps/s")
+    if reference:
+        lo, hi = reference
+        print(f"F1TENTH Gym reference (constant action, single env): {lo:,.0f}–{hi:,.0f} env-steps/s")
     print(
         f"{'workload':<10}{'envs':>6}{'env-steps/s':>13}{'µs/call':>10}{'resets':>8}"
         f"{'physics':>9}{'scan':>8}{'python':>8}  target"
@@ -411,11 +426,5 @@ def _print_table(
     )
 
 
-def run_quick() -> EnvResult:
-    return run(num_envs=[1, 256], seconds=1.0)
-
-
-def _run_cli(args: argparse.Namespace) -> int:
-    res = run(args.map, args.num_envs, args.seconds, args.beams, args.workloads)
-    write_json(args.json, res)
-    return 0
+def run_quick(reference: tuple[float, float] | None = None) -> EnvResult:
+    return run(num_envs=[1, 256], seconds=1.0, reference=reference)

@@ -1,6 +1,7 @@
 """``roboracer-arena bench physics``: vehicle-steps per second of the native simulator
-with the lidar off, for 1, 256, 1024 and 2048 vehicles, beside the paper's Isaac Sim
-figures, plus the time of one 1081-beam lidar scan.
+with the lidar off, for 1, 256, 1024 and 2048 vehicles, against the project's targets,
+plus the time of one 1081-beam lidar scan. (``python -m benchmarks physics``, in a
+checkout, prints the paper's Isaac Sim figures beside them.)
 
 A *vehicle-step* is one physics step (``dt``) of one vehicle. N vehicles run as
 ``N / per_env`` independent rapier worlds of ``per_env`` cars each (``--per-env``).
@@ -23,8 +24,6 @@ from ..drivers import PurePursuitDriver, PurePursuitParams
 from ..sim_config import PhysicsConfig, SimConfig
 from .output import BenchModel, add_bench_parser, write_json
 
-# Paper (Isaac Sim, AMD EPYC 9654 + RTX PRO 6000): vehicle-steps/s by vehicle count.
-PAPER = {1: 28.1, 256: 8707.0, 1024: 8368.0, 2048: 6818.0}
 TARGETS = {1: 50_000.0, 256: 200_000.0, 2048: 200_000.0}
 
 
@@ -162,20 +161,25 @@ def run(
     return PhysicsResult(machine=platform.processor() or platform.machine(), threads=_threads(), rows=rows, scan=scan)
 
 
-def print_table(result: PhysicsResult) -> None:
+def print_table(result: PhysicsResult, paper: dict[int, float] | None = None) -> None:
+    """The table; ``paper``: published vehicle-steps/s by vehicle count, printed beside
+    ours with the ratio (columns left out without it)."""
     print(f"physics throughput, lidar off (threads: {result.threads})")
-    head = f"{'vehicles':>8} {'envs x per_env':>15} {'dt (s)':>7} {'substeps':>8} {'rapier steps':>12} {'ours (veh-steps/s)':>19} {'paper':>8} {'ratio':>8} {'target':>9}"
+    head = f"{'vehicles':>8} {'envs x per_env':>15} {'dt (s)':>7} {'substeps':>8} {'rapier steps':>12} {'ours (veh-steps/s)':>19}"
+    head += f" {'paper':>8} {'ratio':>8}" * (paper is not None) + f" {'target':>9}"
     print(head)
     print("-" * len(head))
     for r in result.rows:
         n = r.vehicles
-        paper = PAPER.get(n)
         target = TARGETS.get(n)
         ours = r.vehicle_steps_per_s
+        versus = ""
+        if paper is not None:
+            ref = paper.get(n)
+            versus = f" {ref if ref is not None else '-':>8} {(f'{ours / ref:,.0f}x' if ref else '-'):>8}"
         print(
             f"{n:>8} {str(r.envs) + ' x ' + str(r.per_env):>15} {r.dt:>7.3f} {r.substeps:>8} "
-            f"{r.rapier_pipeline_fraction:>12.1%} {ours:>19,.0f} "
-            f"{paper if paper is not None else '-':>8} {(f'{ours / paper:,.0f}x' if paper else '-'):>8} "
+            f"{r.rapier_pipeline_fraction:>12.1%} {ours:>19,.0f}{versus} "
             f"{(('ok ' if ours >= target else 'MISS ') + f'{target:,.0f}') if target else '-':>9}"
         )
     s = result.scan
@@ -184,14 +188,15 @@ def print_table(result: PhysicsResult) -> None:
     )
 
 
-def _cli(args: argparse.Namespace) -> int:
-    result = run(args.vehicles, args.per_env, args.seconds, args.substeps, args.dt, not args.no_shortcut)
-    print_table(result)
-    write_json(args.json, result)
-    return 0
+def register(kinds, paper: dict[int, float] | None = None) -> None:
+    """The ``physics`` subcommand; ``paper`` as in :func:`print_table`."""
 
+    def cli(args: argparse.Namespace) -> int:
+        result = run(args.vehicles, args.per_env, args.seconds, args.substeps, args.dt, not args.no_shortcut)
+        print_table(result, paper)
+        write_json(args.json, result)
+        return 0
 
-def register(kinds) -> None:
     p = add_bench_parser(kinds, "physics", "vehicle-steps/s of the native simulator (lidar off)", __doc__)
     p.add_argument(
         "--vehicles",
@@ -214,11 +219,11 @@ def register(kinds) -> None:
         action="store_true",
         help="run the rapier pipeline in every step (physics.shortcut_free_steps=False)",
     )
-    p.set_defaults(func=_cli)
+    p.set_defaults(func=cli)
 
 
-def run_quick() -> PhysicsResult:
+def run_quick(paper: dict[int, float] | None = None) -> PhysicsResult:
     """`bench all`: 1, 256 and 2048 vehicles, one second each."""
     result = run([1, 256, 2048], 1, 1.0, 10, PhysicsConfig().dt)
-    print_table(result)
+    print_table(result, paper)
     return result

@@ -1,48 +1,51 @@
-"""``roboracer-arena bench KIND``: benchmarks that print a table beside the paper's
-figures and can write JSON. Each kind lives in ``roboracer_arena.bench.<kind>`` and
-exposes ``register(subparsers)``; ``all`` runs every kind with its quick defaults."""
+"""``roboracer-arena bench KIND``: how fast this machine runs the simulator. ``physics``
+times the native simulator (vehicle-steps/s, lidar off) and ``env`` the gymnasium env
+(env-steps/s with a full scan every step); each prints its table and the project's
+targets, and can write JSON. The paper's benchmarks and the peer comparisons (F1TENTH Gym,
+the DE / random baselines, ...) are not in the wheel: they run from a checkout with
+``python -m benchmarks KIND`` (``make bench``)."""
 
 from __future__ import annotations
 
 import argparse
-import json
-from importlib import import_module
-from pathlib import Path
+import sys
 
-from ..fileio import atomic_write_text
+from ..bench import env, physics
 
-# Benchmark kinds, in the order `bench all` runs them.
-KINDS: list[str] = [
+#: Kinds that moved to the checkout's ``benchmarks/`` package (``python -m benchmarks KIND``).
+MOVED: tuple[str, ...] = (
+    "all",
     "build",
-    "physics",
-    "env",
-    "fidelity",
     "constructors",
-    "parser",
-    "library",
-    "ros2",
+    "fidelity",
     "generalisation",
+    "library",
+    "parser",
     "ray",
-]
+    "ros2",
+)
 
 
 def register(sub) -> None:
-    p = sub.add_parser("bench", help="run benchmarks and compare with the paper", description=__doc__)
+    p = sub.add_parser(
+        "bench",
+        help="measure this machine's simulator and env throughput",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     kinds = p.add_subparsers(dest="kind", metavar="KIND", required=True)
-    for kind in KINDS:
-        import_module(f"roboracer_arena.bench.{kind}").register(kinds)
-    a = kinds.add_parser("all", help="run every benchmark with quick defaults")
-    a.add_argument("--json", metavar="FILE", type=Path, help="write all results to FILE as JSON")
-    a.set_defaults(func=_run_all)
+    physics.register(kinds)
+    env.register(kinds)
+    for kind in MOVED:  # no help= : not listed; any flags are taken as they are (no option prefix)
+        m = kinds.add_parser(kind, add_help=False, prefix_chars="\0")
+        m.add_argument("rest", nargs="*")
+        m.set_defaults(func=_moved)
 
 
-def _run_all(args: argparse.Namespace) -> int:
-    results = {}
-    for kind in KINDS:
-        module = import_module(f"roboracer_arena.bench.{kind}")
-        print(f"\n== bench {kind}")
-        results[kind] = module.run_quick().to_json_dict()
-    if args.json:
-        atomic_write_text(args.json, json.dumps(results, indent=2))
-        print(f"\nwrote {args.json}")
-    return 0
+def _moved(args: argparse.Namespace) -> int:
+    print(
+        f"roboracer-arena bench {args.kind}: this benchmark moved out of the package; run it from a "
+        f"checkout of the repository: python -m benchmarks {args.kind} (see BENCHMARKS.md)",
+        file=sys.stderr,
+    )
+    return 2

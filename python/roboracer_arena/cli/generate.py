@@ -37,7 +37,12 @@ def register(sub) -> None:
     p.add_argument("--spec", type=Path, metavar="SPEC.json", help="TrackSpec JSON file")
     p.add_argument("--seed", type=int, default=0, help="seed of the candidate ordering (default 0)")
     p.add_argument("-o", "--out", type=Path, default=Path("out/generated"), metavar="OUTDIR", help="output directory")
-    p.add_argument("--constructor", choices=["lattice", "de", "random"], default="lattice")
+    p.add_argument(
+        "--constructor",
+        choices=["lattice", "de", "random"],
+        default="lattice",
+        help="lattice (default); de / random, the paper's baselines, moved to python -m benchmarks (exit 2)",
+    )
     p.add_argument("--build", action="store_true", help="also build the USD environment through the builder")
     p.add_argument(
         "--drive", action="store_true", help="then drive the reference car one lap on the map (exit 5 if it fails)"

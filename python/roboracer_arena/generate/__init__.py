@@ -1,6 +1,6 @@
 """Requirements → track: :func:`generate_track` (screen, constructor, rasteriser and raster
-validator; Algorithm 1), the three typed outcomes, output writing, and the DE / random
-baselines used by ``roboracer-arena bench constructors``."""
+validator; Algorithm 1), the three typed outcomes and output writing. (The paper's DE /
+random baselines live in a checkout's ``benchmarks/``, not in the package.)"""
 
 from .nearest import NearestSpecs, Suggestion, nearest_specs
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection

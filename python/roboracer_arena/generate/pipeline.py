@@ -19,8 +19,10 @@ from .nearest import DEFAULT_SUGGEST_TIMEOUT_S, nearest_specs
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection
 from .report import DerivedGeometry, ScreenResult, ValidationReport
 
-Constructor = Literal["lattice", "de", "random"]
-CONSTRUCTORS: tuple[str, ...] = ("lattice", "de", "random")
+Constructor = Literal["lattice"]
+CONSTRUCTORS: tuple[str, ...] = ("lattice",)
+#: The paper's baseline constructors, which left the package for the checkout's benchmarks.
+MOVED_CONSTRUCTORS: tuple[str, ...] = ("de", "random")
 DEFAULT_TIMEOUT_S = 60.0
 """Default wall-clock budget of :func:`generate_track` (seconds)."""
 
@@ -77,22 +79,27 @@ def generate_track(
 ) -> Outcome:
     """Turn a spec into a validated map, a proven rejection or a generation failure.
 
-    ``constructor`` is ``"lattice"`` (the paper's method, Rust), or one of the baselines
-    ``"de"`` / ``"random"`` (scipy; their output is validated the same way, and an invalid
-    one becomes a :class:`GenerationFailure`, never an acceptance).
+    ``constructor`` is ``"lattice"`` (the paper's method, Rust). The paper's DE / random
+    baselines are not in the package any more: ``"de"`` or ``"random"`` raises
+    :class:`~roboracer_arena.errors.InvalidArgumentError` naming where they went
+    (``python -m benchmarks constructors`` in a checkout).
 
     ``timeout`` bounds the lattice search in wall-clock seconds (default 60; None = no
     limit): when it runs out the result is a :class:`GenerationFailure` with
     ``stopped="timeout"``; the call returns at most about a second after the budget even
     when one candidate (a very large map) is still being rasterised, which then stops in the
-    background at its next check. Ctrl-C raises KeyboardInterrupt at once the same way. The
-    DE and random baselines are not bounded by ``timeout``. A hall whose raster would exceed the generator's cell budget
+    background at its next check. Ctrl-C raises KeyboardInterrupt at once the same way. A hall whose raster would exceed the generator's cell budget
     raises :class:`~roboracer_arena.errors.SpecError`.
 
     When the lattice search fails, the nearest specs that build are searched within
     ``suggest_timeout`` seconds (default 20; None = no search) and returned on the
     failure's ``nearest`` (:mod:`~roboracer_arena.generate.nearest`).
     """
+    if constructor in MOVED_CONSTRUCTORS:
+        raise InvalidArgumentError(
+            f"constructor {constructor!r} (a paper baseline) is no longer in the package; run it from a "
+            f"checkout of the repository: python -m benchmarks constructors --constructors {constructor}"
+        )
     if constructor not in CONSTRUCTORS:
         raise InvalidArgumentError(f"constructor must be one of {', '.join(CONSTRUCTORS)}; got {constructor!r}")
     if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**64:
@@ -132,14 +139,4 @@ def generate_track(
             stopped=info.get("stopped"),
             nearest=nearest,
         )
-    from .baselines import construct_baseline
-
-    line = construct_baseline(spec, config, seed, constructor)
-    if line is None:
-        return GenerationFailure(spec, constructor, seed, 1, {"no curve emitted": 1}, time.perf_counter() - t0)
-    m = rasterise(line, spec, config)
-    report, _ = validate_map(m, spec, config)
-    if not report.valid:
-        failed = "+".join(c.name for c in report.failed())
-        return GenerationFailure(spec, constructor, seed, 1, {f"raster {failed}": 1}, time.perf_counter() - t0, report)
-    return Acceptance(spec, m, line, report, constructor, seed, 1, time.perf_counter() - t0)
+    raise AssertionError(f"unhandled constructor {constructor!r}")  # CONSTRUCTORS is checked above

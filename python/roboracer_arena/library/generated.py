@@ -10,10 +10,9 @@ error at any moment leaves the previous one as it was."""
 
 from __future__ import annotations
 
-import itertools
 import json
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -25,6 +24,7 @@ from ..errors import InvalidArgumentError
 from ..fileio import atomic_update_dir, atomic_write_dir, atomic_write_text, check_output
 from ..pool import Progress, local_unless, map_ordered
 from ..spec import TrackSpec
+from .sweep import GridSweep, SweepRequest
 from .sweep_report import GeneratedSweepSummary, SweepRecord, count_outcome
 
 #: (lap length m, corridor width m, hall x m, hall y m): small to large venues.
@@ -52,24 +52,28 @@ SEEDS = (0, 1)
 CSV_SPACING = 0.25
 
 
-def sweep() -> Iterator[tuple[str, TrackSpec, int]]:
+def _track_id(f: Mapping[str, Any]) -> str:
+    turn = "clo" if f["direction"] == "clockwise" else "ccw"
+    return (
+        f"gen-l{int(f['lap_length_m']):03d}-w{int(round(f['corridor_width_m'] * 10)):02d}"
+        f"-h{f['hairpins']}c{f['chicanes']}s{f['sweepers']}-{turn}-s{f['seed']}"
+    )
+
+
+#: The library's sweep: venues x feature mixes x seeds.
+GENERATED_SWEEP = GridSweep(
+    axes=(
+        [{"lap_length_m": lap, "corridor_width_m": w, "hall_x_m": hx, "hall_y_m": hy} for lap, w, hx, hy in VENUES],
+        [{"hairpins": h, "chicanes": c, "sweepers": s, "direction": d} for h, c, s, d in FEATURES],
+        [{"seed": seed} for seed in SEEDS],
+    ),
+    name=_track_id,
+)
+
+
+def sweep() -> Iterator[SweepRequest]:
     """``(id, spec, seed)`` in sweep order."""
-    for venue, feat, seed in itertools.product(VENUES, FEATURES, SEEDS):
-        lap, width, hx, hy = venue
-        h, c, s, direction = feat
-        tid = f"gen-l{int(lap):03d}-w{int(round(width * 10)):02d}-h{h}c{c}s{s}-{direction[:3] if direction == 'clockwise' else 'ccw'}-s{seed}"
-        spec = TrackSpec(
-            name=tid,
-            lap_length_m=lap,
-            corridor_width_m=width,
-            hall_x_m=hx,
-            hall_y_m=hy,
-            hairpins=h,
-            chicanes=c,
-            sweepers=s,
-            direction=direction,
-        )
-        yield tid, spec, seed
+    return iter(GENERATED_SWEEP.requests())
 
 
 def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[SweepRecord, dict[str, bytes]]:

@@ -1,5 +1,11 @@
-"""Sweep files for ``roboracer-arena tracks generate --sweep SWEEP.json``: the spec ranges
-and seed scheme of a generated-track library (example: ``examples/sweep.json``).
+"""The one builder of spec sweeps: the generation requests ``(id, spec, seed)`` of a
+sweep, drawn from ranges (:class:`SweepFile`, ``tracks generate --sweep``) or crossed
+on a grid (:class:`GridSweep`: the shipped generated library,
+:mod:`roboracer_arena.library.generated`, and the checkout's generator acceptance sweep,
+``benchmarks/constructor_sweep.py``).
+
+Sweep files for ``roboracer-arena tracks generate --sweep SWEEP.json`` hold the spec
+ranges and seed scheme of a generated-track library (example: ``examples/sweep.json``).
 
 Format (JSON object)::
 
@@ -27,8 +33,10 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
@@ -36,6 +44,15 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from ..errors import SpecError
 from ..fileio import read_json
 from ..spec import TrackSpec, format_validation_error
+
+
+class SweepRequest(NamedTuple):
+    """One generation request of a sweep: the track id, its spec and its generation seed."""
+
+    id: str
+    spec: TrackSpec
+    seed: int
+
 
 #: The example sweep (also ``examples/sweep.json``): varied halls, lap lengths and features.
 EXAMPLE_SWEEP: dict[str, Any] = {
@@ -158,9 +175,55 @@ class SweepFile(BaseModel):
     def spec(self, k: int) -> TrackSpec:
         return TrackSpec(name=self.track_id(k), **{**self.fixed, **self.draw(k)})
 
-    def requests(self, start: int, stop: int) -> list[tuple[str, TrackSpec, int]]:
-        """``(id, spec, seed)`` of requests ``start .. stop - 1``."""
-        return [(self.track_id(k), self.spec(k), self.seed(k)) for k in range(start, stop)]
+    def requests(self, start: int, stop: int) -> list[SweepRequest]:
+        """The requests ``start .. stop - 1``."""
+        return [SweepRequest(self.track_id(k), self.spec(k), self.seed(k)) for k in range(start, stop)]
+
+
+@dataclass(frozen=True)
+class GridSweep:
+    """Every combination of ``axes`` (the last axis varies fastest). Each axis is a list of
+    points; a point is some TrackSpec fields, and may hold ``"seed"``, the request's
+    generation seed. A combination's points are merged in axis order, then:
+
+    * ``directions``: when given, grid combination ``i`` (counted before ``admit``) runs in
+      ``directions[i % len(directions)]``;
+    * ``name(fields)`` names the request (its id and its spec's name) from the merged fields;
+    * ``admit(spec)``: only the specs it accepts are kept (e.g. the admissibility screen);
+    * ``count``: the kept requests thinned evenly to at most ``count``;
+    * a request without a ``"seed"`` gets ``k % seed_cycle``, ``k`` its place after thinning.
+
+    The list is a pure function of these fields: the same sweep always gives the same
+    requests in the same order."""
+
+    axes: Sequence[Sequence[Mapping[str, Any]]]
+    name: Callable[[Mapping[str, Any]], str]
+    directions: Sequence[str] = ()
+    admit: Callable[[TrackSpec], bool] | None = None
+    count: int | None = None
+    seed_cycle: int = 1
+
+    def requests(self) -> list[SweepRequest]:
+        """The sweep's requests, in grid order."""
+        grid: list[tuple[str, TrackSpec, int | None]] = []
+        for i, points in enumerate(itertools.product(*self.axes)):
+            fields: dict[str, Any] = {}
+            for point in points:
+                fields.update(point)
+            if self.directions:
+                fields["direction"] = self.directions[i % len(self.directions)]
+            tid = self.name(fields)
+            seed = fields.pop("seed", None)
+            spec = TrackSpec(name=tid, **fields)
+            if self.admit is None or self.admit(spec):
+                grid.append((tid, spec, seed))
+        if self.count is not None:
+            step = max(1.0, len(grid) / self.count)
+            grid = [grid[int(k * step)] for k in range(min(self.count, len(grid)))]
+        return [
+            SweepRequest(tid, spec, k % self.seed_cycle if seed is None else seed)
+            for k, (tid, spec, seed) in enumerate(grid)
+        ]
 
 
 def load_sweep(path: str | Path) -> SweepFile:

@@ -47,11 +47,25 @@ class LapRun(FrozenModel):
     wall_seconds: float
     steps_per_second: float
 
-
-def _deviation(points: np.ndarray, xy: np.ndarray) -> np.ndarray:
-    """Distance of each (x, y) from the resampled centreline points (5 cm spacing)."""
-    d = np.hypot(points[None, :, 0] - xy[:, 0:1], points[None, :, 1] - xy[:, 1:2])
-    return d.min(axis=1)
+    @classmethod
+    def from_trace(
+        cls, engine: str, points: np.ndarray, xy: list[tuple[float, float]], lap: float | None, **timing: Any
+    ) -> LapRun:
+        """The run of ``engine`` whose car passed ``xy``: deviation is each point's distance
+        from the driver's resampled centreline ``points`` (5 cm spacing)."""
+        if xy:
+            p = np.asarray(xy)
+            dev = np.hypot(points[None, :, 0] - p[:, 0:1], points[None, :, 1] - p[:, 1:2]).min(axis=1)
+        else:
+            dev = np.zeros(1)
+        return cls(
+            engine=engine,
+            completed=lap is not None,
+            lap_time_s=lap,
+            mean_deviation_m=float(dev.mean()),
+            max_deviation_m=float(dev.max()),
+            **timing,
+        )
 
 
 class _Progress:
@@ -119,13 +133,11 @@ def drive_physx_lap(stage: str | Path, track: Any, sim: SimConfig | None = None,
                     break
             wall = time.perf_counter() - t0
         physx.wait_all()
-    dev = _deviation(driver.points, np.asarray(xy)) if xy else np.zeros(1)
-    return LapRun(
-        engine="physx-cpu",
-        completed=lap is not None,
-        lap_time_s=lap,
-        mean_deviation_m=float(dev.mean()),
-        max_deviation_m=float(dev.max()),
+    return LapRun.from_trace(
+        "physx-cpu",
+        driver.points,
+        xy,
+        lap,
         physics_steps=steps,
         wall_seconds=wall,
         steps_per_second=(steps - 20) / stepping if stepping > 0 else 0.0,
@@ -198,14 +210,12 @@ def drive_native_lap(track: Any, sim: SimConfig | None = None, max_seconds: floa
         wall = time.perf_counter() - t0
     finally:
         env.close()
-    dev = _deviation(driver.points, np.asarray(xy))
     steps = round(t / float(sim.physics.dt))
-    return LapRun(
-        engine="roboracer-arena",
-        completed=lap is not None,
-        lap_time_s=lap,
-        mean_deviation_m=float(dev.mean()),
-        max_deviation_m=float(dev.max()),
+    return LapRun.from_trace(
+        "roboracer-arena",
+        driver.points,
+        xy,
+        lap,
         physics_steps=steps,
         wall_seconds=wall,
         steps_per_second=steps / wall if wall > 0 else 0.0,

@@ -12,3 +12,4 @@ pub mod rounding;
 pub mod screen;
 pub mod side_notch;
 pub mod spec;
+pub mod teardrop;

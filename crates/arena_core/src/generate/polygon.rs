@@ -20,9 +20,13 @@
 //! spare length is shared over the long segments so that the loop closes exactly at
 //! length L ([`spare_shares`]). Hall fit (any rotation), direction and the analytic checks
 //! are the caller's, as for the ring.
+//!
+//! When every drawn loop is longer than the lap and the spec asks for one hairpin and one
+//! chicane, the candidate is the teardrop instead (`teardrop`), which needs one gap fewer.
 
 use super::rounding::round_polygon_radii;
 use super::spec::{Derived, Spec, STRAIGHT_CAP_MARGIN};
+use super::teardrop;
 use crate::geometry::polyline::extent;
 use crate::track::features::FeatureKind;
 use rand_chacha::rand_core::Rng;
@@ -52,6 +56,8 @@ const SWEEPER_ARC: f64 = 1.65;
 /// Largest amount each hairpin half turns less than 90° (rad, 20°: the merged turn stays
 /// ≥ 140°, above the detector's 135°; the analytic check reads it as the validator does).
 const HAIRPIN_NARROW: f64 = 0.35;
+/// Why a turn sequence fails when its least length exceeds the lap.
+const TOO_SHORT: &str = "polygon: lap too short for the turns";
 /// Turn sequences drawn before a candidate gives up on closing.
 const CLOSURE_DRAWS: usize = 256;
 /// Most features the polygon places: it is for short laps, and the closure's triangle
@@ -259,7 +265,7 @@ fn lengths(
     let target = lap + t.iter().map(|x| saving(x, rc)).sum::<f64>();
     let spare = target - min_len.iter().sum::<f64>();
     if spare < 0.0 {
-        return Err("polygon: lap too short for the turns");
+        return Err(TOO_SHORT);
     }
     let long: Vec<usize> = (0..n).filter(|&i| t[i].short_next.is_none()).collect();
     let dir = |i: usize| [heading[i].cos(), heading[i].sin()];
@@ -271,7 +277,7 @@ fn lengths(
         end[1] += l * dir(i)[1];
     }
     if spare <= 1e-9 {
-        return Err("polygon: lap too short for the turns");
+        return Err(TOO_SHORT);
     }
     let c = [-end[0] / spare, -end[1] / spare];
     let u: Vec<[f64; 2]> = long.iter().map(|&i| dir(i)).collect();
@@ -308,19 +314,33 @@ pub fn polygon_candidate(
     // of a loop with long legs holds only for some of them.
     let mut why = "polygon: features do not fit a convex loop";
     let mut found = None;
+    // Draws whose turn sequence was too long for the lap, of those that drew one.
+    let (mut drawn, mut short) = (0, 0);
     for _ in 0..CLOSURE_DRAWS {
         let Some(t) = turns(order, spec.max_straight_m.is_some(), rng) else {
             continue;
         };
+        drawn += 1;
         match lengths(&t, spec.lap_length_m, rc, spec.max_straight_m, rng) {
             Ok((heading, len)) => {
                 found = Some((t, heading, len));
                 break;
             }
-            Err(e) => why = e,
+            Err(e) => {
+                short += usize::from(e == TOO_SHORT);
+                why = e;
+            }
         }
     }
-    let (t, heading, len) = found.ok_or(why)?;
+    let Some((t, heading, len)) = found else {
+        // Every drawn loop was longer than the lap: one hairpin and one chicane still fit
+        // the teardrop, which needs one gap fewer (its module says why).
+        if drawn > 0 && short == drawn && teardrop::holds(spec) {
+            let (line, pitch) = teardrop::teardrop_loop(spec, d, rng)?;
+            return Ok((best_fit_rotation(&line, spec), pitch));
+        }
+        return Err(why);
+    };
     // Turtle: vertex i is where turn i happens; segment i leaves it.
     let mut verts = Vec::with_capacity(t.len());
     let mut p = [0.0f64, 0.0];
@@ -410,6 +430,33 @@ mod tests {
             }
             assert!(built > 0, "{l} m, w {w}, {order:?}: no loop in 20 draws");
         }
+    }
+
+    #[test]
+    fn a_lap_too_short_for_every_loop_falls_back_to_the_teardrop_only_with_a_hairpin() {
+        // 20 m at w = 2 m with a chicane: every polygon loop needs > 20.6 m.
+        use crate::geometry::polyline_length;
+        let order = [FeatureKind::Hairpin, FeatureKind::Chicane];
+        let s = spec(20.0, 2.0, 1, 1, 0);
+        let d = derive(&s, &ConstructorConfig::default());
+        let built = (0..5)
+            .filter_map(|k| {
+                polygon_candidate(&s, &d, &order, &mut ChaCha8Rng::seed_from_u64(k)).ok()
+            })
+            .inspect(|(line, _)| {
+                let l = polyline_length(line, true);
+                assert!(
+                    (20.0..=20.0 * (1.0 + teardrop::LONG_SLACK) + 0.01).contains(&l),
+                    "{l}"
+                );
+            })
+            .count();
+        assert!(built > 0);
+        // Without a hairpin the teardrop does not apply: the polygon's own reason stays.
+        let s = spec(20.0, 2.0, 0, 1, 0);
+        let mut rng = ChaCha8Rng::seed_from_u64(0);
+        let got = polygon_candidate(&s, &d, &[FeatureKind::Chicane], &mut rng);
+        assert_eq!(got.err(), Some(TOO_SHORT));
     }
 
     #[test]

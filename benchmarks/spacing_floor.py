@@ -1,5 +1,5 @@
 """Issue 28: what the validator's own rules prove about short laps with a chicane, and
-what loops with the detector's *measured* spacing need. Not shipped with the wheel.
+what loops with the detector's *measured* spacing need. (Not in the wheel.)
 
 For the 20 m laps at w = 2 m with a chicane (the practical region's short misses) it prints:
 
@@ -25,7 +25,7 @@ For the 20 m laps at w = 2 m with a chicane (the practical region's short misses
   two corners apart depends on the curvature profile, so it is not a rule that bounds
   every curve.
 
-Usage: ``python benches/spacing_floor.py``.
+Usage: ``python -m benchmarks.spacing_floor``.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""``roboracer-arena bench parser``: the paper's Table 2 ("Local parser evaluation") for
+"""``python -m benchmarks parser``: the paper's Table 2 ("Local parser evaluation") for
 our backends -- exact parses on the parse set, invention-audit passes over repeated
 calls, median latency per call and, where known, memory.
 
@@ -27,12 +27,13 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from ..errors import ArenaError, InvalidArgumentError
-from ..parse.result import DEFAULTS
-from ..paths import bench_data
-from .output import BenchModel, add_bench_parser, write_json
+from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
+from roboracer_arena.errors import ArenaError, InvalidArgumentError
+from roboracer_arena.parse.result import DEFAULTS
 
-REPO_REQUESTS = bench_data("requests.jsonl")  # shipped in the package (bench/data)
+from . import bench_data
+
+REPO_REQUESTS = bench_data("requests.jsonl")  # benchmarks/data
 #: (label, file, batch or None) of every shipped request set, in report order.
 SHIPPED_SETS = [
     ("shipped (Table 2 set)", "requests.jsonl", None),
@@ -101,7 +102,7 @@ class BlindFile(BenchModel):
 
 
 class BlindScore(BenchModel):
-    """``bench/data/requests_blind_score.json``: the parser of main before this work, on
+    """``benchmarks/data/requests_blind_score.json``: the parser of main before this work, on
     the blind batch as written."""
 
     parser_commit: str
@@ -168,13 +169,13 @@ def score(got: dict[str, Any] | None, expected: dict[str, Any]) -> tuple[bool, b
 
 
 def _rules_call(text: str) -> dict[str, Any]:
-    from ..parse import parse_request
+    from roboracer_arena.parse import parse_request
 
     return parse_request(text, backend="rules").spec.model_dump()
 
 
 def _ollama_call(host: str | None, model: str, timeout: float) -> Callable[[str], dict[str, Any]]:
-    from ..parse.ollama_backend import ask_ollama
+    from roboracer_arena.parse.ollama_backend import ask_ollama
 
     def call(text: str) -> dict[str, Any]:
         spec, _ = ask_ollama(text, host=host, model=model, timeout=timeout)
@@ -185,8 +186,8 @@ def _ollama_call(host: str | None, model: str, timeout: float) -> Callable[[str]
 
 def evaluate(call: Callable[[str], dict[str, Any]], requests: list[dict[str, Any]], repeats: int) -> ParserRow:
     """Run the parse set once and the audit set ``repeats`` times through ``call``."""
-    from ..parse import ground
-    from ..spec import TrackSpec
+    from roboracer_arena.parse import ground
+    from roboracer_arena.spec import TrackSpec
 
     rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     times: list[float] = []
@@ -283,7 +284,7 @@ def run(
     timeout: float = 120.0,
 ) -> ParserResult:
     """Evaluate each backend on ``requests_path``; print the table; return the results."""
-    from ..parse.ollama_backend import reachable, resolve_host
+    from roboracer_arena.parse.ollama_backend import reachable, resolve_host
 
     requests = load_requests(requests_path)
     rows: dict[str, ParserRow | Unreachable] = {}

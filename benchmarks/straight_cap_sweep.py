@@ -7,8 +7,8 @@ straight is generated with the same seed (default candidate cap and budget, no
 suggestion search). An acceptance passed the validator's ``max_straight`` check, so its
 longest straight respects the cap; the script re-checks that from the measurements.
 
-Usage: ``python benches/straight_cap_sweep.py [SHARE] [--every N]`` (default 0.8, every
-spec). Not shipped with the wheel.
+Usage: ``python -m benchmarks.straight_cap_sweep [SHARE] [--every N]`` (default 0.8, every
+spec). (Not in the wheel.)
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import sys
 import time
 from collections import Counter
 
-from roboracer_arena.bench.constructor_sweep import fill_band, load_sweep_file
+from benchmarks.constructor_sweep import fill_band, load_sweep_file
 from roboracer_arena.generate import Acceptance, derived_geometry, generate_track
 
 

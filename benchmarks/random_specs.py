@@ -1,7 +1,7 @@
 """Write N random TrackSpecs (seeded) as JSONL, for robustness runs of the constructors:
 
-    python benches/random_specs.py 300 --seed 1 > /tmp/random-300.jsonl
-    roboracer-arena bench constructors --specs /tmp/random-300.jsonl --seeds 0 --constructors lattice
+    python -m benchmarks.random_specs 300 --seed 1 > /tmp/random-300.jsonl
+    python -m benchmarks constructors --specs /tmp/random-300.jsonl --seeds 0 --constructors lattice
 
 Ranges: lap 25–90 m, width 1.2/1.5/1.8/2.0 m, hall 12–26 × 10–20 m, either direction,
 0–4 hairpins, 0–2 chicanes, 0–2 sweepers. Some specs fail the screen on purpose.

@@ -36,10 +36,10 @@ import math
 import numpy as np
 from scipy.optimize import differential_evolution
 
-from .. import _core
-from ..constructor_config import ConstructorConfig
-from ..spec import TrackSpec
-from .report import CurveAnalysis
+from roboracer_arena import _core
+from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.generate.report import CurveAnalysis
+from roboracer_arena.spec import TrackSpec
 
 LINK_TURN_DEG = 137.0
 # Link radii stay below the detector's sweeper band (1.5 r_c): only feature blocks make sweepers.

@@ -1,4 +1,4 @@
-"""``roboracer-arena bench ros2``: the ROS 2 bridge on the wire.
+"""``python -m benchmarks ros2``: the ROS 2 bridge on the wire.
 
 The bridge runs as ``roboracer-arena ros2 MAP --loopback`` in a subprocess; this
 process is a ROS 2-like node on the same domain (a second DDS participant over loopback
@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from .output import BenchModel, Skipped, add_bench_parser, write_json
+from roboracer_arena.bench.output import BenchModel, Skipped, add_bench_parser, write_json
 
 DEFAULT_MAP = Path("f1tenth-gym") / "maps" / "berlin.yaml"
 TARGET_RTF, TARGET_LATENCY_MS = 20.0, 50.0
@@ -68,7 +68,7 @@ def register(kinds) -> None:
 
 
 def _default_map() -> Path:
-    from ..paths import sources_dir
+    from roboracer_arena.paths import sources_dir
 
     return sources_dir(None, "bench ros2 (its default map is f1tenth-gym berlin; or pass --map)") / DEFAULT_MAP
 
@@ -87,11 +87,11 @@ def _run_mode(map_path: Path, rate: str, seconds: float) -> ModeRow:
     from cyclonedds.sub import DataReader
     from cyclonedds.topic import Topic
 
-    from ..ros2 import msgs
-    from ..ros2 import state_msgs as sm
-    from ..ros2.dds import participant
-    from ..ros2.qos import qos_for
-    from ..ros2.topics import dds_topic
+    from roboracer_arena.ros2 import msgs
+    from roboracer_arena.ros2 import state_msgs as sm
+    from roboracer_arena.ros2.dds import participant
+    from roboracer_arena.ros2.qos import qos_for
+    from roboracer_arena.ros2.topics import dds_topic
 
     domain = random.SystemRandom().randint(1, 200)
     dp = participant(domain, loopback=True)

@@ -1,4 +1,4 @@
-"""``roboracer-arena bench library``: build every circuit at 1:10 into a temporary
+"""``python -m benchmarks library``: build every circuit at 1:10 into a temporary
 directory and report the wall time (all cores, threads), the centreline-length error
 of each raster against its scaled input, and the per-stage cost, beside the paper's
 figures (44 circuits in 43.72 s; length error mean 0.253 %, max 0.924 %).
@@ -13,8 +13,8 @@ import os
 import tempfile
 from pathlib import Path
 
-from ..circuits.report import CircuitRaster
-from .output import BenchModel, add_bench_parser, write_json
+from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
+from roboracer_arena.circuits.report import CircuitRaster
 
 PAPER: dict[str, int | float] = {"circuits": 44, "seconds": 43.72, "mean_error_pct": 0.253, "max_error_pct": 0.924}
 TARGET_SECONDS = 10.0
@@ -68,7 +68,7 @@ def register(kinds) -> None:
 
 
 def run(sources: Path | None = None, jobs: int | None = None, resolution: float = 0.05) -> LibraryResult:
-    from ..circuits import CircuitConfig, build_all
+    from roboracer_arena.circuits import CircuitConfig, build_all
 
     with tempfile.TemporaryDirectory(prefix="rra-bench-library-") as tmp:
         s = build_all(sources, tmp, CircuitConfig(resolution=resolution), jobs=jobs or os.cpu_count() or 1)

@@ -1,10 +1,10 @@
-"""``roboracer-arena bench constructors``: the paper's Table "Constructor comparison".
+"""``python -m benchmarks constructors``: the paper's Table "Constructor comparison".
 
 Every constructor gets the same specifications and seeds. How trials are counted:
 
 * A spec the admissibility screen rejects (e.g. the 200 m lap in a 20 × 15 m hall) is a
   *correct rejection*, reported on its own line, and is **not a trial**: no constructor
-  runs on it. The paper's 30 trials are 10 admissible specs × 3 seeds; ``bench/data/specs.jsonl``
+  runs on it. The paper's 30 trials are 10 admissible specs × 3 seeds; ``benchmarks/data/specs.jsonl``
   holds 11 specs of which one is screen-rejected, so it gives the same 30.
 * A trial is one (admissible spec, seed, constructor). *Built*: the constructor emitted a
   centreline, it was rasterised (Eq. 3) and the ROS map was written to disk. *Valid*: that
@@ -23,10 +23,10 @@ Constructors:
   self-clearance, curvature feature counts on the analytic curve), with no raster
   validation in the loop. Its valid/built says how well the constructor predicts the
   raster validator.
-* ``de`` / ``random`` — the scipy baselines of :mod:`roboracer_arena.generate.baselines`.
+* ``de`` / ``random`` — the scipy baselines of :mod:`benchmarks.baselines`.
 
 ``--sweep`` runs a different benchmark: Algorithm 1's acceptance on the stratified sweep of
-admissible specs (:mod:`roboracer_arena.bench.constructor_sweep`).
+admissible specs (:mod:`benchmarks.constructor_sweep`).
 """
 
 from __future__ import annotations
@@ -44,14 +44,16 @@ from typing import Any
 
 from tqdm import tqdm
 
-from .. import _core
-from ..constructor_config import ConstructorConfig
-from ..errors import SpecError
-from ..generate import Acceptance, generate_track, rasterise, screen, validate_map
-from ..generate.baselines import construct_baseline
-from ..maps import load_map
-from ..spec import TrackSpec
-from .output import BenchModel, add_bench_parser, write_json
+from roboracer_arena import _core
+from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
+from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.errors import SpecError
+from roboracer_arena.generate import Acceptance, generate_track, rasterise, screen, validate_map
+from roboracer_arena.maps import load_map
+from roboracer_arena.spec import TrackSpec
+
+from . import bench_data
+from .baselines import construct_baseline
 
 CONSTRUCTOR_CHOICES = ("lattice", "lattice-raw", "de", "random")
 # The paper's Table "Constructor comparison": (valid, built, trials, seconds per trial).
@@ -109,9 +111,7 @@ class ConstructorsResult(BenchModel):
 
 
 def default_specs_path() -> Path:
-    """The spec set shipped in the package (``roboracer_arena/bench/data/specs.jsonl``)."""
-    from ..paths import bench_data
-
+    """The spec set in this checkout (``benchmarks/data/specs.jsonl``)."""
     return bench_data("specs.jsonl")
 
 
@@ -268,7 +268,7 @@ def register(kinds) -> None:
         type=Path,
         default=None,
         metavar="FILE.jsonl",
-        help="one TrackSpec JSON per line (default: the set shipped in the package)",
+        help="one TrackSpec JSON per line (default: benchmarks/data/specs.jsonl)",
     )
     p.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], metavar="S", help="seeds (default 0 1 2)")
     p.add_argument(
@@ -282,7 +282,7 @@ def register(kinds) -> None:
     p.add_argument(
         "--sweep",
         action="store_true",
-        help="instead: Algorithm 1's acceptance on the stratified sweep of admissible specs (bench/data/sweep_specs.jsonl)",
+        help="instead: Algorithm 1's acceptance on the stratified sweep of admissible specs (benchmarks/data/sweep_specs.jsonl)",
     )
     p.add_argument("--maps", type=Path, metavar="DIR", help="with --sweep: write every accepted map under DIR")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="with --sweep: worker processes (default 1)")

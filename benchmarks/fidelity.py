@@ -1,6 +1,6 @@
-"""``roboracer-arena bench fidelity``: what the vehicle model does in standard
+"""``python -m benchmarks fidelity``: what the vehicle model does in standard
 manoeuvres, against physics a reader can check and beside F1TENTH Gym's single-track
-model (re-implemented in :mod:`roboracer_arena.bench.f1tenth_st`, reference only).
+model (re-implemented in :mod:`benchmarks.f1tenth_st`, reference only).
 
 All runs use one car in an empty 300 m hall (no walls reached), the default
 ``VehicleConfig`` unless a row says otherwise:
@@ -13,7 +13,7 @@ All runs use one car in an empty 300 m hall (no walls reached), the default
   acceleration against linear single-track theory ``r = v delta / (L + K v^2)`` with
   ``K = (1/C_Sf - 1/C_Sr) / g`` (cornering stiffness per unit load), and against the
   friction limit ``a <= mu g``, and against the quasi-static steady state of the same
-  vehicle model solved from its equations (:mod:`roboracer_arena.bench.fidelity_limit`),
+  vehicle model solved from its equations (:mod:`benchmarks.fidelity_limit`),
   whose best steering angle gives the honest friction limit of this car (below mu g: the
   drive force that holds speed against the saturated tyres' drag shares their friction);
 * whether the recorded envelope (6.66 m/s; 5.46 rad/s yaw rate) is reachable without
@@ -29,11 +29,12 @@ import math
 import numpy as np
 from pydantic import ConfigDict, Field
 
-from .. import _core
-from ..sim_config import PhysicsConfig, SimConfig, VehicleConfig
+from roboracer_arena import _core
+from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
+from roboracer_arena.sim_config import PhysicsConfig, SimConfig, VehicleConfig
+
 from . import fidelity_limit
 from .f1tenth_st import GYM_PARAMS, SingleTrack
-from .output import BenchModel, add_bench_parser, write_json
 
 HALL = 150.0
 RECORDED_SPEED = 6.66  # paper: observed maximum (m/s)

@@ -1,4 +1,4 @@
-"""``roboracer-arena bench build``: single-threaded map → USD build time and USD size across
+"""``python -m benchmarks build``: single-threaded map → USD build time and USD size across
 raster sizes (~0.05 MP to ≥ 10 MP), beside the paper's Table "ROS occupancy grid to
 physics-ready USD".
 
@@ -26,9 +26,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..builder import MeshCount
-from ..fileio import atomic_write_text
-from .output import BenchModel, add_bench_parser, json_text
+from roboracer_arena.bench.output import BenchModel, add_bench_parser, json_text
+from roboracer_arena.builder import MeshCount
+from roboracer_arena.fileio import atomic_write_text
+
+from . import CHECKOUT
 
 # The paper's Table tab:map2usd: (map, raster MP, single-core seconds, USD MB).
 PAPER = [
@@ -117,7 +119,7 @@ class BuildResult(BenchModel):
 
 def sources_dir() -> Path:
     """The track-sources folder (:func:`roboracer_arena.paths.sources_dir`)."""
-    from ..paths import sources_dir as resolve
+    from roboracer_arena.paths import sources_dir as resolve
 
     return resolve(None, "bench build (it measures maps from the track sources)")
 
@@ -133,8 +135,8 @@ def paper_at(mp: float) -> tuple[float, float]:
 
 def generated_map(outdir: Path) -> Path:
     """The paper's teaser request (3 hairpins, 1 chicane, 20 x 15 m hall) as a ROS map."""
-    from ..generate import Acceptance, generate_track, write_outputs
-    from ..spec import TrackSpec
+    from roboracer_arena.generate import Acceptance, generate_track, write_outputs
+    from roboracer_arena.spec import TrackSpec
 
     outcome = generate_track(TrackSpec(name="bench-3h1c", hairpins=3, chicanes=1), seed=0)
     if not isinstance(outcome, Acceptance):
@@ -147,7 +149,7 @@ def resampled_map(yaml_path: Path, target_mp: float, outdir: Path) -> Path:
     extent, resolution scaled accordingly) as trinary PNG + YAML in ``outdir``."""
     from PIL import Image
 
-    from ..maps import load_map
+    from roboracer_arena.maps import load_map
 
     m = load_map(yaml_path)
     h, w = m.data.shape
@@ -170,8 +172,10 @@ def resampled_map(yaml_path: Path, target_mp: float, outdir: Path) -> Path:
 
 def run_size(label: str, yaml_path: Path, repeat: int, workdir: Path, textures: bool) -> BuildRow | BuildError:
     """Build one map in a single-threaded subprocess; returns its measurements beside the paper's."""
-    env = dict(os.environ, RAYON_NUM_THREADS="1", PXR_WORK_THREAD_LIMIT="1")
-    cmd = [sys.executable, "-m", "roboracer_arena.bench.build", "--child", str(yaml_path), str(workdir), str(repeat)]
+    # The child imports ``benchmarks`` from this checkout, wherever the caller's cwd is.
+    path = os.pathsep.join(p for p in (str(CHECKOUT), os.environ.get("PYTHONPATH")) if p)
+    env = dict(os.environ, RAYON_NUM_THREADS="1", PXR_WORK_THREAD_LIMIT="1", PYTHONPATH=path)
+    cmd = [sys.executable, "-m", "benchmarks.build", "--child", str(yaml_path), str(workdir), str(repeat)]
     if not textures:
         cmd.append("--no-textures")
     proc = subprocess.run(cmd, env=env, capture_output=True, text=True)
@@ -197,10 +201,10 @@ def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
     """Runs in the subprocess: import everything, then time ``repeat`` builds."""
     import resource
 
-    from ..build_config import BuildConfig
-    from ..builder import build_environment
-    from ..usd import textures as tex
-    from ..usd.stage import warm_up
+    from roboracer_arena.build_config import BuildConfig
+    from roboracer_arena.builder import build_environment
+    from roboracer_arena.usd import textures as tex
+    from roboracer_arena.usd.stage import warm_up
 
     warm_up()  # usd-core loads its plugins here, outside the timed builds (as "imports are excluded" says)
     cfg = BuildConfig.from_dict({"materials": {"textures": textures}})

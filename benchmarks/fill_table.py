@@ -1,8 +1,8 @@
 """Print the acceptance-by-fill table of BENCHMARKS.md from a sweep's JSON, so the table's
-numbers come from the sweep itself. Not shipped with the wheel.
+numbers come from the sweep itself. (Not in the wheel.)
 
-Usage: ``roboracer-arena bench constructors --sweep --json SWEEP.json`` then
-``python benches/fill_table.py SWEEP.json``.
+Usage: ``python -m benchmarks constructors --sweep --json SWEEP.json`` then
+``python -m benchmarks.fill_table SWEEP.json``.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""``roboracer-arena bench ray``: the Ray executors against the local ones on this machine,
+"""``python -m benchmarks ray``: the Ray executors against the local ones on this machine,
 with a local Ray cluster (``ray.init(num_cpus=2)``), and a projection to more nodes.
 
 * **Track generation**: the first ``--requests`` requests of the example sweep
@@ -30,8 +30,8 @@ from typing import Any
 
 import numpy as np
 
-from ..pool import pool_map
-from .output import BenchModel, Skipped, add_bench_parser, write_json
+from roboracer_arena.bench.output import BenchModel, Skipped, add_bench_parser, write_json
+from roboracer_arena.pool import pool_map
 
 PROJECT_WORKERS = (8, 32, 128)
 
@@ -169,8 +169,8 @@ def _strip(results: list) -> list:
 # ---------------------------------------------------------------------------- generation
 def _timed_runs(ex: Any, tasks: list, repeats: int) -> tuple[list[float], list]:
     """Wall times of ``repeats`` runs of the tasks on ``ex`` and the first run's results."""
-    from ..distributed import map_ordered
-    from ..library.generated import generate_files
+    from roboracer_arena.distributed import map_ordered
+    from roboracer_arena.library.generated import generate_files
 
     walls: list[float] = []
     first: list = []
@@ -183,14 +183,14 @@ def _timed_runs(ex: Any, tasks: list, repeats: int) -> tuple[list[float], list]:
 
 
 def _gen_local(jobs: int, tasks: list, repeats: int) -> tuple[list[float], list]:
-    from ..distributed import LocalExecutor
+    from roboracer_arena.distributed import LocalExecutor
 
     with LocalExecutor(jobs) as ex:
         return _timed_runs(ex, tasks, repeats)
 
 
 def _gen_ray(workers: int, tasks: list, repeats: int) -> tuple[list[float], list]:
-    from ..distributed import RayExecutor, map_ordered
+    from roboracer_arena.distributed import RayExecutor, map_ordered
 
     ex = RayExecutor("auto", workers=workers)
     map_ordered(ex, _noop, list(range(2 * workers)))  # start the workers (not timed; reported apart)
@@ -202,7 +202,7 @@ def _noop(x: Any) -> Any:
 
 
 def _noop_rate(n: int = 400) -> float:
-    from ..distributed import RayExecutor, map_ordered
+    from roboracer_arena.distributed import RayExecutor, map_ordered
 
     ex = RayExecutor("auto")
     map_ordered(ex, _noop, list(range(8)))
@@ -212,7 +212,7 @@ def _noop_rate(n: int = 400) -> float:
 
 
 def bench_generation(requests: int, repeats: int) -> Generation:
-    from ..library.sweep import EXAMPLE_SWEEP, SweepFile
+    from roboracer_arena.library.sweep import EXAMPLE_SWEEP, SweepFile
 
     tasks = SweepFile.model_validate(EXAMPLE_SWEEP).requests(0, requests)
     runs = {
@@ -270,8 +270,7 @@ def _local_steps(track: Any, n: int, actions: np.ndarray, steps: int, beams: int
     import gymnasium as gym
 
     import roboracer_arena  # noqa: F401  (registers the env id)
-
-    from .env import _env_kwargs
+    from roboracer_arena.bench.env import _env_kwargs
 
     env = gym.make_vec(
         "RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track, **_env_kwargs(beams)
@@ -283,8 +282,8 @@ def _local_steps(track: Any, n: int, actions: np.ndarray, steps: int, beams: int
 
 
 def _ray_steps(track: Any, actors: int, per: int, actions: np.ndarray, steps: int, beams: int) -> list[float]:
-    from ..distributed import RayVectorEnv
-    from .env import _env_kwargs
+    from roboracer_arena.bench.env import _env_kwargs
+    from roboracer_arena.distributed import RayVectorEnv
 
     env = RayVectorEnv(actors, per, track=track, **_env_kwargs(beams))
     try:
@@ -297,8 +296,8 @@ def _same_rollouts(track: Any, per: int, actions: np.ndarray, beams: int, steps:
     import gymnasium as gym
     from gymnasium.utils.env_checker import data_equivalence
 
-    from ..distributed import RayVectorEnv
-    from .env import _env_kwargs
+    from roboracer_arena.bench.env import _env_kwargs
+    from roboracer_arena.distributed import RayVectorEnv
 
     kw = {**_env_kwargs(beams), "reset_poses": "random"}
     renv = RayVectorEnv(2, per, track=track, **kw)
@@ -317,7 +316,7 @@ def _same_rollouts(track: Any, per: int, actions: np.ndarray, beams: int, steps:
 
 
 def bench_rollouts(track: Any, per: int, steps: int, beams: int) -> Rollouts:
-    from .env import record_lap
+    from roboracer_arena.bench.env import record_lap
 
     actions = record_lap(track, beams)
     timed = {
@@ -398,9 +397,9 @@ def run(
     only: str | None = None,
 ) -> RayResult:
     """Measure, print the tables (and the projection when both halves ran); returns the results."""
-    from ..distributed.ray_cluster import import_ray
-    from ..envs.tracks import resolve_tracks
-    from .env import _default_map
+    from roboracer_arena.bench.env import _default_map
+    from roboracer_arena.distributed.ray_cluster import import_ray
+    from roboracer_arena.envs.tracks import resolve_tracks
 
     ray = import_ray()
     load0 = os.getloadavg()[0]

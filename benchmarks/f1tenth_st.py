@@ -1,5 +1,5 @@
 """REFERENCE ONLY: F1TENTH Gym's single-track vehicle model, re-implemented from its
-published equations and parameters for ``roboracer-arena bench fidelity`` to compare
+published equations and parameters for ``python -m benchmarks fidelity`` to compare
 against. Not used by the simulator.
 
 The model is the CommonRoad single-track (ST) model with load transfer through ``h``

@@ -1,4 +1,4 @@
-"""``roboracer-arena bench generalisation``: does training on many tracks transfer to
+"""``python -m benchmarks generalisation``: does training on many tracks transfer to
 tracks never seen? The same ES policy (:mod:`roboracer_arena.learn.es`) and the same
 budget of env-steps are spent
 
@@ -22,7 +22,7 @@ import argparse
 import time
 from dataclasses import replace
 
-from .output import BenchModel, add_bench_parser, write_json
+from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
 
 SINGLE = "gym-berlin"
 POOL = {"generated": 1.0, "circuits": 1.0}
@@ -103,8 +103,8 @@ def run(
     pool: dict[str, float] | None = None,
 ) -> GeneralisationResult:
     """Train both conditions for every seed and evaluate on ``held_out``; see module docstring."""
-    from ..errors import ConfigError
-    from ..learn.es import ESConfig, evaluate_laps, make_training_env, train
+    from roboracer_arena.errors import ConfigError
+    from roboracer_arena.learn.es import ESConfig, evaluate_laps, make_training_env, train
 
     if seeds < 1 or generations < 1 or pairs < 1:
         raise ConfigError("bench generalisation: --seeds, --generations and --pairs must be >= 1")

@@ -16,8 +16,8 @@ longest lap it reaches, in two variants:
   snake's first and last bands that wide; every spiral counted here is featureless and
   clears itself by p under ``_core.analyse_curve``, the validator's own detector.
 
-Usage: ``roboracer-arena bench constructors --sweep --json SWEEP.json`` then
-``python benches/spiral_capacity.py SWEEP.json``. Not shipped with the wheel.
+Usage: ``python -m benchmarks constructors --sweep --json SWEEP.json`` then
+``python -m benchmarks.spiral_capacity SWEEP.json``. (Not in the wheel.)
 """
 
 from __future__ import annotations
@@ -30,8 +30,8 @@ from pathlib import Path
 
 import numpy as np
 
+from benchmarks.constructor_sweep import sweep_specs
 from roboracer_arena import _core
-from roboracer_arena.bench.constructor_sweep import sweep_specs
 from roboracer_arena.constructor_config import ConstructorConfig
 from roboracer_arena.generate import derived_geometry
 from roboracer_arena.spec import TrackSpec

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""A/B of ``roboracer-arena bench build`` between two builds of the package, interleaved
+"""A/B of ``python -m benchmarks build`` between two builds of the package, interleaved
 (A, B, A, B, ...) so that load drifts hit both alike; prints a Markdown table of CPU
 seconds per build (the least load-sensitive figure) and USD sizes.
 
     # each DIR holds a roboracer_arena package with its compiled _core (e.g. a worktree's
     # python/ with the _core.abi3.so of its release wheel copied in)
-    python scripts/bench_build_ab.py --a /work/wt/before/python --b /work/wt/after/python \\
+    python -m benchmarks.build_ab --a /work/wt/before/python --b /work/wt/after/python \\
         --out runs/ --rounds 3 --sizes columbia gbr vegas "Spa x1.64"
-    python scripts/bench_build_ab.py --out runs/ --summarise   # the table from saved runs
+    python -m benchmarks.build_ab --out runs/ --summarise   # the table from saved runs
 """
 
 from __future__ import annotations
@@ -20,13 +20,14 @@ import subprocess
 import sys
 from pathlib import Path
 
+from benchmarks import CHECKOUT
+
 
 def run(side: str, pythonpath: str, out: Path, i: int, sizes: list[str], repeat: int) -> None:
-    env = {**os.environ, "PYTHONPATH": pythonpath}
-    cmd = [sys.executable, "-c", "import sys; from roboracer_arena.cli import main; sys.exit(main())"]
+    # The side's package first, then this checkout (for the benchmarks package itself).
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([pythonpath, str(CHECKOUT)])}
+    cmd = [sys.executable, "-m", "benchmarks", "build"]
     cmd += [
-        "bench",
-        "build",
         "--sizes",
         *sizes,
         "--repeat",

@@ -1,10 +1,10 @@
-"""``roboracer-arena bench constructors --sweep``: acceptance of Algorithm 1 on a
+"""``python -m benchmarks constructors --sweep``: acceptance of Algorithm 1 on a
 stratified sweep of admissible specs (issue 15: "the generator finds small tracks").
 
 The sweep is a full grid over five strata, filtered by the admissibility screen
 (Eqs. 1–2) and thinned evenly to about 360 specs; the grid and the thinning are fixed,
 so :func:`sweep_specs` always returns the same list, and the shipped
-``bench/data/sweep_specs.jsonl`` is that list (a test checks they agree):
+``benchmarks/data/sweep_specs.jsonl`` is that list (a test checks they agree):
 
 * lap length 20, 30, 45, 60, 80, 110 m;
 * corridor width 0.8, 1.0, 1.2, 1.5, 2.0 m;
@@ -40,8 +40,9 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from ..constructor_config import ConstructorConfig
-from ..generate import (
+from roboracer_arena.bench.output import BenchModel
+from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.generate import (
     Acceptance,
     GenerationFailure,
     derived_geometry,
@@ -50,9 +51,11 @@ from ..generate import (
     screen,
     write_outputs,
 )
-from ..pool import pool_map, tqdm_progress
-from ..spec import TrackSpec
-from .output import BenchModel
+from roboracer_arena.library.sweep import GridSweep
+from roboracer_arena.pool import pool_map, tqdm_progress
+from roboracer_arena.spec import TrackSpec
+
+from . import bench_data
 
 LAPS = (20.0, 30.0, 45.0, 60.0, 80.0, 110.0)
 WIDTHS = (0.8, 1.0, 1.2, 1.5, 2.0)
@@ -124,25 +127,28 @@ class SweepResult(BenchModel):
     rows: list[SweepRow]
 
 
+#: The acceptance sweep: the admissible grid specs, thinned evenly to about TARGET_COUNT.
+SWEEP = GridSweep(
+    axes=(
+        [{"lap_length_m": lap} for lap in LAPS],
+        [{"corridor_width_m": w} for w in WIDTHS],
+        [{"hall_x_m": hx, "hall_y_m": hy} for hx, hy in HALLS],
+        [{"hairpins": h, "chicanes": c, "sweepers": s} for h, c, s in FEATURES],
+    ),
+    name=lambda f: (
+        f"sweep-L{f['lap_length_m']:g}-w{f['corridor_width_m']:g}-{f['hall_x_m']:g}x{f['hall_y_m']:g}"
+        f"-h{f['hairpins']}c{f['chicanes']}s{f['sweepers']}"
+    ),
+    directions=("counterclockwise", "clockwise"),
+    admit=lambda spec: screen(spec).passed,
+    count=TARGET_COUNT,
+    seed_cycle=3,  # the seed run_sweep gives spec i: i mod 3
+)
+
+
 def sweep_specs() -> list[TrackSpec]:
-    """The admissible grid specs, thinned evenly to about ``TARGET_COUNT``."""
-    grid = []
-    for i, (lap, w, (hx, hy), (h, c, s)) in enumerate(itertools.product(LAPS, WIDTHS, HALLS, FEATURES)):
-        spec = TrackSpec(
-            name=f"sweep-L{lap:g}-w{w:g}-{hx:g}x{hy:g}-h{h}c{c}s{s}",
-            lap_length_m=lap,
-            corridor_width_m=w,
-            hall_x_m=hx,
-            hall_y_m=hy,
-            hairpins=h,
-            chicanes=c,
-            sweepers=s,
-            direction="clockwise" if i % 2 else "counterclockwise",
-        )
-        if screen(spec).passed:
-            grid.append(spec)
-    step = max(1.0, len(grid) / TARGET_COUNT)
-    return [grid[int(k * step)] for k in range(min(TARGET_COUNT, len(grid)))]
+    """The admissible grid specs, thinned evenly to about ``TARGET_COUNT`` (:data:`SWEEP`)."""
+    return [r.spec for r in SWEEP.requests()]
 
 
 def obvious_construction(spec: TrackSpec, config: ConstructorConfig | None = None) -> bool:
@@ -289,8 +295,6 @@ def print_sweep(result: SweepResult) -> None:
 
 
 def load_sweep_file() -> list[TrackSpec]:
-    """The shipped sweep (``bench/data/sweep_specs.jsonl``)."""
-    from ..paths import bench_data
-
+    """The shipped sweep (``benchmarks/data/sweep_specs.jsonl``)."""
     lines = bench_data(SWEEP_FILE).read_text(encoding="utf-8").splitlines()
     return [TrackSpec.model_validate_json(x) for x in lines if x.strip()]
