@@ -30,7 +30,6 @@ Usage: ``python -m benchmarks.spacing_floor``.
 
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
@@ -112,7 +111,7 @@ def taper_reads(rc: float) -> list[str]:
             )
             head = np.cumsum(k) * ds
             xy = np.cumsum(np.c_[np.cos(head), np.sin(head)], axis=0) * ds
-            a = json.loads(_core.analyse_curve(xy, rc, 0.0))
+            a = _core.analyse_curve(xy, rc, 0.0)
             kinds = [f["kind"] for f in a["features"]] or ["none"]
             out.append(
                 f"ramps {ramp:.1f} m, straight {gap_rc:.1f} r_c: turns "

@@ -153,7 +153,7 @@ def capacity(spec: TrackSpec, fold_rc: float, check: bool) -> float:
         if length <= best:
             continue
         if check:
-            a = json.loads(_core.analyse_curve(line, d.corner_radius, math.pi * d.pitch / 2))
+            a = _core.analyse_curve(line, d.corner_radius, math.pi * d.pitch / 2)
             clear = a.get("self_clearance_m")
             if a["features"] or (clear is not None and clear < d.pitch - 1e-6):
                 continue
