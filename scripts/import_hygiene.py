@@ -150,9 +150,9 @@ def _local_imports(tree: ast.Module) -> Iterator[ast.Import | ast.ImportFrom]:
 
 
 def _own_names(tree: ast.Module) -> set[str]:
-    """Every name the module defines or binds itself (functions, classes, attributes set
-    on any object, arguments, keywords of calls it makes), so ``obj._x`` with ``_x`` among
-    them is the module's own business."""
+    """Every name the module defines or binds itself (functions, classes, variables,
+    attributes set on any object, arguments, import aliases), so ``obj._x`` with ``_x``
+    among them is the module's own business (``other._state`` in ``__eq__``)."""
     names: set[str] = set()
     for node in ast.walk(tree):
         if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
