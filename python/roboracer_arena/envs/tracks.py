@@ -8,7 +8,7 @@
 * a ``CorridorGeometry`` (anything with ``walls`` and ``centreline``): used as is;
 * a :class:`Track` (e.g. :meth:`Track.from_polylines` for synthetic tracks);
 * a catalog id or selection (a string that is not an existing file), resolved by the
-  track library (``roboracer_arena.library``) through :func:`resolve_catalog`.
+  track catalog (``roboracer_arena.catalog``) through :func:`resolve_catalog`.
 
 Every track is driven in its racing direction (see :mod:`roboracer_arena.direction`): a
 map path takes it from the centreline file beside the map, a catalog id from the catalog,
@@ -118,7 +118,7 @@ def _with_own_direction(t: Track, item: Any) -> Track:
 def resolve_catalog(selection: str) -> list[Any]:
     """Resolve a catalog id or selection (e.g. ``"circuits"``) to track sources.
 
-    The track library (``roboracer_arena.library.resolve_tracks``) returns items this module
+    The track catalog (``roboracer_arena.catalog.resolve_tracks``) returns items this module
     accepts (map YAML paths, Tracks).
     """
     sources = list(catalog.resolve_tracks(selection))
