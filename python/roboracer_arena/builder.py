@@ -20,8 +20,10 @@ from pydantic import BaseModel, Field
 
 from . import __version__
 from .build_config import BuildConfig
+from .corridor import extract_corridor
 from .errors import ConfigError, InvalidArgumentError
 from .fileio import check_output
+from .maps import load_map
 
 MapLike = Any  # OccupancyMap | str | Path
 ConfigLike = BuildConfig | Mapping[str, Any] | str | Path | None
@@ -156,8 +158,6 @@ def build_environment(
     Raises a :class:`~roboracer_arena.errors.ArenaError` subclass on bad input (unreadable
     map, no closed corridor, leaking walls, bad config); nothing is written then.
     """
-    from .corridor import extract_corridor
-    from .maps import load_map
     from .usd import write_stage
     from .usd.stage import resolve_format
 

@@ -16,6 +16,14 @@ import sys
 import time
 from pathlib import Path
 
+from . import __version__
+from .builder import build_environment
+from .drivers import drive_laps
+from .errors import ArenaError
+from .generate import Acceptance, generate_track, write_outputs
+from .parse import parse_request
+from .render.preview import preview_map
+
 DEFAULT_REQUEST = "A 60 m lap with two hairpins and a chicane in a 20 by 15 m hall, counter-clockwise."
 
 
@@ -25,9 +33,6 @@ def _step(title: str) -> float:
 
 
 def _generate(request: str, seed: int, out: Path) -> Path | None:
-    from .generate import Acceptance, generate_track, write_outputs
-    from .parse import parse_request
-
     t = _step(f"parse: {request!r}")
     parsed = parse_request(request)
     for field in parsed.stated:
@@ -58,11 +63,6 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--no-drive", action="store_true", help="skip the simulated lap")
     args = p.parse_args(argv)
 
-    from . import __version__
-    from .builder import build_environment
-    from .errors import ArenaError
-    from .render.preview import preview_map
-
     print(f"RoboRacer Arena {__version__} demo → {args.out}/")
     try:
         map_yaml = args.map or _generate(args.request, args.seed, args.out)
@@ -79,8 +79,6 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  wrote {png}")
 
         if not args.no_drive:
-            from .drivers import drive_laps
-
             _step("drive one lap with the reference pure-pursuit driver (rapier physics, 1081-beam lidar)")
             gif = args.out / "lap.gif"
             res = drive_laps(str(map_yaml), 1, video=gif, progress=True)

@@ -22,6 +22,8 @@ from typing import Any
 import numpy as np
 
 from . import _core
+from .envs.single import RoboRacerEnv
+from .errors import ConfigError, InvalidArgumentError
 
 __all__ = ["DriveResult", "EnvPurePursuit", "PurePursuitDriver", "PurePursuitParams", "drive_laps"]
 
@@ -167,16 +169,12 @@ class EnvPurePursuit:
         f = self.env.odometry_index
         missing = [k for k in ("x", "y", "yaw") if k not in f]
         if missing:
-            from .errors import ConfigError
-
             raise ConfigError(
                 f"pure pursuit needs the odometry fields x, y, yaw in the observation (missing {missing})"
             )
         self._cols = (f["x"], f["y"], f["yaw"], f.get("speed", f.get("vx")))
         batch = getattr(self.env, "_batch", None)
         if self._cols[3] is None and (batch is None or "vx" not in getattr(batch, "field_index", {})):
-            from .errors import ConfigError
-
             # Never guess: a speed of 0 plans for a standing car and steers into the wall.
             raise ConfigError(
                 "pure pursuit needs the car's speed: add 'vx' (or 'speed') to the observation's odometry "
@@ -204,8 +202,8 @@ class EnvPurePursuit:
             odo = odo[None]
         cx, cy, cyaw, cv = self._cols
         if cv is None:  # no speed in the observation: the env's own state has it (checked at creation)
-            b = env._batch
-            speeds = np.asarray(b.state[..., b.field_index["vx"]], dtype=np.float64).reshape(odo.shape[:2])
+            state, field = env.simulator_state
+            speeds = np.asarray(state[..., field["vx"]], dtype=np.float64).reshape(odo.shape[:2])
         else:
             speeds = odo[..., cv]
         cmds = np.zeros((*odo.shape[:2], 2))
@@ -275,11 +273,7 @@ def drive_laps(
     follow instead of the centreline (laps still count along the track's centreline). On
     SIGINT (and SIGTERM in the CLI) the env is closed, so a recording is finished; on any
     other error a wrapper's ``abort()`` discards its output."""
-    from .envs.single import RoboRacerEnv
-
     if laps < 1:
-        from .errors import InvalidArgumentError
-
         raise InvalidArgumentError(f"laps must be >= 1, got {laps}")
     if video:
         from .render.formats import video_format

@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import InvalidArgumentError, MapFormatError, MapIOError
+from .maps import image_named_by
 
 _UMASK = os.umask(0)  # read the process umask once (os.umask can only read by setting)
 os.umask(_UMASK)
@@ -65,7 +66,6 @@ def referenced_inputs(path: str | Path) -> list[Path]:
     path = Path(path)
     if path.suffix.lower() not in (".yaml", ".yml") or not path.is_file():
         return []
-    from .maps import image_named_by  # here: maps imports this module
 
     try:
         image = image_named_by(read_text(path, "map YAML", 1 << 20))

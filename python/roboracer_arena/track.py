@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from . import _core
-from .corridor import DEFAULT_PARAMS
+from .corridor import DEFAULT_PARAMS, extract_corridor
 from .direction import TrackDirection, direction_for_map, direction_of, orient_to
 from .direction import reverse as reverse_line
 from .errors import ConfigError, MapIOError
@@ -223,10 +223,8 @@ def track_from_map_path(
     key = (str(p), st.st_mtime_ns, st.st_size, _params_key(corridor_params), open, unknown, close_gaps_m)
     cached = _TRACK_CACHE.get(key)
     if cached is None:
-        from .corridor import extract_corridor
-
         geo = extract_corridor(p, corridor_params, open=open, unknown=unknown, close_gaps_m=close_gaps_m)
-        cached = _from_corridor(geo, p.stem, source=p if close_gaps_m is None else geo)
+        cached = track_from_corridor(geo, p.stem, source=p if close_gaps_m is None else geo)
         if len(_TRACK_CACHE) >= _CACHE_SIZE:
             _TRACK_CACHE.pop(next(iter(_TRACK_CACHE)))
         _TRACK_CACHE[key] = cached
@@ -245,7 +243,11 @@ def _params_key(params: Any) -> str | None:
     return repr(params)
 
 
-def _from_corridor(corridor: Any, name: str, source: Any = None) -> Track:
+def track_from_corridor(corridor: Any, name: str, source: Any = None) -> Track:
+    """The :class:`Track` of a corridor geometry (``walls``, ``centreline``; an ``"open"``
+    ``kind`` makes an open map from its ``start_pose``), named ``name``, its walls as tall
+    as the geometry's ``params["wall_height_m"]`` (default :data:`DEFAULT_WALL_HEIGHT_M`).
+    ``source`` (default: the geometry) is kept as ``Track.source``."""
     params = getattr(corridor, "params", None) or {}  # corridor-like objects may have none
     height = float(params.get("wall_height_m", DEFAULT_WALL_HEIGHT_M))
     if getattr(corridor, "kind", "track") == "open":

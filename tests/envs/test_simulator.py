@@ -172,13 +172,13 @@ def test_physics_walls_are_the_builders_wall_mesh(berlin_geometry, sources):
     """The collision mesh in every world is exactly the mesh the USD stage gets: the
     track carries the build's wall height (one knob), at its default and when changed."""
     from roboracer_arena.corridor import extract_corridor
-    from roboracer_arena.track import _from_corridor
+    from roboracer_arena.track import track_from_corridor
 
     for geo in (
         berlin_geometry,
         extract_corridor(sources / "f1tenth-gym" / "maps" / "berlin.yaml", {"wall_height_m": 0.8}),
     ):
-        track = _from_corridor(geo, "berlin")
+        track = track_from_corridor(geo, "berlin")
         assert track.wall_height == geo.params["wall_height_m"]
         sim = _core.Simulator([track.native()], 2, 1, SimConfig(), 0)
         vertices, triangles = sim.wall_mesh(0)

@@ -10,7 +10,7 @@ import json
 
 from hypothesis import strategies as st
 
-from roboracer_arena.library.catalog import default_tracks_dir
+from roboracer_arena.catalog.catalog_file import default_tracks_dir
 
 from .harness import check_all
 from .test_hostile import JSON_HOSTILE, draw_cases, numbered

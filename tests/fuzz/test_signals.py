@@ -124,7 +124,7 @@ def library(tmp_path_factory) -> Path:
 def test_a_signal_during_tracks_generate_leaves_the_library_whole(library, tmp_path, run):
     import shutil
 
-    from roboracer_arena.library.catalog import load_catalog, sha256_file
+    from roboracer_arena.catalog.catalog_file import load_catalog, sha256_file
 
     lib = tmp_path / "lib"
     shutil.copytree(library, lib)
@@ -166,7 +166,7 @@ def catalog_library(tmp_path_factory) -> Path:
 
 def _catalog_whole(tracks: Path, kept: int) -> bool:
     """``catalog.json`` and ``generated/`` describe each other, with ``kept`` generated tracks."""
-    from roboracer_arena.library.catalog import load_catalog, sha256_file
+    from roboracer_arena.catalog.catalog_file import load_catalog, sha256_file
 
     cat = load_catalog(tracks / "catalog.json")
     ids = {e.id for e in cat.entries if e.kind == "generated"}

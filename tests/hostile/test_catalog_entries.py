@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
+from roboracer_arena.catalog.catalog_file import default_tracks_dir, load_catalog
 from roboracer_arena.cli import main
-from roboracer_arena.library.catalog import default_tracks_dir, load_catalog
 
 
 @pytest.fixture

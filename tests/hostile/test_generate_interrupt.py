@@ -64,7 +64,7 @@ def test_an_interrupted_rerun_leaves_the_old_library_whole(tmp_path, sig):
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130 and "Traceback" not in err, err
     assert tree(out) == before and strays(tmp_path) == []
-    from roboracer_arena.library.catalog import load_catalog, sha256_file
+    from roboracer_arena.catalog.catalog_file import load_catalog, sha256_file
 
     cat = load_catalog(out / "catalog.json")  # and it still verifies: catalog == folders
     assert all(sha256_file(out / Path(e.map).parent / "map.png") == e.sha256 for e in cat.entries)

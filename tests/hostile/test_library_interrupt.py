@@ -58,7 +58,7 @@ def writing(root: Path, t0: float) -> bool:
 def whole(root: Path) -> bool:
     """The catalog and the generated folder describe each other: every entry's map is
     there with its checksum, and every track folder is an entry."""
-    from roboracer_arena.library.catalog import load_catalog, sha256_file
+    from roboracer_arena.catalog.catalog_file import load_catalog, sha256_file
 
     tracks = root / "tracks"
     cat = load_catalog(tracks / "catalog.json")

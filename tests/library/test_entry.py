@@ -10,9 +10,9 @@ import re
 import pytest
 from pydantic import ValidationError
 
+from roboracer_arena.catalog.entry import LeftOut, TrackEntry
 from roboracer_arena.errors import MapIOError
 from roboracer_arena.library import load_catalog
-from roboracer_arena.library.entry import LeftOut, TrackEntry
 
 
 def test_shipped_catalog_loads_typed_and_round_trips_byte_for_byte():

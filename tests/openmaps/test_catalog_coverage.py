@@ -6,7 +6,7 @@ from __future__ import annotations
 import csv
 import json
 
-from roboracer_arena.library.catalog import load_catalog
+from roboracer_arena.catalog.catalog_file import load_catalog
 from roboracer_arena.library.open_maps import map_kinds
 
 

@@ -6,6 +6,9 @@ import json
 import sys
 from typing import Any
 
+from ..errors import InvalidArgumentError
+from ..fileio import check_output
+
 
 def add_json_flag(parser) -> None:
     parser.add_argument("--json", action="store_true", help="print a machine-readable JSON summary on stdout")
@@ -48,8 +51,6 @@ def check_numeric_flags(args: Any) -> None:
     :class:`InvalidArgumentError` naming the flag and its range (the CLI exits 2)."""
     import math
 
-    from ..errors import InvalidArgumentError
-
     for dest, value in vars(args).items():
         values = value if isinstance(value, (list, tuple)) else [value]
         for v in values:
@@ -78,8 +79,6 @@ def check_outputs(args: Any) -> None:
     that would overwrite an input, or that cannot be written (a directory, a file as its
     parent, an unwritable place), fails at once with exit 2 and nothing written."""
     from pathlib import Path
-
-    from ..fileio import check_output
 
     dirs = set(getattr(args, "output_dirs", ())) | set(OUTPUT_DIR_DESTS)
     outs = {d: v for d, v in vars(args).items() if isinstance(v, Path) and (d in OUTPUT_FILE_DESTS or d in dirs)}

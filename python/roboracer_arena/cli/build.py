@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..builder import build_environment, resolve_config
 from ..errors import InvalidArgumentError
 from ._common import add_json_flag, print_json
 
@@ -66,8 +67,6 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..builder import build_environment, resolve_config
-
     cfg = resolve_config(args.config)
     if args.usda:
         if args.out.suffix.lower() == ".usdc":

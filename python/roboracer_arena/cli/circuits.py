@@ -10,6 +10,11 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..circuits import CircuitConfig, build_all
+from ..circuits.report import CircuitFailure
+from ..errors import InvalidArgumentError
+from ..paths import writable_tracks_dir
+from ..pool import tqdm_progress
 from . import EXIT_BAD_INPUT, EXIT_OK
 from ._common import add_json_flag, print_json
 
@@ -48,17 +53,10 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..circuits import CircuitConfig, build_all
-    from ..circuits.report import CircuitFailure
-    from ..errors import InvalidArgumentError
-    from ..pool import tqdm_progress
-
     if not (args.resolution > 0):
         raise InvalidArgumentError(f"--resolution must be > 0, got {args.resolution}")
     cfg = CircuitConfig(resolution=args.resolution)
     if args.out is None:
-        from ..paths import writable_tracks_dir
-
         args.out = writable_tracks_dir(None, "-o/--out") / "circuits"
 
     progress = tqdm_progress("circuits", "circuit")

@@ -10,6 +10,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..drivers import PurePursuitParams, drive_laps
+from ..errors import InvalidArgumentError
+from ..fileio import check_output
 from . import EXIT_LAP_FAILED, EXIT_OK
 from ._common import add_json_flag, print_json
 
@@ -36,10 +39,6 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..drivers import PurePursuitParams, drive_laps
-    from ..errors import InvalidArgumentError
-    from ..fileio import check_output
-
     if args.laps < 1:
         raise InvalidArgumentError(f"--laps must be >= 1, got {args.laps}")
     for out in (args.gif, getattr(args, "mcap", None)):

@@ -19,7 +19,12 @@ import dataclasses
 import sys
 from pathlib import Path
 
+from ..drivers import drive_laps
 from ..errors import InvalidArgumentError
+from ..generate import Acceptance, Rejection, generate_track, write_outputs
+from ..generate.nearest import DEFAULT_SUGGEST_TIMEOUT_S, DISCLAIMER
+from ..generate.outputs import output_folder
+from ..generate.pipeline import DEFAULT_TIMEOUT_S, check_timeout
 from ..spec import TrackSpec
 from . import EXIT_GENERATION_FAILURE, EXIT_LAP_FAILED, EXIT_OK, EXIT_REJECTED
 from ._common import add_json_flag, print_json
@@ -84,10 +89,6 @@ def _spec_from_args(args: argparse.Namespace):
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..generate import Acceptance, Rejection, generate_track
-    from ..generate.nearest import DEFAULT_SUGGEST_TIMEOUT_S, DISCLAIMER
-    from ..generate.pipeline import DEFAULT_TIMEOUT_S, check_timeout
-
     if args.seed < 0 or args.seed >= 2**64:
         raise InvalidArgumentError(f"--seed must be in [0, 2**64), got {args.seed}")
     timeout = check_timeout(DEFAULT_TIMEOUT_S if args.timeout is None else args.timeout, "--timeout")
@@ -148,9 +149,6 @@ def _check_outdir(out: Path) -> None:
 def _write_folder(acc, args: argparse.Namespace) -> dict[str, str]:
     """Every output (and the stage with --build) into a temporary folder that then
     replaces OUTDIR whole; returns the final paths."""
-    from ..generate import write_outputs
-    from ..generate.outputs import output_folder
-
     final = Path(args.out)
     with output_folder(final) as tmp:
         paths = write_outputs(acc, tmp)
@@ -173,8 +171,6 @@ def _build_stage(map_yaml: Path, tmp: Path, final: Path, args: argparse.Namespac
 
 
 def _drive(map_yaml: Path, args: argparse.Namespace, summary: dict) -> int:
-    from ..drivers import drive_laps
-
     res = drive_laps(str(map_yaml), 1, progress=False)
     summary["drive"] = res.to_dict()
     return EXIT_OK if res.completed else EXIT_LAP_FAILED

@@ -14,6 +14,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..parse import BACKENDS, DEFAULT_MODEL, parse_request
+from ..parse.result import FIELDS
 from ._common import add_json_flag, print_json
 
 _COLOURS = ("\x1b[1;32m", "\x1b[0m")  # bold green
@@ -22,8 +24,6 @@ _UNPARSED_COLOURS = ("\x1b[1;33m", "\x1b[0m")  # bold yellow
 
 def add_backend_args(p: argparse.ArgumentParser) -> None:
     """``--backend``, ``--ollama-host``, ``--model``, ``--timeout``, ``--lenient`` (shared with generate)."""
-    from ..parse import BACKENDS, DEFAULT_MODEL
-
     g = p.add_argument_group("request parser")
     g.add_argument("--backend", choices=BACKENDS, default="rules", help="parser backend (default: rules, no server)")
     g.add_argument("--ollama-host", metavar="URL", help="Ollama server (default: $OLLAMA_HOST or 127.0.0.1:11434)")
@@ -41,8 +41,6 @@ def add_backend_args(p: argparse.ArgumentParser) -> None:
 
 def parse_from_args(args: argparse.Namespace, text: str):
     """Run :func:`parse_request` with the backend options of ``args``."""
-    from ..parse import parse_request
-
     return parse_request(
         text,
         backend=args.backend,
@@ -87,8 +85,6 @@ def _marked(result, colour: bool) -> str:
 
 def print_result(result, file=None) -> None:
     """Human-readable TrackSpec with the source of each value (on ``file``, default stdout)."""
-    from ..parse.result import FIELDS
-
     file = file or sys.stdout
     colour = file.isatty()
     values = result.spec.model_dump()

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..errors import InvalidArgumentError
 from . import EXIT_OK
 from ._common import add_json_flag, print_json
 
@@ -29,7 +30,6 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import InvalidArgumentError
     from ..physx.check import check_stage
 
     if not 1 <= args.points <= 200:

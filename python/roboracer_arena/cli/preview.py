@@ -21,6 +21,9 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..errors import ArenaError, InvalidArgumentError
+from ..fileio import check_output, read_text
+from ..maps import image_named_by
 from ._common import add_json_flag, print_json
 
 if TYPE_CHECKING:  # the renderers import heavy optional packages: load them only when used
@@ -64,8 +67,6 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import InvalidArgumentError
-    from ..fileio import check_output
     from ..render.formats import image_format
 
     image_format(args.out)  # before any work: a wrong extension is bad input
@@ -108,10 +109,6 @@ def run(args: argparse.Namespace) -> int:
 def _map_image(source: Path) -> list[Path]:
     """The image a map YAML names (so the picture cannot overwrite it), if readable;
     a broken YAML is left for the loader to report."""
-    from ..errors import ArenaError
-    from ..fileio import read_text
-    from ..maps import image_named_by
-
     if source.suffix.lower() in USD_SUFFIXES:
         return []
     try:

@@ -17,6 +17,9 @@ import sys
 import time
 from pathlib import Path
 
+from ..errors import InvalidArgumentError
+from ..ros2.clock import BridgeConfig
+from ..ros2.dds import check_domain_id, profile
 from ..sim_config import MIN_RATE_HZ
 from ._common import add_json_flag, print_json
 
@@ -95,14 +98,9 @@ def register(sub) -> None:
 def run(args: argparse.Namespace) -> int:
     import os
 
-    from ..errors import InvalidArgumentError
     from ..ros2.bridge import Bridge
-    from ..ros2.clock import BridgeConfig
-    from ..ros2.dds import check_domain_id
 
     if args.print_profile:
-        from ..ros2.dds import profile
-
         sys.stdout.write(profile(args.print_profile, "any" if args.domain_id is None else args.domain_id))
         return 0
     if args.track is None:

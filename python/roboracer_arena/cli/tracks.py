@@ -17,15 +17,20 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
 
+from ..builder import build_environment
+from ..catalog import Catalog, load_catalog
+from ..catalog.entry import TrackEntry
+from ..catalog.entry_text import entry_lines
+from ..distributed.executor import make_executor
+from ..errors import InvalidArgumentError
+from ..fileio import atomic_write_text
+from ..library.sweep import load_sweep
+from ..library.verify_report import CHECKS
+from ..paths import sources_dir, writable_tracks_dir
 from ..pool import Progress, tqdm_progress
-from . import EXIT_BAD_INPUT, EXIT_OK
+from . import EXIT_BAD_INPUT, EXIT_GENERATION_FAILURE, EXIT_OK
 from ._common import add_json_flag, print_json
-
-if TYPE_CHECKING:
-    from ..library.catalog import Catalog
-    from ..library.entry import TrackEntry
 
 
 def _common(p: argparse.ArgumentParser) -> None:
@@ -174,9 +179,6 @@ def _ray_flag(p: argparse.ArgumentParser) -> None:
 
 
 def _executor(args):
-    from ..distributed.executor import make_executor
-    from ..errors import InvalidArgumentError
-
     if args.jobs is not None and args.jobs < 1:
         raise InvalidArgumentError(f"--jobs must be >= 1, got {args.jobs}")
     return make_executor(args.jobs, args.ray, arg="--ray")
@@ -187,8 +189,6 @@ def _progress(desc: str) -> Progress:
 
 
 def _load(args):
-    from ..library import load_catalog
-
     return load_catalog(args.catalog)
 
 
@@ -255,15 +255,12 @@ def run_show(args) -> int:
     if args.json:
         print_json({**e.to_json_dict(), "map_path": str(path)})
         return EXIT_OK
-    from ..library.entry_text import entry_lines
 
     print("\n".join(entry_lines({**e.to_json_dict(), "map_path": str(path)})))
     return EXIT_OK
 
 
 def run_build(args) -> int:
-    from ..builder import build_environment
-
     cat = _load(args)
     e = cat.get(args.id)
     report = build_environment(cat.map_path(e, args.sources), args.out)
@@ -275,9 +272,7 @@ def run_build(args) -> int:
 
 
 def run_verify(args) -> int:
-    from ..errors import InvalidArgumentError
     from ..library.verify import verify
-    from ..library.verify_report import CHECKS
 
     if args.reverse and args.update_catalog:
         raise InvalidArgumentError("--reverse and --update-catalog: the catalog records laps in the racing direction")
@@ -296,13 +291,11 @@ def run_verify(args) -> int:
             physx=False if args.no_physx else None,
         )
     if args.update_catalog:
-        from ..fileio import atomic_write_text
         from ..library.verify import prune_catalog
 
         moved = prune_catalog(cat, s)
         if moved:  # a recorded map that no longer laps may still be an open map
             from ..library.open_maps import open_maps
-            from ..paths import sources_dir
 
             cat.open_maps = open_maps(sources_dir(args.sources, "open maps"), cat.left_out)
         atomic_write_text(cat.path, cat.to_json())
@@ -347,9 +340,7 @@ def run_sheet(args) -> int:
 def run_catalog(args) -> int:
     import os
 
-    from ..errors import InvalidArgumentError
     from ..library.index import build_catalog, build_catalog_generating
-    from ..paths import sources_dir, writable_tracks_dir
 
     tracks = writable_tracks_dir(args.tracks or (args.catalog.parent if args.catalog else None), "--tracks")
     sources = sources_dir(args.sources, "tracks catalog (it assesses the recorded maps)")
@@ -393,7 +384,6 @@ def run_catalog(args) -> int:
 
 
 def _rejudge(args: argparse.Namespace, sources: Path, jobs: int) -> int:
-    from ..fileio import atomic_write_text
     from ..library.open_maps import map_kinds, open_maps, rejudge
 
     cat = _load(args)
@@ -415,9 +405,7 @@ def _rejudge(args: argparse.Namespace, sources: Path, jobs: int) -> int:
 
 
 def run_generate(args) -> int:
-    from ..library.sweep import load_sweep
     from ..library.sweep_run import generate_library
-    from . import EXIT_GENERATION_FAILURE
 
     sweep = load_sweep(args.sweep)
     with _executor(args) as ex:

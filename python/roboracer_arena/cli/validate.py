@@ -6,6 +6,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..generate import validate_map
+from ..maps import load_map
 from ..spec import TrackSpec
 from . import EXIT_GENERATION_FAILURE, EXIT_OK
 from ._common import add_json_flag, print_json
@@ -20,9 +22,6 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..generate import validate_map
-    from ..maps import load_map
-
     spec = TrackSpec.from_file(args.spec)
     m = load_map(args.map)
     report, _ = validate_map(m, spec)

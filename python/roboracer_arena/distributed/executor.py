@@ -15,6 +15,7 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Protocol, TypeVar
 
 from ..pool import DEFAULT_RETRIES, LocalExecutor, Progress, WorkerLostError, map_ordered
+from .ray_executor import RayExecutor
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -52,8 +53,6 @@ def make_executor(
     a :class:`~roboracer_arena.distributed.ray_executor.RayExecutor` on that cluster.
     ``arg`` is how errors name the address (the CLI passes ``"--ray"``)."""
     if ray_address:
-        from .ray_executor import RayExecutor
-
         return RayExecutor(ray_address, max_retries=max_retries, arg=arg)
     import os
 

@@ -13,6 +13,7 @@ import math
 import os
 
 from ..errors import InvalidArgumentError
+from .ray_cluster import import_ray
 
 
 def local_cpus() -> int:
@@ -74,8 +75,6 @@ def check_cluster_fits(
     """:func:`check_actors_fit` against the connected cluster's CPUs: at once against its
     total, then against its free CPUs, which it waits up to ``wait_s`` seconds for."""
     import time
-
-    from .ray_cluster import import_ray
 
     ray = import_ray()
     total = float(ray.cluster_resources().get("CPU", 0.0))

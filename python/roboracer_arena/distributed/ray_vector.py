@@ -20,10 +20,13 @@ import pickle
 import sys
 from typing import Any
 
+import gymnasium as gym
 import numpy as np
 from gymnasium.vector import VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from ..envs import ENV_ID
+from ..envs.track_pool import check_track_names
 from .ray_cluster import connect, import_ray
 from .ray_fit import check_actors_fit, check_cluster_fits, local_cpus
 
@@ -39,12 +42,7 @@ class BatchWorker:
     ``offset`` (used through ``ray.remote``; plain class so it imports without Ray)."""
 
     def __init__(self, num_envs: int, offset: int, env_kwargs: dict[str, Any]) -> None:
-        import gymnasium as gym
-
-        import roboracer_arena  # noqa: F401  (registers the env id)
-
-        from ..envs import ENV_ID
-
+        # ENV_ID is registered: the actor imported this module, hence roboracer_arena.
         self.env = gym.make_vec(
             ENV_ID, num_envs=num_envs, vectorization_mode="vector_entry_point", env_index_offset=offset, **env_kwargs
         )
@@ -131,7 +129,6 @@ class RayVectorEnv(VectorEnv):
         # First, before the track check's imports (seconds on a busy machine): the issue's
         # 8 x 256 request on 2 cores must fail within seconds, in one line.
         self._check_local_fit(address, float(num_cpus_per_actor))
-        from ..envs.track_pool import check_track_names
 
         check_track_names(env_kwargs.get("track"))  # an unknown id: the local env's typed error, no actor started
         self._owns = self._connect_fitting(address, float(num_cpus_per_actor))

@@ -8,6 +8,7 @@ work; ``gymnasium.make("roboracer_arena:RoboRacerArena-v0", ...)`` works without
 """
 
 from ..sim_config import LidarConfig, PhysicsConfig, SimConfig, VehicleConfig
+from .episode_limit import REGISTERED_MAX_EPISODE_STEPS
 
 ENV_ID = "RoboRacerArena-v0"
 
@@ -15,8 +16,6 @@ ENV_ID = "RoboRacerArena-v0"
 def register_envs() -> None:
     """Register ``RoboRacerArena-v0`` (single and vector entry points) with gymnasium; idempotent."""
     from gymnasium.envs.registration import register, registry
-
-    from .episode_limit import REGISTERED_MAX_EPISODE_STEPS
 
     if ENV_ID not in registry:
         register(

@@ -23,10 +23,10 @@ from typing import Any
 
 import numpy as np
 
+from ..catalog.catalog_file import load_catalog
 from ..errors import ConfigError
-from ..library.catalog import load_catalog
 from ..track import MAP_SUFFIXES, Track
-from .tracks import resolve_tracks
+from .tracks import resolve_catalog, resolve_tracks
 
 #: Track used when ``track=`` is not given: a 40 m generated catalog track (1.2 m wide).
 DEFAULT_TRACK = "gen-l040-w12-h2c1s1-clo-s0"
@@ -68,8 +68,6 @@ def check_track_names(track: Any) -> None:
     weights dict too) without building a track, so a caller that builds the env elsewhere
     (Ray actors) raises the same typed error as the local env, before starting anything.
     Map paths, maps and tracks are left to the env."""
-    from .tracks import resolve_catalog
-
     if track is None:
         track = DEFAULT_TRACK
     items = list(track) if isinstance(track, (Mapping, list, tuple)) else [track]

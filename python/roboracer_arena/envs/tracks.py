@@ -8,7 +8,7 @@
 * a ``CorridorGeometry`` (anything with ``walls`` and ``centreline``): used as is;
 * a :class:`Track` (e.g. :meth:`Track.from_polylines` for synthetic tracks);
 * a catalog id or selection (a string that is not an existing file), resolved by the
-  track library (``roboracer_arena.library``) through :func:`resolve_catalog`.
+  track catalog (``roboracer_arena.catalog``) through :func:`resolve_catalog`.
 
 Every track is driven in its racing direction (see :mod:`roboracer_arena.direction`): a
 map path takes it from the centreline file beside the map, a catalog id from the catalog,
@@ -22,11 +22,12 @@ import os
 from pathlib import Path
 from typing import Any
 
-from .. import library
+from .. import catalog
+from ..corridor import extract_corridor
 from ..direction import DEFAULT_DIRECTION, TrackDirection, check_direction, direction_for_map
 from ..errors import ConfigError
 from ..maps import OccupancyMap
-from ..track import MAP_SUFFIXES, Track, _from_corridor, track_from_map_path
+from ..track import MAP_SUFFIXES, Track, track_from_corridor, track_from_map_path
 
 __all__ = ["Track", "resolve_catalog", "resolve_tracks", "track_from_map_path"]
 
@@ -75,12 +76,12 @@ def _resolve_one(
         srcs = resolve_catalog(str(item))
         return [t for src in srcs for t in _resolve_one(src, corridor_params, open, unknown, close_gaps)]
     if hasattr(item, "walls") and hasattr(item, "centreline"):
-        return [_with_own_direction(_from_corridor(item, getattr(item, "name", None) or "corridor"), item)]
+        return [_with_own_direction(track_from_corridor(item, getattr(item, "name", None) or "corridor"), item)]
     if isinstance(getattr(item, "map", None), OccupancyMap) and hasattr(item, "direction"):  # an Acceptance
-        t = _from_corridor(_extract(item.map, corridor_params, open, unknown, close_gaps), item.spec.name)
+        t = track_from_corridor(_extract(item.map, corridor_params, open, unknown, close_gaps), item.spec.name)
         return [_with_own_direction(t, item)]
     if all(hasattr(item, a) for a in ("data", "resolution", "origin")):
-        t = _from_corridor(
+        t = track_from_corridor(
             _extract(item, corridor_params, open, unknown, close_gaps), getattr(item, "name", None) or "map"
         )
         return [_with_own_direction(t, item)]
@@ -93,8 +94,6 @@ def _resolve_one(
 def _extract(
     m: Any, corridor_params: Any, open: bool | None = None, unknown: str = "occupied", close_gaps: float | None = None
 ) -> Any:
-    from ..corridor import extract_corridor
-
     return extract_corridor(m, corridor_params, open=open, unknown=unknown, close_gaps_m=close_gaps)
 
 
@@ -119,10 +118,10 @@ def _with_own_direction(t: Track, item: Any) -> Track:
 def resolve_catalog(selection: str) -> list[Any]:
     """Resolve a catalog id or selection (e.g. ``"circuits"``) to track sources.
 
-    The track library (``roboracer_arena.library.resolve_tracks``) returns items this module
+    The track catalog (``roboracer_arena.catalog.resolve_tracks``) returns items this module
     accepts (map YAML paths, Tracks).
     """
-    sources = list(library.resolve_tracks(selection))
+    sources = list(catalog.resolve_tracks(selection))
     if not sources:
         raise ConfigError(f"catalog selection {selection!r} matched no tracks")
     return sources

@@ -223,6 +223,11 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         b = self._batch
         return b.track_ids.copy(), b.start_pose.copy(), b.start_speed.copy()
 
+    @property
+    def simulator_state(self) -> tuple[np.ndarray, dict[str, int]]:
+        """The raw simulator state (E, V, S) of every env and the column of each field."""
+        return self._batch.state.copy(), dict(self._batch.field_index)
+
     def odometry_raw(self, obs: dict[str, np.ndarray]) -> np.ndarray:
         """``obs["odometry"]`` in SI units, shape (E, V, K), whatever the normalisation."""
         if "odometry" not in obs:

@@ -97,8 +97,7 @@ def make_sb3_vec_env(num_envs: int, env_id: str = "RoboRacerArena-v0", **kwargs:
     """``gym.make_vec(env_id, num_envs, vectorization_mode="vector_entry_point",
     autoreset_mode=SAME_STEP, **kwargs)`` as an SB3 ``VecEnv``. ``kwargs`` are the env's
     (``track``, ``observation``, ``action_mode``, ``reward``, ``max_episode_steps``, ...)."""
-    import roboracer_arena  # noqa: F401  (registers the env id)
-
+    # env_id is registered: importing this module imported roboracer_arena, which registers it.
     if "autoreset_mode" in kwargs and kwargs["autoreset_mode"] not in (AutoresetMode.SAME_STEP, "SameStep"):
         raise ValueError("the SB3 adapter needs autoreset_mode=SAME_STEP (SB3 resets an env the step it ends)")
     kwargs["autoreset_mode"] = AutoresetMode.SAME_STEP

@@ -23,6 +23,11 @@ from typing import Any
 
 import numpy as np
 
+from ..distributed.ray_vector import RayVectorEnv
+from ..envs.track_pool import resolve_track_pool
+from ..envs.vector import RoboRacerVectorEnv
+from ..errors import ConfigError
+
 
 @dataclass(frozen=True)
 class ESConfig:
@@ -101,8 +106,6 @@ def features(obs: dict[str, np.ndarray]) -> np.ndarray:
 def _make_env(track: Any, num_envs: int, cfg: ESConfig, **extra: Any) -> Any:
     from gymnasium.vector import AutoresetMode
 
-    from ..envs.vector import RoboRacerVectorEnv
-
     return RoboRacerVectorEnv(
         num_envs=num_envs, track=track, autoreset_mode=AutoresetMode.DISABLED, **env_kwargs(cfg, **extra)
     )
@@ -160,9 +163,6 @@ def make_training_env(track: Any, cfg: ESConfig, ray_actors: int | None = None) 
         return _make_env(track, 2 * cfg.pairs, cfg)
     from gymnasium.vector import AutoresetMode
 
-    from ..distributed.ray_vector import RayVectorEnv
-    from ..errors import ConfigError
-
     if ray_actors < 1 or (2 * cfg.pairs) % ray_actors:
         raise ConfigError(f"--ray actors: 2 * pairs = {2 * cfg.pairs} envs do not split over {ray_actors} actors")
     return RayVectorEnv(
@@ -178,8 +178,6 @@ def train(
     if env is None:
         env = make_training_env(track, cfg)
     elif env.num_envs != 2 * cfg.pairs:
-        from ..errors import ConfigError
-
         raise ConfigError(f"train: env has {env.num_envs} envs, the config needs 2 * pairs = {2 * cfg.pairs}")
     rng = np.random.default_rng(cfg.seed)
     obs_dim = cfg.num_beams + 2
@@ -226,8 +224,6 @@ def evaluate_laps(
     it completes a lap, touches anything, drives the wrong way or runs out of time
     (default: the lap at 0.8 m/s, below the policy's slowest speed). Returns per track:
     name, clean_lap, lap_time (s or None), progress (m)."""
-    from ..envs.track_pool import resolve_track_pool
-
     tracks, _ = resolve_track_pool(track)
     env = _make_env(tracks, len(tracks), cfg, reset_poses="grid", wrong_way_ends_episode=True)
     policy = MLPPolicy(cfg.num_beams + 2, cfg.hidden, cfg)

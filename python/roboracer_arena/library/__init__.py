@@ -1,5 +1,8 @@
-"""The track library: one catalog (``tracks/catalog.json``) of real circuits at 1:10,
-recorded third-party maps (referenced, never copied) and requirement-generated tracks.
+"""The track library's jobs: build the catalog (``tracks/catalog.json``) of real circuits
+at 1:10, recorded third-party maps (referenced, never copied) and requirement-generated
+tracks; verify it (drive laps, build USD); sweep the generator into a library; draw its
+contact sheet. They sit a floor above ``envs``; reading the catalog is a floor below, in
+:mod:`roboracer_arena.catalog`, whose public names this package re-exports.
 
 * :func:`resolve` -- catalog id or selection (``"circuits"``, ``"recorded"``,
   ``"generated"``, ``"all"``) to map YAML paths.
@@ -8,7 +11,6 @@ recorded third-party maps (referenced, never copied) and requirement-generated t
 * ``roboracer-arena tracks list|show|build|verify|sheet|catalog`` -- the CLI.
 """
 
-from .catalog import KINDS, SELECTIONS, Catalog, default_tracks_dir, load_catalog, resolve
-from .tracks import resolve_tracks  # the gymnasium env's ``track=`` hook (envs.tracks.resolve_catalog)
+from ..catalog import KINDS, SELECTIONS, Catalog, default_tracks_dir, load_catalog, resolve, resolve_tracks
 
 __all__ = ["KINDS", "SELECTIONS", "Catalog", "default_tracks_dir", "load_catalog", "resolve", "resolve_tracks"]

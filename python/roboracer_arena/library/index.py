@@ -9,15 +9,16 @@ import time
 from pathlib import Path
 
 from .. import __version__
+from ..catalog.catalog_file import SCHEMA, Catalog, count_kinds, provenance, sha256_file
+from ..catalog.directions import annotate_directions
+from ..catalog.entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
 from ..circuits.report import CircuitReport
 from ..fileio import StagedFile, atomic_write_text
 from ..maps import load_map
 from ..pool import Progress
-from .catalog import SCHEMA, Catalog, count_kinds, provenance, sha256_file
-from .directions import annotate_directions
-from .entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
+from .generated import generate_into, staged_generated
 from .open_maps import open_maps
-from .recorded import RecordedMap, assess_all
+from .recorded import assess_all, recorded_entry
 from .sweep_report import GeneratedSweepSummary
 
 PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
@@ -125,32 +126,6 @@ def _recorded_entries(sources: Path, jobs: int, progress: Progress | None) -> tu
     return entries, left_out
 
 
-def recorded_entry(sources: Path, r: RecordedMap) -> TrackEntry:
-    """The catalog entry of a usable recorded map (before directions and verify)."""
-    prov = provenance(sources, r.source_dir)
-    yaml_path = sources / r.source_path
-    img_path = Path(load_map(yaml_path).meta["image_path"])
-    notes = [f"corridor checked with {r.corridor_check}"]
-    if (r.infields or 1) > 1:
-        notes.append(f"{r.infields} enclosed regions (obstacles or islands in the corridor)")
-    return TrackEntry(
-        id=r.id,
-        name=r.name,
-        kind="recorded",
-        source=Source(**prov, path=r.source_path),
-        scale=None,
-        resolution_m=r.resolution_m,
-        lap_length_m=r.lap_length_m,
-        width_mean_m=r.width_mean_m,
-        width_min_m=r.width_min_m,
-        min_radius_m=r.min_radius_m,
-        raster=r.raster,
-        sha256=sha256_file(img_path),
-        map=r.source_path,
-        notes=notes,
-    )
-
-
 def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress | None = None) -> Catalog:
     """Assemble every entry and write ``tracks/catalog.json`` atomically."""
     cat = assemble_catalog(sources, tracks, jobs, progress)
@@ -171,8 +146,6 @@ def build_catalog_generating(
     stage of ``tracks/generated`` (its first ``max_requests`` requests, default all), assemble the catalog from that stage, and swap the
     folder and ``tracks/catalog.json`` in together, signals held. An interrupt (SIGINT,
     SIGTERM) or an error at any moment leaves both as they were, and no stage behind."""
-    from .generated import generate_into, staged_generated
-
     out = StagedFile(tracks / "catalog.json")
     try:
         with staged_generated(tracks / "generated", also=out.commit) as stage:

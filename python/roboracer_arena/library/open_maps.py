@@ -17,12 +17,17 @@ from typing import Any
 import numpy as np
 
 from .. import _core
+from ..catalog.catalog_file import Catalog
+from ..catalog.directions import annotate_directions
+from ..catalog.entry import LeftOut, OpenMap, Raster
 from ..corridor import extract_corridor, extract_open
 from ..errors import ArenaError
 from ..maps import load_map
 from ..pool import Progress, pool_map
 from ..sim_config import SimConfig
-from .entry import LeftOut, OpenMap, Raster
+from ..track import track_from_corridor
+from .recorded import assess_all, assess_map, find_map_yamls, recorded_entry
+from .verify import verify_entry
 
 #: The start of a reason that makes a left-out map no open map.
 NOT_OPEN = ("duplicate of", "broken YAML or image")
@@ -74,9 +79,7 @@ def open_map_entry(sources: Path, lo: LeftOut) -> OpenMap | None:
 
 def _start_clearance(geo: Any) -> float:
     """The default start's clearance (m) from the open build (``start_clearance_m``)."""
-    from ..track import _from_corridor
-
-    t = _from_corridor(geo, "open")
+    t = track_from_corridor(geo, "open")
     return float(t.clearance(np.asarray([t.start_pose[:2]]))[0]) if t.start_pose else 0.0
 
 
@@ -115,12 +118,6 @@ def rejudge(cat: Any, sources: Path, jobs: int = 1) -> list[str]:
     narrowest gap beside the car's width. The other left-out maps get the reason a fresh
     assessment gives (as ``tracks catalog`` would write it). Returns the ids that joined
     the tracks."""
-    from .catalog import Catalog
-    from .directions import annotate_directions
-    from .index import recorded_entry
-    from .recorded import assess_all, assess_map, find_map_yamls
-    from .verify import verify_entry
-
     order = {str(p.relative_to(sources)): i for i, p in enumerate(find_map_yamls(sources))}
     width = SimConfig().vehicle.chassis_width
     joined: list[str] = []

@@ -15,13 +15,15 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
+from ..catalog.catalog_file import provenance, sha256_file
+from ..catalog.entry import Raster, Source, TrackEntry
 from ..circuits.geometry import MIN_RADIUS_SPAN_M
+from ..circuits.sources import slug
 from ..corridor import extract_corridor
 from ..errors import ArenaError
 from ..frozen_model import FrozenModel
 from ..maps import load_map
 from ..pool import Progress, pool_map
-from .entry import Raster
 
 #: Source folders in order of preference (an identical map later on is a duplicate).
 SOURCE_DIRS = {
@@ -78,8 +80,6 @@ def find_map_yamls(sources: Path) -> list[Path]:
 
 
 def record_id(sources: Path, yaml_path: Path) -> str:
-    from ..circuits.sources import slug
-
     rel = yaml_path.relative_to(sources)
     stem = yaml_path.stem[:-4] if yaml_path.stem.endswith("_map") else yaml_path.stem
     return f"{SOURCE_DIRS[rel.parts[0]]}-{slug(stem.replace('_', '-'))}"
@@ -173,3 +173,29 @@ def assess_all(sources: Path, jobs: int = 1, progress: Progress | None = None) -
         ids.add(rid)
         out.append(r.with_fields(id=rid) if rid != r.id else r)
     return out
+
+
+def recorded_entry(sources: Path, r: RecordedMap) -> TrackEntry:
+    """The catalog entry of a usable recorded map (before directions and verify)."""
+    prov = provenance(sources, r.source_dir)
+    yaml_path = sources / r.source_path
+    img_path = Path(load_map(yaml_path).meta["image_path"])
+    notes = [f"corridor checked with {r.corridor_check}"]
+    if (r.infields or 1) > 1:
+        notes.append(f"{r.infields} enclosed regions (obstacles or islands in the corridor)")
+    return TrackEntry(
+        id=r.id,
+        name=r.name,
+        kind="recorded",
+        source=Source(**prov, path=r.source_path),
+        scale=None,
+        resolution_m=r.resolution_m,
+        lap_length_m=r.lap_length_m,
+        width_mean_m=r.width_mean_m,
+        width_min_m=r.width_min_m,
+        min_radius_m=r.min_radius_m,
+        raster=r.raster,
+        sha256=sha256_file(img_path),
+        map=r.source_path,
+        notes=notes,
+    )

@@ -9,8 +9,14 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from .catalog import Catalog
-from .entry import TrackEntry
+from ..catalog.catalog_file import Catalog
+from ..catalog.entry import TrackEntry
+from ..maps import load_map
+from ..render.formats import image_format
+from ..render.frame import LegendEntry, draw_legend, scale_length, wrap_items
+from ..render.topdown import font, save_image
+from ..render.topdown import font as text_font
+from .recorded import corridor_grid
 
 KIND_COLOUR = {"circuit": (200, 40, 40), "recorded": (40, 90, 200), "generated": (30, 140, 60)}
 
@@ -34,9 +40,6 @@ def thumbnail(yaml_path: Path, size: tuple[int, int]) -> tuple[Image.Image, tupl
     A map with a closed corridor shows the corridor (green) and the walls bordering it
     (dark), cropped to them; a map without one (an open floor plan) shows its free floor
     (light) and walls (dark), cropped to the walls. Unknown cells are white."""
-    from ..maps import load_map
-    from .recorded import corridor_grid
-
     m = load_map(yaml_path)
     data = np.asarray(m.data, np.uint8)
     iso, _, _ = corridor_grid(yaml_path, data)
@@ -80,8 +83,6 @@ def _grow(mask: np.ndarray, cells: int) -> np.ndarray:
 def sheet_legend() -> list:
     """The sheet's legend: what a frame's colour says (the track's kind) and what a
     thumbnail's colours are."""
-    from ..render.frame import LegendEntry
-
     kinds = [LegendEntry(f"frame: {k} track", c, "line") for k, c in KIND_COLOUR.items()]
     return [
         *kinds,
@@ -103,11 +104,6 @@ def contact_sheet(
     """Draw every entry as a thumbnail with its id, lap length, extent and scale bar under
     a legend of the frame and map colours; write the picture (PNG or JPEG by the extension
     of ``out``) atomically."""
-    from ..render.formats import image_format
-    from ..render.frame import draw_legend, wrap_items
-    from ..render.topdown import font as text_font
-    from ..render.topdown import save_image
-
     image_format(out)  # before any work
     rows = (len(entries) + columns - 1) // columns
     label_h = 44
@@ -150,8 +146,6 @@ def contact_sheet(
 def _fitting_font(draw: ImageDraw.ImageDraw, text: str, width: int):
     """The default font at the largest size from 10 px down to 6 px at which ``text``
     fits ``width`` px: an id is shown whole, never cut."""
-    from ..render.topdown import font
-
     for size in range(10, 5, -1):
         f = font(size)
         if draw.textlength(text, font=f) <= width:
@@ -161,8 +155,6 @@ def _fitting_font(draw: ImageDraw.ImageDraw, text: str, width: int):
 
 def _scale_bar(draw: ImageDraw.ImageDraw, x: int, y: int, px_per_m: float, max_px: int, font) -> None:
     """A 1-2-5 scale bar of the thumbnail at (x, y) with its length beside it."""
-    from ..render.frame import scale_length
-
     metres, px = scale_length(px_per_m, max_px)
     draw.rectangle([x, y, x + px, y + 4], fill=(0, 0, 0))
     draw.text((x + px + 4, y - 4), f"{metres:g} m", fill=(0, 0, 0), font=font)

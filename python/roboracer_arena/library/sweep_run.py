@@ -25,13 +25,13 @@ import time
 from pathlib import Path
 
 from .. import __version__
+from ..catalog.catalog_file import SCHEMA, Catalog, count_kinds
+from ..catalog.directions import annotate_directions
+from ..catalog.entry import CatalogMeta, SweepCounts
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
 from ..fileio import atomic_dir, atomic_write_dir, atomic_write_text, check_output, link_tree
 from ..pool import Progress, map_ordered
-from .catalog import SCHEMA, Catalog, count_kinds
-from .directions import annotate_directions
-from .entry import CatalogMeta, SweepCounts
 from .generated import generate_files
 from .index import _generated_entries
 from .sweep import SweepFile

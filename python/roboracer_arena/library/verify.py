@@ -19,13 +19,22 @@ from typing import Any
 import numpy as np
 
 from .. import _core
+from ..builder import build_environment
+from ..catalog.catalog_file import Catalog, sha256_file
+from ..catalog.entry import LeftOut, TrackEntry
+from ..catalog.tracks import entry_track
+from ..clearance_path import clearance_path
+from ..corridor import extract_corridor
 from ..distributed.executor import Executor
+from ..drivers import PurePursuitParams, drive_laps
 from ..errors import ArenaError
 from ..maps import OccupancyMap, load_map
+from ..physx import available
+from ..physx.check import check_stage
 from ..pool import Progress, local_unless, map_ordered
-from .catalog import Catalog, sha256_file
-from .entry import LeftOut, TrackEntry
-from .tracks import entry_track
+from ..sim_config import SimConfig
+from ..usd.validate import validation_errors
+from .recorded import corridor_grid
 from .verify_report import FAIL, NOT_RUN, PASS, Check, TrackResult, VerifySummary
 
 LAP_TOLERANCE = 0.02
@@ -50,8 +59,6 @@ def check_load(entry: TrackEntry, yaml_path: Path) -> tuple[Check, OccupancyMap 
 
 
 def check_ring(entry: TrackEntry, m: OccupancyMap, yaml_path: Path) -> Check:
-    from .recorded import corridor_grid
-
     data = np.asarray(m.data, np.uint8)
     iso, why, _ = corridor_grid(yaml_path, data)
     if iso is None:
@@ -79,9 +86,6 @@ def check_usd(yaml_path: Path, physx: bool = False) -> tuple[Check, Check]:
     """Hook onto the builder: build the USD stage and run every usd-core validator on it;
     with ``physx``, the PhysX check (:mod:`roboracer_arena.physx.check`, lighter: 4 points,
     1 s) on the same stage. Returns the ``usd`` and ``physx`` verdicts."""
-    from ..builder import build_environment
-    from ..usd.validate import validation_errors
-
     skipped = Check(status=NOT_RUN, detail="not run: the stage did not build")
     with tempfile.TemporaryDirectory(prefix="rra-verify-") as tmp:
         out = Path(tmp) / "stage.usdc"
@@ -100,16 +104,12 @@ def check_usd(yaml_path: Path, physx: bool = False) -> tuple[Check, Check]:
 
 def physx_not_run() -> Check:
     """The ``physx`` verdict when the PhysX check is not run, saying why."""
-    from ..physx import available
-
     why = "--no-physx" if available() else "the 'physx' extra is not installed"
     return Check(status=NOT_RUN, detail=f"not run: {why}")
 
 
 def check_physx(stage: Path) -> Check:
     """The stage in PhysX (CPU): single-sided lidar parity and containment."""
-    from ..physx.check import check_stage
-
     r = check_stage(stage, points=4, seconds=1.0)
     detail = (
         f"lidar {r.lidar.within_tolerance}/{r.lidar.beams} beams within 1 cm, "
@@ -129,8 +129,6 @@ def check_drive(cat: Catalog, entry: TrackEntry, sources: Path | None = None, re
     more at cautious settings (:data:`CAUTIOUS`), then on the corridor's most-clearance path
     with a speed cap from its clearance (:mod:`roboracer_arena.clearance_path`); a pass then
     says which."""
-    from ..drivers import PurePursuitParams, drive_laps
-
     try:
         target, follows = entry_track(cat, entry, sources)
         if reverse:
@@ -172,10 +170,6 @@ def check_drive(cat: Catalog, entry: TrackEntry, sources: Path | None = None, re
 
 def _clearance_path(cat: Catalog, entry: TrackEntry, target: Any, sources: Path | None) -> Any:
     """The most-clearance path of an entry's corridor in the target's direction."""
-    from ..clearance_path import clearance_path
-    from ..corridor import extract_corridor
-    from ..sim_config import SimConfig
-
     geo = extract_corridor(cat.map_path(entry, sources))
     return clearance_path(geo, target.centreline, half_width_m=SimConfig().vehicle.chassis_width / 2)
 
@@ -192,8 +186,6 @@ def verify_entry(
     """Every check of one track (see the module doc); ``physx`` None = run the PhysX
     check when the ``physx`` extra is installed."""
     if physx is None:
-        from ..physx import available
-
         physx = available()
     t0 = time.perf_counter()
     yaml_path = cat.map_path(entry, sources)

@@ -4,8 +4,8 @@ and the run's :class:`VerifySummary`. Frozen, ``extra="forbid"``; their JSON
 
 from __future__ import annotations
 
+from ..catalog.entry import Kind, Status
 from ..frozen_model import FrozenModel
-from .entry import Kind, Status
 
 PASS: Status = "pass"
 FAIL: Status = "FAIL"

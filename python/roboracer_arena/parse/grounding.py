@@ -33,6 +33,7 @@ from ..spec import TrackSpec
 from .lexer import Tok, tokenize
 from .limits import quote
 from .result import DEFAULTS, FIELDS, Fragment, Span
+from .rules import parse_rules
 from .units import METRES_PER
 from .vocab import CORRIDOR_NOUNS, HALL_NOUNS, LAP_NOUNS, ORDER_FORWARD, ORDER_REVERSE, ORDER_START
 
@@ -210,8 +211,6 @@ def _trace(name: str, value: Any, text: str, toks: list[Tok], values: dict[str, 
 
 
 def _rules_reading(text: str) -> tuple[dict[str, Any], dict[str, tuple[Span, ...]]]:
-    from .rules import parse_rules
-
     try:
         r = parse_rules(text)
     except ArenaError:

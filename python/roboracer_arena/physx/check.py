@@ -33,9 +33,17 @@ from typing import Any
 import numpy as np
 from pydantic import Field
 
+from ..build_config import BuildConfig
+from ..corridor import extract_corridor
+from ..direction import direction_for_map
+from ..envs.env_config import EnvConfig
+from ..envs.single import RoboRacerEnv
 from ..errors import ConfigError, MapIOError
 from ..frozen_model import FrozenModel
 from ..sim_config import SimConfig
+from ..start_grid import centreline_pose
+from ..track import Track, track_from_corridor
+from ..usd import open_stage, stage_metadata
 from .open_probes import FreeRegion, crosses_walls, open_stations
 from .runtime import PhysxScene, require
 
@@ -128,12 +136,6 @@ def track_of_stage(stage_path: str | Path) -> Any:
     configuration from its metadata), in the map's racing direction. An open map's stage
     (``map_kind`` "open") gives the open map the build made: the same start pose and
     ``unknown_cells``; its ``source`` is the corridor geometry (raster and free mask)."""
-    from ..build_config import BuildConfig
-    from ..corridor import extract_corridor
-    from ..direction import direction_for_map
-    from ..track import Track, _from_corridor
-    from ..usd import open_stage, stage_metadata
-
     path = Path(stage_path)
     meta = stage_metadata(open_stage(path))
     source, cfg_json = meta.get("source_map"), meta.get("build_config")
@@ -149,7 +151,7 @@ def track_of_stage(stage_path: str | Path) -> Any:
         geo = extract_corridor(
             src, params=cfg.geometry_params(), start=tuple(start) if start else None, open=True, unknown=unknown
         )
-        return _from_corridor(geo, src.stem)
+        return track_from_corridor(geo, src.stem)
     geo = extract_corridor(src, params=cfg.geometry_params(), start=tuple(start) if start else None)
     track = Track.from_polylines(list(geo.walls), geo.centreline, name=src.stem, wall_height=cfg.geometry.wall_height_m)
     return track.oriented(direction_for_map(src))
@@ -157,9 +159,6 @@ def track_of_stage(stage_path: str | Path) -> Any:
 
 def env_scan(track: Any, sim: SimConfig) -> tuple[np.ndarray, tuple[float, float, float]]:
     """Our env's first scan (raw ranges, m) at its grid start, and the car's pose."""
-    from ..envs.env_config import EnvConfig
-    from ..envs.single import RoboRacerEnv
-
     env = RoboRacerEnv(track=track, config=EnvConfig(sim=sim))
     try:
         obs, _ = env.reset(seed=0)
@@ -222,8 +221,6 @@ def probe_plan(
     centreline, eight directions about the local heading, three speeds up to the top speed.
     On an open map (``free``: its free region) the stations are :func:`open_stations`
     (``s`` 0, the heading along the nearest wall)."""
-    from ..start_grid import centreline_pose
-
     angles = (-150.0, -90.0, -45.0, -20.0, 20.0, 45.0, 90.0, 150.0)
     top = float(sim.vehicle.max_speed)
     speeds = (top / 3.0, 2.0 * top / 3.0, top)

@@ -16,8 +16,13 @@ from typing import Any
 
 import numpy as np
 
+from ..drivers import PurePursuitDriver
+from ..envs.env_config import EnvConfig
+from ..envs.single import RoboRacerEnv
+from ..errors import ConfigError
 from ..frozen_model import FrozenModel
 from ..sim_config import SimConfig
+from ..usd.vehicle import MAX_BRAKE_TORQUE_NM, PEAK_TORQUE_NM
 from .runtime import PhysxScene
 
 CAR = "/World/Car"
@@ -88,8 +93,6 @@ def drive_physx_lap(stage: str | Path, track: Any, sim: SimConfig | None = None,
     """Drive the stage's car one lap in PhysX; the stage must carry ``/World/Car``."""
     from ovphysx.types import SimObjectType
 
-    from ..drivers import PurePursuitDriver
-
     sim = sim or SimConfig()
     dt = float(sim.physics.dt)
     sub = max(1, round(CONTROL_DT / dt))
@@ -97,14 +100,12 @@ def drive_physx_lap(stage: str | Path, track: Any, sim: SimConfig | None = None,
     xy: list[tuple[float, float]] = []
     stepping = 0.0
     with PhysxScene(stage) as scene:
-        physx = scene._physx
+        physx = scene.physx
         with (
             physx.query(SimObjectType.VEHICLE, pattern=CAR).wait() as vq,
             physx.query(SimObjectType.RIGID_BODY, pattern=CAR).wait() as bq,
         ):
             if vq.metadata.total_prim_count != 1:
-                from ..errors import ConfigError
-
                 raise ConfigError(f"{stage}: no PhysX vehicle at {CAR} (build it with --car)")
             scene.step(dt, 20)  # settle on the suspension
             x, y, yaw, v = _pose(physx, bq)
@@ -149,8 +150,6 @@ def pedals(v_cmd: float, v: float, sim: SimConfig) -> tuple[float, float]:
     acceleration (bounded by :data:`MAX_ACCEL` / :data:`MAX_DECEL`), turned into wheel
     torque through the car's mass, plus a feed-forward for rolling resistance and drag so
     the car holds the commanded speed instead of settling below it."""
-    from ..usd.vehicle import MAX_BRAKE_TORQUE_NM, PEAK_TORQUE_NM
-
     veh = sim.vehicle
     accel = float(np.clip(SPEED_GAIN * (v_cmd - v), -MAX_DECEL, MAX_ACCEL))
     resist = veh.rolling_resistance * veh.mass * 9.81 + 0.5 * 1.2 * veh.drag_area * v * v if v > 0.1 else 0.0
@@ -180,10 +179,6 @@ def _pose(physx: Any, query: Any) -> tuple[float, float, float, float]:
 
 def drive_native_lap(track: Any, sim: SimConfig | None = None, max_seconds: float = 120.0) -> LapRun:
     """The same lap in our simulator (the env, grid start, pure pursuit)."""
-    from ..drivers import PurePursuitDriver
-    from ..envs.env_config import EnvConfig
-    from ..envs.single import RoboRacerEnv
-
     sim = sim or SimConfig()
     env = RoboRacerEnv(track=track, config=EnvConfig(sim=sim))
     driver = PurePursuitDriver(track.centreline)

@@ -111,6 +111,11 @@ class PhysxScene:
                 raise MapIOError(f"{path}: PhysX could not load the stage: {e}") from e
             self.load_seconds = time.perf_counter() - t0
 
+    @property
+    def physx(self) -> Any:
+        """The ``ovphysx.PhysX`` instance simulating the stage (for scene queries)."""
+        return self._physx
+
     def __enter__(self) -> PhysxScene:
         return self
 

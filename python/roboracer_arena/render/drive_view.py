@@ -19,7 +19,9 @@ from typing import Any
 import numpy as np
 from PIL import Image, ImageDraw
 
+from ..sim_config import SimConfig
 from .frame import PAD, LegendEntry, framed
+from .preview import WALL, map_canvas, map_title
 from .race_marks import CAR, car_size, draw_car, draw_race_marks
 from .sim_view import RAY, VEHICLE_COLOURS, lidar_rays
 from .topdown import TopDown, font
@@ -64,10 +66,7 @@ class DriveView:
     as driven, so the arrows show the driven direction)."""
 
     def __init__(self, track: Any, sim: Any = None, subtitle: str = "", map_px: int = DEFAULT_MAP_PX) -> None:
-        from ..sim_config import SimConfig
-
         self.sim = sim or SimConfig()
-        from .preview import map_title
 
         canvas, occ, legend = _still(track, int(map_px))
         marks, race = draw_race_marks(canvas, track, vehicles=1, cars=False)
@@ -127,8 +126,6 @@ class DriveView:
 def _still(track: Any, map_px: int) -> tuple[TopDown, Any, list[LegendEntry]]:
     """The canvas with the map layers (the map itself when the track came from one, else
     its collision walls), the map (or None) and the legend so far."""
-    from .preview import WALL, map_canvas
-
     src = track.source
     if isinstance(src, (str, Path)) and Path(src).is_file():
         canvas, _, occ, _, legend = map_canvas(Path(src), max_px=map_px, min_px=map_px)

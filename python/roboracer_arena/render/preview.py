@@ -18,7 +18,16 @@ from typing import Any
 
 import numpy as np
 
+from ..builder import parse_start, resolve_config
+from ..corridor import extract_corridor
+from ..direction import direction_for_map
+from ..errors import MapFormatError
+from ..maps import load_map
+from ..track import Track, track_from_map_path
+from ..usd import open_stage, read_meshes, stage_metadata
+from .formats import image_format
 from .frame import LegendEntry, framed
+from .race_marks import draw_race_marks
 from .topdown import TopDown, save_image
 
 CORRIDOR = (60, 170, 90, 90)
@@ -66,10 +75,6 @@ def preview_map(
     A map without a closed corridor is drawn as an open map (``open=None``; walls and its
     start pose, the title says "open map"); ``close_gaps_m`` closes the openings up to
     that width first and marks every gap closed (a magenta ring and its width)."""
-    from ..direction import direction_for_map
-    from ..track import Track
-    from .formats import image_format
-
     image_format(out_png)  # a bad extension fails before any work
     map_path = Path(map_path)
     canvas, geo, occ, drawn, legend = map_canvas(map_path, config, start, max_px, open=open, close_gaps_m=close_gaps_m)
@@ -102,10 +107,6 @@ def map_canvas(
     the extracted corridor geometry, the map, what was drawn and the legend entries. An
     open map (``open``, see ``extract_corridor``) gets its start pose drawn; the gaps
     ``close_gaps_m`` closes are marked."""
-    from ..builder import parse_start, resolve_config
-    from ..corridor import extract_corridor
-    from ..maps import load_map
-
     cfg = resolve_config(config)
     occ = load_map(map_path)
     canvas = TopDown.for_raster(occ.data, occ.resolution, occ.origin, max_px=max_px, min_px=min_px)
@@ -156,23 +157,16 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, v
     """Read a built stage's meshes back and draw floor, ducts and collision walls over the
     source map (when the map named in the stage metadata is still there, also its racing
     direction, start line and grid); write PNG or JPEG."""
-    from ..usd import open_stage, read_meshes, stage_metadata
-    from .formats import image_format
-
     image_format(out_png)
     stage = open_stage(usd_path)
     meta = stage_metadata(stage)
     meshes = read_meshes(stage)
     if not meshes:
-        from ..errors import MapFormatError
-
         raise MapFormatError(f"{usd_path}: no meshes under /World/Track; not a RoboRacer Arena stage")
     drawn: list[str] = []
     src = Path(str(meta.get("source_map", ""))) if meta.get("source_map") else None
     canvas = None
     if src is not None and src.is_file():
-        from ..maps import load_map
-
         occ = load_map(src)
         canvas = TopDown.for_raster(occ.data, occ.resolution, occ.origin, max_px=max_px)
         drawn.append("map")
@@ -202,8 +196,6 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, v
     features = _generated_overlay(canvas, src, drawn, legend) if src is not None else []
     race: dict[str, Any] = {}
     if "map" in drawn and src is not None:
-        from ..track import track_from_map_path
-
         marks, race = _race_marks(canvas, track_from_map_path(src), vehicles)
         drawn += ["direction", "start"]
         legend += marks
@@ -218,8 +210,6 @@ def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, v
 
 
 def _race_marks(canvas: TopDown, track: Any, vehicles: int) -> tuple[list[LegendEntry], dict[str, Any]]:
-    from .race_marks import draw_race_marks
-
     return draw_race_marks(canvas, track, vehicles)
 
 

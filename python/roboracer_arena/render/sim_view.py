@@ -12,6 +12,7 @@ import numpy as np
 from PIL import Image, ImageDraw
 
 from ..sim_config import SimConfig
+from .topdown import font
 
 BACKGROUND = (246, 246, 242)
 WALL = (40, 40, 48)
@@ -144,8 +145,6 @@ def _draw_hud(
 ) -> None:
     """``lines`` on a white panel in the corner of the picture that covers no car (centres
     ``cars`` in pixels, ``car_px`` half-length) and the fewest track pixels (the drawn ``background``)."""
-    from .topdown import font
-
     face = font(size_px)
     d = ImageDraw.Draw(img, "RGBA")
     step = size_px + 4

@@ -19,7 +19,12 @@ from typing import Any
 import numpy as np
 from PIL import Image, ImageDraw
 
+from ..build_config import BuildConfig
 from ..errors import ConfigError, MapFormatError
+from ..sim_config import SimConfig
+from ..start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
+from ..track import track_from_map_path
+from ..usd import open_stage, read_meshes, stage_metadata
 from .formats import image_format
 from .topdown import font, save_image
 
@@ -45,7 +50,6 @@ def render_still(usd_path: str | Path, out: str | Path, size: tuple[int, int] = 
     camera south-west of the track, lit by a light kit plus the camera's headlight."""
     image_format(out)
     vtk = _vtk()
-    from ..usd import open_stage, read_meshes, stage_metadata
 
     stage = open_stage(usd_path)
     meshes = read_meshes(stage)
@@ -102,8 +106,6 @@ def _vtk() -> Any:
 
 def _material_colours(meta: dict[str, Any]) -> dict[str, tuple[float, float, float]]:
     """Floor, duct and ring colours the stage was built with (its build config), else the defaults."""
-    from ..build_config import BuildConfig
-
     cfg = BuildConfig()
     raw = meta.get("build_config")
     if raw:
@@ -120,8 +122,6 @@ def _car_pose(meta: dict[str, Any]) -> tuple[float, float, float] | None:
     src = meta.get("source_map")
     if not src or not Path(str(src)).is_file():
         return None
-    from ..start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
-    from ..track import track_from_map_path
 
     x, y, yaw = grid_poses(track_from_map_path(str(src)), 1, GRID_SPACING, GRID_OFFSET)[0]
     return float(x), float(y), float(yaw)
@@ -171,8 +171,6 @@ def _add(
 
 def _add_car(vtk: Any, ren: Any, pose: tuple[float, float, float]) -> None:
     """The env's car body (chassis length × width, 0.15 m tall) at ``pose``."""
-    from ..sim_config import SimConfig
-
     veh = SimConfig().vehicle
     box = vtk.vtkCubeSource()
     box.SetXLength(veh.chassis_length)

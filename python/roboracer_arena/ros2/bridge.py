@@ -33,12 +33,16 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import InvalidArgumentError
+from ..fileio import check_output
 from . import state_msgs as sm
 from .cdr import LaserScanPacker, OdometryPacker, TfPacker, pack_clock
 from .clock import BridgeConfig, Pacer, Schedule
 from .dds import participant, raw_writer
 from .graph import announce
+from .msgs import msg_class
 from .qos import qos_for
+from .recorder import McapRecorder
 from .source import SimSource, sim_source
 from .start import fixed_poses, fixed_speeds
 from .topics import CENTRELINE, CLOCK, INITIALPOSE, MAP, TF, TF_STATIC, TYPE_OF, car_names, dds_topic
@@ -92,12 +96,8 @@ class Bridge:
         stop_at: float | None = None,
     ) -> None:
         if record is not None:  # before any work: a bad target fails now, not after the run
-            from ..fileio import check_output
-
             check_output(record, inputs=[env_or_sim] if isinstance(env_or_sim, (str, Path)) else [])
         if stop_at is not None and not (math.isfinite(stop_at) and stop_at > 0):
-            from ..errors import InvalidArgumentError
-
             raise InvalidArgumentError(f"stop_at must be a finite number of seconds > 0, got {stop_at}")
         self.config = config or BridgeConfig()
         start = self.config.start
@@ -163,8 +163,6 @@ class Bridge:
         if self._thread is not None:
             raise RuntimeError("bridge already started")
         if self.record_path is not None:
-            from .recorder import McapRecorder
-
             self._recorder = McapRecorder(self.record_path, inputs=[self.src.name])
         if self.use_dds:
             self._open_dds()
@@ -237,8 +235,6 @@ class Bridge:
         from cyclonedds.pub import DataWriter
         from cyclonedds.sub import DataReader
         from cyclonedds.topic import Topic
-
-        from .msgs import msg_class
 
         self._dp = dp = participant(self.domain_id, loopback=self.loopback)
         topics: dict[str, Any] = {}
@@ -410,7 +406,7 @@ class Bridge:
                     end = min(end, period_end)
                 if self.stop_step is not None:
                     end = min(end, self.stop_step)
-                self._advance(end - self.step, scan=self.schedule._next["scan"] == end)
+                self._advance(end - self.step, scan=self.schedule.next_step_of("scan") == end)
                 if period_end is not None and self.step >= period_end:
                     period_end = None
                     self._periods_done += 1

@@ -80,6 +80,10 @@ class Schedule:
         """Physics step of the earliest pending event."""
         return min(self._next.values())
 
+    def next_step_of(self, name: str) -> int:
+        """Physics step of stream ``name``'s next event."""
+        return self._next[name]
+
     def due(self, step: int) -> list[str]:
         """Streams due at ``step`` (call once per step reached); advances them."""
         out = []

@@ -19,6 +19,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from ._deps import require
+from .msgs import msg_class
 
 #: The DDS topic (no ``rt/`` prefix: it is not a ROS topic) and ROS 2 type.
 TOPIC = "ros_discovery_info"
@@ -47,8 +48,6 @@ def participant_info(
 ) -> Any:
     """The ``ParticipantEntitiesInfo`` of a participant holding one node with these readers
     and writers (their GUIDs)."""
-    from .msgs import msg_class
-
     Gid = msg_class("rmw_dds_common/msg/Gid")
     Node = msg_class("rmw_dds_common/msg/NodeEntitiesInfo")
     node = Node(
@@ -79,8 +78,6 @@ def announce(dp: Any, readers: Iterable[Any], writers: Iterable[Any]) -> Any:
     for late joiners to receive the sample."""
     from cyclonedds.pub import DataWriter
     from cyclonedds.topic import Topic
-
-    from .msgs import msg_class
 
     qos = discovery_qos()
     w: DataWriter[Any] = DataWriter(dp, Topic(dp, TOPIC, msg_class(TYPE), qos=qos), qos=qos)

@@ -15,7 +15,10 @@ from typing import Any
 
 import numpy as np
 
+from .. import _core
+from ..envs.tracks import resolve_tracks
 from ..errors import ConfigError
+from ..maps import load_map
 from ..sim_config import SimConfig
 from ..start_grid import start_spec
 from .start import StartConfig, bridge_start_spec
@@ -55,8 +58,6 @@ class SimSource:
 
 def _load_map(source: Any) -> Any:
     if isinstance(source, (str, Path)) and str(source).lower().endswith((".yaml", ".yml")):
-        from ..maps import load_map
-
         return load_map(source)
     if all(hasattr(source, a) for a in ("data", "resolution", "origin")):
         return source
@@ -74,8 +75,6 @@ def sim_source(
     gets ``start`` (default: the grid start) set on its new simulator, as the env sets
     its own; an env keeps the start its config set; a bare simulator without a start
     spec starts at s = 0 of its centreline."""
-    from .. import _core
-
     if isinstance(env_or_sim, _core.Simulator):
         sim = env_or_sim
         tid = int(sim.track_ids()[0])
@@ -104,7 +103,6 @@ def sim_source(
             name=track.name,
             track_id=tid,
         )
-    from ..envs.tracks import resolve_tracks
 
     track = resolve_tracks(env_or_sim)[0]
     n = 1 if cars is None else int(cars)

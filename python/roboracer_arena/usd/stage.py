@@ -28,9 +28,11 @@ from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics, Vt
 from ..build_config import BuildConfig
 from ..errors import ConfigError, MapIOError
 from ..fileio import atomic_paths
+from ..sim_config import SimConfig
 from . import materials as looks
 from . import physx_schemas
 from .textures import Texture, duct_texture, floor_texture
+from .vehicle import author_car
 
 METADATA_KEY = "roboracerArena"
 USD_SUFFIXES = {".usdc": "usdc", ".usda": "usda", ".usd": None}
@@ -117,9 +119,6 @@ def author_stage(
             looks.bind(prim, physics_mat, physics=True)
             physx_schemas.apply_collider(prim, config.physics)
     if car_pose is not None:
-        from ..sim_config import SimConfig
-        from .vehicle import author_car
-
         author_car(stage, SimConfig(), car_pose)
     return stage, textures
 

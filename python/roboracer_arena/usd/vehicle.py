@@ -20,8 +20,11 @@ from typing import Any
 
 from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics
 
+from ..direction import direction_for_map
 from ..errors import ConfigError
 from ..sim_config import SimConfig
+from ..start_grid import centreline_pose, grid_start_s
+from ..track import Track
 from . import physx_schemas
 from .materials import PHYSICS_MATERIAL
 
@@ -193,10 +196,6 @@ def grid_start_pose(geo: Any, cfg: Any, source: str) -> tuple[float, float, floa
     """The env's grid start (x, y, yaw) on a freshly built corridor: the same track the
     env drives (walls, centreline in the map's racing direction) and the same rule."""
     from pathlib import Path
-
-    from ..direction import direction_for_map
-    from ..start_grid import centreline_pose, grid_start_s
-    from ..track import Track
 
     track = Track.from_polylines(list(geo.walls), geo.centreline, wall_height=cfg.geometry.wall_height_m)
     if source and Path(source).is_file():
