@@ -78,10 +78,6 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
     ("envs/batch.py", "..errors"): _NEXT + ": the episode step moves into the core",
     ("envs/single.py", "..render.sim_view"): "render (PIL) loads only when render() is called, not for gym.make",
     ("envs/vector.py", "..render.sim_view"): "render (PIL) loads only when render() is called, not for gym.make",
-    ("generate/pipeline.py", ".baselines"): "the baselines need scipy and leave the wheel with bench/ (issue #24)",
-    ("library/generated.py", "..generate"): _NEXT + ": the sweep builders become one",
-    ("library/generated.py", "..generate.outcomes"): _NEXT + ": the sweep builders become one",
-    ("library/generated.py", "..generate.outputs"): _NEXT + ": the sweep builders become one",
     ("physx/__init__.py", ".check"): "PEP 562 lazy attribute: physx.available() must not load pxr and the envs",
     ("ros2/episode_recorder.py", "..envs.single"): "the recorder wraps any env; ROS 2 users need not load the envs",
 }

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from benchmarks.__main__ import main as benchmarks_main
 from roboracer_arena.cli import main
 
 from .conftest import strays
@@ -62,7 +63,7 @@ def test_bench_json_onto_its_requests_file_exits_2(tmp_path, capsys):
     req = tmp_path / "requests.jsonl"
     req.write_text('{"text": "a 40 m lap"}\n')
     before = req.read_bytes()
-    assert main(["bench", "parser", "--requests", str(req), "--json", str(req)]) == 2
+    assert benchmarks_main(["parser", "--requests", str(req), "--json", str(req)]) == 2
     assert "would overwrite the input" in capsys.readouterr().err and req.read_bytes() == before
 
 

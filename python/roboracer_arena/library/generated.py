@@ -11,6 +11,7 @@ error at any moment leaves the previous one as it was."""
 from __future__ import annotations
 
 import json
+import tempfile
 import time
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
@@ -22,6 +23,9 @@ import numpy as np
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
 from ..fileio import atomic_update_dir, atomic_write_dir, atomic_write_text, check_output
+from ..generate import generate_track, write_outputs
+from ..generate.outcomes import Acceptance, Rejection
+from ..generate.outputs import centreline_csv
 from ..pool import Progress, local_unless, map_ordered
 from ..spec import TrackSpec
 from .sweep import GridSweep, SweepRequest
@@ -81,12 +85,6 @@ def generate_files(task: tuple[str, TrackSpec, int]) -> tuple[SweepRecord, dict[
     its record and, for an acceptance, its files (name -> bytes: map, centreline, spec,
     report). Files go back to the caller, which alone writes them (no shared disk needed,
     and a retried task cannot leave a partial directory)."""
-    import tempfile
-
-    from ..generate import generate_track, write_outputs
-    from ..generate.outcomes import Acceptance, Rejection
-    from ..generate.outputs import centreline_csv
-
     tid, spec, seed = task
     out = generate_track(spec, seed)
     rec: dict[str, Any] = {
