@@ -223,16 +223,17 @@ mod tests {
         // fall through to the teardrop.
         use crate::generate::budget::Budget;
         use crate::generate::construct::{generate, Outcome};
+        use crate::generate::spec::Direction;
         let cfg = ConstructorConfig::default();
         for (hx, hy, seed, direction) in [
-            (16.0, 12.0, 1, "counterclockwise"),
-            (20.0, 15.0, 0, "counterclockwise"),
-            (16.0, 12.0, 2, "clockwise"),
+            (16.0, 12.0, 1, Direction::Counterclockwise),
+            (20.0, 15.0, 0, Direction::Counterclockwise),
+            (16.0, 12.0, 2, Direction::Clockwise),
         ] {
             let s = Spec {
                 hall_x_m: hx,
                 hall_y_m: hy,
-                direction: direction.into(),
+                direction,
                 ..spec(1, 1, 0)
             };
             match generate(&s, &cfg, seed, &Budget::default()).unwrap() {
@@ -246,7 +247,7 @@ mod tests {
                     let m = report.measurements.expect("measured");
                     assert_eq!((m.hairpins, m.chicanes, m.sweepers), (1, 1, 0));
                 }
-                other => panic!("{hx} × {hy} m, {direction}: {other:?}"),
+                other => panic!("{hx} × {hy} m, {direction:?}: {other:?}"),
             }
         }
     }
