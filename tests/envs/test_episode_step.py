@@ -242,7 +242,10 @@ def test_vector_env_matches_the_oracle(oval, mode, vehicles):
                 one = {k: np.atleast_1d(v) for k, v in one.items()}
                 one["vehicle_rewards"], one["vehicle_terminated"] = want.vehicle_rewards[e], want.vehicle_terminated[e]
             else:
-                one["vehicle_rewards"], one["vehicle_terminated"] = src["vehicle_rewards"][e], src["vehicle_terminated"][e]
+                one["vehicle_rewards"], one["vehicle_terminated"] = (
+                    src["vehicle_rewards"][e],
+                    src["vehicle_terminated"][e],
+                )
             _compare_env(e, reward[e], term[e], trunc[e], one, want)
         if done.any():
             oracle.reset(done, after[0])
