@@ -253,3 +253,22 @@ def test_vector_env_matches_the_oracle(oval, mode, vehicles):
                 assert not np.asarray(info[k])[done].any()
         counts += (term.sum(), trunc.sum())
     assert counts[0] > 0 and counts[1] > 0
+
+
+@pytest.mark.parametrize("odometry", [("x", "y", "yaw", "vx"), ("speed", "x"), ()])
+@pytest.mark.parametrize("num_envs", [1, 3])
+def test_raw_observation_is_the_state_after_every_step(oval, odometry, num_envs):
+    """The one refresh path (direct copies for a column run, a gather otherwise) shows
+    each step's state, in the single and the vector env."""
+    kw = {"observation": {"odometry": odometry}, **SMALL}
+    env = RoboRacerEnv(track=oval, **kw) if num_envs == 1 else RoboRacerVectorEnv(num_envs=num_envs, track=oval, **kw)
+    b = env._batch
+    obs, _ = env.reset(seed=0)
+    for i in range(15):
+        act = np.array([0.1 * (i % 3), 1.5], np.float32)
+        obs, *_ = env.step(act if num_envs == 1 else np.tile(act, (num_envs, 1)))
+        cols = [b.field_index[f] for f in odometry]
+        want = b.state[:, 0][:, cols].astype(np.float32)
+        if odometry:
+            _same(np.reshape(obs["odometry"], want.shape), want, "odometry")
+        _same(np.reshape(obs["scan"], (num_envs, -1)), b.scans[:, 0], "scan")

@@ -115,6 +115,7 @@ class SimBatch:
         self.obs = ObservationAssembler(config, self.field_index, E, V, B)
         if self.obs.shares_scan:  # the simulator writes the observation's scans directly
             self.scans = self.obs.buf["scan"]
+        self.obs.bind(self.state)
         self._row = self.state[0, 0]  # view: env 0, vehicle 0 (the single env's info)
         # The scanner runs at its own rate: under a faster control loop the observation
         # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control

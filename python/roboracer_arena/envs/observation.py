@@ -63,6 +63,10 @@ class ObservationAssembler:
         #: Raw scans without history: the batch lets the simulator write into buf["scan"].
         self.shares_scan = cfg.scan and self.k == 1 and not cfg.normalise
         self._views = {k: v[0, 0] for k, v in self.buf.items()}
+        #: (observation buffer, state view) pairs a step's refresh copies, when every key of
+        #: the frame is a plain copy of the batch's state (one raw frame, no previous
+        #: action); set by :meth:`bind`.
+        self._copies: list[tuple[np.ndarray, np.ndarray]] | None = None
         self._view_items = list(self._views.items())
 
     # ------------------------------------------------------------------ spaces
@@ -100,6 +104,11 @@ class ObservationAssembler:
     def refresh(self, batch: Any, envs: Any, fill: bool = False) -> None:
         """Compute the current frame of ``envs`` from the batch buffers; push it into the
         history (``fill``: the whole history, as at reset)."""
+        if self._copies is not None and not fill and isinstance(envs, slice) and envs == slice(None):
+            # Raw single frames of every env (each step): straight copies between views.
+            for dst, src in self._copies:
+                np.copyto(dst, src, casting="same_kind")
+            return
         for key, value in self._frame(batch, envs, reset=fill).items():
             buf = self.buf[key]
             if self.k == 1:
@@ -109,6 +118,14 @@ class ObservationAssembler:
             else:
                 buf[envs, :, :-1] = buf[envs, :, 1:]
                 buf[envs, :, -1] = value
+
+    def bind(self, state: np.ndarray) -> None:
+        """Use ``state`` (the batch's (E, V, S) state buffer, fixed for its lifetime) for
+        the step refresh's direct copies, when the frame is only raw copies of it."""
+        plain = self.k == 1 and not self.cfg.normalise and not self.cfg.previous_action
+        view = isinstance(self.cols, slice)  # (a gather would copy once, then go stale)
+        if plain and view and (self.shares_scan or not self.cfg.scan):
+            self._copies = [(self.buf["odometry"], state[..., self.cols])] if self.fields else []
 
     def observation_one(self) -> dict[str, np.ndarray]:
         """Fresh copies of env 0, vehicle 0's observation (what the single env returns)."""
