@@ -495,7 +495,9 @@ class EpisodeConfig:
 @final
 class EpisodeBuffers:
     """The episode results of ``num_envs`` x ``vehicles_per_env`` as numpy arrays that
-    ``Simulator.step`` / ``observe`` (``episode=``) write in place; zeroed at creation."""
+    ``Simulator.step`` / ``observe`` (``episode=``) write in place; zeroed at creation.
+    Each attribute is always the same array (contiguous views of four blocks, so a step
+    borrows four arrays); ``ConfigError`` over the simulator's size budget."""
 
     def __new__(cls, num_envs: int, vehicles_per_env: int) -> EpisodeBuffers: ...
     @property

@@ -272,3 +272,39 @@ def test_raw_observation_is_the_state_after_every_step(oval, odometry, num_envs)
         if odometry:
             _same(np.reshape(obs["odometry"], want.shape), want, "odometry")
         _same(np.reshape(obs["scan"], (num_envs, -1)), b.scans[:, 0], "scan")
+
+
+def test_episode_buffers_and_their_errors(oval):
+    from roboracer_arena.errors import ConfigError, InvalidArgumentError
+
+    ep = _core.EpisodeBuffers(3, 2)
+    want = {
+        "reward": ((3,), np.float64),
+        "terminated": ((3,), np.bool_),
+        "truncated": ((3,), np.bool_),
+        "elapsed": ((3,), np.int64),
+        "vehicle_reward": ((3, 2), np.float64),
+        "vehicle_terminated": ((3, 2), np.bool_),
+        "progress": ((3, 2), np.float64),
+        "wrong_way": ((3, 2), np.int8),
+    }
+    for name, (shape, dtype) in want.items():
+        a = getattr(ep, name)
+        assert a.shape == shape and a.dtype == dtype and a.flags.c_contiguous and not a.any(), name
+        assert getattr(ep, name) is a  # the same array every time: views stay valid
+    sim = _core.Simulator([oval.native()], 3, 2, "{}", 0)
+    state = np.zeros((3, 2, len(sim.state_fields)))
+    events = np.zeros((3, 2), np.uint8)
+    acts = np.zeros((3, 2, 2))
+    with pytest.raises(InvalidArgumentError, match="set_episode"):
+        sim.step(acts, 1, None, state, events, ep)
+    cfg = {**ALL_TERMS, "wrong_way_distance": 1.0, "dt": 0.05}
+    sim.set_episode(_core.EpisodeConfig(**cfg, collision_ends_episode=True, wrong_way_ends_episode=False))
+    with pytest.raises(InvalidArgumentError, match="elements"):
+        sim.step(acts, 1, None, state, events, _core.EpisodeBuffers(2, 2))
+    sim.step(acts, 1, None, state, events, ep)
+    assert (ep.elapsed == 1).all()
+    with pytest.raises(InvalidArgumentError, match="dt"):
+        _core.EpisodeConfig(**{**cfg, "dt": 0.0}, collision_ends_episode=True, wrong_way_ends_episode=False)
+    with pytest.raises(ConfigError, match="vehicles"):  # the size budget, before allocating
+        _core.EpisodeBuffers(2**40, 2**20)
