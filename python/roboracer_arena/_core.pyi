@@ -53,6 +53,12 @@ __all__ = [
     "SIM_MAX_VEHICLES",
     "SIM_MAX_SCAN_VALUES",
     "STATE_FIELDS",
+    "EpisodeConfig",
+    "EpisodeBuffers",
+    "EVENT_WALL",
+    "EVENT_VEHICLE",
+    "EVENT_LAP",
+    "EVENT_FAULT",
     "StartGrid",
     "StartSpec",
 ]
@@ -372,17 +378,25 @@ class Simulator:
         scans: npt.NDArray[np.float32] | None,
         state: npt.NDArray[np.float64],
         events: npt.NDArray[np.uint8],
+        episode: EpisodeBuffers | None = None,
     ) -> None:
-        """Run ``substeps`` physics steps, then scan (if ``scans`` is not None); outputs in place."""
+        """Run ``substeps`` physics steps, then scan (if ``scans`` is not None) and, once
+        ``set_episode`` was called, the episode step; outputs in place (the episode results
+        into ``episode`` when given)."""
     def observe(
         self,
         scans: npt.NDArray[np.float32] | None,
         state: npt.NDArray[np.float64],
         events: npt.NDArray[np.uint8],
         env_mask: npt.NDArray[np.bool_] | None = None,
+        episode: EpisodeBuffers | None = None,
     ) -> None:
         """Write the outputs without stepping: of every env, or only of the envs where
-        ``env_mask`` is True (other rows untouched, their noise streams not advanced)."""
+        ``env_mask`` is True (other rows untouched, their noise streams not advanced);
+        with ``episode``, the same envs' episode results too."""
+    def set_episode(self, config: EpisodeConfig) -> None:
+        """Run the episode step in every step from now on; every reset restarts the reset
+        envs' episodes. A later call changes the parameters and keeps the episodes."""
     def centreline_pose(self, track_id: int, s: float) -> tuple[float, float, float]:
         """Pose (x, y, heading) on the centreline at arc length ``s`` (finite; wrapped)."""
     def free_space(self, track_id: int) -> FreeSpace:
@@ -494,6 +508,74 @@ class StartGrid:
         """Poses (slots, 3) of the staggered grid: the first at ``s0`` (default
         ``grid_start_s(slots, spacing)``), each next ``spacing`` behind and, with more than
         one car, ``offset`` left and right of the centreline in turn."""
+
+@final
+class EpisodeConfig:
+    """Reward weights and episode ends of ``Simulator.set_episode`` (mirrors
+    ``envs.env_config.RewardConfig``). Per vehicle and step of ``dt`` s the reward is
+    ``progress * ds - stall_penalty * dt [ds < stall_speed * dt] - time_penalty * dt
+    - collision_penalty [contact] - wrong_way_penalty [wrong way]``. Keyword arguments;
+    the core checks them (``InvalidArgumentError``): finite, penalties, ``stall_speed`` and
+    ``wrong_way_distance`` >= 0, ``dt`` > 0, ``max_steps`` >= 1 or None (no limit)."""
+
+    def __new__(
+        cls,
+        *,
+        progress: float,
+        collision_penalty: float,
+        stall_penalty: float,
+        stall_speed: float,
+        time_penalty: float,
+        wrong_way_penalty: float,
+        wrong_way_distance: float,
+        dt: float,
+        collision_ends_episode: bool,
+        wrong_way_ends_episode: bool,
+        max_steps: int | None = None,
+    ) -> EpisodeConfig: ...
+    @property
+    def max_steps(self) -> int | None: ...
+    def __eq__(self, value: object, /) -> bool: ...
+
+@final
+class EpisodeBuffers:
+    """The episode results of ``num_envs`` x ``vehicles_per_env`` as numpy arrays that
+    ``Simulator.step`` / ``observe`` (``episode=``) write in place; zeroed at creation.
+    Each attribute is always the same array (contiguous views of four blocks, so a step
+    borrows four arrays); ``ConfigError`` over the simulator's size budget."""
+
+    def __new__(cls, num_envs: int, vehicles_per_env: int) -> EpisodeBuffers: ...
+    @property
+    def reward(self) -> npt.NDArray[np.float64]:
+        """(E,) each env's reward this step (the sum over its vehicles)."""
+    @property
+    def terminated(self) -> npt.NDArray[np.bool_]:
+        """(E,) any vehicle's episode ended (a contact or wrong way, as configured)."""
+    @property
+    def truncated(self) -> npt.NDArray[np.bool_]:
+        """(E,) the step limit was reached and the env did not terminate."""
+    @property
+    def elapsed(self) -> npt.NDArray[np.int64]:
+        """(E,) steps since the env's reset."""
+    @property
+    def vehicle_reward(self) -> npt.NDArray[np.float64]:
+        """(E, V) each vehicle's reward this step."""
+    @property
+    def vehicle_terminated(self) -> npt.NDArray[np.bool_]:
+        """(E, V) each vehicle's end this step."""
+    @property
+    def progress(self) -> npt.NDArray[np.float64]:
+        """(E, V) metres along the centreline since reset."""
+    @property
+    def wrong_way(self) -> npt.NDArray[np.int8]:
+        """(E, V) 0, +1 driving the wrong way nose first, -1 reversing."""
+
+#: Event bits of ``Simulator`` events (per vehicle, per step): a wall contact, a vehicle
+#: contact, a completed lap, a physics fault (the car was put back at rest).
+EVENT_WALL: int
+EVENT_VEHICLE: int
+EVENT_LAP: int
+EVENT_FAULT: int
 
 @final
 class StartSpec:

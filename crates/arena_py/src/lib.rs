@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 mod boundary;
 mod config;
 mod convert;
+mod episode;
 mod errors;
 mod generate;
 mod geometry;
@@ -27,6 +28,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     track::register(m)?;
     config::register(m)?;
     sim::register(m)?;
+    episode::register(m)?;
     start_grid::register(m)?;
     Ok(())
 }

@@ -17,6 +17,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyFloat, PyTuple};
 
 use crate::boundary;
+use crate::episode::{EpisodeBuffers, EpisodeConfig};
 use crate::errors::to_py;
 use crate::start_grid::StartSpec;
 
@@ -442,7 +443,17 @@ impl Simulator {
         })
     }
 
-    #[pyo3(signature = (actions, substeps, scans, state, events))]
+    /// Run the episode step (progress, reward, wrong-way, termination, truncation) in
+    /// every step from now on, and restart an env's episode with its reset; a later call
+    /// changes the parameters and keeps the episodes.
+    fn set_episode(&mut self, py: Python<'_>, config: PyRef<'_, EpisodeConfig>) -> PyResult<()> {
+        let params = config.inner;
+        let inner = &mut self.inner;
+        boundary::call(py, "set_episode", move || inner.set_episode(params))
+    }
+
+    #[pyo3(signature = (actions, substeps, scans, state, events, episode = None))]
+    #[allow(clippy::too_many_arguments)]
     fn step(
         &mut self,
         py: Python<'_>,
@@ -451,16 +462,18 @@ impl Simulator {
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
+        episode: Option<PyRef<'_, EpisodeBuffers>>,
     ) -> PyResult<()> {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let acts = read_f64(actions, "actions", [e, v, 2])?;
         let substeps = uint_arg(substeps, "substeps", 100_000)? as usize;
-        self.run(py, Ok((acts, substeps)), scans, state, events)
+        self.run(py, Ok((acts, substeps)), scans, state, events, episode)
     }
 
     /// Write state, events and (unless `scans` is None) scans without stepping: of every
-    /// env, or only of those where `env_mask` is True (the other rows are left alone).
-    #[pyo3(signature = (scans, state, events, env_mask = None))]
+    /// env, or only of those where `env_mask` is True (the other rows are left alone);
+    /// with `episode`, the same envs' episode results too.
+    #[pyo3(signature = (scans, state, events, env_mask = None, episode = None))]
     fn observe(
         &mut self,
         py: Python<'_>,
@@ -468,12 +481,13 @@ impl Simulator {
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
         env_mask: Option<&Bound<'_, PyAny>>,
+        episode: Option<PyRef<'_, EpisodeBuffers>>,
     ) -> PyResult<()> {
         let mask = match env_mask {
             Some(m) if !m.is_none() => Some(read_mask(m, self.inner.num_envs())?),
             _ => None,
         };
-        self.run(py, Err(mask), scans, state, events)
+        self.run(py, Err(mask), scans, state, events, episode)
     }
 
     /// Pose (x, y, heading) on track `track_id`'s centreline at arc length `s` (wrapped).
@@ -569,6 +583,7 @@ impl Simulator {
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
+        episode: Option<PyRef<'_, EpisodeBuffers>>,
     ) -> PyResult<()> {
         let (e, v, b) = (
             self.inner.num_envs(),
@@ -595,10 +610,22 @@ impl Simulator {
             Some(s) => Some(s.as_slice_mut().map_err(|e| invalid(e.to_string()))?),
             None => None,
         };
+        let mut borrowed = match episode.as_ref() {
+            Some(b) => Some(b.borrow(py)?),
+            None => None,
+        };
+        let out = match borrowed.as_mut() {
+            Some(b) => Some(b.out()?),
+            None => None,
+        };
         let inner = &mut self.inner;
-        boundary::call(py, "step", move || match step {
-            Ok((acts, substeps)) => inner.step(&acts, substeps, sc, st, ev),
-            Err(mask) => inner.observe_masked(mask.as_deref(), sc, st, ev),
+        boundary::call(py, "step", move || match (step, out) {
+            (Ok((acts, substeps)), None) => inner.step(&acts, substeps, sc, st, ev),
+            (Ok((acts, substeps)), Some(out)) => {
+                inner.step_episode(&acts, substeps, sc, st, ev, out)
+            }
+            (Err(mask), None) => inner.observe_masked(mask.as_deref(), sc, st, ev),
+            (Err(mask), Some(out)) => inner.observe_episode(mask.as_deref(), sc, st, ev, out),
         })
     }
 }

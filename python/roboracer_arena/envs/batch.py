@@ -1,7 +1,12 @@
 """The batch engine behind both gymnasium envs: one native ``_core.Simulator`` holding
-``E`` environments of ``V`` vehicles, preallocated buffers, action sanitising, reward and
+``E`` environments of ``V`` vehicles, preallocated buffers, action sanitising and
 observation assembly. The single env is this with ``E = 1``; the vector env adds
 autoreset on top.
+
+The episode step (progress since reset, the reward terms, wrong-way driving,
+termination and truncation) is the core's (``arena_core::sim::episode``): the simulator
+runs it inside its step for every env and writes the results into this batch's
+``_core.EpisodeBuffers``, which the envs read; no Python arithmetic runs per step.
 
 Resets are native and masked: the simulator draws each reset env's track, start poses,
 rolling-start speeds and lidar randomisation from that env's own stream (seeded from
@@ -13,25 +18,21 @@ episodes (noise included) do not depend on when the other envs reset.
 from __future__ import annotations
 
 import math
-from types import SimpleNamespace
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 from gymnasium import spaces
 
-from .._core import StartSpec
+from .._core import EVENT_LAP, EVENT_VEHICLE, EVENT_WALL, EpisodeBuffers, EpisodeConfig, StartSpec
 from ..start_grid import SIDE_MARGIN, start_spec
 from ..track import Track
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
 
-CONTACT_WALL, CONTACT_VEHICLE, LAP_COMPLETED = 1, 2, 4
 #: Stream index of the per-env vehicle-randomisation RNG (apart from every other draw).
 _VEHICLE_STREAM = 0x7E41
 #: Simulator state columns copied into ``info`` when present.
 STATE_INFO = ("laps", "lap_time", "last_lap_time", "progress_s")
-#: A step that loses more than this (m) of centreline progress counts as moving backwards.
-BACKWARDS_EPS = 1e-3
 
 
 def check_size_budget(num_envs: int, config: EnvConfig) -> None:
@@ -79,9 +80,7 @@ class SimBatch:
         self.num_beams = B = int(self.sim.num_beams)
         self.fields = tuple(self.sim.state_fields)
         self.field_index = {f: i for i, f in enumerate(self.fields)}
-        missing = [
-            f for f in (*config.observation.odometry, "x", "y", "yaw", "progress_s") if f not in self.field_index
-        ]
+        missing = [f for f in (*config.observation.odometry, "x", "y", "yaw") if f not in self.field_index]
         if missing:
             raise RuntimeError(f"the simulator's state lacks fields {missing} (it has {self.fields})")
         self.substeps = config.substeps
@@ -92,19 +91,15 @@ class SimBatch:
         self.state = np.zeros((E, V, len(self.fields)), np.float64)
         self.events = np.zeros((E, V), np.uint8)
         self.track_ids = np.zeros(E, np.int64)
-        self.prev_s = np.zeros((E, V), np.float64)
-        self.progress = np.zeros((E, V), np.float64)  # metres since reset
-        self.elapsed = np.zeros(E, np.int64)
-        self.vehicle_rewards = np.zeros((E, V), np.float64)
-        self.best_progress = np.zeros((E, V), np.float64)
-        self.wrong_way = np.zeros((E, V), np.int8)  # 0, +1 nose first, -1 reversing (see info)
-        self.vehicle_terminated = np.zeros((E, V), bool)
+        #: The core's episode results (written by each step and reset), and views of them.
+        self.episode = ep = EpisodeBuffers(E, V)
+        self.progress = ep.progress  # (E, V) metres since reset
+        self.elapsed = ep.elapsed  # (E,) steps since reset
+        self.vehicle_rewards = ep.vehicle_reward  # (E, V)
+        self.wrong_way = ep.wrong_way  # (E, V) 0, +1 nose first, -1 reversing (see info)
+        self.vehicle_terminated = ep.vehicle_terminated  # (E, V)
         self.start_pose = np.zeros((E, V, 3), np.float64)
         self.start_speed = np.zeros((E, V), np.float64)
-        self._len = np.ones((E, 1), np.float64)  # lap length of each env's track
-        self._half_len = np.full((E, 1), 0.5)
-        self._no_contact = np.zeros((E, V), bool)
-        self._no_env = np.zeros(E, bool)
 
         veh, lid = config.sim.vehicle, config.sim.lidar
         self._lo = np.array([-veh.max_steer, veh.min_speed])
@@ -114,38 +109,51 @@ class SimBatch:
         self._speed_range = None if frac is None else (frac[0] * veh.max_speed, frac[1] * veh.max_speed)
         self._scalar_actions = E * V == 1
         self._bounds = (tuple(self._lo.tolist()), tuple(self._hi.tolist()))
-        # "travel" (signed metres along the centreline since reset, wrap handled natively)
-        # when the simulator has it; otherwise the lap-wrapped change of "progress_s".
-        self._wrap = "travel" not in self.field_index
-        self._s_col = self.field_index["progress_s" if self._wrap else "travel"]
         self._info_names = [f for f in STATE_INFO if f in self.field_index]
         self._info_cols = np.array([self.field_index[f] for f in self._info_names], dtype=np.intp)
         self._range_max = float(lid.range_max)
         self.obs = ObservationAssembler(config, self.field_index, E, V, B)
         if self.obs.shares_scan:  # the simulator writes the observation's scans directly
             self.scans = self.obs.buf["scan"]
-        self._row = self.state[0, 0]  # view: env 0, vehicle 0 (step_one)
-        self._vx_col = self.field_index["vx"]
-        self._flat = SimpleNamespace(
-            prev_s=self.prev_s.reshape(-1),
-            progress=self.progress.reshape(-1),
-            elapsed=self.elapsed.reshape(-1),
-            best_progress=self.best_progress.reshape(-1),
-            wrong_way=self.wrong_way.reshape(-1),
-            half_len=self._half_len.reshape(-1),
-            length=self._len.reshape(-1),
-        )
-        self._reward = config.reward
-        self._stall_ds = config.reward.stall_speed * config.control_dt  # progress per step below which a car stalls
-        self._wrong_way_distance = config.wrong_way_distance
+        self.obs.bind(self.state)
+        self._row = self.state[0, 0]  # view: env 0, vehicle 0 (the single env's info)
         # The scanner runs at its own rate: under a faster control loop the observation
         # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control
         # scans on 2 of every 5 steps). Scan ticks count on one clock for the whole batch.
         self._scan_every_step = lid.rate_hz * config.control_dt >= 1.0 - 1e-9
-        self._every_step_scans = self.scans if config.observation.scan else None
+        self._every_step_scans = self.scans if config.observation.scan and self._scan_every_step else None
         self._scan_ticks_per_step = lid.rate_hz * config.control_dt
         self._scan_clock = 0.0
-        self.max_steps = config.max_episode_steps
+        self._max_steps = config.max_episode_steps
+        self.sim.set_episode(self._episode_config())
+
+    @property
+    def max_steps(self) -> int | None:
+        """Steps before the core truncates an episode (None: never; gymnasium's TimeLimit
+        may take over, see :mod:`.episode_limit`)."""
+        return self._max_steps
+
+    @max_steps.setter
+    def max_steps(self, value: int | None) -> None:
+        self._max_steps = value
+        self.sim.set_episode(self._episode_config())
+
+    def _episode_config(self) -> EpisodeConfig:
+        """The core's episode parameters from the env config (see ``RewardConfig``)."""
+        cfg, r = self.config, self.config.reward
+        return EpisodeConfig(
+            progress=r.progress,
+            collision_penalty=r.collision_penalty,
+            stall_penalty=r.stall_penalty,
+            stall_speed=r.stall_speed,
+            time_penalty=r.time_penalty,
+            wrong_way_penalty=r.wrong_way_penalty,
+            wrong_way_distance=cfg.wrong_way_distance,
+            dt=cfg.control_dt,
+            collision_ends_episode=cfg.collision_ends_episode,
+            wrong_way_ends_episode=cfg.wrong_way_ends_episode,
+            max_steps=self._max_steps,
+        )
 
     # ------------------------------------------------------------------ spaces
     def single_spaces(self) -> tuple[spaces.Space, spaces.Space]:
@@ -245,6 +253,8 @@ class SimBatch:
         )
 
     def _new_sim(self, seed: int) -> Any:
+        """A simulator with this batch's tracks, counts, config and start spec (the episode
+        parameters are set by the caller: ``__init__`` and :meth:`rebuild`)."""
         sim = self._Simulator(
             self._natives,
             self.num_envs,
@@ -294,16 +304,10 @@ class SimBatch:
         idx = np.flatnonzero(mask)
         if self._vehicle_rngs is not None:
             self._randomise_vehicles(self._vehicle_rngs, mask, idx)
-        length = self.lengths[self.track_ids[idx]]
-        self._len[idx, 0] = length
-        self._half_len[idx, 0] = length / 2
-        self.sim.observe(self.scans if self.config.observation.scan else None, self.state, self.events, mask)
-        self.prev_s[idx] = self.state[idx, :, self._s_col]
-        self.progress[idx] = 0.0
-        self.best_progress[idx] = 0.0
-        self.wrong_way[idx] = 0
-        self.vehicle_terminated[idx] = False
-        self.elapsed[idx] = 0
+        # The core restarted these envs' episodes: their rows of the episode buffers now
+        # read reward 0, not ended, progress 0, no wrong way, elapsed 0.
+        scans = self.scans if self.config.observation.scan else None
+        self.sim.observe(scans, self.state, self.events, mask, self.episode)
         self.obs.refresh(self, idx, fill=True)
 
     def _scan_due(self) -> bool:
@@ -317,103 +321,15 @@ class SimBatch:
         return math.floor(self._scan_clock + 1e-9) > math.floor(before + 1e-9)
 
     # ------------------------------------------------------------------ step
-    def step(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Step all environments with the stored actions. Returns (reward (E,), terminated
-        (E,), truncated (E,), contact (E, V) bool)."""
-        self.sim.step(self.actions, self.substeps, self.scans if self._scan_due() else None, self.state, self.events)
-        s = self.state[:, :, self._s_col]
-        ds = s - self.prev_s
-        if self._wrap:
-            np.remainder(ds + self._half_len, self._len, out=ds)  # wrap at the lap
-            ds -= self._half_len
-        self.prev_s[:] = s
-        self.progress += ds
-        self.elapsed += 1
-        r = self.config.reward
-        vr = self.vehicle_rewards
-        np.multiply(ds, r.progress, out=vr)
-        if r.stall_penalty:
-            vr -= (r.stall_penalty * self.config.control_dt) * (ds < self._stall_ds)
-        if r.time_penalty:
-            vr -= r.time_penalty * self.config.control_dt
-        ends = self.vehicle_terminated
-        if self.events.any():
-            contact = (self.events & (CONTACT_WALL | CONTACT_VEHICLE)) != 0
-            vr -= r.collision_penalty * contact
-            np.logical_and(contact, self.config.collision_ends_episode, out=ends)
-        else:
-            contact = self._no_contact
-            ends[:] = False
-        wrong = self._update_wrong_way(ds)
-        if wrong is not None:
-            if r.wrong_way_penalty:
-                vr -= r.wrong_way_penalty * wrong
-            if self.config.wrong_way_ends_episode:
-                ends |= wrong
-        terminated = cast(np.ndarray, ends.any(axis=1))  # an axis is given: an array, not a scalar
-        self.obs.refresh(self, slice(None))
-        reward = vr[:, 0].copy() if self.vehicles == 1 else vr.sum(axis=1)
-        if self.max_steps is None:
-            return reward, terminated, self._no_env, contact
-        truncated = self.elapsed >= self.max_steps
-        return reward, terminated, truncated & ~terminated, contact
-
-    def step_one(self) -> tuple[float, bool, bool]:
-        """:meth:`step` for one env of one vehicle in Python scalars (the single env's
-        per-step path: no temporary arrays). Same arithmetic and the same updates of the
-        progress, wrong-way and episode buffers as :meth:`step` (tests compare the two bit
-        for bit; ``vehicle_rewards`` / ``vehicle_terminated``, which only several vehicles
-        report, are left alone); the observation is refreshed with
-        :meth:`ObservationAssembler.refresh_one`. Returns (reward, terminated, truncated)."""
+    def step(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Step all environments with the stored actions: one native call runs the physics,
+        the scan, the state and the episode step. Returns the episode buffers' reward (E,),
+        terminated (E,) and truncated (E,): views, valid until the next step or reset."""
         scans = self._every_step_scans if self._scan_every_step else (self.scans if self._scan_due() else None)
-        self.sim.step(self.actions, self.substeps, scans, self.state, self.events)
-        row = self._row.tolist()
-        f = self._flat  # 1-D views of this env's scalars (cheaper to index)
-        s = row[self._s_col]
-        ds = s - f.prev_s.item(0)
-        if self._wrap:
-            half, length = f.half_len.item(0), f.length.item(0)
-            ds = (ds + half) % length - half
-        progress = f.progress.item(0) + ds
-        f.prev_s[0] = s
-        f.progress[0] = progress
-        elapsed = f.elapsed.item(0) + 1
-        f.elapsed[0] = elapsed
-        r = self._reward
-        reward = ds * r.progress
-        if r.stall_penalty and ds < self._stall_ds:
-            reward -= r.stall_penalty * self.config.control_dt
-        if r.time_penalty:
-            reward -= r.time_penalty * self.config.control_dt
-        end = False
-        if self.events.item(0) & (CONTACT_WALL | CONTACT_VEHICLE):
-            reward -= r.collision_penalty
-            end = self.config.collision_ends_episode
-        best = f.best_progress.item(0)
-        if progress > best:
-            f.best_progress[0] = best = progress
-        if ds < -BACKWARDS_EPS and best - progress > self._wrong_way_distance:
-            f.wrong_way[0] = 1 if row[self._vx_col] >= 0.0 else -1
-            reward -= r.wrong_way_penalty
-            end = end or self.config.wrong_way_ends_episode
-        elif f.wrong_way.item(0):
-            f.wrong_way[0] = 0
-        self.obs.refresh_one(self, row)
-        return reward, end, self.max_steps is not None and elapsed >= self.max_steps and not end
-
-    def _update_wrong_way(self, ds: np.ndarray) -> np.ndarray | None:
-        """Update ``wrong_way`` (E, V): nonzero while a vehicle moves backwards along the
-        centreline more than ``wrong_way_distance`` behind its furthest progress; +1 when it
-        drives nose first (a U-turn), -1 when it reverses. Returns the bool mask, or None
-        when no vehicle is wrong-way (the common case, no allocation)."""
-        np.maximum(self.best_progress, self.progress, out=self.best_progress)
-        wrong = (ds < -BACKWARDS_EPS) & (self.best_progress - self.progress > self.config.wrong_way_distance)
-        if not wrong.any():
-            self.wrong_way[:] = 0
-            return None
-        forward = self.state[:, :, self.field_index["vx"]] >= 0.0
-        self.wrong_way[:] = np.where(wrong, np.where(forward, 1, -1), 0)
-        return wrong
+        self.sim.step(self.actions, self.substeps, scans, self.state, self.events, self.episode)
+        self.obs.refresh(self, slice(None))
+        ep = self.episode
+        return ep.reward, ep.terminated, ep.truncated
 
     # ------------------------------------------------------------------ observation
     def observation(self, envs: Any = slice(None)) -> dict[str, np.ndarray]:
@@ -436,9 +352,9 @@ class SimBatch:
             "track_id": self.track_ids[envs].copy(),
             "open_map": self.open_maps[self.track_ids[envs]],
             "progress": self.progress[envs].copy(),
-            "contact_wall": (ev & CONTACT_WALL) != 0,
-            "contact_vehicle": (ev & CONTACT_VEHICLE) != 0,
-            "lap_completed": (ev & LAP_COMPLETED) != 0,
+            "contact_wall": (ev & EVENT_WALL) != 0,
+            "contact_vehicle": (ev & EVENT_VEHICLE) != 0,
+            "lap_completed": (ev & EVENT_LAP) != 0,
             "wrong_way": self.wrong_way[envs].copy(),
         }
         if self.vehicles > 1:
@@ -454,6 +370,7 @@ class SimBatch:
         its per-vehicle noise streams restart: the same seed gives the same episode."""
         self.seed = int(seed)
         self.sim = self._new_sim(self.seed)
+        self.sim.set_episode(self._episode_config())
         self.never_reset[:] = True
 
 

@@ -29,13 +29,11 @@ class ObservationAssembler:
         E, V, B = num_envs, vehicles, num_beams
         self.k = cfg.frame_stack
         self.fields = tuple(cfg.odometry)
-        self.cols = np.array([field_index[f] for f in self.fields], dtype=np.intp)
-        self.cols_list = [int(c) for c in self.cols]
+        cols = [field_index[f] for f in self.fields]
         # Odometry columns that are one contiguous run of state columns (the default x .. steer)
-        # are copied as one slice (the single env's scalar path).
-        k = len(self.cols_list)
-        run = k > 0 and self.cols_list == list(range(self.cols_list[0], self.cols_list[0] + k))
-        self._col_slice = slice(self.cols_list[0], self.cols_list[0] + k) if run else None
+        # are read as a slice: a view, copied once into the observation (no gather).
+        run = bool(cols) and cols == list(range(cols[0], cols[0] + len(cols)))
+        self.cols: slice | np.ndarray = slice(cols[0], cols[0] + len(cols)) if run else np.array(cols, np.intp)
         self._xy = (field_index["x"], field_index["y"], field_index["yaw"])
         #: Names of the columns of obs["odometry"] (yaw becomes yaw_sin, yaw_cos when normalised).
         self.columns: tuple[str, ...] = tuple(
@@ -64,9 +62,11 @@ class ObservationAssembler:
             self.buf["previous_action"] = np.zeros((E, V, *stack, 2), np.float32)
         #: Raw scans without history: the batch lets the simulator write into buf["scan"].
         self.shares_scan = cfg.scan and self.k == 1 and not cfg.normalise
-        #: Frames the single env's scalar path handles (one frame, raw, no previous action).
-        self.simple = self.k == 1 and not cfg.normalise and not cfg.previous_action
         self._views = {k: v[0, 0] for k, v in self.buf.items()}
+        #: (observation buffer, state view) pairs a step's refresh copies, when every key of
+        #: the frame is a plain copy of the batch's state (one raw frame, no previous
+        #: action); set by :meth:`bind`.
+        self._copies: list[tuple[np.ndarray, np.ndarray]] | None = None
         self._view_items = list(self._views.items())
 
     # ------------------------------------------------------------------ spaces
@@ -104,10 +104,12 @@ class ObservationAssembler:
     def refresh(self, batch: Any, envs: Any, fill: bool = False) -> None:
         """Compute the current frame of ``envs`` from the batch buffers; push it into the
         history (``fill``: the whole history, as at reset)."""
-        frame = self._frame(batch, envs, reset=fill)
-        if self.shares_scan:
-            frame.pop("scan", None)  # already in place
-        for key, value in frame.items():
+        if self._copies is not None and not fill and isinstance(envs, slice) and envs == slice(None):
+            # Raw single frames of every env (each step): straight copies between views.
+            for dst, src in self._copies:
+                np.copyto(dst, src, casting="same_kind")
+            return
+        for key, value in self._frame(batch, envs, reset=fill).items():
             buf = self.buf[key]
             if self.k == 1:
                 buf[envs] = value
@@ -117,16 +119,13 @@ class ObservationAssembler:
                 buf[envs, :, :-1] = buf[envs, :, 1:]
                 buf[envs, :, -1] = value
 
-    def refresh_one(self, batch: Any, row: list[float]) -> None:
-        """:meth:`refresh` of env 0, vehicle 0 from its state row (``row``: the same values
-        as a list); the scalar path of the single env (falls back to :meth:`refresh` unless
-        :attr:`simple`). The scan is already in place (see :attr:`shares_scan`)."""
-        if not self.simple:
-            self.refresh(batch, slice(None))
-        elif self._col_slice is not None:
-            self._views["odometry"][:] = batch.state[0, 0, self._col_slice]
-        elif self.fields:
-            self._views["odometry"][:] = [row[c] for c in self.cols_list]
+    def bind(self, state: np.ndarray) -> None:
+        """Use ``state`` (the batch's (E, V, S) state buffer, fixed for its lifetime) for
+        the step refresh's direct copies, when the frame is only raw copies of it."""
+        plain = self.k == 1 and not self.cfg.normalise and not self.cfg.previous_action
+        view = isinstance(self.cols, slice)  # (a gather would copy once, then go stale)
+        if plain and view and (self.shares_scan or not self.cfg.scan):
+            self._copies = [(self.buf["odometry"], state[..., self.cols])] if self.fields else []
 
     def observation_one(self) -> dict[str, np.ndarray]:
         """Fresh copies of env 0, vehicle 0's observation (what the single env returns)."""
@@ -139,7 +138,7 @@ class ObservationAssembler:
     def _frame(self, batch: Any, envs: Any, reset: bool) -> dict[str, np.ndarray]:
         cfg = self.cfg
         out: dict[str, np.ndarray] = {}
-        if cfg.scan:
+        if cfg.scan and not self.shares_scan:  # (a shared scan is already in place)
             scan = batch.scans[envs]  # the simulator clamps to [range_min, range_max]
             if cfg.normalise:  # a new array: batch.scans stays in metres
                 scan = scan * self._scan_scale
@@ -153,10 +152,12 @@ class ObservationAssembler:
         return out
 
     def _odometry(self, state: np.ndarray, start: np.ndarray) -> np.ndarray:
-        """(e, V, K) odometry columns from state (e, V, S) and start poses (e, V, 3)."""
+        """(e, V, K) odometry columns from state (e, V, S) and start poses (e, V, 3); raw
+        columns stay float64 (a view when they are a run): the observation buffer's
+        assignment converts them to float32 in one copy."""
         raw = state[..., self.cols]
         if not self.cfg.normalise:
-            return raw.astype(np.float32)
+            return raw
         ix, iy, iyaw = self._xy
         dx, dy = state[..., ix] - start[..., 0], state[..., iy] - start[..., 1]
         c0, s0 = np.cos(start[..., 2]), np.sin(start[..., 2])

@@ -48,9 +48,10 @@ Per-step layout (one vehicle): ``obs`` is a dict of fresh float32 arrays, ``scan
 and ``odometry`` (K,) in :attr:`odometry_index` order; ``info`` is a flat dict of Python
 scalars: ``track_id``, ``track``, ``open_map``, ``progress``, ``contact_wall``, ``contact_vehicle``,
 ``lap_completed``, ``wrong_way``, ``laps``, ``lap_time``, ``last_lap_time``,
-``progress_s``. The step reads the state row once as Python floats
-(:meth:`SimBatch.step_one`), so the Python around the native step is a few microseconds:
-no per-step validation, no temporary arrays beyond the two returned copies.
+``progress_s``. The step is one native call (physics, scan and the core's episode step:
+reward, ends, progress, wrong way); the Python around it reads the results as scalars,
+so it is a few microseconds: no per-step validation, no arithmetic, no temporary arrays
+beyond the returned observation copies.
 
 Render modes: ``rgb_array``; ``gymnasium.make(..., render_mode="human")`` wraps it in
 gymnasium's ``HumanRendering`` (needs pygame and a display).
@@ -63,7 +64,8 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .batch import CONTACT_VEHICLE, CONTACT_WALL, LAP_COMPLETED, STATE_INFO, EnvHelpers, SimBatch
+from .._core import EVENT_LAP, EVENT_VEHICLE, EVENT_WALL
+from .batch import STATE_INFO, EnvHelpers, SimBatch
 from .env_config import EnvConfig
 from .episode_limit import check_make_kwargs
 from .reset_options import reset_options
@@ -140,11 +142,8 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
     def step(self, action: Any):
         b = self._batch
         b.set_actions(action)
-        if self._squeeze:  # one vehicle: the scalar path
-            reward, terminated, truncated = b.step_one()
-            return b.obs.observation_one(), reward, terminated, truncated, self._info()
-        rewards, terminated_e, truncated_e, _ = b.step()
-        return self._obs(), float(rewards[0]), bool(terminated_e[0]), bool(truncated_e[0]), self._info()
+        reward, terminated, truncated = b.step()
+        return self._obs(), reward.item(0), terminated.item(0), truncated.item(0), self._info()
 
     def render(self) -> np.ndarray | None:
         if self.render_mode != "rgb_array":
@@ -168,8 +167,7 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
     def _obs(self) -> dict[str, np.ndarray]:
         if self._squeeze:
             return self._batch.obs.observation_one()
-        obs = self._batch.observation(0)
-        return {k: v[0] for k, v in obs.items()} if self._squeeze else obs
+        return self._batch.observation(0)
 
     def _info(self) -> dict[str, Any]:
         b = self._batch
@@ -184,9 +182,9 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
             "track": self._names[tid],
             "open_map": self._open[tid],
             "progress": b.progress.item(0),
-            "contact_wall": bool(ev & CONTACT_WALL),
-            "contact_vehicle": bool(ev & CONTACT_VEHICLE),
-            "lap_completed": bool(ev & LAP_COMPLETED),
+            "contact_wall": bool(ev & EVENT_WALL),
+            "contact_vehicle": bool(ev & EVENT_VEHICLE),
+            "lap_completed": bool(ev & EVENT_LAP),
             "wrong_way": b.wrong_way.item(0),
         }
         for name, col in self._state_info:

@@ -144,19 +144,19 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
     def step(self, actions: Any):
         b = self._batch
         b.set_actions(actions)
-        reward, terminated, truncated, _ = b.step()
+        # Views of the core's episode buffers: a reset rewrites the reset envs' rows.
+        reward, terminated, truncated = b.step()
         infos: dict[str, Any] = {}
         if self.autoreset_mode == AutoresetMode.NEXT_STEP:
             pending = self._autoreset
             if pending.any():  # episodes that ended last step start now; their action was moot
-                b.reset(pending)
-                reward[pending] = 0.0
-                terminated[pending] = False
-                truncated[pending] = False
+                b.reset(pending)  # their rows now read reward 0, not terminated or truncated
             self._autoreset = terminated | truncated
         elif self.autoreset_mode == AutoresetMode.SAME_STEP:
             done = terminated | truncated
             if done.any():
+                # The ending step's results, before the reset rewrites those rows.
+                reward, terminated, truncated = reward.copy(), terminated.copy(), truncated.copy()
                 idx = np.flatnonzero(done)
                 final_obs = np.full(self.num_envs, None, dtype=object)
                 last = self._obs(idx)
@@ -171,7 +171,7 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
                     "_final_info": done.copy(),
                 }
         infos.update(self._info())
-        return self._obs(), reward.astype(np.float64), terminated.copy(), truncated.copy(), infos
+        return self._obs(), reward.copy(), terminated.copy(), truncated.copy(), infos
 
     def render(self) -> tuple[np.ndarray, ...] | None:
         if self.render_mode != "rgb_array":

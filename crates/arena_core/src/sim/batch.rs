@@ -13,6 +13,11 @@
 //! tracks' bounding box with |yaw| <= [`MAX_ABS_YAW`], speeds finite and within the
 //! vehicle's range. A bad input is an `InvalidArgument` error naming it; nothing panics.
 //!
+//! Episodes: with [`Simulator::set_episode`], every step also runs the episode step
+//! ([`super::episode`]: progress, reward, wrong-way, termination, truncation) and every
+//! reset restarts the reset envs' episodes; [`Simulator::step_episode`] and
+//! [`Simulator::observe_episode`] copy the results out with the state.
+//!
 //! Masks: `reset*` and `observe_masked` touch only the worlds whose mask is true (and
 //! their rows of the output buffers), so a partial reset costs what it resets and never
 //! advances another env's noise stream.
@@ -21,6 +26,7 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
+use super::episode::{EpisodeOut, EpisodeParams, Episodes};
 use super::lidar::Scanner;
 use super::params::SimParams;
 use super::starts::{draw_start, draw_track, StartSpec};
@@ -73,6 +79,8 @@ pub struct Simulator {
     /// Bounding box of all tracks' walls grown by [`POSE_MARGIN`]: ([x lo, y lo], [x hi, y hi]).
     pose_box: ([f64; 2], [f64; 2]),
     starts: Option<StartSpec>,
+    /// The episode bookkeeping, once [`Simulator::set_episode`] configured it.
+    episodes: Option<Episodes>,
 }
 
 impl Simulator {
@@ -149,6 +157,7 @@ impl Simulator {
             vehicles_per_env,
             pose_box,
             starts: None,
+            episodes: None,
         })
     }
 
@@ -224,6 +233,7 @@ impl Simulator {
                 .zip(poses.par_chunks(v * 3))
                 .for_each(run);
         }
+        self.reset_episodes(mask);
         Ok(())
     }
 
@@ -305,6 +315,83 @@ impl Simulator {
                 .enumerate()
                 .for_each(one);
         }
+        self.reset_episodes(mask);
+        Ok(())
+    }
+
+    /// Run the episode step ([`super::episode`]) with `params` from now on: every step
+    /// updates it and every reset restarts the reset envs' episodes. A first call starts
+    /// every env's episode afresh; a later one changes the parameters and keeps the state
+    /// (e.g. dropping the step limit when gymnasium's TimeLimit takes over).
+    pub fn set_episode(&mut self, params: EpisodeParams) -> Result<()> {
+        match self.episodes.as_mut() {
+            Some(ep) => {
+                params.validate()?;
+                ep.params = params;
+            }
+            None => {
+                self.episodes = Some(Episodes::new(
+                    params,
+                    self.num_envs(),
+                    self.vehicles_per_env,
+                )?)
+            }
+        }
+        Ok(())
+    }
+
+    /// The episode state, when configured.
+    pub fn episodes(&self) -> Option<&Episodes> {
+        self.episodes.as_ref()
+    }
+
+    fn reset_episodes(&mut self, mask: &[bool]) {
+        if let Some(ep) = self.episodes.as_mut() {
+            ep.reset(mask);
+        }
+    }
+
+    /// [`Simulator::step`], then the episode results of every env into `out` (needs
+    /// [`Simulator::set_episode`]).
+    pub fn step_episode(
+        &mut self,
+        actions: &[f64],
+        substeps: usize,
+        scans: Option<&mut [f32]>,
+        state: &mut [f64],
+        events: &mut [u8],
+        out: EpisodeOut<'_>,
+    ) -> Result<()> {
+        self.episodes_checked(&out)?;
+        self.step(actions, substeps, scans, state, events)?;
+        self.write_episodes(None, out)
+    }
+
+    /// [`Simulator::observe_masked`], then the episode results of the same envs into
+    /// `out` (needs [`Simulator::set_episode`]).
+    pub fn observe_episode(
+        &mut self,
+        mask: Option<&[bool]>,
+        scans: Option<&mut [f32]>,
+        state: &mut [f64],
+        events: &mut [u8],
+        out: EpisodeOut<'_>,
+    ) -> Result<()> {
+        self.episodes_checked(&out)?;
+        self.observe_masked(mask, scans, state, events)?;
+        self.write_episodes(mask, out)
+    }
+
+    fn episodes_checked(&self, out: &EpisodeOut<'_>) -> Result<&Episodes> {
+        let ep = self.episodes.as_ref().ok_or_else(|| {
+            ArenaError::invalid("episode outputs need set_episode (the episode parameters) first")
+        })?;
+        ep.check_out(out)?;
+        Ok(ep)
+    }
+
+    fn write_episodes(&self, mask: Option<&[bool]>, out: EpisodeOut<'_>) -> Result<()> {
+        self.episodes_checked(&out)?.write(mask, out);
         Ok(())
     }
 
@@ -411,7 +498,11 @@ impl Simulator {
                 .zip(actions.par_chunks(v * 2))
                 .for_each(run);
         }
-        self.observe(scans, state, events)
+        self.observe(scans, state, events)?;
+        if let Some(ep) = self.episodes.as_mut() {
+            ep.update(state, events);
+        }
+        Ok(())
     }
 
     /// Write the outputs of every env without stepping.

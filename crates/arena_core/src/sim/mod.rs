@@ -11,11 +11,13 @@
 //! * [`starts`]: reset draws (track, start poses, speeds, lidar randomisation) per env
 //! * [`progress`]: arc length along the centreline and lap counting
 //! * [`world`]: one rapier world per environment
+//! * [`episode`]: progress since reset, reward terms, wrong-way, termination, truncation
 //! * [`batch`]: N worlds stepped with rayon, deterministic for any N and thread count
 //! * [`budget`]: the size budget of a simulator, checked before allocation
 
 pub mod batch;
 pub mod budget;
+pub mod episode;
 pub mod lidar;
 pub mod params;
 pub mod progress;
@@ -37,6 +39,7 @@ mod tests_resets;
 
 pub use batch::{ResetGiven, ResetOut, Simulator, MAX_ABS_YAW, POSE_MARGIN};
 pub use budget::{check_size, MAX_SCAN_VALUES, MAX_VEHICLES};
+pub use episode::{EpisodeOut, EpisodeParams, Episodes, BACKWARDS_EPS};
 pub use params::{LidarParams, PhysicsParams, SimParams, VehicleParams};
 pub use start_grid::StartGrid;
 pub use starts::StartSpec;
