@@ -33,9 +33,7 @@ from pathlib import Path
 
 PACKAGE = "roboracer_arena"
 #: Subtrees not checked, with the reason.
-SKIPPED = {
-    "bench": "being moved out of the package to benchmarks/ (issue #24)",
-}
+SKIPPED: dict[str, str] = {}
 #: Private names that are public in all but name: the binding, and NamedTuple's API.
 PUBLIC_PRIVATES = {"_core", "_asdict", "_replace", "_fields", "_make"}
 
@@ -74,8 +72,6 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
     ): "render loads PIL, only for video; drivers is imported by the CLI at start-up",
     ("drivers.py", ".render.video"): "render loads PIL, only for video; drivers is imported by the CLI at start-up",
     ("envs/__init__.py", "..track"): "PEP 562 lazy attribute: `import roboracer_arena` (gym ids) stays light",
-    ("envs/batch.py", ".._core"): _NEXT + ": the episode step moves into the core",
-    ("envs/batch.py", "..errors"): _NEXT + ": the episode step moves into the core",
     ("envs/single.py", "..render.sim_view"): "render (PIL) loads only when render() is called, not for gym.make",
     ("envs/vector.py", "..render.sim_view"): "render (PIL) loads only when render() is called, not for gym.make",
     ("physx/__init__.py", ".check"): "PEP 562 lazy attribute: physx.available() must not load pxr and the envs",
@@ -84,8 +80,8 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
 
 #: (file relative to the package, private name) -> why it is reached from outside.
 ALLOWED_PRIVATE: dict[tuple[str, str], str] = {
+    ("bench/env.py", "_batch"): "the bench times the env's native calls by wrapping its simulator (instrumentation only)",
     ("cli/generate.py", "_actions"): "argparse has no public way to find an added action",
-    ("envs/single.py", "_row"): _NEXT + ": batch.py's row view goes with step_one",
     ("ros2/dds.py", "_ref"): "cyclonedds' raw write needs the writer's handle; falls back to the public write",
 }
 

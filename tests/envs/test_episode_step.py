@@ -292,7 +292,7 @@ def test_episode_buffers_and_their_errors(oval):
         a = getattr(ep, name)
         assert a.shape == shape and a.dtype == dtype and a.flags.c_contiguous and not a.any(), name
         assert getattr(ep, name) is a  # the same array every time: views stay valid
-    sim = _core.Simulator([oval.native()], 3, 2, "{}", 0)
+    sim = _core.Simulator([oval.native()], 3, 2, {}, 0)
     state = np.zeros((3, 2, len(sim.state_fields)))
     events = np.zeros((3, 2), np.uint8)
     acts = np.zeros((3, 2, 2))

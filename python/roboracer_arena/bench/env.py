@@ -33,8 +33,17 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+import gymnasium as gym
 import numpy as np
 
+from .. import envs
+from .._core import EVENT_VEHICLE, EVENT_WALL, Simulator
+from ..drivers import PurePursuitDriver
+from ..envs.env_config import EnvConfig
+from ..envs.single import RoboRacerEnv
+from ..envs.tracks import resolve_tracks
+from ..paths import sources_dir
+from ..start_grid import centreline_pose, grid_start_s
 from .output import BenchModel, add_bench_parser, write_json
 
 #: Targets (issue 14): single env µs per step; vector env env-steps/s per workload.
@@ -123,7 +132,6 @@ def register(kinds, reference: tuple[float, float] | None = None) -> None:
 
 
 def _default_map() -> Path:
-    from ..paths import sources_dir
 
     return sources_dir(None, "bench env (its default map is f1tenth-racetracks Spielberg; or pass --map)") / DEFAULT_MAP
 
@@ -139,8 +147,6 @@ def _env_kwargs(beams: int) -> dict[str, Any]:
 
 def record_lap(track: Any, beams: int, max_steps: int = 20_000) -> np.ndarray:
     """Pure-pursuit actions (steps, 2) for one lap from the grid start (untimed)."""
-    from ..drivers import PurePursuitDriver
-    from ..envs.single import RoboRacerEnv
 
     env = RoboRacerEnv(track=track, **_env_kwargs(beams))
     driver = PurePursuitDriver.for_env(env)
@@ -203,7 +209,6 @@ class _CoreTimer:
 def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float) -> EnvRow:
     """Env-steps/s of ``gymnasium.make`` (n = 1) or ``make_vec`` (n > 1) on a workload, and
     the µs per call spent outside the native simulator's calls (the Python)."""
-    import gymnasium as gym
 
     kwargs = _env_kwargs(beams)
     counts = {"resets": 0}
@@ -267,9 +272,6 @@ def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, secon
 def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float, scan: bool) -> float:
     """µs per ``Simulator.step`` call of a bare simulator on the same actions (with or
     without the scan), resetting a collided env to its grid start like the env does."""
-    from .._core import Simulator
-    from ..envs.env_config import EnvConfig
-    from ..start_grid import centreline_pose, grid_start_s
 
     cfg = EnvConfig.build(None, **_env_kwargs(beams))
     sim = Simulator([track.native()], n, 1, cfg.sim, 0)
@@ -285,7 +287,7 @@ def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seco
 
     def step(i: int) -> None:
         sim.step(a64[i % T], 1, scans, state, events)
-        hit = (events[:, 0] & 3) != 0
+        hit = (events[:, 0] & (EVENT_WALL | EVENT_VEHICLE)) != 0
         if restart and (i + 1) % restart == 0:
             hit[:] = True
         if hit.any():
@@ -298,9 +300,6 @@ def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seco
 def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: int = 30) -> ScanOverLap:
     """One scan's cost (µs) at centreline poses every ``every_m`` around the lap: per pose
     the median of ``observe`` with the scan minus without it (one env, one car)."""
-    from .._core import Simulator
-    from ..envs.env_config import EnvConfig
-    from ..start_grid import centreline_pose
 
     cfg = EnvConfig.build(None, **_env_kwargs(beams))
     sim = Simulator([track.native()], 1, 1, cfg.sim, 0)
@@ -339,9 +338,6 @@ def run(
 ) -> EnvResult:
     """Measure and print the table; returns the results. ``reference``: F1TENTH Gym's
     (low, high) env-steps/s on the constant workload, printed and stored beside ours."""
-    from .. import envs
-    from ..envs.env_config import EnvConfig
-    from ..envs.tracks import resolve_tracks
 
     envs.register_envs()
     track = resolve_tracks(map_path or _default_map())[0]

@@ -115,7 +115,7 @@ def measure(
         sim.step(actions, substeps, None, state, events)
         busy += time.perf_counter() - t0
         calls += 1
-        wall_contacts += int(np.count_nonzero(events & 1))
+        wall_contacts += int(np.count_nonzero(events & _core.EVENT_WALL))
     steps = calls * substeps * envs * per_env
     pipeline, shortcut_steps = sim.step_counts()
     return PhysicsRow(

@@ -23,7 +23,17 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from .._core import EVENT_LAP, EVENT_VEHICLE, EVENT_WALL, EpisodeBuffers, EpisodeConfig, StartSpec
+from .._core import (
+    EVENT_LAP,
+    EVENT_VEHICLE,
+    EVENT_WALL,
+    EpisodeBuffers,
+    EpisodeConfig,
+    Simulator,
+    StartSpec,
+    check_sim_size,
+)
+from ..errors import ConfigError, InvalidArgumentError
 from ..start_grid import SIDE_MARGIN, start_spec
 from ..track import Track
 from .env_config import EnvConfig
@@ -41,8 +51,6 @@ def check_size_budget(num_envs: int, config: EnvConfig) -> None:
     and its limits are the core's (``_core.check_sim_size``, ``SIM_MAX_VEHICLES``,
     ``SIM_MAX_SCAN_VALUES``); the observation's buffers hold ``frame_stack + 1`` scans
     per vehicle."""
-    from .._core import check_sim_size
-
     obs = config.observation
     frames = obs.frame_stack + 1 if obs.scan else 0
     check_sim_size(num_envs, config.vehicles_per_env, config.sim.lidar.num_beams, frames)
@@ -60,8 +68,6 @@ class SimBatch:
         track_probs: np.ndarray | None = None,
         env_index_offset: int = 0,
     ) -> None:
-        from .._core import Simulator
-
         self._Simulator = Simulator
         self.tracks = tracks
         self.track_probs = track_probs
@@ -116,7 +122,7 @@ class SimBatch:
         if self.obs.shares_scan:  # the simulator writes the observation's scans directly
             self.scans = self.obs.buf["scan"]
         self.obs.bind(self.state)
-        self._row = self.state[0, 0]  # view: env 0, vehicle 0 (the single env's info)
+        self.first_row = self.state[0, 0]  # view: env 0, vehicle 0 (the single env's info)
         # The scanner runs at its own rate: under a faster control loop the observation
         # holds the latest scan until the next one is due (a 40 Hz scanner at 100 Hz control
         # scans on 2 of every 5 steps). Scan ticks count on one clock for the whole batch.
@@ -186,8 +192,6 @@ class SimBatch:
                 return
         raw = np.asarray(actions)
         if raw.dtype.kind not in "biuf" or raw.size != self.num_envs * self.vehicles * 2:
-            from ..errors import InvalidArgumentError
-
             raise InvalidArgumentError(
                 f"actions must be {self.num_envs * self.vehicles * 2} numbers "
                 f"({self.num_envs} env(s) x {self.vehicles} vehicle(s) x [steer, speed]), got {actions!r:.80}"
@@ -293,8 +297,6 @@ class SimBatch:
         in the simulator (see the module docstring)."""
         mask = np.asarray(mask, dtype=bool)
         if (self.never_reset & ~mask).any():
-            from ..errors import ConfigError
-
             raise ConfigError(
                 f"reset_mask leaves env(s) {np.flatnonzero(self.never_reset & ~mask)[:8].tolist()} that were "
                 "never reset (after creation or a new seed every env must be reset once)"

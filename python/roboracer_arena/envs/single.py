@@ -176,7 +176,7 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
             info: dict[str, Any] = b.info(0)
             info.update(track_id=tid, track=self.tracks[tid].name, open_map=self._open[tid])
             return info
-        ev, row = b.events.item(0), b._row.tolist()
+        ev, row = b.events.item(0), b.first_row.tolist()
         info = {
             "track_id": tid,
             "track": self._names[tid],
