@@ -106,7 +106,7 @@ def parser_block(doc: Doc) -> str:
         header(doc, "parser"),
         "| parser | request set | Parse | Audit pass | Refusals | Latency (median) | Memory |",
         "|---|---|---|---|---|---|---|",
-        f"| `rules` (ours, no model) | shipped `bench/data/requests.jsonl` | {_frac(row['parse_exact'], row['parse_total'], True)} "
+        f"| `rules` (ours, no model) | shipped `benchmarks/data/requests.jsonl` | {_frac(row['parse_exact'], row['parse_total'], True)} "
         f"| {_frac(row['audit_pass'], row['audit_calls'], True)} | {_frac(row['refuse_correct'], row['refuse_total'])} | "
         f"{lat * 1e3:.2f} ms | {row['peak_rss_delta_mb']:.1f} MB RSS delta |",
     ]
