@@ -1,7 +1,7 @@
 """Round 2 (issue 25): hostile DDS samples from a second participant. A bridge with
 ``--record`` runs in a subprocess; this process joins its domain as another DDS peer and
 sends ``/initialpose`` and ``/drive`` samples with values drawn by hypothesis
-(derandomized: NaN, infinities, huge and tiny numbers, zero quaternions, poses far
+(derandomized: NaN, infinities, huge and tiny numbers, zero quaternions, poses in the infield or far
 outside the world). The bridge must keep running (a valid reset afterwards still
 works), count every sample it drops, exit 0 when stopped, and leave a whole recording."""
 
@@ -32,9 +32,18 @@ FLOAT = st.one_of(
     st.sampled_from([math.nan, math.inf, -math.inf, 1e308, -1e308, 5e-324, 0.0, -0.0, 1e12]),
     st.floats(-3, 3),
 )
-# Inside the world (|x|, |y| < 3 on a 12 x 7 m ellipse) or far outside it (> 1000 m).
-POSITION = st.one_of(st.floats(-3, 3), st.sampled_from([math.nan, math.inf, -math.inf, 1e308, -1e4, 5e3]))
-POSE = st.tuples(POSITION, POSITION, FLOAT, FLOAT, FLOAT, FLOAT)
+# Positions by construction: on the 12 x 7 m ellipse's centreline (free), in its infield
+# (inside the world but off the track: dropped since the bridge checks the free space),
+# or non-finite / far outside the world in one or both coordinates.
+ON_TRACK = ((6.0, 0.0), (-6.0, 0.0), (0.0, 3.5), (0.0, -3.5))
+WILD = st.sampled_from([math.nan, math.inf, -math.inf, 1e308, -1e4, 5e3])
+XY = st.one_of(
+    st.sampled_from(ON_TRACK),
+    st.tuples(st.floats(-2.0, 2.0), st.floats(-1.2, 1.2)),  # the infield
+    st.tuples(WILD, st.floats(-3, 3)),
+    st.tuples(st.floats(-3, 3), WILD),
+)
+POSE = st.builds(lambda xy, q: (*xy, *q), XY, st.tuples(FLOAT, FLOAT, FLOAT, FLOAT))
 FLOAT32 = st.one_of(  # AckermannDrive is float32
     st.sampled_from([math.nan, math.inf, -math.inf, 3e38, -3e38, 1e-45, 0.0, -0.0]), st.floats(-3, 3, width=32)
 )
@@ -43,7 +52,7 @@ DRIVE_CMD = st.tuples(FLOAT32, FLOAT32)
 
 def _bad_pose(x, y, qx, qy, qz, qw) -> bool:
     values = (x, y, qx, qy, qz, qw)
-    return not all(math.isfinite(v) for v in values) or not any(values[2:]) or abs(x) > 100 or abs(y) > 100
+    return not all(math.isfinite(v) for v in values) or not any(values[2:]) or (x, y) not in ON_TRACK
 
 
 def _writer(dp, name: str, typename: str):
@@ -158,4 +167,5 @@ def test_hostile_samples_from_another_participant(ellipse_map, tmp_path):
     )
     rejected = stats["rejected"]
     assert sum(v for k, v in rejected.items() if k.startswith("/initialpose")) == bad_poses > 0, rejected
+    assert rejected.get("/initialpose: position inside a wall or off the track", 0) > 0, rejected  # the infield
     assert rejected.get("/drive: non-finite steering or speed", 0) == bad_drives > 0, rejected
