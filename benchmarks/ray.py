@@ -270,10 +270,10 @@ def _local_steps(track: Any, n: int, actions: np.ndarray, steps: int, beams: int
     import gymnasium as gym
 
     import roboracer_arena  # noqa: F401  (registers the env id)
-    from roboracer_arena.bench.env import _env_kwargs
+    from roboracer_arena.bench.env import env_kwargs
 
     env = gym.make_vec(
-        "RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track, **_env_kwargs(beams)
+        "RoboRacerArena-v0", num_envs=n, vectorization_mode="vector_entry_point", track=track, **env_kwargs(beams)
     )
     try:
         return _step_times(env, np.repeat(actions[:, None], n, axis=1), steps)
@@ -282,10 +282,10 @@ def _local_steps(track: Any, n: int, actions: np.ndarray, steps: int, beams: int
 
 
 def _ray_steps(track: Any, actors: int, per: int, actions: np.ndarray, steps: int, beams: int) -> list[float]:
-    from roboracer_arena.bench.env import _env_kwargs
+    from roboracer_arena.bench.env import env_kwargs
     from roboracer_arena.distributed import RayVectorEnv
 
-    env = RayVectorEnv(actors, per, track=track, **_env_kwargs(beams))
+    env = RayVectorEnv(actors, per, track=track, **env_kwargs(beams))
     try:
         return _step_times(env, np.repeat(actions[:, None], actors * per, axis=1), steps)
     finally:
@@ -296,10 +296,10 @@ def _same_rollouts(track: Any, per: int, actions: np.ndarray, beams: int, steps:
     import gymnasium as gym
     from gymnasium.utils.env_checker import data_equivalence
 
-    from roboracer_arena.bench.env import _env_kwargs
+    from roboracer_arena.bench.env import env_kwargs
     from roboracer_arena.distributed import RayVectorEnv
 
-    kw = {**_env_kwargs(beams), "reset_poses": "random"}
+    kw = {**env_kwargs(beams), "reset_poses": "random"}
     renv = RayVectorEnv(2, per, track=track, **kw)
     lenv = gym.make_vec(
         "RoboRacerArena-v0", num_envs=2 * per, vectorization_mode="vector_entry_point", track=track, **kw
@@ -397,7 +397,7 @@ def run(
     only: str | None = None,
 ) -> RayResult:
     """Measure, print the tables (and the projection when both halves ran); returns the results."""
-    from roboracer_arena.bench.env import _default_map
+    from roboracer_arena.bench.env import default_map
     from roboracer_arena.distributed.ray_cluster import import_ray
     from roboracer_arena.envs.tracks import resolve_tracks
 
@@ -411,7 +411,7 @@ def run(
     try:
         gen = bench_generation(requests, repeats) if only != "rollouts" else None
         roll = (
-            bench_rollouts(resolve_tracks(map_path or _default_map())[0], envs_per_actor, steps, beams)
+            bench_rollouts(resolve_tracks(map_path or default_map())[0], envs_per_actor, steps, beams)
             if only != "generation"
             else None
         )

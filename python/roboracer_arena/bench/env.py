@@ -131,12 +131,14 @@ def register(kinds, reference: tuple[float, float] | None = None) -> None:
     p.set_defaults(func=cli)
 
 
-def _default_map() -> Path:
-
+def default_map() -> Path:
+    """The bench's default map: f1tenth-racetracks Spielberg from the track sources."""
     return sources_dir(None, "bench env (its default map is f1tenth-racetracks Spielberg; or pass --map)") / DEFAULT_MAP
 
 
-def _env_kwargs(beams: int) -> dict[str, Any]:
+def env_kwargs(beams: int) -> dict[str, Any]:
+    """The env keywords every bench cell uses: 100 Hz control, one 0.01 s physics step and a
+    ``beams``-beam scan per step, the grid start, no time limit (as F1TENTH Gym steps)."""
     return {
         "control_rate_hz": 100.0,
         "sim": {"physics": {"dt": 0.01}, "lidar": {"num_beams": beams, "rate_hz": 100.0}},
@@ -145,10 +147,16 @@ def _env_kwargs(beams: int) -> dict[str, Any]:
     }
 
 
+def grid_start_pose(track: Any, beams: int = 1080) -> tuple[float, float, float]:
+    """The pose (x, y, yaw) every bench cell starts and restarts from: the env's grid start."""
+    cfg = EnvConfig.build(None, **env_kwargs(beams))
+    return centreline_pose(track, grid_start_s(track, 1, cfg.grid_spacing))
+
+
 def record_lap(track: Any, beams: int, max_steps: int = 20_000) -> np.ndarray:
     """Pure-pursuit actions (steps, 2) for one lap from the grid start (untimed)."""
 
-    env = RoboRacerEnv(track=track, **_env_kwargs(beams))
+    env = RoboRacerEnv(track=track, **env_kwargs(beams))
     driver = PurePursuitDriver.for_env(env)
     obs, info = env.reset(seed=0)
     actions = []
@@ -206,11 +214,11 @@ class _CoreTimer:
         return timed
 
 
-def _time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float) -> EnvRow:
+def time_env(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seconds: float) -> EnvRow:
     """Env-steps/s of ``gymnasium.make`` (n = 1) or ``make_vec`` (n > 1) on a workload, and
     the µs per call spent outside the native simulator's calls (the Python)."""
 
-    kwargs = _env_kwargs(beams)
+    kwargs = env_kwargs(beams)
     counts = {"resets": 0}
     core = {"seconds": 0.0, "step": 0.0}
 
@@ -273,9 +281,9 @@ def _time_core(track: Any, beams: int, kind: str, acts: np.ndarray, n: int, seco
     """µs per ``Simulator.step`` call of a bare simulator on the same actions (with or
     without the scan), resetting a collided env to its grid start like the env does."""
 
-    cfg = EnvConfig.build(None, **_env_kwargs(beams))
+    cfg = EnvConfig.build(None, **env_kwargs(beams))
     sim = Simulator([track.native()], n, 1, cfg.sim, 0)
-    start = np.array(centreline_pose(track, grid_start_s(track, 1, cfg.grid_spacing)))
+    start = np.array(grid_start_pose(track, beams))
     poses = np.broadcast_to(start, (n, 1, 3)).copy()
     sim.reset(np.ones(n, bool), poses)
     scans = np.zeros((n, 1, sim.num_beams), np.float32) if scan else None
@@ -301,7 +309,7 @@ def scan_over_lap(track: Any, beams: int = 1081, every_m: float = 1.0, repeats: 
     """One scan's cost (µs) at centreline poses every ``every_m`` around the lap: per pose
     the median of ``observe`` with the scan minus without it (one env, one car)."""
 
-    cfg = EnvConfig.build(None, **_env_kwargs(beams))
+    cfg = EnvConfig.build(None, **env_kwargs(beams))
     sim = Simulator([track.native()], 1, 1, cfg.sim, 0)
     scans = np.zeros((1, 1, sim.num_beams), np.float32)
     state, events, mask = np.zeros((1, 1, len(sim.state_fields))), np.zeros((1, 1), np.uint8), np.ones(1, bool)
@@ -340,7 +348,7 @@ def run(
     (low, high) env-steps/s on the constant workload, printed and stored beside ours."""
 
     envs.register_envs()
-    track = resolve_tracks(map_path or _default_map())[0]
+    track = resolve_tracks(map_path or default_map())[0]
     veh = EnvConfig().sim.vehicle
     bounds = (np.array([-veh.max_steer, veh.min_speed]), np.array([veh.max_steer, veh.max_speed]))
     lap = record_lap(track, beams)
@@ -349,7 +357,7 @@ def run(
     for kind in workloads or list(WORKLOADS):
         for n in num_envs or [1, 256]:
             acts = workload_actions(kind, lap, n, bounds)
-            row = _time_env(track, beams, kind, acts, n, seconds)
+            row = time_env(track, beams, kind, acts, n, seconds)
             physics = _time_core(track, beams, kind, acts, n, seconds / 2, scan=False)
             core = _time_core(track, beams, kind, acts, n, seconds / 2, scan=True)
             breakdown = Breakdown(
