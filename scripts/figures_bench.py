@@ -265,7 +265,8 @@ def env_block(doc: Doc) -> str:
     lines = [
         header(doc, "env"),
         f"Map {r['map']}, {r['beams']}-beam lidar every step, {r['physics_dt']} s physics step, autoreset on collision; "
-        f"F1TENTH Gym: {lo:,.0f}–{hi:,.0f} env-steps/s (constant action, single env).\n",
+        f"F1TENTH Gym: {lo:,.0f}–{hi:,.0f} env-steps/s (constant action, single env; the figure issue 14 quotes, "
+        "from another machine; the ratio measured in one run on this machine is in the `peer` table below).\n",
         "| workload | envs | env-steps/s (wall) | per CPU-second | × F1TENTH Gym (wall) | µs/call: physics / scan / Python | target |",
         "|---|---:|---:|---:|---:|---|---|",
     ]
@@ -292,6 +293,32 @@ def env_block(doc: Doc) -> str:
     lines.append(
         f"\nOne {s['beams']}-beam scan, median over {s['poses']} centreline poses around the lap: **{s['median_us']:.1f} µs** "
         f"(p90 {s['p90_us']:.1f}, max {s['max_us']:.1f}), target ≤ {TARGET_SCAN_US:.0f} µs {ok}."
+    )
+    return "\n".join(lines) + "\n"
+
+
+# ---------------------------------------------------------------- bench peer (measured; needs F1TENTH Gym)
+def peer_block(doc: Doc) -> str:
+    r = doc["result"]
+    x, y, yaw = r["start_pose"]
+    lines = [
+        header(doc, "peer"),
+        f"Map {r['map']}, both from the grid start ({x:.2f}, {y:.2f}, {yaw:.2f} rad), action [0 rad, 1 m/s], 1080 beams "
+        "every 0.01 s step, reset on collision; F1TENTH Gym (`f110_gym` from its repository, under its own venv) "
+        "then ours (`gymnasium.make`, standard wrappers), alternating.\n",
+        "| pair | F1TENTH Gym env-steps/s | ours env-steps/s | ours ÷ F1TENTH Gym (wall) | per CPU-second |",
+        "|---:|---:|---:|---:|---:|",
+    ]
+    for i, pr in enumerate(r["pairs"], 1):
+        f = pr["f1tenth_gym"]
+        lines.append(
+            f"| {i} | {_n(f['steps'] / f['seconds'])} | {_n(pr['ours']['env_steps_per_s'])} | "
+            f"{pr['ratio_wall']:.2f}× | {pr['ratio_cpu']:.2f}× |"
+        )
+    ok = "✓" if r["median_ratio_wall"] >= r["target_ratio"] else "✗"
+    lines.append(
+        f"\nMedian of the pairs: **{r['median_ratio_wall']:.2f}×** wall, {r['median_ratio_cpu']:.2f}× per CPU-second; "
+        f"target ≥ {r['target_ratio']:g}× {ok}."
     )
     return "\n".join(lines) + "\n"
 
@@ -584,6 +611,13 @@ BENCH_FIGURES: dict[str, dict[str, Any]] = {
         "about": "bench env on Spielberg: env-steps/s, per-call breakdown, scan over a lap",
         "run": _cmd(("env", ["bench", "env"])),
         "blocks": [("BENCHMARKS.md", "env", env_block)],
+        "deterministic": None,
+        "ci": "measured",
+    },
+    "peer": {
+        "about": "bench peer (F1TENTH_GYM_PYTHON set): single env against F1TENTH Gym in one run, 5 pairs",
+        "run": _cmd(("peer", ["bench", "peer", "--pairs", "5"])),
+        "blocks": [("BENCHMARKS.md", "peer", peer_block)],
         "deterministic": None,
         "ci": "measured",
     },
