@@ -10,6 +10,8 @@ pub struct SegmentGrid {
     segs: Vec<[f64; 4]>,
     /// Bit i: segment i starts at the end point of segment i - 1 (same polyline).
     joined: Vec<u64>,
+    /// Length of the longest segment.
+    max_len: f64,
     /// Coarse blocks for the sweep's culling by range and occlusion.
     blocks: BlockIndex,
     x0: f64,
@@ -43,7 +45,7 @@ impl SegmentGrid {
             }
         }
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        let mut total_len = 0.0;
+        let (mut total_len, mut max_len) = (0.0, 0.0f64);
         for s in &segs {
             for p in [[s[0], s[1]], [s[0] + s[2], s[1] + s[3]]] {
                 for k in 0..2 {
@@ -52,6 +54,7 @@ impl SegmentGrid {
                 }
             }
             total_len += s[2].hypot(s[3]);
+            max_len = max_len.max(s[2].hypot(s[3]));
         }
         let mean = total_len / segs.len().max(1) as f64;
         let (w, h) = ((hi[0] - lo[0]).max(1e-3), (hi[1] - lo[1]).max(1e-3));
@@ -71,6 +74,7 @@ impl SegmentGrid {
         SegmentGrid {
             segs,
             joined,
+            max_len,
             blocks,
             x0,
             y0,
@@ -97,6 +101,11 @@ impl SegmentGrid {
     #[inline(always)]
     pub(crate) fn continues_previous(&self, i: usize) -> bool {
         self.joined[i / 64] >> (i % 64) & 1 == 1
+    }
+
+    /// Length of the longest segment (0 without segments).
+    pub(crate) fn max_len(&self) -> f64 {
+        self.max_len
     }
 
     /// Bounding box of the segments: ([x lo, y lo], [x hi, y hi]).

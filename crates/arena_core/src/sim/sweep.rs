@@ -42,6 +42,9 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
     }
 }
 
+/// Widening (rad) of a segment's angular interval when the sensor is not very near it.
+const TIGHT_MARGIN: f64 = 1e-4;
+
 /// The beams of one scan: world angle of beam 0 (wrapped to [0, 2 pi)), increment,
 /// angular span and the widening of every angular interval.
 struct Beams {
@@ -116,6 +119,7 @@ pub fn sweep(
         margin: inc.max(1e-4) + 1e-4,
         n,
     };
+    let max_len = grid.max_len();
     let blocks = grid.blocks();
     let mut near = Vec::with_capacity(128);
     blocks.near(ox, oy, rmax, &mut near);
@@ -125,6 +129,7 @@ pub fn sweep(
         ox,
         oy,
         r2: rmax * rmax,
+        near2: 1e-12 * max_len * max_len,
         beams,
         dirs: &dirs[..n],
         ranges: &mut ranges[..n],
@@ -158,6 +163,8 @@ struct Walk<'a> {
     ox: f64,
     oy: f64,
     r2: f64,
+    /// Squared distance under which a segment gets the wide margin, see `segment`.
+    near2: f64,
     beams: Beams,
     dirs: &'a [[f64; 2]],
     ranges: &'a mut [f64],
@@ -201,7 +208,19 @@ impl Walk<'_> {
             (fb, fa)
         };
         let len = if fq < fp { fq - fp + TAU } else { fq - fp };
-        let (lo, hi) = (fp - beams.margin, fp + len + beams.margin);
+        // The margin covers the arctangent's error (< 2e-5 rad) and the rounding of the
+        // hit test: a beam passes `ray_segment` only within ~3e-16 (|a| + |e|) / |b| rad
+        // of the segment's exact wedge (a, b its end points from the sensor, e = b - a),
+        // and the shared end point's angle was computed from the previous segment,
+        // within ~1e-16 (|a'| + |e'|) / |a| rad. While the sensor is at least 1e-6 of the
+        // longest segment away from this segment, both are below 1e-9 rad, and 1e-4 rad
+        // covers them all; nearer, take the old, wider margin (a beam plus 1e-4).
+        let m = if d2 >= self.near2 {
+            TIGHT_MARGIN
+        } else {
+            beams.margin
+        };
+        let (lo, hi) = (fp - m, fp + len + m);
         // No hit on this segment is nearer than its closest point (slack for rounding).
         let dmin = d2.sqrt() * (1.0 - 1e-9);
         let hit = Hit::new(s, ax, ay);

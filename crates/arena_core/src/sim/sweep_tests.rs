@@ -224,3 +224,20 @@ fn split_scan_equals_the_single_sweep_on_a_raster_circuit() {
         }
     }
 }
+
+#[test]
+fn sweep_equals_the_grid_walk_next_to_wall_vertices() {
+    // The sensor 1 mm, 10 µm and 1 µm from wall vertices of the raster circuit (within
+    // 1e-6 of the longest segment the sweep widens its angular intervals), looking
+    // along, across and into the wall.
+    let (walls, _) = raster_circuit();
+    let grid = SegmentGrid::new(&walls);
+    let mut hits = 0;
+    for (i, v) in walls[0].iter().chain(&walls[1]).step_by(53).enumerate() {
+        let a = i as f64 * 2.4;
+        let r = [1e-3, 1e-5, 1e-6][i % 3];
+        let (ox, oy) = (v[0] + r * a.cos(), v[1] + r * a.sin());
+        hits += check_against_walk(&grid, ox, oy, a + 0.5 * i as f64, 4.712389, 1081);
+    }
+    assert!(hits > 20_000, "{hits}");
+}
