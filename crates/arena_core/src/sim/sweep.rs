@@ -275,6 +275,7 @@ impl Hit {
     /// Lower `ranges` (beams with unit directions `dirs`) to their hits, none nearer
     /// than `dmin`.
     #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn lower(&self, dmin: f64, dirs: &[[f64; 2]], ranges: &mut [f64]) {
         if self.either {
             return self.lower_either(dirs, ranges);
@@ -287,8 +288,12 @@ impl Hit {
             let den = d[0] * self.ey - d[1] * self.ex;
             let un = self.ax * d[1] - self.ay * d[0];
             if (den > 1e-14) & (un >= 0.0) & (un <= den) {
-                // No pre-test: a hit is almost always the nearest yet (measured).
-                *r = r.min(self.tn / den);
+                // No pre-test: a hit is almost always the nearest yet (measured). (t > 0,
+                // so this is `r.min(t)`, NaN included, in one compare.)
+                let t = self.tn / den;
+                if !(t >= *r) {
+                    *r = t;
+                }
             }
         }
     }
