@@ -53,7 +53,8 @@ struct Beams {
     inv: f64,
     span: f64,
     margin: f64,
-    n: usize,
+    /// Index of the last beam, n - 1.
+    last: f64,
 }
 
 impl Beams {
@@ -67,15 +68,19 @@ impl Beams {
             return Some((0, 0));
         }
         // (±1e-6 beams: span * inv may round just below n - 1.) Clamped to [0, n]
-        // first, so the conversions are plain truncations (no libm floor/ceil calls).
-        let last = self.n - 1;
-        let f0 = (l * self.inv - 1e-6).max(0.0).min(last as f64 + 1.0);
+        // first, so the conversions are plain truncations (no libm floor/ceil calls);
+        // compares rather than f64::max/min, whose NaN handling costs instructions here
+        // (a NaN only comes with NaN angles, whose beams hit nothing).
+        let last = self.last;
+        let f0 = l * self.inv - 1e-6;
+        let f0 = if f0 > 0.0 { f0 } else { 0.0 };
+        let f0 = if f0 < last + 1.0 { f0 } else { last + 1.0 };
         let t0 = f0 as i64 as usize;
         let k0 = t0 + ((t0 as f64) < f0) as usize;
-        let f1 = (h.min(self.span) * self.inv + 1e-6)
-            .max(0.0)
-            .min(last as f64);
-        let k1 = f1 as i64 as usize;
+        let h = if self.span < h { self.span } else { h };
+        // (>= 1e-6: h >= 0 and inv >= 0.)
+        let f1 = h * self.inv + 1e-6;
+        let k1 = (if f1 < last { f1 } else { last }) as i64 as usize;
         (k0 <= k1).then_some((k0, k1))
     }
 
@@ -117,7 +122,7 @@ pub fn sweep(
         inv: if inc > 0.0 { 1.0 / inc } else { 0.0 },
         span: inc * (n - 1) as f64,
         margin: inc.max(1e-4) + 1e-4,
-        n,
+        last: (n - 1) as f64,
     };
     let max_len = grid.max_len();
     let blocks = grid.blocks();
@@ -226,17 +231,22 @@ impl Walk<'_> {
         let hit = Hit::new(s, ax, ay);
         // `lo` >= -margin, so only an interval reaching past 2 pi wraps onto the first
         // beams (shift -2 pi), and only a full-turn fan starts before `lo` (+2 pi).
-        let mut lower = |l: f64, h: f64| {
-            if let Some((k0, k1)) = beams.span(l, h) {
+        if let Some((k0, k1)) = beams.span(lo, hi) {
+            hit.lower(dmin, &self.dirs[k0..=k1], &mut self.ranges[k0..=k1]);
+        }
+        if hi >= TAU || lo + TAU <= beams.span {
+            self.wrapped(&hit, dmin, lo, hi);
+        }
+    }
+
+    /// The beams of a widened interval `lo..hi` one turn away (past 2 pi, or before 0
+    /// for a full-turn fan).
+    #[cold]
+    fn wrapped(&mut self, hit: &Hit, dmin: f64, lo: f64, hi: f64) {
+        for shift in [-TAU, TAU] {
+            if let Some((k0, k1)) = self.beams.span(lo + shift, hi + shift) {
                 hit.lower(dmin, &self.dirs[k0..=k1], &mut self.ranges[k0..=k1]);
             }
-        };
-        lower(lo, hi);
-        if hi >= TAU {
-            lower(lo - TAU, hi - TAU);
-        }
-        if lo + TAU <= beams.span {
-            lower(lo + TAU, hi + TAU);
         }
     }
 }
