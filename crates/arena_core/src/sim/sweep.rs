@@ -71,12 +71,12 @@ impl Beams {
         // first, so the conversions are plain truncations (no libm floor/ceil calls);
         // compares rather than f64::max/min, whose NaN handling costs instructions here
         // (a NaN only comes with NaN angles, whose beams hit nothing).
+        // k0 = floor(x - 3e-6) + 1 for x = l * inv: at most ceil(x - 1e-6), one
+        // truncation instead of a ceiling.
         let last = self.last;
-        let f0 = l * self.inv - 1e-6;
+        let f0 = l * self.inv + (1.0 - 3e-6);
         let f0 = if f0 > 0.0 { f0 } else { 0.0 };
-        let f0 = if f0 < last + 1.0 { f0 } else { last + 1.0 };
-        let t0 = f0 as i64 as usize;
-        let k0 = t0 + ((t0 as f64) < f0) as usize;
+        let k0 = (if f0 < last + 1.0 { f0 } else { last + 1.0 }) as i64 as usize;
         let h = if self.span < h { self.span } else { h };
         // (>= 1e-6: h >= 0 and inv >= 0.)
         let f1 = h * self.inv + 1e-6;
