@@ -56,9 +56,15 @@ impl Footprint {
     }
 }
 
+/// Fewest beams for which [`Scanner::split`] sweeps the two halves on two rayon tasks.
+/// The hand-off (the caller, outside the pool, parks while a worker is woken) costs more
+/// than a sweep: measured on Spielberg on the shared 2-core machine (issue 24), a split
+/// scan took 39-54 µs against 19-28 µs whole at 1080 beams, and was still slower at
+/// 16384 beams (165 against 107-140 µs); the gym.make step ran 2.1-2.9x faster without
+/// it. So only fans far beyond a real lidar's are split.
+pub(crate) const SPLIT_MIN_BEAMS: usize = 32_768;
+
 /// Precomputed beam directions in the sensor frame plus the scan settings.
-/// Fewest beams for which [`Scanner::split`] pays for the rayon hand-off.
-const SPLIT_MIN_BEAMS: usize = 256;
 
 #[derive(Debug, Clone)]
 pub struct Scanner {
@@ -69,7 +75,8 @@ pub struct Scanner {
     inc: f64,
     params: LidarParams,
     /// Sweep the two halves of the fan on two rayon tasks (set for a lone world, whose
-    /// scan would otherwise leave the second core idle; a batch keeps one world per task).
+    /// scan would otherwise leave the second core idle; a batch keeps one world per task),
+    /// for fans of at least `SPLIT_MIN_BEAMS` beams.
     pub split: bool,
 }
 
@@ -315,11 +322,15 @@ mod tests {
             })
             .collect();
         let grid = SegmentGrid::new(&[poly]);
-        let one = Scanner::new(&LidarParams::default());
+        let n = SPLIT_MIN_BEAMS + 1;
+        let one = Scanner::new(&LidarParams {
+            num_beams: n,
+            ..Default::default()
+        });
         let mut two = one.clone();
         two.split = true;
         for pose in [[0.0, 0.0, 0.3], [1.0, -2.0, 2.5], [-2.5, 1.0, -1.2]] {
-            let (mut a, mut b) = (vec![0.0f32; 1081], vec![0.0f32; 1081]);
+            let (mut a, mut b) = (vec![0.0f32; n], vec![0.0f32; n]);
             let mut rng = ChaCha8Rng::seed_from_u64(3);
             one.scan(pose, &grid, &[], ScanNoise::default(), &mut rng, &mut a);
             let mut rng = ChaCha8Rng::seed_from_u64(3);

@@ -198,14 +198,14 @@ fn sweep_equals_the_grid_walk_on_a_raster_circuit() {
 
 #[test]
 fn split_scan_equals_the_single_sweep_on_a_raster_circuit() {
-    use crate::sim::lidar::{ScanNoise, Scanner};
+    use crate::sim::lidar::{ScanNoise, Scanner, SPLIT_MIN_BEAMS};
     use crate::sim::LidarParams;
     use rand_chacha::rand_core::SeedableRng;
     use rand_chacha::ChaCha8Rng;
 
     let (walls, centre) = raster_circuit();
     let grid = SegmentGrid::new(&walls);
-    for num_beams in [1080, 1081] {
+    for num_beams in [SPLIT_MIN_BEAMS, SPLIT_MIN_BEAMS + 1] {
         let one = Scanner::new(&LidarParams {
             num_beams,
             ..Default::default()
