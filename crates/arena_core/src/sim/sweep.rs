@@ -1,9 +1,10 @@
 //! Angular-sweep scan ("z-buffer" over beams): instead of walking each beam through the
 //! segment grid, walk each wall segment the scanner may see once and update only the beams
 //! whose directions it spans. A segment's beam range comes from a fast arctangent (error
-//! < 2e-5 rad) widened by one beam on each side, so it is conservative; every (segment,
-//! beam) pair in range is then intersected exactly with the same arithmetic as the grid
-//! walk's `ray_segment`, so both methods return the same minimum, bit for bit.
+//! < 2e-5 rad, one per shared wall vertex) widened by 1e-4 rad (by a beam more when the
+//! sensor is very near the segment, see `Walk::segment`), so it is conservative; every
+//! (segment, beam) pair in range is then intersected exactly with the same arithmetic as
+//! the grid walk's `ray_segment`, so both methods return the same minimum, bit for bit.
 //!
 //! Culling (so a scan scales with what the scanner can see, not with the map): segments
 //! are also bucketed in coarse square blocks ([`BlockIndex`]). A scan visits the non-empty
