@@ -56,9 +56,15 @@ impl Footprint {
     }
 }
 
+/// Fewest beams for which [`Scanner::split`] sweeps the two halves on two rayon tasks.
+/// The hand-off (the caller, outside the pool, parks while a worker is woken) costs more
+/// than a sweep: measured on Spielberg on the shared 2-core machine (issue 24), a split
+/// scan took 39-54 µs against 19-28 µs whole at 1080 beams, and was still slower at
+/// 16384 beams (165 against 107-140 µs); the gym.make step ran 2.1-2.9x faster without
+/// it. So only fans far beyond a real lidar's are split.
+pub(crate) const SPLIT_MIN_BEAMS: usize = 32_768;
+
 /// Precomputed beam directions in the sensor frame plus the scan settings.
-/// Fewest beams for which [`Scanner::split`] pays for the rayon hand-off.
-const SPLIT_MIN_BEAMS: usize = 256;
 
 #[derive(Debug, Clone)]
 pub struct Scanner {
@@ -69,8 +75,21 @@ pub struct Scanner {
     inc: f64,
     params: LidarParams,
     /// Sweep the two halves of the fan on two rayon tasks (set for a lone world, whose
-    /// scan would otherwise leave the second core idle; a batch keeps one world per task).
+    /// scan would otherwise leave the second core idle; a batch keeps one world per task),
+    /// for fans of at least `SPLIT_MIN_BEAMS` beams.
     pub split: bool,
+}
+
+/// Per-scan buffers (beam directions in the world frame, ranges), kept per thread so a
+/// scan allocates nothing.
+#[derive(Default)]
+struct Scratch {
+    dirs: Vec<[f64; 2]>,
+    ranges: Vec<f64>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::default();
 }
 
 /// Per-episode observation noise of one world's lidar (domain randomisation), drawn from
@@ -124,35 +143,50 @@ impl Scanner {
             pose[1] + self.params.mount_x * sy,
         );
         let rmax = self.params.range_max;
-        let n = self.cos.len();
-        let dirs: Vec<[f64; 2]> = (0..n)
-            .map(|k| {
-                let (c, s) = (self.cos[k], self.sin[k]);
-                [c * cy - s * sy, c * sy + s * cy]
-            })
-            .collect();
-        let mut ranges = vec![f64::INFINITY; n];
         let theta0 = pose[2] + self.angle0;
-        if self.split && n >= SPLIT_MIN_BEAMS {
-            // Beam k's range depends only on beam k, so the halves are the same sweep.
-            let h = n / 2;
-            let (ra, rb) = ranges.split_at_mut(h);
-            let (da, db) = dirs.split_at(h);
-            let theta_b = theta0 + h as f64 * self.inc;
-            rayon::join(
-                || sweep(grid, ox, oy, theta0, self.inc, da, rmax, ra),
-                || sweep(grid, ox, oy, theta_b, self.inc, db, rmax, rb),
-            );
-        } else {
-            sweep(grid, ox, oy, theta0, self.inc, &dirs, rmax, &mut ranges);
-        }
-        for (k, o) in out.iter_mut().enumerate().take(n) {
-            let mut t = ranges[k];
-            for f in others {
-                t = t.min(f.cast(ox, oy, dirs[k][0], dirs[k][1]));
+        let mut fresh = Scratch::default();
+        SCRATCH.with(|cell| {
+            // Busy only when this thread runs a job stolen while its own scan waits in
+            // `rayon::join`: that scan then gets buffers of its own.
+            let mut held = cell.try_borrow_mut();
+            let Scratch { dirs, ranges } = match held.as_deref_mut() {
+                Ok(s) => s,
+                Err(_) => &mut fresh,
+            };
+            let n = self.cos.len();
+            dirs.resize(n, [0.0; 2]);
+            for ((d, &c), &s) in dirs.iter_mut().zip(&self.cos).zip(&self.sin) {
+                *d = [c * cy - s * sy, c * sy + s * cy];
             }
-            *o = t.min(rmax) as f32;
-        }
+            ranges.clear();
+            ranges.resize(n, f64::INFINITY);
+            if self.split && n >= SPLIT_MIN_BEAMS {
+                // Beam k's range depends only on beam k, so the halves are the same sweep.
+                let h = n / 2;
+                let (ra, rb) = ranges.split_at_mut(h);
+                let (da, db) = dirs.split_at(h);
+                let theta_b = theta0 + h as f64 * self.inc;
+                rayon::join(
+                    || sweep(grid, ox, oy, theta0, self.inc, da, rmax, ra),
+                    || sweep(grid, ox, oy, theta_b, self.inc, db, rmax, rb),
+                );
+            } else {
+                sweep(grid, ox, oy, theta0, self.inc, dirs, rmax, ranges);
+            }
+            if others.is_empty() {
+                for (o, &r) in out.iter_mut().zip(ranges.iter()) {
+                    *o = r.min(rmax) as f32;
+                }
+            } else {
+                for ((o, &r), d) in out.iter_mut().zip(ranges.iter()).zip(dirs.iter()) {
+                    let mut t = r;
+                    for f in others {
+                        t = t.min(f.cast(ox, oy, d[0], d[1]));
+                    }
+                    *o = t.min(rmax) as f32;
+                }
+            }
+        });
         let sd = self.params.noise_std.hypot(noise.extra_std);
         if sd > 0.0 {
             let mut k = 0;
@@ -288,11 +322,15 @@ mod tests {
             })
             .collect();
         let grid = SegmentGrid::new(&[poly]);
-        let one = Scanner::new(&LidarParams::default());
+        let n = SPLIT_MIN_BEAMS + 1;
+        let one = Scanner::new(&LidarParams {
+            num_beams: n,
+            ..Default::default()
+        });
         let mut two = one.clone();
         two.split = true;
         for pose in [[0.0, 0.0, 0.3], [1.0, -2.0, 2.5], [-2.5, 1.0, -1.2]] {
-            let (mut a, mut b) = (vec![0.0f32; 1081], vec![0.0f32; 1081]);
+            let (mut a, mut b) = (vec![0.0f32; n], vec![0.0f32; n]);
             let mut rng = ChaCha8Rng::seed_from_u64(3);
             one.scan(pose, &grid, &[], ScanNoise::default(), &mut rng, &mut a);
             let mut rng = ChaCha8Rng::seed_from_u64(3);

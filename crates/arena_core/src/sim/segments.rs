@@ -8,6 +8,10 @@
 pub struct SegmentGrid {
     /// (ax, ay, bx - ax, by - ay) per segment.
     segs: Vec<[f64; 4]>,
+    /// Bit i: segment i starts at the end point of segment i - 1 (same polyline).
+    joined: Vec<u64>,
+    /// Length of the longest segment.
+    max_len: f64,
     /// Coarse blocks for the sweep's culling by range and occlusion.
     blocks: BlockIndex,
     x0: f64,
@@ -26,16 +30,22 @@ impl SegmentGrid {
     /// Grid over the edges of closed polylines (each closes back to its first point).
     pub fn new(walls: &[Vec<[f64; 2]>]) -> Self {
         let mut segs = Vec::new();
+        let mut joined = Vec::new();
         for w in walls {
             let n = w.len();
             let m = if n == 2 { 1 } else { n };
             for i in 0..m {
                 let (a, b) = (w[i], w[(i + 1) % n]);
+                let k = segs.len();
+                if k % 64 == 0 {
+                    joined.push(0u64);
+                }
+                joined[k / 64] |= ((i > 0) as u64) << (k % 64);
                 segs.push([a[0], a[1], b[0] - a[0], b[1] - a[1]]);
             }
         }
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        let mut total_len = 0.0;
+        let (mut total_len, mut max_len) = (0.0, 0.0f64);
         for s in &segs {
             for p in [[s[0], s[1]], [s[0] + s[2], s[1] + s[3]]] {
                 for k in 0..2 {
@@ -44,6 +54,7 @@ impl SegmentGrid {
                 }
             }
             total_len += s[2].hypot(s[3]);
+            max_len = max_len.max(s[2].hypot(s[3]));
         }
         let mean = total_len / segs.len().max(1) as f64;
         let (w, h) = ((hi[0] - lo[0]).max(1e-3), (hi[1] - lo[1]).max(1e-3));
@@ -62,6 +73,8 @@ impl SegmentGrid {
         let blocks = BlockIndex::new(&segs, lo, hi);
         SegmentGrid {
             segs,
+            joined,
+            max_len,
             blocks,
             x0,
             y0,
@@ -81,6 +94,18 @@ impl SegmentGrid {
     /// All wall segments as (ax, ay, bx - ax, by - ay).
     pub fn segments(&self) -> &[[f64; 4]] {
         &self.segs
+    }
+
+    /// Whether segment `i` starts where segment `i - 1` ends (the next edge of the same
+    /// polyline), so the two share that end point.
+    #[inline(always)]
+    pub(crate) fn continues_previous(&self, i: usize) -> bool {
+        self.joined[i / 64] >> (i % 64) & 1 == 1
+    }
+
+    /// Length of the longest segment (0 without segments).
+    pub(crate) fn max_len(&self) -> f64 {
+        self.max_len
     }
 
     /// Bounding box of the segments: ([x lo, y lo], [x hi, y hi]).

@@ -1,9 +1,10 @@
 //! Angular-sweep scan ("z-buffer" over beams): instead of walking each beam through the
 //! segment grid, walk each wall segment the scanner may see once and update only the beams
 //! whose directions it spans. A segment's beam range comes from a fast arctangent (error
-//! < 2e-5 rad) widened by one beam on each side, so it is conservative; every (segment,
-//! beam) pair in range is then intersected exactly with the same arithmetic as the grid
-//! walk's `ray_segment`, so both methods return the same minimum, bit for bit.
+//! < 2e-5 rad, one per shared wall vertex) widened by 1e-4 rad (by a beam more when the
+//! sensor is very near the segment, see `Walk::segment`), so it is conservative; every
+//! (segment, beam) pair in range is then intersected exactly with the same arithmetic as
+//! the grid walk's `ray_segment`, so both methods return the same minimum, bit for bit.
 //!
 //! Culling (so a scan scales with what the scanner can see, not with the map): segments
 //! are also bucketed in coarse square blocks ([`BlockIndex`]). A scan visits the non-empty
@@ -15,7 +16,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use super::segments::SegmentGrid;
+use super::segments::{ray_segment, SegmentGrid};
 
 /// atan2 with |error| < 2e-5 rad (Abramowitz & Stegun 4.4.49 on [0, 1], folded).
 #[inline(always)]
@@ -42,6 +43,9 @@ pub fn fast_atan2(y: f64, x: f64) -> f64 {
     }
 }
 
+/// Widening (rad) of a segment's angular interval when the sensor is not very near it.
+const TIGHT_MARGIN: f64 = 1e-4;
+
 /// The beams of one scan: world angle of beam 0 (wrapped to [0, 2 pi)), increment,
 /// angular span and the widening of every angular interval.
 struct Beams {
@@ -50,7 +54,8 @@ struct Beams {
     inv: f64,
     span: f64,
     margin: f64,
-    n: usize,
+    /// Index of the last beam, n - 1.
+    last: f64,
 }
 
 impl Beams {
@@ -63,20 +68,35 @@ impl Beams {
         if self.inc <= 0.0 {
             return Some((0, 0));
         }
-        // (±1e-6 beams: span * inv may round just below n - 1.)
-        // (Non-negative, so truncation is floor; no libm floor/ceil calls.)
-        let k0 = ceil_nonneg(l.max(0.0) * self.inv - 1e-6);
-        let k1 = ((h.min(self.span) * self.inv + 1e-6) as usize).min(self.n - 1);
+        // (±1e-6 beams: span * inv may round just below n - 1.) Clamped to [0, n]
+        // first, so the conversions are plain truncations (no libm floor/ceil calls);
+        // compares rather than f64::max/min, whose NaN handling costs instructions here
+        // (a NaN only comes with NaN angles, whose beams hit nothing).
+        // k0 = floor(x - 3e-6) + 1 for x = l * inv: at most ceil(x - 1e-6), one
+        // truncation instead of a ceiling.
+        let last = self.last;
+        let f0 = l * self.inv + (1.0 - 3e-6);
+        let f0 = if f0 > 0.0 { f0 } else { 0.0 };
+        let k0 = (if f0 < last + 1.0 { f0 } else { last + 1.0 }) as i64 as usize;
+        let h = if self.span < h { self.span } else { h };
+        // (>= 1e-6: h >= 0 and inv >= 0.)
+        let f1 = h * self.inv + 1e-6;
+        let k1 = (if f1 < last { f1 } else { last }) as i64 as usize;
         (k0 <= k1).then_some((k0, k1))
     }
 
-    /// Widened angular interval (from beam 0) swept counter-clockwise from the world
-    /// angle `ap` to `aq` (each in [-pi, pi]).
+    /// Angle from beam 0 (counter-clockwise, in [0, 2 pi)) of the world angle `a` in
+    /// [-pi, pi].
     #[inline(always)]
-    fn interval(&self, ap: f64, aq: f64) -> (f64, f64) {
-        let start = wrap_tau(ap - self.theta0);
-        let len = wrap_tau(aq - ap);
-        (start - self.margin, start + len + self.margin)
+    fn angle_from_beam0(&self, a: f64) -> f64 {
+        // a - theta0 is in [-3 pi, pi]: at most two turns to add.
+        let x = a - self.theta0;
+        let x = if x < 0.0 { x + TAU } else { x };
+        if x < 0.0 {
+            x + TAU
+        } else {
+            x
+        }
     }
 }
 
@@ -93,7 +113,7 @@ pub fn sweep(
     rmax: f64,
     ranges: &mut [f64],
 ) {
-    let n = dirs.len();
+    let n = dirs.len().min(ranges.len());
     if n == 0 || !(ox.is_finite() && oy.is_finite() && rmax > 0.0) {
         return;
     }
@@ -103,28 +123,198 @@ pub fn sweep(
         inv: if inc > 0.0 { 1.0 / inc } else { 0.0 },
         span: inc * (n - 1) as f64,
         margin: inc.max(1e-4) + 1e-4,
-        n,
+        last: (n - 1) as f64,
     };
-    let segs = grid.segments();
+    let max_len = grid.max_len();
     let blocks = grid.blocks();
     let mut near = Vec::with_capacity(128);
     blocks.near(ox, oy, rmax, &mut near);
-    let mut seen = vec![0u64; segs.len().div_ceil(64)];
-    let r2 = rmax * rmax;
+    let mut seen = vec![0u64; grid.num_segments().div_ceil(64)];
+    let mut walk = Walk {
+        grid,
+        ox,
+        oy,
+        r2: rmax * rmax,
+        near2: 1e-12 * max_len * max_len,
+        beams,
+        dirs: &dirs[..n],
+        ranges: &mut ranges[..n],
+        after: usize::MAX,
+        end_angle: 0.0,
+    };
     // Nearest blocks first, so that beams are covered early: farther blocks then turn
     // out hidden, and occluded (segment, beam) pairs fail the cheap `dmin >= range` test.
     // The order cannot change the result: each range is a minimum.
     for &(d, b) in &near {
         let b = b as usize;
-        if d > 0.0 && !block_visible(&blocks.corners(b), ox, oy, d, &beams, ranges) {
+        if d > 0.0 && !block_visible(&blocks.corners(b), ox, oy, d, &walk.beams, walk.ranges) {
             continue;
         }
         for &i in blocks.segments(b) {
             let (w, bit) = (i as usize / 64, 1u64 << (i % 64));
             if seen[w] & bit == 0 {
                 seen[w] |= bit;
-                sweep_segment(&segs[i as usize], ox, oy, r2, &beams, dirs, ranges);
+                walk.segment(i as usize);
             }
+        }
+    }
+}
+
+/// The state of one sweep: the scan, and the angle of the end point of the segment
+/// swept last (segment `after - 1`), which is the start point of segment `after` when
+/// that continues the same polyline: a wall's segments mostly come in index order, so
+/// most end points need one arctangent instead of two.
+struct Walk<'a> {
+    grid: &'a SegmentGrid,
+    ox: f64,
+    oy: f64,
+    r2: f64,
+    /// Squared distance under which a segment gets the wide margin, see `segment`.
+    near2: f64,
+    beams: Beams,
+    dirs: &'a [[f64; 2]],
+    ranges: &'a mut [f64],
+    after: usize,
+    end_angle: f64,
+}
+
+impl Walk<'_> {
+    /// Lower the ranges of the beams segment `i` spans to its exact hits.
+    #[inline(always)]
+    fn segment(&mut self, i: usize) {
+        let s = &self.grid.segments()[i];
+        let (ax, ay) = (s[0] - self.ox, s[1] - self.oy);
+        let (bx, by) = (ax + s[2], ay + s[3]);
+        // Skip segments entirely beyond range.
+        let l2 = s[2] * s[2] + s[3] * s[3];
+        let t = if l2 > 0.0 {
+            (-(ax * s[2] + ay * s[3]) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (cx, cy) = (ax + t * s[2], ay + t * s[3]);
+        let d2 = cx * cx + cy * cy;
+        if d2 > self.r2 {
+            return;
+        }
+        // Angles of both end points from beam 0 (within 2e-5 rad, plus rounding; the
+        // shared end point's angle was computed from the previous segment's end).
+        let beams = &self.beams;
+        let fa = if self.after == i && self.grid.continues_previous(i) {
+            self.end_angle
+        } else {
+            beams.angle_from_beam0(fast_atan2(ay, ax))
+        };
+        let fb = beams.angle_from_beam0(fast_atan2(by, bx));
+        (self.after, self.end_angle) = (i + 1, fb);
+        // Angular interval swept counter-clockwise from p to q as seen from the sensor.
+        let (fp, fq) = if ax * by - ay * bx >= 0.0 {
+            (fa, fb)
+        } else {
+            (fb, fa)
+        };
+        let len = if fq < fp { fq - fp + TAU } else { fq - fp };
+        // The margin covers the arctangent's error (< 2e-5 rad) and the rounding of the
+        // hit test: a beam passes `ray_segment` only within ~3e-16 (|a| + |e|) / |b| rad
+        // of the segment's exact wedge (a, b its end points from the sensor, e = b - a),
+        // and the shared end point's angle was computed from the previous segment,
+        // within ~1e-16 (|a'| + |e'|) / |a| rad. While the sensor is at least 1e-6 of the
+        // longest segment away from this segment, both are below 1e-9 rad, and 1e-4 rad
+        // covers them all; nearer, take the old, wider margin (a beam plus 1e-4).
+        let m = if d2 >= self.near2 {
+            TIGHT_MARGIN
+        } else {
+            beams.margin
+        };
+        let (lo, hi) = (fp - m, fp + len + m);
+        // No hit on this segment is nearer than its closest point (slack for rounding).
+        let dmin = d2.sqrt() * (1.0 - 1e-9);
+        let hit = Hit::new(s, ax, ay);
+        // `lo` >= -margin, so only an interval reaching past 2 pi wraps onto the first
+        // beams (shift -2 pi), and only a full-turn fan starts before `lo` (+2 pi).
+        if let Some((k0, k1)) = beams.span(lo, hi) {
+            hit.lower(dmin, &self.dirs[k0..=k1], &mut self.ranges[k0..=k1]);
+        }
+        if hi >= TAU || lo + TAU <= beams.span {
+            self.wrapped(&hit, dmin, lo, hi);
+        }
+    }
+
+    /// The beams of a widened interval `lo..hi` one turn away (past 2 pi, or before 0
+    /// for a full-turn fan).
+    #[cold]
+    fn wrapped(&mut self, hit: &Hit, dmin: f64, lo: f64, hi: f64) {
+        for shift in [-TAU, TAU] {
+            if let Some((k0, k1)) = self.beams.span(lo + shift, hi + shift) {
+                hit.lower(dmin, &self.dirs[k0..=k1], &mut self.ranges[k0..=k1]);
+            }
+        }
+    }
+}
+
+/// The ray–segment test of `ray_segment` with the segment's side chosen once: every hit
+/// has `t = tn / den >= 0`, so the sign of `den` must be the sign of `tn`. Flipping the
+/// segment (and its start) when `tn < 0` makes both positive; all flips are exact
+/// negations, so each hit's `t` has the same bits as `ray_segment`'s.
+struct Hit {
+    /// Start point from the sensor and direction, flipped so that `tn >= 0`.
+    ax: f64,
+    ay: f64,
+    ex: f64,
+    ey: f64,
+    /// `|ax * ey - ay * ex|` (t * den).
+    tn: f64,
+    /// Whether `tn` is zero (or NaN): then the sign of `den` is free, see `lower`.
+    either: bool,
+}
+
+impl Hit {
+    #[inline(always)]
+    fn new(s: &[f64; 4], ax: f64, ay: f64) -> Self {
+        let tn = ax * s[3] - ay * s[2];
+        let g = if tn < 0.0 { -1.0 } else { 1.0 };
+        Hit {
+            ax: ax * g,
+            ay: ay * g,
+            ex: s[2] * g,
+            ey: s[3] * g,
+            tn: tn * g,
+            either: tn == 0.0 || tn.is_nan(),
+        }
+    }
+
+    /// Lower `ranges` (beams with unit directions `dirs`) to their hits, none nearer
+    /// than `dmin`.
+    #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    fn lower(&self, dmin: f64, dirs: &[[f64; 2]], ranges: &mut [f64]) {
+        if self.either {
+            return self.lower_either(dirs, ranges);
+        }
+        for (r, d) in ranges.iter_mut().zip(dirs) {
+            if dmin >= *r {
+                continue; // occluded: a nearer wall already covers this beam
+            }
+            // `ray_segment` with den > 0 (den < 0 would make t < 0: no hit).
+            let den = d[0] * self.ey - d[1] * self.ex;
+            let un = self.ax * d[1] - self.ay * d[0];
+            if (den > 1e-14) & (un >= 0.0) & (un <= den) {
+                // No pre-test: a hit is almost always the nearest yet (measured). (t > 0,
+                // so this is `r.min(t)`, NaN included, in one compare.)
+                let t = self.tn / den;
+                if !(t >= *r) {
+                    *r = t;
+                }
+            }
+        }
+    }
+
+    /// `ray_segment` itself, for a sensor on the segment's line (`tn` = 0, t = 0).
+    #[cold]
+    fn lower_either(&self, dirs: &[[f64; 2]], ranges: &mut [f64]) {
+        let s = [self.ax, self.ay, self.ex, self.ey];
+        for (r, d) in ranges.iter_mut().zip(dirs) {
+            *r = r.min(ray_segment(0.0, 0.0, d[0], d[1], &s));
         }
     }
 }
@@ -152,7 +342,7 @@ fn block_visible(
         lo = lo.min(a);
         hi = hi.max(a);
     }
-    let (l, h) = beams.interval(wrap_pi(ac + lo), wrap_pi(ac + hi));
+    let (l, h) = interval(beams, wrap_pi(ac + lo), wrap_pi(ac + hi));
     [-TAU, 0.0, TAU].iter().any(|sh| {
         beams
             .span(l + sh, h + sh)
@@ -160,64 +350,13 @@ fn block_visible(
     })
 }
 
-/// Lower the ranges of the beams segment `s` spans to its exact hits.
-#[inline]
-fn sweep_segment(
-    s: &[f64; 4],
-    ox: f64,
-    oy: f64,
-    r2: f64,
-    beams: &Beams,
-    dirs: &[[f64; 2]],
-    ranges: &mut [f64],
-) {
-    let (ax, ay) = (s[0] - ox, s[1] - oy);
-    let (bx, by) = (ax + s[2], ay + s[3]);
-    // Skip segments entirely beyond range.
-    let l2 = s[2] * s[2] + s[3] * s[3];
-    let t = if l2 > 0.0 {
-        (-(ax * s[2] + ay * s[3]) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (cx, cy) = (ax + t * s[2], ay + t * s[3]);
-    let d2 = cx * cx + cy * cy;
-    if d2 > r2 {
-        return;
-    }
-    // Angular interval swept counter-clockwise from p to q as seen from the sensor.
-    let (aa, ab) = (fast_atan2(ay, ax), fast_atan2(by, bx));
-    let (ap, aq) = if ax * by - ay * bx >= 0.0 {
-        (aa, ab)
-    } else {
-        (ab, aa)
-    };
-    let (lo, hi) = beams.interval(ap, aq);
-    // No hit on this segment is nearer than its closest point (slack for rounding).
-    let dmin = d2.sqrt() * (1.0 - 1e-9);
-    for shift in [-TAU, 0.0, TAU] {
-        let Some((k0, k1)) = beams.span(lo + shift, hi + shift) else {
-            continue;
-        };
-        for k in k0..=k1 {
-            if dmin >= ranges[k] {
-                continue; // occluded: a nearer wall already covers this beam
-            }
-            let d = dirs[k];
-            // Same arithmetic as `ray_segment` (so the same bits), but the division
-            // is only done for a hit that can lower the range (1e-12 slack keeps
-            // the pre-test conservative under rounding).
-            let den = d[0] * s[3] - d[1] * s[2];
-            let sign = if den < 0.0 { -1.0 } else { 1.0 };
-            let ad = den * sign;
-            let tn = (ax * s[3] - ay * s[2]) * sign;
-            let un = (ax * d[1] - ay * d[0]) * sign;
-            let ok = (ad > 1e-14) & (tn >= 0.0) & (un >= 0.0) & (un <= ad);
-            if ok && tn <= ranges[k] * ad * (1.0 + 1e-12) {
-                ranges[k] = ranges[k].min(tn / ad);
-            }
-        }
-    }
+/// Widened angular interval (from beam 0) swept counter-clockwise from the world angle
+/// `ap` to `aq` (each in [-pi, pi]).
+#[inline(always)]
+fn interval(beams: &Beams, ap: f64, aq: f64) -> (f64, f64) {
+    let start = wrap_tau(ap - beams.theta0);
+    let len = wrap_tau(aq - ap);
+    (start - beams.margin, start + len + beams.margin)
 }
 
 /// `x` wrapped into [0, 2 pi) for |x| < 4 pi (all this module passes), without fmod.
@@ -245,106 +384,6 @@ fn wrap_pi(x: f64) -> f64 {
     }
 }
 
-/// Ceiling of a value >= -1 as usize (negative values give 0).
-#[inline(always)]
-fn ceil_nonneg(x: f64) -> usize {
-    if x <= 0.0 {
-        return 0;
-    }
-    let t = x as usize;
-    t + ((t as f64) < x) as usize
-}
-
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::sim::shapes::stadium_track;
-
-    /// Sweep one scan of `n` beams over `fov` from `(ox, oy)` heading `yaw` and check
-    /// every beam against the per-beam grid walk, bit for bit; returns the number of hits.
-    fn check_against_walk(
-        grid: &SegmentGrid,
-        ox: f64,
-        oy: f64,
-        yaw: f64,
-        fov: f64,
-        n: usize,
-    ) -> usize {
-        let inc = fov / (n - 1) as f64;
-        let theta0 = yaw - fov / 2.0;
-        let dirs: Vec<[f64; 2]> = (0..n)
-            .map(|k| {
-                let a = theta0 + k as f64 * inc;
-                [a.cos(), a.sin()]
-            })
-            .collect();
-        let mut ranges = vec![f64::INFINITY; n];
-        sweep(grid, ox, oy, theta0, inc, &dirs, 30.0, &mut ranges);
-        let mut hits = 0;
-        for k in 0..n {
-            let walk = grid.cast(ox, oy, dirs[k][0], dirs[k][1], 30.0);
-            let swept = if ranges[k] <= 30.0 {
-                ranges[k]
-            } else {
-                f64::INFINITY
-            };
-            assert_eq!(
-                walk.to_bits(),
-                swept.to_bits(),
-                "({ox}, {oy}) beam {k}: {walk} vs {swept}"
-            );
-            hits += walk.is_finite() as usize;
-        }
-        hits
-    }
-
-    #[test]
-    fn sweep_equals_the_grid_walk_bit_for_bit() {
-        let (mut walls, _) = stadium_track(18.0, 9.0, 2.0);
-        walls.push(vec![[1.0, -9.5], [1.3, -9.2], [1.0, -8.9]]); // a small obstacle
-        let grid = SegmentGrid::new(&walls);
-        for (ox, oy, yaw, fov, n) in [
-            (0.0, -9.0, 0.3, 4.712389, 1081),
-            (-12.0, 3.0, 2.0, TAU, 720),
-            (5.0, 9.2, -1.0, 1.0, 3),
-        ] {
-            check_against_walk(&grid, ox, oy, yaw, fov, n);
-        }
-    }
-
-    #[test]
-    fn culled_sweep_equals_the_grid_walk_on_a_large_map() {
-        // A 200 m x 90 m stadium (blocks far beyond range and behind walls get culled)
-        // with a field of small obstacles, scanned from poses around the lap.
-        let (mut walls, centre) = stadium_track(120.0, 40.0, 3.0);
-        for i in 0..40 {
-            let (x, y) = (-60.0 + 3.0 * i as f64, -40.0 + 0.4 * (i % 3) as f64);
-            walls.push(vec![[x, y], [x + 0.3, y + 0.2], [x, y + 0.4]]);
-        }
-        let grid = SegmentGrid::new(&walls);
-        let mut hits = 0;
-        for (i, c) in centre.iter().enumerate().step_by(centre.len() / 23) {
-            hits += check_against_walk(
-                &grid,
-                c[0] + 0.3,
-                c[1] - 0.2,
-                i as f64 * 0.7,
-                4.712389,
-                1081,
-            );
-        }
-        assert!(hits > 10_000, "{hits}");
-    }
-
-    #[test]
-    fn fast_atan2_is_within_2e5() {
-        for i in 0..10_000 {
-            let a = i as f64 / 10_000.0 * TAU - PI;
-            for r in [1e-3, 1.0, 30.0] {
-                let (y, x) = (r * a.sin(), r * a.cos());
-                let d = (fast_atan2(y, x) - y.atan2(x)).abs();
-                assert!(d < 2e-5 || (d - TAU).abs() < 2e-5, "{a}: {d}");
-            }
-        }
-    }
-}
+#[path = "sweep_tests.rs"]
+mod tests;
