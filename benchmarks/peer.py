@@ -26,11 +26,13 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
+import gymnasium as gym
 import numpy as np
 
 from roboracer_arena import envs
-from roboracer_arena.bench.env import EnvRow, default_map, grid_start_pose, time_env, workload_actions
+from roboracer_arena.bench.env import default_map, env_kwargs, grid_start_pose
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
 from roboracer_arena.envs.tracks import resolve_tracks
 from roboracer_arena.errors import ArenaError, InvalidArgumentError
@@ -45,7 +47,8 @@ class PeerUnavailableError(ArenaError):
 
 
 class PeerRun(BenchModel):
-    """One timed F1TENTH Gym run, as its driver printed it."""
+    """One timed run: steps, resets, wall and CPU seconds, beams per scan (F1TENTH Gym's
+    as its driver printed it; ours from the same loop in this process)."""
 
     steps: int
     resets: int
@@ -62,7 +65,7 @@ class Pair(BenchModel):
     """F1TENTH Gym then ours, back to back; ratios of env-steps per wall and per CPU second."""
 
     f1tenth_gym: PeerRun
-    ours: EnvRow
+    ours: PeerRun
     ratio_wall: float
     ratio_cpu: float
 
@@ -118,6 +121,29 @@ def run_peer(python: str, map_yaml: Path, pose: tuple[float, float, float], seco
     return PeerRun.model_validate(json.loads(lines[-1]))
 
 
+def run_ours(track: Any, seconds: float) -> PeerRun:
+    """Our side, timed the way the driver times F1TENTH Gym's: ``gymnasium.make`` with its
+    standard wrappers, the constant action, a reset on ``terminated``/``truncated``, the
+    clock read every 64 steps, nothing else in the loop."""
+    kwargs = env_kwargs(BEAMS)
+    kwargs.pop("time_limit_s")  # under gymnasium.make the limit is max_episode_steps (-1: none)
+    env = gym.make("RoboRacerArena-v0", track=track, max_episode_steps=-1, **kwargs)
+    action = np.array([0.0, 1.0], np.float32)
+    obs, _ = env.reset(seed=0)
+    steps = resets = 0
+    t0, c0 = time.perf_counter(), time.process_time()
+    while True:
+        obs, _, terminated, truncated, _ = env.step(action)
+        steps += 1
+        if terminated or truncated:
+            env.reset()
+            resets += 1
+        if steps % 64 == 0 and time.perf_counter() - t0 >= seconds:
+            wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+            env.close()
+            return PeerRun(steps=steps, resets=resets, seconds=wall, cpu_seconds=cpu, beams=obs["scan"].shape[-1])
+
+
 def run(python: str, map_path: Path | None = None, seconds: float = 3.0, pairs: int = 3) -> PeerResult:
     """Alternate F1TENTH Gym and our single env ``pairs`` times; print and return the ratios."""
     if not (0.5 <= seconds <= 600 and 1 <= pairs <= 50):
@@ -126,8 +152,7 @@ def run(python: str, map_path: Path | None = None, seconds: float = 3.0, pairs: 
     map_yaml = Path(map_path or default_map()).resolve()
     track = resolve_tracks(map_yaml)[0]
     pose = grid_start_pose(track, BEAMS)
-    acts = workload_actions("constant", np.zeros((0, 2), np.float32), 1, (np.zeros(2), np.zeros(2)))
-    time_env(track, BEAMS, "constant", acts, 1, 0.5)  # warm caches and the build, untimed
+    run_ours(track, 0.5)  # warm caches, untimed
     load_before = _load()
     print(f"single env against F1TENTH Gym: map {track.name}, start {tuple(round(v, 3) for v in pose)}, ")
     print(f"{BEAMS} beams, 0.01 s step, action [0, 1], {seconds:g} s per run, F1TENTH Gym under {python}")
@@ -135,16 +160,16 @@ def run(python: str, map_path: Path | None = None, seconds: float = 3.0, pairs: 
     rows = []
     for i in range(pairs):
         peer = run_peer(python, map_yaml, pose, seconds)
-        ours = time_env(track, BEAMS, "constant", acts, 1, seconds)
+        ours = run_ours(track, seconds)
         pair = Pair(
             f1tenth_gym=peer,
             ours=ours,
-            ratio_wall=round(ours.env_steps_per_s / peer.steps_per_s, 3),
+            ratio_wall=round(ours.steps_per_s / peer.steps_per_s, 3),
             ratio_cpu=round((ours.steps / ours.cpu_seconds) / (peer.steps / peer.cpu_seconds), 3),
         )
         rows.append(pair)
         print(
-            f"{i + 1:<6}{peer.steps_per_s:>13,.0f}{ours.env_steps_per_s:>10,.0f}{pair.ratio_wall:>9.2f}"
+            f"{i + 1:<6}{peer.steps_per_s:>13,.0f}{ours.steps_per_s:>10,.0f}{pair.ratio_wall:>9.2f}"
             f"{pair.ratio_cpu:>9.2f}{f'{peer.resets}/{ours.resets}':>20}"
         )
         sys.stdout.flush()

@@ -312,7 +312,7 @@ def peer_block(doc: Doc) -> str:
     for i, pr in enumerate(r["pairs"], 1):
         f = pr["f1tenth_gym"]
         lines.append(
-            f"| {i} | {_n(f['steps'] / f['seconds'])} | {_n(pr['ours']['env_steps_per_s'])} | "
+            f"| {i} | {_n(f['steps'] / f['seconds'])} | {_n(pr['ours']['steps'] / pr['ours']['seconds'])} | "
             f"{pr['ratio_wall']:.2f}× | {pr['ratio_cpu']:.2f}× |"
         )
     ok = "✓" if r["median_ratio_wall"] >= r["target_ratio"] else "✗"

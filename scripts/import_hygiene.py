@@ -80,7 +80,10 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
 
 #: (file relative to the package, private name) -> why it is reached from outside.
 ALLOWED_PRIVATE: dict[tuple[str, str], str] = {
-    ("bench/env.py", "_batch"): "the bench times the env's native calls by wrapping its simulator (instrumentation only)",
+    (
+        "bench/env.py",
+        "_batch",
+    ): "the bench times the env's native calls by wrapping its simulator (instrumentation only)",
     ("cli/generate.py", "_actions"): "argparse has no public way to find an added action",
     ("ros2/dds.py", "_ref"): "cyclonedds' raw write needs the writer's handle; falls back to the public write",
 }

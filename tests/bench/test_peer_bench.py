@@ -69,7 +69,7 @@ def test_the_real_comparison_runs_and_both_sides_step(tmp_path):
     res = json.loads(out.read_text())
     (pair,) = res["pairs"]
     assert pair["f1tenth_gym"]["beams"] == 1080 and pair["f1tenth_gym"]["steps"] > 100
-    assert pair["ours"]["steps"] > 100 and pair["ratio_wall"] > 0
+    assert pair["ours"]["steps"] > 100 and pair["ours"]["beams"] == 1080 and pair["ratio_wall"] > 0
     (tmp_path / "m.yaml").write_text("image: other.png\n")
     with pytest.raises(peer.PeerUnavailableError, match="no m.png"):
         peer.run_peer(PEER_PYTHON, tmp_path / "m.yaml", (0.0, 0.0, 0.0), 0.5)
