@@ -13,7 +13,7 @@ import sys
 from importlib import import_module
 from pathlib import Path
 
-from roboracer_arena.cli._common import check_numeric_flags, check_outputs
+from roboracer_arena.cli._common import check_numeric_flags, check_outputs, raise_interrupt_on_sigterm
 from roboracer_arena.errors import ArenaError
 from roboracer_arena.fileio import atomic_write_text
 
@@ -59,15 +59,19 @@ def _run_all(args: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Run one benchmark kind with the CLI's flag and output checks (``roboracer-arena``'s);
-    an :class:`ArenaError` is one line on stderr and exit 2."""
+    an :class:`ArenaError` is one line on stderr and exit 2; Ctrl-C or SIGTERM one line and exit 130."""
     args = build_parser().parse_args(argv)
     try:
+        raise_interrupt_on_sigterm()
         check_numeric_flags(args)
         check_outputs(args)
         return int(args.func(args) or 0)
     except ArenaError as e:
         print(f"python -m benchmarks {args.kind}: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # Ctrl-C or SIGTERM: one line, as roboracer-arena does
+        print(f"python -m benchmarks {args.kind}: interrupted", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

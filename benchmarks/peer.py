@@ -32,7 +32,7 @@ import gymnasium as gym
 import numpy as np
 
 from roboracer_arena import envs
-from roboracer_arena.bench.env import default_map, env_kwargs, grid_start_pose
+from roboracer_arena.bench.env import default_map, env_kwargs, grid_start_pose, load_average
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
 from roboracer_arena.envs.tracks import resolve_tracks
 from roboracer_arena.errors import ArenaError, InvalidArgumentError
@@ -153,7 +153,7 @@ def run(python: str, map_path: Path | None = None, seconds: float = 3.0, pairs: 
     track = resolve_tracks(map_yaml)[0]
     pose = grid_start_pose(track, BEAMS)
     run_ours(track, 0.5)  # warm caches, untimed
-    load_before = _load()
+    load_before = load_average()
     print(f"single env against F1TENTH Gym: map {track.name}, start {tuple(round(v, 3) for v in pose)}, ")
     print(f"{BEAMS} beams, 0.01 s step, action [0, 1], {seconds:g} s per run, F1TENTH Gym under {python}")
     print(f"{'pair':<6}{'F1TENTH Gym':>13}{'ours':>10}{'× wall':>9}{'× CPU-s':>9}{'resets (peer/ours)':>20}")
@@ -182,13 +182,9 @@ def run(python: str, map_path: Path | None = None, seconds: float = 3.0, pairs: 
         map=track.name,
         start_pose=[float(v) for v in pose],
         f1tenth_gym_python=python,
-        load_average_1min=[load_before, _load()],
+        load_average_1min=[load_before, load_average()],
         pairs=rows,
         median_ratio_wall=round(wall, 3),
         median_ratio_cpu=round(cpu, 3),
         target_ratio=TARGET_RATIO,
     )
-
-
-def _load() -> float | None:
-    return round(os.getloadavg()[0], 2) if hasattr(os, "getloadavg") else None

@@ -73,3 +73,41 @@ def test_the_real_comparison_runs_and_both_sides_step(tmp_path):
     (tmp_path / "m.yaml").write_text("image: other.png\n")
     with pytest.raises(peer.PeerUnavailableError, match="no m.png"):
         peer.run_peer(PEER_PYTHON, tmp_path / "m.yaml", (0.0, 0.0, 0.0), 0.5)
+
+
+def test_sigterm_mid_run_is_one_line_exit_130_and_writes_nothing(tmp_path):
+    import signal
+    import time
+
+    hung = tmp_path / "hung-python"  # a "peer" that never answers, so the run is mid-pair
+    marker = f"sleep {100 + os.getpid() % 1000}.25"  # unique to this test run
+    hung.write_text(f"#!/bin/sh\nexec {marker}\n")
+    hung.chmod(0o755)
+    out = tmp_path / "out" / "peer.json"
+    out.parent.mkdir()
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "benchmarks", "peer", "--f1tenth-gym", str(hung), "--json", str(out)],
+        cwd=Path(__file__).resolve().parents[2],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert proc.stdout is not None
+    for line in proc.stdout:  # the table's header: warm-up done, the first peer run next
+        if line.startswith("pair"):
+            break
+    deadline = time.monotonic() + 60
+    while not _running(marker) and time.monotonic() < deadline:  # the peer is up: mid-pair
+        time.sleep(0.1)
+    assert _running(marker)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert err.strip().splitlines() == ["python -m benchmarks peer: interrupted"]
+    assert list(out.parent.iterdir()) == []
+    time.sleep(0.5)
+    assert not _running(marker), "the hung peer was left running"
+
+
+def _running(pattern: str) -> bool:
+    return subprocess.run(["pgrep", "-f", pattern], capture_output=True, check=False).returncode == 0

@@ -352,7 +352,7 @@ def run(
     veh = EnvConfig().sim.vehicle
     bounds = (np.array([-veh.max_steer, veh.min_speed]), np.array([veh.max_steer, veh.max_speed]))
     lap = record_lap(track, beams)
-    load_before = _load()
+    load_before = load_average()
     rows = []
     for kind in workloads or list(WORKLOADS):
         for n in num_envs or [1, 256]:
@@ -365,7 +365,7 @@ def run(
             )
             rows.append(row.model_copy(update={"breakdown_us_per_call": breakdown}))
     scan = scan_over_lap(track)
-    load = _load()
+    load = load_average()
     _print_table(track.name, beams, rows, os.cpu_count() or 1, (load_before, load), reference)
     print(
         f"one {scan.beams}-beam scan at {scan.poses} centreline poses around the lap: median "
@@ -385,7 +385,8 @@ def run(
     )
 
 
-def _load() -> float | None:
+def load_average() -> float | None:
+    """The 1-minute load average (None where the OS has none), stored beside timings."""
     return round(os.getloadavg()[0], 2) if hasattr(os, "getloadavg") else None
 
 
