@@ -5,6 +5,7 @@ Public API (each name is documented where it is defined):
 * :func:`load_map`, :func:`build_environment` -- map to USD stage and physics geometry
 * :class:`TrackSpec`, :func:`generate_track` -- requirements to a validated map
 * :func:`parse_request` -- natural-language request to a ``TrackSpec``
+* :func:`load_policy` -- a trained policy file (``roboracer-arena train``)
 * ``gymnasium.make("RoboRacerArena-v0", track=...)`` -- simulation
 """
 
@@ -33,6 +34,7 @@ _LAZY = {
     "BuildReport": "roboracer_arena.builder",
     "generate_track": "roboracer_arena.generate",
     "parse_request": "roboracer_arena.parse",
+    "load_policy": "roboracer_arena.learn.policy_file",
 }
 
 

@@ -261,6 +261,7 @@ def drive_laps(
     progress: bool = False,
     env_wrapper: Any = None,
     path: Any = None,
+    controller: Any = None,
     **env_kwargs: Any,
 ) -> DriveResult:
     """Drive ``laps`` laps of ``track`` (anything ``track=`` accepts; the first track if a
@@ -270,7 +271,9 @@ def drive_laps(
     ``progress``, a bar shows the distance driven, the simulated time and the car's speed.
     ``env_kwargs`` go to the env; ``env_wrapper(env)`` (e.g. an MCAP recorder) wraps it
     before driving. ``path``: ``(line (M, 2), speed cap (M,) or None)`` for the driver to
-    follow instead of the centreline (laps still count along the track's centreline). On
+    follow instead of the centreline (laps still count along the track's centreline).
+    ``controller(env)``: another driver for the env (an object with ``act(obs)``, e.g. a
+    policy's :class:`~roboracer_arena.learn.runner.PolicyDriver`) instead of pure pursuit. On
     SIGINT (and SIGTERM in the CLI) the env is closed, so a recording is finished; on any
     other error a wrapper's ``abort()`` discards its output."""
     if laps < 1:
@@ -290,7 +293,10 @@ def drive_laps(
     limit = max_time_s if max_time_s is not None else laps * (length / 0.5 + 30.0)  # >= 0.5 m/s average
     dt = env.config.control_dt
     try:
-        driver = EnvPurePursuit(env, params, None if path is None else {0: path})
+        if controller is not None:
+            driver = controller(env)
+        else:
+            driver = EnvPurePursuit(env, params, None if path is None else {0: path})
         return _drive(env, base_env, driver, laps, limit, length, dt, video, video_fps, render_size, progress)
     except KeyboardInterrupt:
         env.close()  # SIGINT/SIGTERM: what was driven is kept whole (a recording is finished)

@@ -48,6 +48,11 @@ class GroundingError(ArenaError):
     """A parser produced a value that cannot be traced to the request (an invention)."""
 
 
+class PolicyFileError(ArenaError):
+    """A policy file is unreadable, corrupt, of an unknown format version, or does not
+    match the env it is asked to drive (its observation or action spaces differ)."""
+
+
 __all__ = [
     "ArenaError",
     "BackendError",
@@ -62,6 +67,7 @@ __all__ = [
     "MalformedOutputError",
     "MapIOError",
     "ModelNotFoundError",
+    "PolicyFileError",
     "RequestParseError",
     "SimulationError",
     "SpecError",

@@ -32,6 +32,7 @@ COMMANDS: list[str] = [
     "preview",
     "ros2",
     "tracks",
+    "train",
     "validate",
 ]
 

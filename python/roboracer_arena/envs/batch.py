@@ -41,6 +41,8 @@ from .observation import ObservationAssembler
 
 #: Stream index of the per-env vehicle-randomisation RNG (apart from every other draw).
 _VEHICLE_STREAM = 0x7E41
+#: Stream index of the per-env actuation-delay RNG.
+_DELAY_STREAM = 0xDE1A
 #: Simulator state columns copied into ``info`` when present.
 STATE_INFO = ("laps", "lap_time", "last_lap_time", "progress_s")
 
@@ -132,6 +134,7 @@ class SimBatch:
         self._scan_clock = 0.0
         self._max_steps = config.max_episode_steps
         self.sim.set_episode(self._episode_config())
+        self.delay = ActuationDelay(E, V, config.randomisation.action_delay_steps)
 
     @property
     def max_steps(self) -> int | None:
@@ -278,6 +281,9 @@ class SimBatch:
             if self.config.randomisation.vehicle_active
             else None
         )
+        self._delay_rngs = [
+            np.random.default_rng([int(seed), self.env_index_offset + e, _DELAY_STREAM]) for e in range(self.num_envs)
+        ]
         return sim
 
     def reset(
@@ -306,6 +312,8 @@ class SimBatch:
         idx = np.flatnonzero(mask)
         if self._vehicle_rngs is not None:
             self._randomise_vehicles(self._vehicle_rngs, mask, idx)
+        if self.delay.active:
+            self.delay.reset(idx, self._delay_rngs)
         # The core restarted these envs' episodes: their rows of the episode buffers now
         # read reward 0, not ended, progress 0, no wrong way, elapsed 0.
         scans = self.scans if self.config.observation.scan else None
@@ -328,7 +336,8 @@ class SimBatch:
         the scan, the state and the episode step. Returns the episode buffers' reward (E,),
         terminated (E,) and truncated (E,): views, valid until the next step or reset."""
         scans = self._every_step_scans if self._scan_every_step else (self.scans if self._scan_due() else None)
-        self.sim.step(self.actions, self.substeps, scans, self.state, self.events, self.episode)
+        actions = self.delay.apply(self.actions) if self.delay.active else self.actions
+        self.sim.step(actions, self.substeps, scans, self.state, self.events, self.episode)
         self.obs.refresh(self, slice(None))
         ep = self.episode
         return ep.reward, ep.terminated, ep.truncated
@@ -374,6 +383,36 @@ class SimBatch:
         self.sim = self._new_sim(self.seed)
         self.sim.set_episode(self._episode_config())
         self.never_reset[:] = True
+
+
+class ActuationDelay:
+    """The actuation delay of ``E`` envs (see ``RandomisationConfig.action_delay_steps``):
+    a ring of the last ``high + 1`` sanitised actions per env; each env executes the one
+    given ``delay[e]`` steps ago, its delay drawn at each of its resets from its own stream."""
+
+    def __init__(self, num_envs: int, vehicles: int, steps: tuple[int, int]) -> None:
+        self.low, self.high = int(steps[0]), int(steps[1])
+        self.active = self.high > 0
+        n = self.high + 1
+        self.ring = np.zeros((n, num_envs, vehicles, 2), np.float64)
+        self.steps = np.full(num_envs, self.low, np.int64)
+        self._head = 0
+        self._out = np.zeros((num_envs, vehicles, 2), np.float64)
+        self._envs = np.arange(num_envs)
+
+    def reset(self, envs: np.ndarray, rngs: list[np.random.Generator]) -> None:
+        """Draw the delay of each env in ``envs`` and clear its pending actions (zero commands)."""
+        for e in envs:
+            self.steps[e] = rngs[e].integers(self.low, self.high + 1)
+        self.ring[:, envs] = 0.0
+
+    def apply(self, actions: np.ndarray) -> np.ndarray:
+        """Push this step's ``actions`` (E, V, 2) and return the ones each env executes now."""
+        n = len(self.ring)
+        self._head = (self._head + 1) % n
+        self.ring[self._head] = actions
+        self._out[:] = self.ring[(self._head - self.steps) % n, self._envs]
+        return self._out
 
 
 class EnvHelpers:

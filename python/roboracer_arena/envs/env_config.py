@@ -113,6 +113,10 @@ class RewardConfig(NumbersAreNumbers):
     wrong_way_penalty: float = Field(0.0, ge=0, description="Subtracted on each step the vehicle drives the wrong way.")
 
 
+#: Longest actuation delay an env accepts (control steps).
+MAX_ACTION_DELAY_STEPS = 64
+
+
 class RandomisationConfig(NumbersAreNumbers):
     """Per-episode domain randomisation, drawn from each env's own RNG (deterministic for a
     given seed).
@@ -125,6 +129,11 @@ class RandomisationConfig(NumbersAreNumbers):
     configured tyre friction (``friction_scale``), mass and with it the inertia
     (``mass_scale``), and both actuator time constants, steering servo and motor current
     (``lag_scale``). (1, 1) leaves the parameter at its configured value.
+
+    Actuation delay: each episode draws a whole number of control steps uniformly from
+    ``action_delay_steps`` (low, high, both included); the car then executes the action
+    given that many steps earlier (zero commands, i.e. straight and stopped, before the
+    first ones arrive). (0, 0) is no delay; (2, 2) a fixed 100 ms at 20 Hz.
     """
 
     model_config = _FROZEN
@@ -135,6 +144,9 @@ class RandomisationConfig(NumbersAreNumbers):
     mass_scale: tuple[float, float] = Field((1.0, 1.0), description="(low, high) factor on vehicle.mass (and inertia).")
     lag_scale: tuple[float, float] = Field(
         (1.0, 1.0), description="(low, high) factor on vehicle.steer_time_constant and throttle_time_constant."
+    )
+    action_delay_steps: tuple[int, int] = Field(
+        (0, 0), description="(low, high) actuation delay in control steps, drawn per episode (both included)."
     )
 
     @model_validator(mode="after")
@@ -151,6 +163,12 @@ class RandomisationConfig(NumbersAreNumbers):
                     f"randomisation.{name} must be (low, high) with {'0 <=' if name == 'lag_scale' else '0 <'} low <= high, "
                     f"got {(lo, hi)}"
                 )
+        lo, hi = self.action_delay_steps
+        if not 0 <= lo <= hi <= MAX_ACTION_DELAY_STEPS:
+            raise ValueError(
+                "randomisation.action_delay_steps must be (low, high) whole steps with "
+                f"0 <= low <= high <= {MAX_ACTION_DELAY_STEPS}, got {(lo, hi)}"
+            )
         return self
 
     @property

@@ -228,6 +228,12 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         """The raw simulator state (E, V, S) of every env and the column of each field."""
         return self._batch.state.copy(), dict(self._batch.field_index)
 
+    @property
+    def simulator_scans(self) -> np.ndarray | None:
+        """The latest raw lidar ranges (E, V, B) in metres (all beams, before any observation
+        preset), or None when the observation has no scan."""
+        return self._batch.scans.copy() if self.config.observation.scan else None
+
     def odometry_raw(self, obs: dict[str, np.ndarray]) -> np.ndarray:
         """``obs["odometry"]`` in SI units, shape (E, V, K), whatever the normalisation."""
         if "odometry" not in obs:
