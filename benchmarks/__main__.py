@@ -30,8 +30,9 @@ KINDS: list[str] = [
     "generalisation",
     "ray",
 ]
-# Kinds `all` leaves out: they need a peer installed by hand (F1TENTH Gym is not on PyPI).
-BY_HAND: list[str] = ["peer"]
+# Kinds `all` leaves out: they need a peer installed by hand (F1TENTH Gym is not on PyPI), or
+# the `physx` extra and minutes of CPU (engines: our engine and PhysX, open loop).
+BY_HAND: list[str] = ["peer", "engines"]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -27,7 +27,9 @@ def test_the_car_laps_berlin_in_physx(sources, tmp_path):
     build_environment(sources / "f1tenth-gym" / "maps" / "berlin.yaml", stage_path, car=True)
     stage = Usd.Stage.Open(str(stage_path))
     car = stage.GetPrimAtPath("/World/Car")
-    assert {"PhysxVehicleAPI", "PhysxVehicleControllerAPI", "PhysxVehicleSteeringAPI"} <= set(car.GetAppliedSchemas())
+    assert {"PhysxVehicleAPI", "PhysxVehicleControllerAPI", "PhysxVehicleAckermannSteeringAPI"} <= set(
+        car.GetAppliedSchemas()
+    )
     assert car.GetAttribute("physics:mass").Get() == pytest.approx(4.885)
     assert len([c for c in car.GetChildren() if "PhysxVehicleWheelAttachmentAPI" in c.GetAppliedSchemas()]) == 4
 
@@ -67,22 +69,96 @@ def test_the_car_laps_monaco_in_physx(sources, tmp_path):
     assert physx.max_deviation_m < 0.5, physx
 
 
-def test_pedals_hold_speed_and_leave_grip_for_cornering():
-    """The speed loop's pedal mapping (no PhysX needed): at the commanded speed only the
-    resistance feed-forward; the hardest acceleration it asks stays well inside mu g."""
-    from roboracer_arena.physx.drive import MAX_ACCEL, pedals
+def test_physx_car_is_derived_from_the_config_with_no_tuned_factor():
+    """Every PhysX number follows from the VehicleConfig (issue 36): the basic drive's peak
+    torque is the motor's at its current limit, the Ackermann maximum is our inner wheel's
+    angle at max_steer, the lateral stiffness is our cornering stiffness x static load."""
+    import math
+
+    from roboracer_arena.sim_config import VehicleConfig
+    from roboracer_arena.usd import vehicle
+
+    assert not hasattr(vehicle, "LATERAL_STIFFNESS_GAIN")
+    v = VehicleConfig()
+    par = vehicle.physx_params(v)
+    fpa = 60 / (2 * math.pi * v.motor_kv) * v.gear_ratio / v.wheel_radius
+    assert par.peak_torque == pytest.approx(fpa * v.max_motor_current * v.wheel_radius)
+    n_front = v.mass * 9.81 * v.com_to_rear / v.wheelbase / 2
+    assert par.rest_load_front == pytest.approx(n_front)
+    assert par.lateral_graph_front[1] == pytest.approx(v.cornering_stiffness_front * n_front)
+    assert par.longitudinal_stiffness_front == pytest.approx(v.longitudinal_stiffness * n_front)
+    # Ackermann: PhysX's outer wheel for our inner angle is our outer angle.
+    d = 0.3
+    inner = vehicle.ackermann_inner(d, v)
+    outer_physx = math.atan(v.wheelbase / (v.track_width + v.wheelbase / math.tan(inner)))
+    outer_ours = math.atan(v.wheelbase * math.tan(d) / (v.wheelbase + v.track_width / 2 * math.tan(d)))
+    assert outer_physx == pytest.approx(outer_ours, abs=1e-12)
+    assert vehicle.ackermann_command(v.max_steer, v) == 1.0 and vehicle.ackermann_command(-d, v) == pytest.approx(
+        -inner / par.max_inner_steer
+    )
+    # Mass x 1.5 scales the loads and the stiffness with them.
+    heavy = vehicle.physx_params(v.model_copy(update={"mass": 1.5 * v.mass}))
+    assert heavy.lateral_graph_rear[1] == pytest.approx(1.5 * par.lateral_graph_rear[1])
+
+
+def test_physx_drive_loop_is_our_servo_and_speed_loop():
+    """The drive loop's actuators follow our model's laws: servo lag then rate limit, the PI
+    speed loop saturating at the current window, the torque of that current."""
+    import math
+
+    from roboracer_arena.physx.drive import Actuators
     from roboracer_arena.sim_config import SimConfig
-    from roboracer_arena.usd.vehicle import PEAK_TORQUE_NM
 
     sim = SimConfig()
-    veh = sim.vehicle
-    hold, brake = pedals(5.0, 5.0, sim)
-    assert 0.0 < hold < 0.05 and brake == 0.0
-    full, brake = pedals(veh.max_speed, 0.0, sim)
-    assert brake == 0.0 and full * PEAK_TORQUE_NM / veh.wheel_radius / veh.mass == pytest.approx(MAX_ACCEL)
-    assert MAX_ACCEL < 0.6 * veh.tyre_friction * 9.81
-    accel, brake = pedals(1.0, 4.0, sim)
-    assert accel == 0.0 and 0.0 < brake <= 1.0
+    v = sim.vehicle
+    act = Actuators(sim)
+    steer, torque = act.update((0.4, 5.0), 0.0, 0.005)
+    # lag: 0.4 (1 - exp(-0.1)) = 0.038 rad is above the 3.2 rad/s x 5 ms rate limit
+    assert steer == pytest.approx(v.max_steer_rate * 0.005)
+    act.steer = 0.0
+    steer, _ = act.update((0.01, 5.0), 0.0, 0.005)
+    assert steer == pytest.approx(0.01 * (1 - math.exp(-0.005 / v.steer_time_constant)))
+    for _ in range(200):
+        _, torque = act.update((0.0, 5.0), 0.0, 0.005)
+    assert act.current == pytest.approx(v.max_motor_current)  # 5 m/s of error saturates the loop
+    assert torque == pytest.approx(act.par.peak_torque)
+    lo, hi = act.current_window(15.0)  # near the no-load speed the battery limits the current
+    assert hi < v.max_motor_current and lo == -v.max_brake_current
+    assert act.sanitise(float("nan"), 99.0) == (0.0, v.max_speed)
+
+
+@pytest.mark.skipif(
+    not available(), reason="the 'physx' extra (ovphysx, physx-usd-schemas) is not installed; CI installs it"
+)
+def test_step_steer_and_stop_agree_in_both_engines(tmp_path):
+    """Open loop, no driver (issue 36): a 0.04 rad step steer at 3 m/s and a stop from 5 m/s
+    give the same yaw rate and stopping distance in PhysX as in ours within 10 %."""
+    import warnings
+
+    from benchmarks.engines import _Ours, _Physx, brake, step_steer
+    from roboracer_arena.physx.drive import write_flat_stage
+    from roboracer_arena.sim_config import SimConfig
+
+    warnings.simplefilter("ignore")
+    sim = SimConfig()
+    stage = write_flat_stage(tmp_path / "flat.usda", sim)
+    runs = {}
+    for name, make in (("ours", lambda s: _Ours(sim, s)), ("physx", lambda s: _Physx(stage, sim, s))):
+        car = make(3.0)
+        try:
+            step = step_steer(car)
+        finally:
+            car.close()
+        car = make(5.0)
+        try:
+            stop = brake(car)
+        finally:
+            car.close()
+        runs[name] = (step, stop)
+    (o_step, o_stop), (p_step, p_stop) = runs["ours"], runs["physx"]
+    assert p_step.gain == pytest.approx(o_step.gain, rel=0.10)
+    assert p_step.rise_time == pytest.approx(o_step.rise_time, rel=0.10)
+    assert p_stop.distance == pytest.approx(o_stop.distance, rel=0.10)
 
 
 _WITHOUT_EXTRA = r"""

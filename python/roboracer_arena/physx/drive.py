@@ -1,76 +1,297 @@
-"""Drive the stage's PhysX vehicle (``build --car``) through ovphysx on the CPU with the
-reference pure pursuit (:class:`~roboracer_arena.drivers.PurePursuitDriver`), for one
-lap; and the same lap in our simulator, for comparison (``scripts/physx_lap_bench.py``).
+"""Drive the stage's PhysX vehicle (``build --car``) through ovphysx on the CPU exactly as
+our simulator drives its car, and the same runs in our simulator for comparison.
 
-The driver gives ``[steer (rad), speed (m/s)]``; PhysX's basic drive takes a normalised
-steer (``steer / max_steer``), an accelerator and a brake: a proportional speed loop
-turns the speed command into those two, as the car's VESC speed loop does in our model.
+:class:`PhysxCar` runs, around every PhysX step, what ``arena_core::sim::vehicle`` runs
+inside ours (same constants, same order, same step): the steering servo (first-order lag,
+then the rate limit) on the virtual centre wheel, turned into the Ackermann API's
+normalised steer; the VESC-style PI speed loop on the wheels' mean surface speed (read
+from PhysX's wheels), with anti-windup; the motor current lag and the current window the
+battery can drive against the back-EMF; the wheel torque that current gives, less the
+rolling resistance, as accelerator (torque along the wheels' rotation) or brake (against
+it); and aerodynamic drag as a force on the chassis. The car's PhysX parameters come from
+the same ``VehicleConfig`` (:func:`roboracer_arena.usd.vehicle.physx_params`).
+
+A driver's commands ``[steer (rad), speed (m/s)]`` arrive at the env's control rate
+(``EnvConfig.control_rate_hz``, 20 Hz by default) and hold for the physics steps between.
+
+* :func:`drive_physx`: any per-step controller ``controller(scan, odometry) -> (steer,
+  speed)`` on a built stage; the scan is our lidar's (the same walls, our exact 2D caster)
+  at the PhysX car's pose. Returns a :class:`Trace`.
+* :func:`drive_physx_lap` / :func:`drive_native_lap`: one pure-pursuit lap in each engine.
 """
 
 from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from .. import _core
 from ..drivers import PurePursuitDriver
 from ..envs.env_config import EnvConfig
 from ..envs.single import RoboRacerEnv
 from ..errors import ConfigError
 from ..frozen_model import FrozenModel
 from ..sim_config import SimConfig
-from ..usd.vehicle import MAX_BRAKE_TORQUE_NM, PEAK_TORQUE_NM
+from ..usd.vehicle import AIR_DENSITY, CAR, ROLL_FADE, ackermann_command, author_car, physx_params
 from .runtime import PhysxScene
 
-CAR = "/World/Car"
-#: Acceleration asked per m/s of speed error (1/s): a 1/8 s lag, so the car slows
-#: into bends about as fast as the driver's speed profile drops.
-SPEED_GAIN = 8.0
-#: Largest acceleration / deceleration the speed loop asks (m/s^2). Full accelerator is
-#: about 8 m/s^2 (mu g): the tyres then have no lateral grip left, and the car slid off
-#: Monaco's first bend on a 3 m/s speed error. 4 m/s^2 leaves ~7 m/s^2 for cornering.
-MAX_ACCEL = 4.0
-MAX_DECEL = 8.0
-#: Control period (s): the env's default 40 Hz control loop.
-CONTROL_DT = 0.025
+#: Settling steps on the suspension before a run starts (not counted in its time).
+SETTLE_STEPS = 20
+
+Controller = Callable[[np.ndarray, dict[str, float]], tuple[float, float]]
 
 
-class LapRun(FrozenModel):
-    """One lap driven by pure pursuit. ``steps_per_second``: physics steps per second of
-    the engine's own stepping (PhysX: ``step_sync`` time only, not the Python reads and
-    writes around it; ours: the env's whole step, lidar included)."""
+def lag_step(tau: float, dt: float) -> float:
+    """Fraction of the way a first-order lag of time constant ``tau`` moves in ``dt`` (ours)."""
+    return 1.0 - math.exp(-dt / tau) if tau > 0.0 else 1.0
+
+
+class Actuators:
+    """Our model's actuator and drivetrain state and laws (``VehicleModel::apply`` and
+    ``drive_substep``), for a car whose wheels another engine spins."""
+
+    def __init__(self, sim: SimConfig) -> None:
+        self.v = sim.vehicle
+        self.g = float(sim.physics.gravity)
+        self.par = physx_params(self.v, self.g)
+        self.steer = 0.0
+        self.current = 0.0
+        self.integral = 0.0
+
+    def sanitise(self, steer: float, speed: float) -> tuple[float, float]:
+        """NaN/inf become 0; finite values clip to the documented domain (ours)."""
+        v = self.v
+        s = min(max(steer, -v.max_steer), v.max_steer) if math.isfinite(steer) else 0.0
+        u = min(max(speed, v.min_speed), v.max_speed) if math.isfinite(speed) else 0.0
+        return s, u
+
+    def current_window(self, v_wheel: float) -> tuple[float, float]:
+        """Motor current window (A) at wheel surface speed ``v_wheel`` (ours)."""
+        v = self.v
+        emf = self.par.force_per_amp * v_wheel
+        v_max = v.max_duty * v.battery_voltage
+        pos, neg = (
+            (v.max_motor_current, v.max_brake_current) if v_wheel >= 0.0 else (v.max_brake_current, v.max_motor_current)
+        )
+        lo = max(-neg, (-v_max - emf) / v.motor_resistance)
+        hi = max(min(pos, (v_max - emf) / v.motor_resistance), lo)
+        return lo, hi
+
+    def update(self, cmd: tuple[float, float], v_wheel: float, dt: float) -> tuple[float, float]:
+        """Advance the servo and the speed loop by ``dt`` toward ``cmd`` (sanitised); returns
+        (centre-wheel steer angle, net wheel torque summed over the four wheels, N m)."""
+        v = self.v
+        max_d = v.max_steer_rate * dt
+        self.steer += min(max((cmd[0] - self.steer) * lag_step(v.steer_time_constant, dt), -max_d), max_d)
+        err = cmd[1] - v_wheel
+        lo, hi = self.current_window(v_wheel)
+        want = v.speed_kp * err + v.speed_ki * self.integral
+        if (want < hi or err < 0.0) and (want > lo or err > 0.0):
+            self.integral += err * dt
+        self.current += (min(max(want, lo), hi) - self.current) * lag_step(v.throttle_time_constant, dt)
+        self.current = min(max(self.current, lo), hi)
+        r = v.wheel_radius
+        roll = -v.rolling_resistance * v.mass * self.g * r * min(max(v_wheel / ROLL_FADE, -1.0), 1.0)
+        return self.steer, self.par.force_per_amp * self.current * r + roll
+
+
+class CarState(FrozenModel):
+    """The PhysX car after a step: pose (CoM), body-frame velocity, yaw rate, actual
+    centre-wheel steer, planar speed signed by vx, mean wheel surface speed."""
+
+    x: float
+    y: float
+    yaw: float
+    vx: float
+    vy: float
+    yaw_rate: float
+    steer: float
+    speed: float
+    wheel_speed: float
+
+
+class PhysxCar:
+    """The car at ``path`` of a loaded :class:`PhysxScene`, stepped as ours (module doc).
+    Use as a context manager; :meth:`step` runs one physics step of ``dt``."""
+
+    def __init__(self, scene: PhysxScene, sim: SimConfig, path: str = CAR) -> None:
+        from ovphysx.types import SimObjectType
+
+        self.scene, self.sim, self.physx = scene, sim, scene.physx
+        self.dt = float(sim.physics.dt)
+        self.act = Actuators(sim)
+        self._queries = [
+            self.physx.query(SimObjectType.VEHICLE, pattern=path).wait(),
+            self.physx.query(SimObjectType.RIGID_BODY, pattern=path).wait(),
+            self.physx.query(SimObjectType.VEHICLE_WHEEL, pattern=f"{path}/**").wait(),
+        ]
+        self._vq, self._bq, self._wq = (q.__enter__() for q in self._queries)
+        if self._vq.metadata.total_prim_count != 1 or self._wq.metadata.total_prim_count != 4:
+            self.close()
+            raise ConfigError(f"no PhysX vehicle with four wheels at {path} (build the stage with --car)")
+        self._gear = 1
+        self.state = self._read()
+        self.steps = 0
+        self.step_seconds = 0.0
+
+    def __enter__(self) -> PhysxCar:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        for q in getattr(self, "_queries", []):
+            q.__exit__(None, None, None)
+        self._queries = []
+        self.physx.wait_all()
+
+    def settle(self, steps: int = SETTLE_STEPS) -> None:
+        """Let the car sink onto its suspension with no command (not counted in :attr:`steps`)."""
+        for _ in range(steps):
+            self._write_controls(0.0, 0.0, 0.0)
+            self.scene.step(self.dt)
+        self.state = self._read()
+
+    def set_speed(self, speed: float, max_steps: int = 60) -> None:
+        """Rolling start (as ``Simulator.set_speeds``): the chassis at ``speed`` along its
+        heading with the wheels rolling at it and the actuators at rest. PhysX's wheel spin
+        is not writable: the chassis velocity is held while the free wheels roll up to it
+        (at most ``max_steps`` physics steps, not counted in :attr:`steps`)."""
+        for _ in range(max_steps):
+            yaw = self.state.yaw
+            self._write(self._bq, {"linearVelocity": [speed * math.cos(yaw), speed * math.sin(yaw), 0.0]})
+            self._write(self._bq, {"angularVelocity": [0.0, 0.0, 0.0]})
+            self._write_controls(0.0, 0.0, 0.0)
+            self.scene.step(self.dt)
+            self.state = self._read()
+            if abs(self.state.wheel_speed - speed) < 0.002 * max(1.0, abs(speed)):
+                break
+        yaw = self.state.yaw
+        self._write(self._bq, {"linearVelocity": [speed * math.cos(yaw), speed * math.sin(yaw), 0.0]})
+        self.act.steer = self.act.current = self.act.integral = 0.0
+        self.state = self._read()
+
+    def step(self, steer: float, speed: float, count: bool = True) -> CarState:
+        """One physics step toward the command ``(steer, speed)``; returns the new state."""
+        cmd = self.act.sanitise(float(steer), float(speed))
+        delta, torque = self.act.update(cmd, self.state.wheel_speed, self.dt)
+        par, v = self.act.par, self.sim.vehicle
+        direction = self.state.wheel_speed if abs(self.state.wheel_speed) > 1e-3 else torque
+        if torque * direction >= 0.0:  # along the wheels' rotation: the motor drives
+            gear = 1 if torque >= 0.0 else -1
+            if gear != self._gear:
+                self._write(self._vq, {"requestedGear": gear}, dtype=np.int32)
+                self._gear = gear
+            accel, brake = min(abs(torque) / par.peak_torque, 1.0), 0.0
+        else:  # against it: motor braking and rolling resistance
+            accel, brake = 0.0, min(abs(torque) / 4.0 / par.max_brake_torque, 1.0)
+        self._write_controls(ackermann_command(delta, v), accel, brake)
+        vx, vy = self._vel[0], self._vel[1]
+        k = -0.5 * AIR_DENSITY * v.drag_area * math.hypot(vx, vy)
+        if k != 0.0:
+            self._write(self._bq, {"force": [k * vx, k * vy, 0.0]})
+        t0 = time.perf_counter()
+        self.scene.step(self.dt)
+        if count:
+            self.step_seconds += time.perf_counter() - t0
+            self.steps += 1
+        self.state = self._read()
+        return self.state
+
+    # ------------------------------------------------------------------ I/O
+    def _write_controls(self, steer: float, accel: float, brake: float) -> None:
+        self._write(self._vq, {"steer": steer, "accelerator": accel, "brake0": brake})
+
+    def _write(self, query: Any, values: dict[str, Any], dtype: Any = np.float32) -> None:
+        names = list(values)
+        with self.physx.write(query, names).wait() as w:
+            while (g := w.fetch_next().wait()) is not None:
+                tensor = g.tensors[0]
+                tensor.assign(np.asarray(values[names[g.attribute_index]], dtype=dtype).reshape(tuple(tensor.shape)))
+                w.commit(g).wait()
+
+    def _read_columns(self, query: Any, names: list[str]) -> dict[str, np.ndarray]:
+        out: dict[str, np.ndarray] = {}
+        with self.physx.read(query, names).wait() as result:
+            while (g := result.fetch_next().wait()) is not None:
+                arr = g.tensors[0].numpy()[g.prim_offset : g.prim_offset + g.prim_count].copy()
+                out[query.dictionary.token_to_string(g.attribute)] = arr
+                del g
+        return out
+
+    def _read(self) -> CarState:
+        body = self._read_columns(self._bq, ["position", "orientation", "linearVelocity", "angularVelocity"])
+        wheels = self._read_columns(self._wq, ["rotationSpeed"])
+        self.physx.wait_all()
+        px, py = (float(c) for c in body["position"][0][:2])
+        qx, qy, qz, qw = (float(c) for c in body["orientation"][0][:4])  # PhysX order: x, y, z, w
+        yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+        vel = body["linearVelocity"][0]
+        self._vel = (float(vel[0]), float(vel[1]))
+        c, s = math.cos(yaw), math.sin(yaw)
+        vx, vy = self._vel[0] * c + self._vel[1] * s, -self._vel[0] * s + self._vel[1] * c
+        omega = float(np.mean(wheels["rotationSpeed"]))
+        return CarState(
+            x=px,
+            y=py,
+            yaw=yaw,
+            vx=vx,
+            vy=vy,
+            yaw_rate=float(body["angularVelocity"][0][2]),
+            steer=self.act.steer,
+            speed=math.copysign(math.hypot(vx, vy), vx),
+            wheel_speed=omega * self.sim.vehicle.wheel_radius,
+        )
+
+
+def write_flat_stage(path: str | Path, sim: SimConfig, half_size: float = 150.0) -> Path:
+    """A stage of a flat square floor (``2 half_size`` m, no walls) with the car of ``sim``
+    at the origin heading +x: the open-loop manoeuvres' ground."""
+    from ..build_config import BuildConfig
+    from ..usd.stage import StageMesh, author_stage
+
+    h = float(half_size)
+    floor = StageMesh(
+        path="/World/Track/Floor",
+        points=np.array([[-h, -h, 0.0], [h, -h, 0.0], [h, h, 0.0], [-h, h, 0.0]]),
+        triangles=np.array([[0, 1, 2], [0, 2, 3]]),
+        look="Floor",
+        collider=True,
+    )
+    stage, _ = author_stage([floor], BuildConfig(), {"map_kind": "flat"})
+    author_car(stage, sim, (0.0, 0.0, 0.0))
+    out = Path(path)
+    stage.GetRootLayer().Export(str(out))
+    return out
+
+
+class Trace(FrozenModel):
+    """One closed-loop run, sampled at every control step: time (s), pose, speed (m/s),
+    yaw rate (rad/s), actual steer (rad), the commands, and the lateral distance (m) from
+    the track's centreline; ``lap_time_s`` once the car travelled one centreline length."""
 
     engine: str
-    completed: bool
+    control_rate_hz: float
+    t: list[float]
+    x: list[float]
+    y: list[float]
+    yaw: list[float]
+    speed: list[float]
+    yaw_rate: list[float]
+    steer: list[float]
+    steer_cmd: list[float]
+    speed_cmd: list[float]
+    lateral_error: list[float]
     lap_time_s: float | None
-    mean_deviation_m: float
-    max_deviation_m: float
     physics_steps: int
     wall_seconds: float
     steps_per_second: float
-
-    @classmethod
-    def from_trace(
-        cls, engine: str, points: np.ndarray, xy: list[tuple[float, float]], lap: float | None, **timing: Any
-    ) -> LapRun:
-        """The run of ``engine`` whose car passed ``xy``: deviation is each point's distance
-        from the driver's resampled centreline ``points`` (5 cm spacing)."""
-        if xy:
-            p = np.asarray(xy)
-            dev = np.hypot(points[None, :, 0] - p[:, 0:1], points[None, :, 1] - p[:, 1:2]).min(axis=1)
-        else:
-            dev = np.zeros(1)
-        return cls(
-            engine=engine,
-            completed=lap is not None,
-            lap_time_s=lap,
-            mean_deviation_m=float(dev.mean()),
-            max_deviation_m=float(dev.max()),
-            **timing,
-        )
 
 
 class _Progress:
@@ -89,129 +310,190 @@ class _Progress:
         return self.s
 
 
-def drive_physx_lap(stage: str | Path, track: Any, sim: SimConfig | None = None, max_seconds: float = 120.0) -> LapRun:
-    """Drive the stage's car one lap in PhysX; the stage must carry ``/World/Car``."""
-    from ovphysx.types import SimObjectType
+class _Recorder:
+    """Collects a :class:`Trace`'s columns and the lap (progress on the track's centreline)."""
+
+    def __init__(self, track: Any, x: float, y: float) -> None:
+        self.ref = PurePursuitDriver(track.centreline)
+        self.prog = _Progress(self.ref, x, y)
+        self.cols: dict[str, list[float]] = {
+            k: []
+            for k in ("t", "x", "y", "yaw", "speed", "yaw_rate", "steer", "steer_cmd", "speed_cmd", "lateral_error")
+        }
+        self.lap: float | None = None
+
+    def add(self, t: float, s: dict[str, float], cmd: tuple[float, float]) -> bool:
+        """Record one control step; True once the lap is complete."""
+        pts = self.ref.points
+        dev = float(np.hypot(pts[:, 0] - s["x"], pts[:, 1] - s["y"]).min())
+        for k, val in (("t", t), ("steer_cmd", cmd[0]), ("speed_cmd", cmd[1]), ("lateral_error", dev)):
+            self.cols[k].append(float(val))
+        for k in ("x", "y", "yaw", "speed", "yaw_rate", "steer"):
+            self.cols[k].append(float(s[k]))
+        if self.lap is None and self.prog.update(s["x"], s["y"]) >= self.ref.length:
+            self.lap = t
+        return self.lap is not None
+
+
+class _Lidar:
+    """Our lidar at any pose on ``track``: a one-car simulator reset to the pose, scanned."""
+
+    def __init__(self, track: Any, sim: SimConfig) -> None:
+        self.sim = _core.Simulator([track.native()], 1, 1, sim, 0)
+        self.mask = np.ones(1, bool)
+        self.state = np.zeros((1, 1, len(self.sim.state_fields)))
+        self.events = np.zeros((1, 1), np.uint8)
+        self.scan = np.zeros((1, 1, self.sim.num_beams), np.float32)
+
+    def __call__(self, x: float, y: float, yaw: float) -> np.ndarray:
+        self.sim.reset(self.mask, np.array([[[x, y, yaw]]]))
+        self.sim.observe(self.scan, self.state, self.events)
+        return self.scan[0, 0].copy()
+
+
+def drive_physx(
+    stage: str | Path,
+    controller: Controller,
+    sim: SimConfig | None = None,
+    *,
+    track: Any = None,
+    control_rate_hz: float | None = None,
+    max_seconds: float = 120.0,
+    stop_at_lap: bool = True,
+    scan: bool = True,
+) -> Trace:
+    """Drive the stage's PhysX car with ``controller(scan, odometry) -> (steer, speed)`` at
+    ``control_rate_hz`` (default: the env's, ``EnvConfig().control_rate_hz``) for up to
+    ``max_seconds`` (or one lap, with ``stop_at_lap``). ``scan``: our lidar's raw ranges (m)
+    at the car's pose on ``track`` (default: the stage's own track), or an empty array with
+    ``scan=False``; ``odometry``: ``x, y, yaw, vx, vy, yaw_rate, steer, speed`` (SI, body
+    frame velocities). ``sim``: the car's config, the one the stage was built with."""
+    from .check import track_of_stage
 
     sim = sim or SimConfig()
-    dt = float(sim.physics.dt)
-    sub = max(1, round(CONTROL_DT / dt))
-    driver = PurePursuitDriver(track.centreline)
-    xy: list[tuple[float, float]] = []
-    stepping = 0.0
-    with PhysxScene(stage) as scene:
-        physx = scene.physx
-        with (
-            physx.query(SimObjectType.VEHICLE, pattern=CAR).wait() as vq,
-            physx.query(SimObjectType.RIGID_BODY, pattern=CAR).wait() as bq,
-        ):
-            if vq.metadata.total_prim_count != 1:
-                raise ConfigError(f"{stage}: no PhysX vehicle at {CAR} (build it with --car)")
-            scene.step(dt, 20)  # settle on the suspension
-            x, y, yaw, v = _pose(physx, bq)
-            prog = _Progress(driver, x, y)
-            steps, t0, lap = 20, time.perf_counter(), None
-            while steps * dt < max_seconds:
-                steer, v_cmd = driver.act_pose(x, y, yaw, v)
-                accelerator, brake = pedals(float(v_cmd), v, sim)
-                controls = {
-                    "steer": float(np.clip(steer / sim.vehicle.max_steer, -1.0, 1.0)),
-                    "accelerator": accelerator,
-                    "brake0": brake,
-                }
-                with physx.write(vq, list(controls)).wait() as w:
-                    while (g := w.fetch_next().wait()) is not None:
-                        g.tensors[0].fill_(controls[list(controls)[g.attribute_index]])
-                        w.commit(g).wait()
-                ts = time.perf_counter()
-                scene.step(dt, sub)
-                stepping += time.perf_counter() - ts
-                steps += sub
-                x, y, yaw, v = _pose(physx, bq)
-                xy.append((x, y))
-                if prog.update(x, y) >= driver.length:
-                    lap = (steps - 20) * dt
-                    break
-            wall = time.perf_counter() - t0
-        physx.wait_all()
-    return LapRun.from_trace(
-        "physx-cpu",
-        driver.points,
-        xy,
-        lap,
+    rate = float(control_rate_hz or EnvConfig().control_rate_hz)
+    track = track if track is not None else track_of_stage(stage)
+    lidar = _Lidar(track, sim) if scan else None
+    sub = max(1, round(1.0 / (rate * float(sim.physics.dt))))
+    with PhysxScene(stage) as scene, PhysxCar(scene, sim) as car:
+        car.settle()
+        rec = _Recorder(track, car.state.x, car.state.y)
+        t0, t = time.perf_counter(), 0.0
+        while t < max_seconds - 1e-9:
+            odo = car.state.to_json_dict()
+            ranges = lidar(odo["x"], odo["y"], odo["yaw"]) if lidar else np.zeros(0, np.float32)
+            cmd = tuple(float(c) for c in controller(ranges, odo))
+            for _ in range(sub):
+                car.step(*cmd)
+            t += sub * car.dt
+            if rec.add(t, car.state.to_json_dict(), cmd) and stop_at_lap:  # type: ignore[arg-type]
+                break
+        wall = time.perf_counter() - t0
+        steps, busy = car.steps, car.step_seconds
+    return Trace(
+        engine="physx-cpu",
+        control_rate_hz=rate,
+        **rec.cols,
+        lap_time_s=rec.lap,
         physics_steps=steps,
         wall_seconds=wall,
-        steps_per_second=(steps - 20) / stepping if stepping > 0 else 0.0,
+        steps_per_second=steps / busy if busy > 0 else 0.0,
     )
 
 
-def pedals(v_cmd: float, v: float, sim: SimConfig) -> tuple[float, float]:
-    """(accelerator, brake) in [0, 1] for the basic drive: a proportional loop asks an
-    acceleration (bounded by :data:`MAX_ACCEL` / :data:`MAX_DECEL`), turned into wheel
-    torque through the car's mass, plus a feed-forward for rolling resistance and drag so
-    the car holds the commanded speed instead of settling below it."""
-    veh = sim.vehicle
-    accel = float(np.clip(SPEED_GAIN * (v_cmd - v), -MAX_DECEL, MAX_ACCEL))
-    resist = veh.rolling_resistance * veh.mass * 9.81 + 0.5 * 1.2 * veh.drag_area * v * v if v > 0.1 else 0.0
-    force = veh.mass * accel + resist
-    if force >= 0.0:
-        return float(min(force * veh.wheel_radius / PEAK_TORQUE_NM, 1.0)), 0.0
-    return 0.0, float(min(-force * veh.wheel_radius / (4.0 * MAX_BRAKE_TORQUE_NM), 1.0))
-
-
-_POSE_ATTRS = ["position", "orientation", "linearVelocity"]
-
-
-def _pose(physx: Any, query: Any) -> tuple[float, float, float, float]:
-    """(x, y, yaw, forward speed) of the car's chassis."""
-    body: dict[str, np.ndarray] = {}
-    with physx.read(query, _POSE_ATTRS).wait() as result:
-        while (g := result.fetch_next().wait()) is not None:
-            body[query.dictionary.token_to_string(g.attribute)] = g.tensors[0].numpy()[g.prim_offset].copy()
-            del g
-    physx.wait_all()
-    px, py = float(body["position"][0]), float(body["position"][1])
-    qx, qy, qz, qw = (float(c) for c in body["orientation"][:4])  # PhysX order: x, y, z, w
-    yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
-    vel = body["linearVelocity"]
-    return px, py, yaw, float(vel[0]) * math.cos(yaw) + float(vel[1]) * math.sin(yaw)
-
-
-def drive_native_lap(track: Any, sim: SimConfig | None = None, max_seconds: float = 120.0) -> LapRun:
-    """The same lap in our simulator (the env, grid start, pure pursuit)."""
+def drive_native(
+    track: Any,
+    controller: Controller,
+    sim: SimConfig | None = None,
+    *,
+    control_rate_hz: float | None = None,
+    max_seconds: float = 120.0,
+    stop_at_lap: bool = True,
+) -> Trace:
+    """The same run in our simulator: the env (grid start, ``control_rate_hz``), the same
+    ``controller(scan, odometry)`` with the env's raw scan."""
     sim = sim or SimConfig()
-    env = RoboRacerEnv(track=track, config=EnvConfig(sim=sim))
-    driver = PurePursuitDriver(track.centreline)
+    rate = float(control_rate_hz or EnvConfig().control_rate_hz)
+    env = RoboRacerEnv(track=track, config=EnvConfig(sim=sim, control_rate_hz=rate, normalise=False))
     try:
-        env.reset(seed=0)
-        state, idx = env.simulator_state
-        x, y = float(state[0, idx["x"]]), float(state[0, idx["y"]])
-        prog = _Progress(driver, x, y)
-        xy, t, lap, t0 = [], 0.0, None, time.perf_counter()
-        ctrl_dt = float(env.config.control_dt)
-        while t < max_seconds:
-            state, idx = env.simulator_state
-            x, y, yaw = (float(state[0, idx[k]]) for k in ("x", "y", "yaw"))
-            v = float(state[0, idx["vx"]]) if "vx" in idx else 0.0
-            steer, v_cmd = driver.act_pose(x, y, yaw, v)
-            env.step(env.from_ackermann(np.array([steer, v_cmd])))
-            t += ctrl_dt
-            state, idx = env.simulator_state
-            x, y = float(state[0, idx["x"]]), float(state[0, idx["y"]])
-            xy.append((x, y))
-            if prog.update(x, y) >= driver.length:
-                lap = t
+        obs, _ = env.reset(seed=0)
+        odo = _native_odometry(env)
+        rec = _Recorder(track, odo["x"], odo["y"])
+        t, t0, steps = 0.0, time.perf_counter(), 0
+        while t < max_seconds - 1e-9:
+            cmd = tuple(float(c) for c in controller(np.asarray(obs["scan"], np.float32).reshape(-1), odo))
+            obs, *_ = env.step(env.from_ackermann(np.array(cmd)))
+            t += float(env.config.control_dt)
+            steps += env.config.substeps
+            odo = _native_odometry(env)
+            if rec.add(t, odo, cmd) and stop_at_lap:  # type: ignore[arg-type]
                 break
         wall = time.perf_counter() - t0
     finally:
         env.close()
-    steps = round(t / float(sim.physics.dt))
-    return LapRun.from_trace(
-        "roboracer-arena",
-        driver.points,
-        xy,
-        lap,
+    return Trace(
+        engine="roboracer-arena",
+        control_rate_hz=rate,
+        **rec.cols,
+        lap_time_s=rec.lap,
         physics_steps=steps,
         wall_seconds=wall,
         steps_per_second=steps / wall if wall > 0 else 0.0,
     )
+
+
+def _native_odometry(env: Any) -> dict[str, float]:
+    state, idx = env.simulator_state
+    return {k: float(state[0, idx[k]]) for k in ("x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed")}
+
+
+def pure_pursuit(track: Any, sim: SimConfig | None = None) -> Controller:
+    """The reference pure pursuit as a ``controller(scan, odometry)`` (it reads the pose)."""
+    driver = PurePursuitDriver(track.centreline)
+
+    def act(_scan: np.ndarray, odo: dict[str, float]) -> tuple[float, float]:
+        steer, speed = driver.act_pose(odo["x"], odo["y"], odo["yaw"], odo["vx"])
+        return float(steer), float(speed)
+
+    return act
+
+
+class LapRun(FrozenModel):
+    """One lap driven by pure pursuit. ``steps_per_second``: physics steps per second of
+    the engine's own stepping (PhysX: ``step_sync`` time only, not the Python reads and
+    writes around it; ours: the env's whole step, lidar included)."""
+
+    engine: str
+    completed: bool
+    lap_time_s: float | None
+    mean_deviation_m: float
+    max_deviation_m: float
+    physics_steps: int
+    wall_seconds: float
+    steps_per_second: float
+
+    @classmethod
+    def from_run(cls, run: Trace) -> LapRun:
+        dev = np.asarray(run.lateral_error or [0.0])
+        return cls(
+            engine=run.engine,
+            completed=run.lap_time_s is not None,
+            lap_time_s=run.lap_time_s,
+            mean_deviation_m=float(dev.mean()),
+            max_deviation_m=float(dev.max()),
+            physics_steps=run.physics_steps,
+            wall_seconds=run.wall_seconds,
+            steps_per_second=run.steps_per_second,
+        )
+
+
+def drive_physx_lap(stage: str | Path, track: Any, sim: SimConfig | None = None, max_seconds: float = 120.0) -> LapRun:
+    """Drive the stage's car one lap in PhysX with the reference pure pursuit at the env's
+    control rate; the stage must carry ``/World/Car``."""
+    run = drive_physx(stage, pure_pursuit(track, sim), sim, track=track, max_seconds=max_seconds, scan=False)
+    return LapRun.from_run(run)
+
+
+def drive_native_lap(track: Any, sim: SimConfig | None = None, max_seconds: float = 120.0) -> LapRun:
+    """The same lap in our simulator (the env, grid start, pure pursuit)."""
+    return LapRun.from_run(drive_native(track, pure_pursuit(track, sim), sim, max_seconds=max_seconds))

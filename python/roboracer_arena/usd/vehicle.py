@@ -1,12 +1,68 @@
 """The paper's car as a PhysX vehicle on the stage (``build --car``; the ``physx`` extra).
 
-A four-wheel PhysX vehicle (``PhysxVehicle*`` APIs, drive "basic": one torque shared by
-the four driven wheels through a multi-wheel differential, as the Traxxas' 4WD) built
-from :class:`~roboracer_arena.sim_config.VehicleConfig`: chassis box, mass, yaw inertia,
-axle positions, track width, wheel radius and inertia, suspension spring, damper and
-travel, tyre friction and stiffnesses, steering limit. ovphysx drives it on the CPU
-(``SimObjectType.VEHICLE``: ``accelerator``, ``brake0``, ``steer``); Isaac Sim reads the
-same schemas. Z up, X forward; the body frame sits at the centre of mass.
+A four-wheel PhysX vehicle (``PhysxVehicle*`` APIs, drive "basic": one torque shared by the
+four driven wheels through a multi-wheel differential with equal ratios, as our open
+differentials) built from one :class:`~roboracer_arena.sim_config.VehicleConfig`. No
+number in it was chosen to match a lap time: each is derived below from the config, and
+:func:`physx_params` returns them. ovphysx drives it on the CPU (``SimObjectType.VEHICLE``:
+``accelerator``, ``brake0``, ``steer``), with :mod:`roboracer_arena.physx.drive` running
+the same servo, speed loop, motor and losses as our vehicle model around it. Z up, X
+forward; the body frame sits at the centre of mass.
+
+Derivation, our model (``arena_core::sim::vehicle``) -> PhysX vehicle 2
+(``VhTireFunctions.cpp``, ``VhSteeringFunctions.cpp``):
+
+* **Mass and inertia.** Mass and yaw inertia are the config's; roll and pitch inertia are
+  the chassis box's scaled by the ratio that maps the box's yaw inertia to ``yaw_inertia``
+  (ours, ``VehicleModel::mass_properties``). No linear or angular damping (PhysX's default
+  angular damping 0.05 would be a yaw damper ours has not).
+* **Steering.** Ours turns a virtual centre wheel by ``delta`` and sets the front wheels to
+  exact Ackermann angles ``atan(L tan d / (L -+ t tan d))`` (``t`` half the track). PhysX's
+  ``PhysxVehicleAckermannSteeringAPI`` (strength 1) gives the commanded angle to the inner
+  wheel and sets the outer one to ``atan(L / (T + L / tan d_in))`` (``T`` the track), which
+  is our outer angle when ``d_in`` is our inner angle. So the Ackermann ``maxSteerAngle`` is
+  our inner angle at ``max_steer`` and the drive commands ``inner(delta) / inner(max_steer)``
+  (:func:`ackermann_command`); the servo lag and rate limit act on ``delta`` in the drive
+  loop, as ours does.
+* **Lateral tyre force.** Ours: ``F = C_a N alpha``, clipped to ``mu N`` (the friction
+  ellipse), ``alpha = atan(v_lat / max(|v_long|, 0.5))``. PhysX's tyre (the Michigan/brush
+  model) is ``F = mu N Fbar(K)``, ``K = k tan(alpha) / (mu N)``, ``Fbar = K - K^2/3 + K^3/27``
+  up to ``K = 3``, then 1, with ``alpha = atan(v_lat / (|v_long| + d))``. Its slope at zero
+  slip is ``k``, the lateral stiffness, which PhysX takes from the load through a graph
+  ``(X, Y)``: ``k = Y f1(3 x / X)``, ``f1`` the same cubic, ``x`` the tyre's load over its rest
+  load (measured in ovphysx 0.7: ``X`` is compared with ``x``, not with the load in N). A knee
+  ``X`` below any load (:data:`LOAD_KNEE`) makes ``k = Y``; ``Y = C_a N0`` (``N0`` the axle's
+  static load per wheel) is ours at ``N0``, and ours summed over an axle under any lateral
+  load transfer (``C_a (N_l + N_r) = 2 C_a N0``); measured at 3 m/s: ``k / Y = 0.98``, the
+  brush curve's own bend at that slip. The peak is ``mu N`` in both (the friction table holds
+  ``tyre_friction``; the friction-vs-slip graph is flat at 1). What is left differs in
+  shape, not in any parameter: the brush curve bends over earlier than ours (at our
+  saturation slip ``alpha* = mu / C_a`` it gives ``0.70 mu N`` where ours gives ``mu N``)
+  and reaches ``mu N`` at ``3 alpha*``. Both engines share the cornering stiffness, the
+  understeer gradient and the friction limit; the transition between them is PhysX's own.
+  The slip reference ``d`` (``minLateralSlipDenominator``) is 0.05 m/s, so that above
+  0.5 m/s PhysX's slip angle is within 10 % of ours (1 % at 5 m/s).
+* **Tyre load.** PhysX's tyre does not see the suspension force ``N`` but a filtered load
+  ``N_t = R (a + b N / R)`` for ``N <= 3 R`` (``R`` the tyre's rest load; PhysX's default
+  filter, not settable through USD: ``a = 0.2308``, ``b = (3 - a) / 3``; measured in ovphysx
+  0.7 on a locked wheel, where ``F = mu N_t``), which damps load transfer by ``1 - b`` = 23 %.
+  ``R = N0 / 2`` (:data:`REST_LOAD_FRACTION`) keeps loads up to ``1.5 N0`` inside the filter
+  and halves the offset ``a R``; the friction table holds ``mu N0 / (a R + b N0)`` so that
+  ``mu_t N_t = mu N`` at the static load, and within ``0.11 mu |N - N0|`` elsewhere.
+* **Longitudinal tyre force.** Ours: ``C_x N kappa`` to the ellipse; PhysX: the same brush
+  law with ``longitudinalStiffness`` in N per unit slip, load independent, so it is
+  ``C_x N0`` per axle.
+* **Drive and brakes.** The speed loop, motor current lag and current window (back-EMF) run
+  in the drive loop; the wheel torque they ask goes to the basic drive, whose peak torque
+  is the torque at ``max_motor_current`` (``force_per_amp * I * r``, ``force_per_amp = 60 /
+  (2 pi kv) * gear_ratio / r``), and a torque against the wheels' rotation (motor braking,
+  rolling resistance) to the brakes at up to the ``max_brake_current`` torque per wheel.
+  The wheels' own damping is 0: rolling resistance (``C_rr N r`` per wheel, faded in over
+  0.1 m/s as ours) is a torque in the same loop, and aerodynamic drag a force on the
+  chassis (``0.5 rho C_d A v^2``), so the losses match at every speed.
+* **Suspension.** Spring, damper and travel are the config's; tyre and suspension forces
+  act at the contact patch at rest (``PhysxVehicleSuspensionComplianceAPI``), as ours
+  applies them at the contact point.
 
 Prims: ``/World/Car`` (rigid body + vehicle), ``/World/Car/Chassis`` (collision box),
 ``/World/Car/{FrontLeft,FrontRight,RearLeft,RearRight}Wheel`` (wheel attachments),
@@ -16,13 +72,14 @@ Prims: ``/World/Car`` (rigid body + vehicle), ``/World/Car/Chassis`` (collision 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics
 
 from ..direction import direction_for_map
 from ..errors import ConfigError
-from ..sim_config import SimConfig
+from ..sim_config import SimConfig, VehicleConfig
 from ..start_grid import centreline_pose, grid_start_s
 from ..track import Track
 from . import physx_schemas
@@ -31,20 +88,99 @@ from .materials import PHYSICS_MATERIAL
 CAR = "/World/Car"
 PARTS = "/World/CarParts"
 WHEELS = ("FrontLeftWheel", "FrontRightWheel", "RearLeftWheel", "RearRightWheel")
-#: Peak drive torque at the wheels (N m): 4.885 kg at ~6 m/s^2 on 0.0525 m wheels
-#: (1.5 N m), with margin for drag and rolling resistance.
-PEAK_TORQUE_NM = 2.0
-#: Brake torque per wheel (N m): ~1 g of deceleration on the 1:10 car.
-MAX_BRAKE_TORQUE_NM = 0.7
-#: Speed (m/s) at which the wheels' linear damping matches our rolling resistance and
-#: drag: the reference driver's top speed.
-RESISTANCE_SPEED = 5.0
-#: PhysX lateral stiffness over our cornering stiffness x load: an empirical calibration
-#: (issue #23 note, "Monaco lap"). Mapped 1:1, the PhysX car yawed at 0.85-0.91 of the
-#: kinematic rate for its steer, drifted 0.4 m off the line out of Monaco's first bend and
-#: hit a wall; x1.5 still hit one; x2, x2.5, x3, x4 lap Monaco with mean deviation 0.129,
-#: 0.104, 0.088, 0.071 m (ours 0.076) and lap 82.9, 82.3, 81.95, 81.4 s (ours 81.85).
-LATERAL_STIFFNESS_GAIN = 3.0
+#: Gravity (m/s^2) the static loads are computed with: the stage's and our simulator's default.
+GRAVITY = 9.81
+#: Air density (kg/m^3), as ``arena_core::sim::vehicle::AIR_DENSITY``.
+AIR_DENSITY = 1.2
+#: Wheel surface speed (m/s) over which rolling resistance fades in (``ROLL_FADE`` in ours).
+ROLL_FADE = 0.1
+#: The lateral stiffness graph's knee (tyre load over rest load): below any load, so the
+#: stiffness is the graph's flat value (module docstring, "Lateral tyre force").
+LOAD_KNEE = 1e-3
+#: Slip reference speeds (m/s) added to |v_long| in PhysX's slip ratios and angles (ours
+#: uses max(|v_long|, 0.5)): small, so that above 0.5 m/s the two slips nearly agree.
+LATERAL_SLIP_DENOMINATOR = 0.05
+LONGITUDINAL_SLIP_DENOMINATOR = 0.1
+#: PhysX's tyre load filter (``PxVehicleTireForceParams::loadFilter``, its default): the
+#: filtered load over the rest load is ``a + b x`` for ``x`` = load over rest load in [0, 3].
+LOAD_FILTER_A = 0.2308
+LOAD_FILTER_B = (3.0 - LOAD_FILTER_A) / 3.0
+#: The tyres' rest load over their static load (module docstring, "Tyre load").
+REST_LOAD_FRACTION = 0.5
+#: Wheel width (m) and mass (kg) for PhysX's wheel (no counterpart in ours, whose wheels are
+#: massless spin inertias): a 1:10 short-course tyre.
+WHEEL_WIDTH = 0.045
+WHEEL_MASS = 0.12
+
+
+def ackermann_inner(delta: float, v: VehicleConfig) -> float:
+    """The inner front wheel's angle (rad, signed as ``delta``) for a virtual centre-wheel
+    angle ``delta``: our model's Ackermann law."""
+    tan = math.tan(abs(delta))
+    inner = math.atan2(v.wheelbase * tan, v.wheelbase - v.track_width / 2.0 * tan)
+    return math.copysign(inner, delta)
+
+
+def ackermann_command(delta: float, v: VehicleConfig) -> float:
+    """PhysX's normalised steer for our centre-wheel angle ``delta`` (Ackermann API: the
+    command times ``maxSteerAngle`` is the inner wheel's angle)."""
+    return max(-1.0, min(1.0, ackermann_inner(delta, v) / ackermann_inner(v.max_steer, v)))
+
+
+@dataclass(frozen=True)
+class PhysxCarParams:
+    """The PhysX car's numbers, each derived from one ``VehicleConfig`` (module docstring)."""
+
+    force_per_amp: float
+    """Total wheel-ground force per motor amp (N/A), as ours."""
+    peak_torque: float
+    """Basic drive's total wheel torque at full accelerator (N m): ``max_motor_current``."""
+    max_brake_torque: float
+    """Brake torque per wheel at full brake (N m): ``max_brake_current`` plus rolling resistance."""
+    max_inner_steer: float
+    """Ackermann ``maxSteerAngle``: the inner wheel at ``max_steer`` (rad)."""
+    rest_load_front: float
+    rest_load_rear: float
+    """Static load per wheel (N), front and rear."""
+    friction: float
+    """The friction table's value: ``tyre_friction`` through the load filter (module docstring)."""
+    lateral_graph_front: tuple[float, float]
+    lateral_graph_rear: tuple[float, float]
+    """``lateralStiffnessGraph`` (knee as load over rest load, stiffness N/rad), front and rear."""
+    longitudinal_stiffness_front: float
+    longitudinal_stiffness_rear: float
+    """``longitudinalStiffness`` (N per unit slip ratio)."""
+    inertia: tuple[float, float, float]
+    """Roll, pitch and yaw inertia (kg m^2), as ours."""
+
+
+def physx_params(v: VehicleConfig, gravity: float = GRAVITY) -> PhysxCarParams:
+    """Every PhysX number of the car from ``v`` (no free factor)."""
+    length = v.com_to_front + v.com_to_rear
+    n_front = v.mass * gravity * v.com_to_rear / length / 2.0
+    n_rear = v.mass * gravity * v.com_to_front / length / 2.0
+    fpa = 60.0 / (2.0 * math.pi * v.motor_kv) * v.gear_ratio / v.wheel_radius
+
+    def graph(c_alpha: float, n0: float) -> tuple[float, float]:
+        return LOAD_KNEE, c_alpha * n0
+
+    a, b, c = v.chassis_length, v.chassis_width, v.chassis_height
+    k = v.yaw_inertia / (a * a + b * b)
+    roll_resist = v.rolling_resistance * v.mass * gravity * v.wheel_radius / 4.0
+    return PhysxCarParams(
+        force_per_amp=fpa,
+        peak_torque=fpa * v.max_motor_current * v.wheel_radius,
+        max_brake_torque=fpa * max(v.max_brake_current, v.max_motor_current) * v.wheel_radius / 4.0 + 2.0 * roll_resist,
+        max_inner_steer=ackermann_inner(v.max_steer, v),
+        rest_load_front=n_front,
+        rest_load_rear=n_rear,
+        friction=v.tyre_friction / (LOAD_FILTER_A * REST_LOAD_FRACTION + LOAD_FILTER_B),
+        lateral_graph_front=graph(v.cornering_stiffness_front, n_front),
+        lateral_graph_rear=graph(v.cornering_stiffness_rear, n_rear),
+        longitudinal_stiffness_front=v.longitudinal_stiffness * n_front,
+        longitudinal_stiffness_rear=v.longitudinal_stiffness * n_rear,
+        inertia=(k * (b * b + c * c), k * (a * a + c * c), v.yaw_inertia),
+    )
 
 
 def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float]) -> str:
@@ -57,7 +193,7 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
     from physx_usd_schemas import PhysxSchema as P
 
     v = sim.vehicle
-    g = 9.81
+    par = physx_params(v, float(sim.physics.gravity))
     scene = stage.GetPrimAtPath("/World/PhysicsScene")
     ctx: Any = P.PhysxVehicleContextAPI.Apply(scene)
     ctx.CreateUpdateModeAttr("velocityChange")
@@ -72,29 +208,27 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
 
     table: Any = P.PhysxVehicleTireFrictionTable.Define(stage, f"{PARTS}/TireFriction")
     table.CreateGroundMaterialsRel().AddTarget(Sdf.Path(PHYSICS_MATERIAL))
-    table.CreateFrictionValuesAttr([float(v.tyre_friction)])
-    table.CreateDefaultFrictionValueAttr(float(v.tyre_friction))
+    table.CreateFrictionValuesAttr([float(par.friction)])
+    table.CreateDefaultFrictionValueAttr(float(par.friction))
 
     wheel: Any = P.PhysxVehicleWheelAPI.Apply(UsdGeom.Scope.Define(stage, f"{PARTS}/Wheel").GetPrim())
     wheel.CreateRadiusAttr(float(v.wheel_radius))
-    wheel.CreateWidthAttr(0.045)
-    wheel.CreateMassAttr(0.12)
+    wheel.CreateWidthAttr(WHEEL_WIDTH)
+    wheel.CreateMassAttr(WHEEL_MASS)
     wheel.CreateMoiAttr(float(v.wheel_inertia))
-    wheel.CreateDampingRateAttr(_wheel_damping(sim))
+    wheel.CreateDampingRateAttr(0.0)  # losses are torques and forces of the drive loop
 
-    load = v.mass * g / 4.0  # static load per wheel (N)
     tyres = {}
-    for name, c_alpha in (("FrontTire", v.cornering_stiffness_front), ("RearTire", v.cornering_stiffness_rear)):
+    for name, n0, graph, k_long in (
+        ("FrontTire", par.rest_load_front, par.lateral_graph_front, par.longitudinal_stiffness_front),
+        ("RearTire", par.rest_load_rear, par.lateral_graph_rear, par.longitudinal_stiffness_rear),
+    ):
         tyre: Any = P.PhysxVehicleTireAPI.Apply(UsdGeom.Scope.Define(stage, f"{PARTS}/{name}").GetPrim())
-        # (load in N where the graph flattens, lateral stiffness there in N/rad): linear in the
-        # load up to twice the static load, so at rest it is the cornering stiffness x load
-        # (x the measured LATERAL_STIFFNESS_GAIN).
-        tyre.CreateLateralStiffnessGraphAttr(
-            Gf.Vec2f(float(2.0 * load), float(LATERAL_STIFFNESS_GAIN * c_alpha * 2.0 * load))
-        )
-        tyre.CreateLongitudinalStiffnessAttr(float(v.longitudinal_stiffness * load))
+        tyre.CreateRestLoadAttr(float(REST_LOAD_FRACTION * n0))
+        tyre.CreateLateralStiffnessGraphAttr(Gf.Vec2f(float(graph[0]), float(graph[1])))
+        tyre.CreateLongitudinalStiffnessAttr(float(k_long))
         tyre.CreateCamberStiffnessAttr(0.0)
-        tyre.CreateFrictionVsSlipGraphAttr([Gf.Vec2f(0.0, 1.0), Gf.Vec2f(0.1, 1.0), Gf.Vec2f(1.0, 1.0)])
+        tyre.CreateFrictionVsSlipGraphAttr([Gf.Vec2f(0.0, 1.0), Gf.Vec2f(0.5, 1.0), Gf.Vec2f(1.0, 1.0)])
         tyre.CreateFrictionTableRel().AddTarget(table.GetPath())
         tyres[name] = tyre.GetPrim().GetPath()
 
@@ -104,7 +238,7 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
     susp.CreateTravelDistanceAttr(float(v.suspension_travel))
 
     drive: Any = P.PhysxVehicleDriveBasicAPI.Apply(UsdGeom.Scope.Define(stage, f"{PARTS}/Drive").GetPrim())
-    drive.CreatePeakTorqueAttr(PEAK_TORQUE_NM)
+    drive.CreatePeakTorqueAttr(float(par.peak_torque))
 
     # The body frame at the centre of mass, `com_height` above the floor.
     x, y, yaw = pose
@@ -116,15 +250,14 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
     mass = UsdPhysics.MassAPI.Apply(prim)
     mass.CreateMassAttr(float(v.mass))
     mass.CreateCenterOfMassAttr(Gf.Vec3f(0.0, 0.0, 0.0))
-    # Yaw inertia is the paper's; roll and pitch those of the chassis box.
-    ixx = v.mass * (v.chassis_width**2 + v.chassis_height**2) / 12.0
-    iyy = v.mass * (v.chassis_length**2 + v.chassis_height**2) / 12.0
-    mass.CreateDiagonalInertiaAttr(Gf.Vec3f(ixx, iyy, float(v.yaw_inertia)))
+    mass.CreateDiagonalInertiaAttr(Gf.Vec3f(*(float(i) for i in par.inertia)))
     mass.CreatePrincipalAxesAttr(Gf.Quatf(1.0, 0.0, 0.0, 0.0))
     body: Any = P.PhysxRigidBodyAPI.Apply(prim)
     body.CreateEnableCCDAttr(True)
     body.CreateSleepThresholdAttr(0.0)
     body.CreateStabilizationThresholdAttr(0.0)
+    body.CreateLinearDampingAttr(0.0)
+    body.CreateAngularDampingAttr(0.0)
     body.CreateDisableGravityAttr(True)  # the vehicle's suspension carries the weight (PhysX vehicle convention)
 
     veh: Any = P.PhysxVehicleAPI.Apply(prim)
@@ -134,19 +267,23 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
     veh.CreateSubStepThresholdLongitudinalSpeedAttr(2.0)
     veh.CreateLowForwardSpeedSubStepCountAttr(3)
     veh.CreateHighForwardSpeedSubStepCountAttr(1)
-    veh.CreateMinPassiveLongitudinalSlipDenominatorAttr(1.0)
-    veh.CreateMinActiveLongitudinalSlipDenominatorAttr(0.1)
-    veh.CreateMinLateralSlipDenominatorAttr(0.5)
+    veh.CreateMinPassiveLongitudinalSlipDenominatorAttr(LONGITUDINAL_SLIP_DENOMINATOR)
+    veh.CreateMinActiveLongitudinalSlipDenominatorAttr(LONGITUDINAL_SLIP_DENOMINATOR)
+    veh.CreateMinLateralSlipDenominatorAttr(LATERAL_SLIP_DENOMINATOR)
     ctl: Any = P.PhysxVehicleControllerAPI.Apply(prim)
     for attr in (ctl.CreateAcceleratorAttr, ctl.CreateBrake0Attr, ctl.CreateBrake1Attr, ctl.CreateSteerAttr):
         attr(0.0)
     ctl.CreateTargetGearAttr(1)
     brakes: Any = P.PhysxVehicleBrakesAPI.Apply(prim, "brakes0")
-    brakes.CreateMaxBrakeTorqueAttr(MAX_BRAKE_TORQUE_NM)
+    brakes.CreateMaxBrakeTorqueAttr(float(par.max_brake_torque))
     brakes.CreateWheelsAttr([0, 1, 2, 3])
-    steer: Any = P.PhysxVehicleSteeringAPI.Apply(prim)
-    steer.CreateMaxSteerAngleAttr(float(v.max_steer))
-    steer.CreateWheelsAttr([0, 1])
+    steer: Any = P.PhysxVehicleAckermannSteeringAPI.Apply(prim)
+    steer.CreateMaxSteerAngleAttr(float(par.max_inner_steer))
+    steer.CreateWheel0Attr(1)  # the wheel on the negative lateral side: front right
+    steer.CreateWheel1Attr(0)
+    steer.CreateWheelBaseAttr(float(v.com_to_front + v.com_to_rear))
+    steer.CreateTrackWidthAttr(float(v.track_width))
+    steer.CreateStrengthAttr(1.0)
     diff: Any = P.PhysxVehicleMultiWheelDifferentialAPI.Apply(prim)
     diff.CreateWheelsAttr([0, 1, 2, 3])
     diff.CreateTorqueRatiosAttr([0.25, 0.25, 0.25, 0.25])
@@ -162,11 +299,12 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
 
     # The suspension frame is the wheel centre at full compression; at rest the spring is
     # compressed by the static sag, so the wheel centre sits at its radius above the floor.
-    sag = min(load / v.suspension_stiffness, 0.9 * v.suspension_travel)
-    frame_z = v.wheel_radius + (v.suspension_travel - sag) - v.com_height
     half = v.track_width / 2.0
     spots = ((v.com_to_front, half), (v.com_to_front, -half), (-v.com_to_rear, half), (-v.com_to_rear, -half))
     for k, (name, (wx, wy)) in enumerate(zip(WHEELS, spots)):
+        load = par.rest_load_front if k < 2 else par.rest_load_rear
+        sag = min(load / v.suspension_stiffness, 0.9 * v.suspension_travel)
+        frame_z = v.wheel_radius + (v.suspension_travel - sag) - v.com_height
         w = UsdGeom.Xform.Define(stage, f"{CAR}/{name}")
         att: Any = P.PhysxVehicleWheelAttachmentAPI.Apply(w.GetPrim())
         att.CreateIndexAttr(k)
@@ -177,19 +315,13 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
         att.CreateSuspensionTravelDirectionAttr(Gf.Vec3f(0.0, 0.0, -1.0))
         att.CreateSuspensionFramePositionAttr(Gf.Vec3f(wx, wy, frame_z))
         att.CreateSuspensionFrameOrientationAttr(Gf.Quatf(1.0, 0.0, 0.0, 0.0))
+        # Forces at the contact patch at rest (relative to the suspension frame), as ours.
+        patch = Gf.Vec4f(0.0, 0.0, 0.0, -(v.suspension_travel - sag) - v.wheel_radius)
+        comp: Any = P.PhysxVehicleSuspensionComplianceAPI.Apply(w.GetPrim())
+        comp.CreateSuspensionForceAppPointAttr([patch])
+        comp.CreateTireForceAppPointAttr([patch])
         w.AddTranslateOp().Set(Gf.Vec3d(wx, wy, frame_z - (v.suspension_travel - sag)))
     return CAR
-
-
-def _wheel_damping(sim: SimConfig) -> float:
-    """Wheel damping rate (N m s/rad per wheel): PhysX's only speed-dependent loss on a
-    basic-drive wheel, set so that at :data:`RESISTANCE_SPEED` it resists as much as our
-    rolling resistance plus aerodynamic drag. (The former fixed 0.0025 cost 16 N at
-    4.5 m/s, 14 times ours: the car topped out there on a 5 m/s command.)"""
-    v, g = sim.vehicle, 9.81
-    force = v.rolling_resistance * v.mass * g + 0.5 * 1.2 * v.drag_area * RESISTANCE_SPEED**2
-    omega = RESISTANCE_SPEED / v.wheel_radius
-    return force * v.wheel_radius / omega / 4.0
 
 
 def grid_start_pose(geo: Any, cfg: Any, source: str) -> tuple[float, float, float]:

@@ -1,0 +1,452 @@
+"""``python -m benchmarks engines``: one car, two engines, open loop (issue 36).
+
+The same ``VehicleConfig`` drives the same open-loop manoeuvres in our simulator (the core
+``Simulator``, one car in an empty 300 m hall) and in PhysX (ovphysx on the CPU, the car
+that ``build --car`` authors, :func:`roboracer_arena.usd.vehicle.physx_params`, on a flat
+300 m floor, driven by :class:`roboracer_arena.physx.drive.PhysxCar`: our servo, speed loop,
+motor and losses around PhysX's chassis, suspension, tyres and wheels). No driver: every
+command is a fixed function of time, so nothing can hide a difference in the dynamics.
+
+Manoeuvres, each at tyre friction mu in {0.4, 0.6, 0.83, 1.0} and mass x {0.8, 1, 1.5}
+(yaw inertia scaled with the mass, as domain randomisation does):
+
+* **step steer**: rolling start at 3 m/s, 0.5 s straight, then a 0.04 rad step on the
+  steering command at a constant 3 m/s command; yaw rate: 10-90 % rise time from the step,
+  overshoot over the steady value, steady-state gain (yaw rate / steer, mean of the last 0.5 s);
+* **steady cornering**: 3 m/s, the steering command ramped from 0 to 0.3 rad over 8 s
+  (quasi-steady: 0.0375 rad/s); lateral acceleration ``r v`` against the actual steer,
+  sampled at 0.05, 0.10, 0.15, 0.20 rad, its peak, and the understeer gradient ``K``
+  (rad per m/s^2, the slope of ``delta - L r / v`` against ``a_y`` below 0.4 mu g);
+* **acceleration**: from rest, the top speed command (``max_speed``, 7 m/s) for 5 s; time to
+  5 m/s and the highest speed;
+* **braking**: rolling start at 5 m/s, command 0; distance and time to a stop (< 0.05 m/s).
+
+Agreement: ``|PhysX - ours| / |ours|`` per metric (the overshoot, itself a fraction of the
+steady value, absolutely: ``|PhysX - ours|``), target 10 %. Every cell is printed and
+written (``--json``), including misses; ``--plot FILE`` draws the curves. ``--quick``: the
+nominal cell only.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+import time
+import warnings
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from roboracer_arena import _core
+from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
+from roboracer_arena.sim_config import SimConfig, VehicleConfig
+
+MUS = [0.4, 0.6, 0.83, 1.0]
+MASSES = [0.8, 1.0, 1.5]
+TARGET = 0.10
+HALL = 150.0
+STEP_V, STEP_DELTA, STEP_PRE, STEP_T = 3.0, 0.04, 0.5, 2.5
+RAMP_V, RAMP_MAX, RAMP_T = 3.0, 0.3, 8.0
+RAMP_SAMPLES = [0.05, 0.10, 0.15, 0.20]
+ACCEL_T, ACCEL_TO = 5.0, 5.0
+BRAKE_V, BRAKE_STOP, BRAKE_T = 5.0, 0.05, 4.0
+
+
+def config(mu: float, mass_scale: float, base: VehicleConfig | None = None) -> SimConfig:
+    """The car of one cell: ``base`` (default: the paper's) with tyre friction ``mu`` and mass
+    and yaw inertia times ``mass_scale``."""
+    b = base or VehicleConfig()
+    v = b.model_copy(
+        update={"tyre_friction": mu, "mass": b.mass * mass_scale, "yaw_inertia": b.yaw_inertia * mass_scale}
+    )
+    return SimConfig(vehicle=VehicleConfig(**v.model_dump()))
+
+
+# ---------------------------------------------------------------------------- engines
+class _Ours:
+    """One car of our simulator in an empty hall, stepped one physics step at a time."""
+
+    engine = "ours"
+
+    def __init__(self, sim: SimConfig, speed: float = 0.0) -> None:
+        h = HALL
+        walls = [np.array([[-h, -h], [h, -h], [h, h], [-h, h]], float)]
+        centre = np.array([[-5.0, -5.0], [5.0, -5.0], [5.0, 5.0], [-5.0, 5.0]])
+        self.sim = _core.Simulator([(walls, centre)], 1, 1, sim, 0)
+        self.dt = float(sim.physics.dt)
+        mask = np.ones(1, bool)
+        self.sim.reset(mask, np.array([[[-h + 20.0, 0.0, 0.0]]]))
+        if speed:
+            self.sim.set_speeds(mask, np.array([[speed]]))
+        f = self.sim.state_fields
+        self.i = {k: f.index(k) for k in ("x", "y", "vx", "vy", "yaw_rate", "steer", "speed")}
+        self.state = np.zeros((1, 1, len(f)))
+        self.events = np.zeros((1, 1), np.uint8)
+        self.actions = np.zeros((1, 1, 2))
+        self.sim.observe(None, self.state, self.events)
+
+    def step(self, steer: float, speed: float) -> dict[str, float]:
+        self.actions[0, 0] = steer, speed
+        self.sim.step(self.actions, 1, None, self.state, self.events)
+        return {k: float(self.state[0, 0, j]) for k, j in self.i.items()}
+
+    def close(self) -> None:
+        pass
+
+
+class _Physx:
+    """The PhysX car on a flat floor (a stage written once per config), one physics step at a time."""
+
+    engine = "physx"
+
+    def __init__(self, stage: Path, sim: SimConfig, speed: float = 0.0) -> None:
+        from roboracer_arena.physx.drive import PhysxCar
+        from roboracer_arena.physx.runtime import PhysxScene
+
+        self.dt = float(sim.physics.dt)
+        self.scene = PhysxScene(stage)
+        self.car = PhysxCar(self.scene, sim)
+        self.car.settle()
+        if speed:
+            self.car.set_speed(speed)
+
+    def step(self, steer: float, speed: float) -> dict[str, float]:
+        s = self.car.step(steer, speed)
+        return {k: float(getattr(s, k)) for k in ("x", "y", "vx", "vy", "yaw_rate", "steer", "speed")}
+
+    def close(self) -> None:
+        self.car.close()
+        self.scene.close()
+
+
+# ---------------------------------------------------------------------------- manoeuvres
+class StepSteer(BenchModel):
+    """Yaw-rate response to a steering step: 10-90 % rise time (s), overshoot (fraction of
+    the steady value), steady gain (1/s), and the trace (t from the step, yaw rate)."""
+
+    rise_time: float | None
+    overshoot: float
+    gain: float
+    t: list[float]
+    yaw_rate: list[float]
+
+
+class Cornering(BenchModel):
+    """Quasi-steady cornering: lateral acceleration (m/s^2) at the sampled steers, its peak,
+    the understeer gradient (rad per m/s^2), and the curve (actual steer, a_y)."""
+
+    ay_at: dict[str, float | None]
+    ay_peak: float
+    understeer_gradient: float | None
+    steer: list[float]
+    ay: list[float]
+
+
+class Accel(BenchModel):
+    """From rest at the top speed command: time (s) to 5 m/s, highest speed (m/s), speed trace."""
+
+    t_to_5: float | None
+    top_speed: float
+    t: list[float]
+    speed: list[float]
+
+
+class Brake(BenchModel):
+    """Stop from 5 m/s with a 0 command: distance (m), time (s), speed trace."""
+
+    distance: float
+    time: float
+    t: list[float]
+    speed: list[float]
+
+
+class EngineRun(BenchModel):
+    """All four manoeuvres of one engine in one cell."""
+
+    step: StepSteer
+    cornering: Cornering
+    accel: Accel
+    brake: Brake
+
+
+def step_steer(car: Any) -> StepSteer:
+    n_pre, n = round(STEP_PRE / car.dt), round(STEP_T / car.dt)
+    for _ in range(n_pre):
+        car.step(0.0, STEP_V)
+    ts, rs = [], []
+    for k in range(n):
+        s = car.step(STEP_DELTA, STEP_V)
+        ts.append((k + 1) * car.dt)
+        rs.append(s["yaw_rate"])
+    r = np.asarray(rs)
+    steady = float(r[-round(0.5 / car.dt) :].mean())
+    t = np.asarray(ts)
+    rise = None
+    if steady > 0:
+        above10, above90 = np.nonzero(r >= 0.1 * steady)[0], np.nonzero(r >= 0.9 * steady)[0]
+        if len(above10) and len(above90):
+            rise = float(t[above90[0]] - t[above10[0]])
+    overshoot = float(max(0.0, r.max() / steady - 1.0)) if steady > 0 else 0.0
+    every = max(1, round(0.01 / car.dt))
+    return StepSteer(
+        rise_time=rise,
+        overshoot=overshoot,
+        gain=steady / STEP_DELTA,
+        t=[round(x, 4) for x in ts[::every]],
+        yaw_rate=[round(x, 5) for x in rs[::every]],
+    )
+
+
+def cornering(car: Any, sim: SimConfig) -> Cornering:
+    n = round(RAMP_T / car.dt)
+    deltas, ays = [], []
+    for k in range(n):
+        s = car.step(RAMP_MAX * (k + 1) / n, RAMP_V)
+        deltas.append(s["steer"])
+        ays.append(s["yaw_rate"] * abs(s["speed"]))
+    d, a = np.asarray(deltas), np.asarray(ays)
+    # a_y rises with steer to the friction limit and may fall past it: sample the rising part.
+    peak_i = int(np.argmax(a))
+    at: dict[str, float | None] = {}
+    for x in RAMP_SAMPLES:
+        at[f"{x:.2f}"] = float(np.interp(x, d[: peak_i + 1], a[: peak_i + 1])) if x <= d[peak_i] else None
+    v = sim.vehicle
+    lin = (a > 0.2) & (a < 0.4 * v.tyre_friction * sim.physics.gravity) & (np.arange(len(a)) <= peak_i)
+    grad = None
+    if lin.sum() > 10:
+        speeds = RAMP_V
+        y = d[lin] - v.wheelbase * a[lin] / speeds**2  # delta - L r / v with r = a / v
+        grad = float(np.polyfit(a[lin], y, 1)[0])
+    every = max(1, round(0.05 / car.dt))
+    return Cornering(
+        ay_at=at,
+        ay_peak=float(a.max()),
+        understeer_gradient=grad,
+        steer=[round(x, 5) for x in deltas[::every]],
+        ay=[round(x, 4) for x in ays[::every]],
+    )
+
+
+def accel(car: Any, sim: SimConfig) -> Accel:
+    n = round(ACCEL_T / car.dt)
+    ts, vs, t5 = [], [], None
+    for k in range(n):
+        s = car.step(0.0, sim.vehicle.max_speed)
+        t = (k + 1) * car.dt
+        ts.append(t)
+        vs.append(s["speed"])
+        if t5 is None and s["speed"] >= ACCEL_TO:
+            t5 = t
+    every = max(1, round(0.02 / car.dt))
+    return Accel(
+        t_to_5=t5,
+        top_speed=float(max(vs)),
+        t=[round(x, 3) for x in ts[::every]],
+        speed=[round(x, 4) for x in vs[::every]],
+    )
+
+
+def brake(car: Any) -> Brake:
+    n = round(BRAKE_T / car.dt)
+    s = car.step(0.0, 0.0)
+    x0 = s["x"]
+    ts, vs, stop = [car.dt], [s["speed"]], None
+    for k in range(1, n):
+        s = car.step(0.0, 0.0)
+        ts.append((k + 1) * car.dt)
+        vs.append(s["speed"])
+        if s["speed"] < BRAKE_STOP:
+            stop = (ts[-1], s["x"] - x0)
+            break
+    t_stop, d_stop = stop if stop else (ts[-1], s["x"] - x0)
+    # the first step's travel counts too
+    d_stop += BRAKE_V * car.dt
+    every = max(1, round(0.01 / car.dt))
+    return Brake(
+        distance=float(d_stop),
+        time=float(t_stop),
+        t=[round(x, 3) for x in ts[::every]],
+        speed=[round(x, 4) for x in vs[::every]],
+    )
+
+
+def run_engine(make: Any, sim: SimConfig) -> EngineRun:
+    """The four manoeuvres on fresh cars from ``make(speed)``."""
+    out = {}
+    for name, speed, fn in (
+        ("step", STEP_V, step_steer),
+        ("cornering", RAMP_V, lambda c: cornering(c, sim)),
+        ("accel", 0.0, lambda c: accel(c, sim)),
+        ("brake", BRAKE_V, brake),
+    ):
+        car = make(speed)
+        try:
+            out[name] = fn(car)
+        finally:
+            car.close()
+    return EngineRun(**out)
+
+
+# ---------------------------------------------------------------------------- the grid
+class Cell(BenchModel):
+    """One (mu, mass x) cell: both engines' runs and each metric's relative difference."""
+
+    mu: float
+    mass_scale: float
+    ours: EngineRun
+    physx: EngineRun
+    metrics: dict[str, dict[str, float | None]]
+
+
+class EnginesResult(BenchModel):
+    """``python -m benchmarks engines``: every cell; the share of metric comparisons within target."""
+
+    target: float
+    cells: list[Cell]
+    within_target: int
+    compared: int
+    seconds: float
+
+
+def _rel(p: float | None, o: float | None) -> float | None:
+    if p is None or o is None or o == 0:
+        return None
+    return abs(p - o) / abs(o)
+
+
+def metrics(o: EngineRun, p: EngineRun) -> dict[str, dict[str, float | None]]:
+    """``{metric: {ours, physx, diff}}`` of one cell."""
+    pairs: dict[str, tuple[float | None, float | None]] = {
+        "step rise time (s)": (o.step.rise_time, p.step.rise_time),
+        "step overshoot": (o.step.overshoot, p.step.overshoot),
+        "step gain (1/s)": (o.step.gain, p.step.gain),
+        "understeer gradient (rad s^2/m)": (o.cornering.understeer_gradient, p.cornering.understeer_gradient),
+        "peak a_y (m/s^2)": (o.cornering.ay_peak, p.cornering.ay_peak),
+        "0-5 m/s (s)": (o.accel.t_to_5, p.accel.t_to_5),
+        "top speed (m/s)": (o.accel.top_speed, p.accel.top_speed),
+        "braking distance (m)": (o.brake.distance, p.brake.distance),
+        "braking time (s)": (o.brake.time, p.brake.time),
+    }
+    for k in RAMP_SAMPLES:
+        key = f"{k:.2f}"
+        pairs[f"a_y at steer {key} (m/s^2)"] = (o.cornering.ay_at[key], p.cornering.ay_at[key])
+    out = {k: {"ours": a, "physx": b, "diff": _rel(b, a)} for k, (a, b) in pairs.items()}
+    # Overshoot is itself a fraction of the steady value (often near 0): compared absolutely.
+    out["step overshoot"]["diff"] = abs(p.step.overshoot - o.step.overshoot)
+    return out
+
+
+def run_cell(mu: float, mass_scale: float, work: Path, base: VehicleConfig | None = None) -> Cell:
+    from roboracer_arena.physx.drive import write_flat_stage
+
+    sim = config(mu, mass_scale, base)
+    stage = write_flat_stage(work / f"flat-{mu}-{mass_scale}.usda", sim, half_size=HALL)
+    ours = run_engine(lambda v: _Ours(sim, v), sim)
+    physx = run_engine(lambda v: _Physx(stage, sim, v), sim)
+    return Cell(mu=mu, mass_scale=mass_scale, ours=ours, physx=physx, metrics=metrics(ours, physx))
+
+
+def run(
+    mus: list[float], masses: list[float], base: VehicleConfig | None = None, progress: bool = True
+) -> EnginesResult:
+    from roboracer_arena.physx import available
+
+    if not available():
+        from roboracer_arena.errors import ConfigError
+
+        raise ConfigError("python -m benchmarks engines needs the 'physx' extra (ovphysx, physx-usd-schemas)")
+    warnings.simplefilter("ignore")
+    t0 = time.perf_counter()
+    cells = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for mu in mus:
+            for m in masses:
+                cells.append(run_cell(mu, m, Path(tmp), base))
+                if progress:
+                    print(f"  cell mu {mu:g}, mass x{m:g}: {time.perf_counter() - t0:.0f} s", flush=True)
+    diffs = [v["diff"] for c in cells for v in c.metrics.values() if v["diff"] is not None]
+    return EnginesResult(
+        target=TARGET,
+        cells=cells,
+        within_target=sum(d <= TARGET for d in diffs),
+        compared=len(diffs),
+        seconds=time.perf_counter() - t0,
+    )
+
+
+def _f(x: float | None, fmt: str = ".3f") -> str:
+    return "–" if x is None else format(x, fmt)
+
+
+def print_table(res: EnginesResult) -> None:
+    print("| mu | mass x | metric | ours | PhysX | difference |")
+    print("|---:|---:|---|---:|---:|---:|")
+    for c in res.cells:
+        for name, v in c.metrics.items():
+            d = v["diff"]
+            flag = "" if d is None or d <= res.target else " **miss**"
+            print(
+                f"| {c.mu:g} | {c.mass_scale:g} | {name} | {_f(v['ours'])} | {_f(v['physx'])} | "
+                f"{_f(None if d is None else 100 * d, '.1f')} %{flag} |"
+            )
+    print(f"\nwithin {100 * res.target:.0f} %: {res.within_target} of {res.compared} comparisons ({res.seconds:.0f} s)")
+
+
+def plot(res: EnginesResult, path: Path) -> None:
+    """Curves of the nominal-mass cells (ours solid, PhysX dashed), one colour per mu."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
+    cells = [c for c in res.cells if c.mass_scale == 1.0] or res.cells
+    for i, c in enumerate(cells):
+        col = f"C{i}"
+        for run, ls, who in ((c.ours, "-", "ours"), (c.physx, "--", "PhysX")):
+            lab = f"{who}, mu {c.mu:g}"
+            ax[0, 0].plot(run.step.t, run.step.yaw_rate, ls, color=col, label=lab)
+            ax[0, 1].plot(run.cornering.steer, run.cornering.ay, ls, color=col, label=lab)
+            ax[1, 0].plot(run.accel.t, run.accel.speed, ls, color=col, label=lab)
+            ax[1, 1].plot(run.brake.t, run.brake.speed, ls, color=col, label=lab)
+    ax[0, 0].set(
+        title=f"step steer {STEP_DELTA} rad at {STEP_V:g} m/s", xlabel="time from step (s)", ylabel="yaw rate (rad/s)"
+    )
+    ax[0, 1].set(title=f"quasi-steady cornering at {RAMP_V:g} m/s", xlabel="steer (rad)", ylabel="a_y (m/s^2)")
+    ax[1, 0].set(title="acceleration from rest (7 m/s command)", xlabel="time (s)", ylabel="speed (m/s)")
+    ax[1, 1].set(title=f"braking from {BRAKE_V:g} m/s (0 command)", xlabel="time (s)", ylabel="speed (m/s)")
+    for a in ax.flat:
+        a.grid(alpha=0.3)
+    ax[0, 1].legend(fontsize=7)
+    fig.suptitle("One car, two engines (mass x1): ours solid, PhysX dashed")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    print(f"wrote {path}")
+
+
+def _cli(args: argparse.Namespace) -> int:
+    mus, masses = ([0.83], [1.0]) if args.quick else (args.mu or MUS, args.mass or MASSES)
+    res = run(mus, masses)
+    print_table(res)
+    write_json(args.json, res)
+    if args.plot:
+        plot(res, args.plot)
+    return 0
+
+
+def register(kinds: Any) -> None:
+    p = add_bench_parser(kinds, "engines", "the same car open loop in our engine and PhysX", __doc__)
+    p.add_argument("--quick", action="store_true", help="the nominal cell only (mu 0.83, mass x1)")
+    p.add_argument("--mu", type=float, nargs="+", help=f"tyre friction values (default {MUS})")
+    p.add_argument("--mass", type=float, nargs="+", help=f"mass scales (default {MASSES})")
+    p.add_argument("--plot", metavar="FILE", type=Path, help="draw the curves to FILE (png)")
+    p.set_defaults(func=_cli)
+
+
+def run_quick() -> EnginesResult:
+    """`bench all`: the nominal cell."""
+    res = run([0.83], [1.0])
+    print_table(res)
+    return res
