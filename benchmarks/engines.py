@@ -21,6 +21,13 @@ Manoeuvres, each at tyre friction mu in {0.4, 0.6, 0.83, 1.0} and mass x {0.8, 1
   5 m/s and the highest speed;
 * **braking**: rolling start at 5 m/s, command 0; distance and time to a stop (< 0.05 m/s).
 
+**Real-car anchor** (``--anchor``): ForzaETH's identified cars (On-Track-SysID, MIT; read
+from ``../shared/vehicle-data`` when there) as ``VehicleConfig`` presets
+(:mod:`roboracer_arena.vehicle_presets`): the steady yaw rate at 5 m/s and 0.05 rad of the
+real car's own single-track model with its Pacejka tyres, of our engine and of PhysX on the
+preset, and of the paper's car; ``--tyre-plot FILE`` draws our tyre (linear to ``mu N``) and
+PhysX's (brush) beside the Pacejka fits at the same normal load.
+
 Agreement: ``|PhysX - ours| / |ours|`` per metric (the overshoot, itself a fraction of the
 steady value, absolutely: ``|PhysX - ours|``), target 10 %. Every cell is printed and
 written (``--json``), including misses; ``--plot FILE`` draws the curves. ``--quick``: the
@@ -30,6 +37,7 @@ nominal cell only.
 from __future__ import annotations
 
 import argparse
+import math
 import tempfile
 import time
 import warnings
@@ -304,6 +312,7 @@ class EnginesResult(BenchModel):
 
     target: float
     cells: list[Cell]
+    anchor: list[AnchorRow]
     within_target: int
     compared: int
     seconds: float
@@ -348,7 +357,11 @@ def run_cell(mu: float, mass_scale: float, work: Path, base: VehicleConfig | Non
 
 
 def run(
-    mus: list[float], masses: list[float], base: VehicleConfig | None = None, progress: bool = True
+    mus: list[float],
+    masses: list[float],
+    base: VehicleConfig | None = None,
+    progress: bool = True,
+    with_anchor: bool = False,
 ) -> EnginesResult:
     from roboracer_arena.physx import available
 
@@ -365,14 +378,120 @@ def run(
                 cells.append(run_cell(mu, m, Path(tmp), base))
                 if progress:
                     print(f"  cell mu {mu:g}, mass x{m:g}: {time.perf_counter() - t0:.0f} s", flush=True)
+        rows = anchor(Path(tmp)) if with_anchor else []
     diffs = [v["diff"] for c in cells for v in c.metrics.values() if v["diff"] is not None]
     return EnginesResult(
         target=TARGET,
         cells=cells,
+        anchor=rows,
         within_target=sum(d <= TARGET for d in diffs),
         compared=len(diffs),
         seconds=time.perf_counter() - t0,
     )
+
+
+# ---------------------------------------------------------------------------- real-car anchor
+ANCHOR_V, ANCHOR_STEER, ANCHOR_T = 5.0, 0.05, 5.0
+
+
+class AnchorRow(BenchModel):
+    """Steady yaw rate (rad/s) at 5 m/s and 0.05 rad: the real car's identified single-track
+    model (None for the paper's car), ours and PhysX on the preset, and the kinematic value."""
+
+    car: str
+    real_model: float | None
+    ours: float
+    physx: float
+    kinematic: float
+
+
+def _steady_yaw(car: Any) -> float:
+    n = round(ANCHOR_T / car.dt)
+    rs = [car.step(ANCHOR_STEER, ANCHOR_V)["yaw_rate"] for _ in range(n)]
+    return float(np.mean(rs[-round(1.0 / car.dt) :]))
+
+
+def anchor(work: Path, cars: list[str] | None = None) -> list[AnchorRow]:
+    """The anchor rows: the paper's car and ForzaETH's NUC2, NUC6, NUC7 (presets)."""
+    from roboracer_arena.physx.drive import write_flat_stage
+    from roboracer_arena.vehicle_presets import FORZAETH_MODELS, forzaeth_preset, single_track_yaw_rate
+
+    rows = []
+    for name in ["paper (Traxxas)", *(cars or ["NUC2", "NUC6", "NUC7"])]:
+        vc = VehicleConfig() if name.startswith("paper") else forzaeth_preset(name)
+        sim = SimConfig(vehicle=vc)
+        stage = write_flat_stage(work / f"anchor-{len(rows)}.usda", sim, half_size=HALL)
+        res = {}
+        for eng in ("ours", "physx"):
+            car = _Ours(sim, ANCHOR_V) if eng == "ours" else _Physx(stage, sim, ANCHOR_V)
+            try:
+                res[eng] = _steady_yaw(car)
+            finally:
+                car.close()
+        real = (
+            None if name.startswith("paper") else single_track_yaw_rate(FORZAETH_MODELS[name], ANCHOR_V, ANCHOR_STEER)
+        )
+        rows.append(
+            AnchorRow(car=name, real_model=real, **res, kinematic=ANCHOR_V * math.tan(ANCHOR_STEER) / vc.wheelbase)
+        )
+    return rows
+
+
+def forzaeth_models(data_dir: Path | None = None) -> dict[str, dict[str, Any]]:
+    """ForzaETH's models from ``data_dir`` (``<NAME>_pacejka.txt``) when it exists, else the presets' copy."""
+    from roboracer_arena.vehicle_presets import FORZAETH_MODELS, read_forzaeth_model
+
+    if data_dir and data_dir.is_dir():
+        return {p.name.split("_")[0]: read_forzaeth_model(p) for p in sorted(data_dir.glob("*_pacejka.txt"))}
+    return FORZAETH_MODELS
+
+
+def plot_tyres(path: Path, data_dir: Path | None = None) -> None:
+    """Lateral force per wheel against slip angle at NUC6's static front and rear wheel loads:
+    ForzaETH's Pacejka fits, our tyre (linear to mu N) and PhysX's (brush) for the paper's car
+    and for the NUC6 preset."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from roboracer_arena.vehicle_presets import forzaeth_preset, pacejka, static_axle_loads
+
+    models = forzaeth_models(data_dir)
+    ref = models["NUC6"]
+    loads = [x / 2.0 for x in static_axle_loads(ref)]
+    alpha = np.linspace(0.0, 0.35, 300)
+
+    def ours(c: float, mu: float, n: float) -> np.ndarray:
+        return np.minimum(c * n * alpha, mu * n)
+
+    def brush(c: float, mu: float, n: float) -> np.ndarray:
+        k = c * n * np.tan(alpha) / (mu * n)
+        return mu * n * np.minimum(1.0, k - k * k / 3 + k**3 / 27)
+
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8), sharey=True)
+    paper, nuc6 = VehicleConfig(), forzaeth_preset("NUC6")
+    for ax, axle, n in zip(axes, ("front", "rear"), loads):
+        for i, (name, mod) in enumerate(models.items()):
+            ax.plot(
+                alpha,
+                n * pacejka(alpha, mod["C_Pf" if axle == "front" else "C_Pr"]),
+                color=f"C{i}",
+                label=f"ForzaETH {name} (Pacejka fit)",
+            )
+        for vc, lab, col in ((paper, "paper's car", "k"), (nuc6, "NUC6 preset", "C2")):
+            c = vc.cornering_stiffness_front if axle == "front" else vc.cornering_stiffness_rear
+            ax.plot(alpha, ours(c, vc.tyre_friction, n), "-", color=col, lw=2.2, alpha=0.6, label=f"ours, {lab}")
+            ax.plot(alpha, brush(c, vc.tyre_friction, n), ":", color=col, lw=2.2, label=f"PhysX, {lab}")
+        ax.set(title=f"{axle} tyre at NUC6's static {axle} wheel load {n:.2f} N", xlabel="slip angle (rad)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("lateral force per wheel (N)")
+    axes[1].legend(fontsize=7, loc="lower right")
+    fig.suptitle("Lateral tyre force: real-car fits (ForzaETH On-Track-SysID, MIT) beside our tyre and PhysX's")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    print(f"wrote {path}")
 
 
 def _f(x: float | None, fmt: str = ".3f") -> str:
@@ -390,6 +509,12 @@ def print_table(res: EnginesResult) -> None:
                 f"| {c.mu:g} | {c.mass_scale:g} | {name} | {_f(v['ours'])} | {_f(v['physx'])} | "
                 f"{_f(None if d is None else 100 * d, '.1f')} %{flag} |"
             )
+    if res.anchor:
+        print(f"\nReal-car anchor: steady yaw rate (rad/s) at {ANCHOR_V:g} m/s, {ANCHOR_STEER} rad")
+        print("| car | real car's model | ours | PhysX | kinematic |")
+        print("|---|---:|---:|---:|---:|")
+        for a in res.anchor:
+            print(f"| {a.car} | {_f(a.real_model)} | {a.ours:.3f} | {a.physx:.3f} | {a.kinematic:.3f} |")
     print(f"\nwithin {100 * res.target:.0f} %: {res.within_target} of {res.compared} comparisons ({res.seconds:.0f} s)")
 
 
@@ -428,12 +553,20 @@ def plot(res: EnginesResult, path: Path) -> None:
 
 def _cli(args: argparse.Namespace) -> int:
     mus, masses = ([0.83], [1.0]) if args.quick else (args.mu or MUS, args.mass or MASSES)
-    res = run(mus, masses)
+    res = run(mus, masses, with_anchor=args.anchor)
     print_table(res)
     write_json(args.json, res)
     if args.plot:
         plot(res, args.plot)
+    if args.tyre_plot:
+        plot_tyres(args.tyre_plot, args.vehicle_data)
     return 0
+
+
+def _default_vehicle_data() -> Path:
+    from roboracer_arena.paths import default_sources_dir
+
+    return default_sources_dir().parent / "vehicle-data" / "forzaeth-on-track-sysid"
 
 
 def register(kinds: Any) -> None:
@@ -442,6 +575,15 @@ def register(kinds: Any) -> None:
     p.add_argument("--mu", type=float, nargs="+", help=f"tyre friction values (default {MUS})")
     p.add_argument("--mass", type=float, nargs="+", help=f"mass scales (default {MASSES})")
     p.add_argument("--plot", metavar="FILE", type=Path, help="draw the curves to FILE (png)")
+    p.add_argument("--anchor", action="store_true", help="the real-car anchor rows (ForzaETH presets)")
+    p.add_argument("--tyre-plot", metavar="FILE", type=Path, help="draw the tyre curves beside the real-car fits")
+    p.add_argument(
+        "--vehicle-data",
+        metavar="DIR",
+        type=Path,
+        default=_default_vehicle_data(),
+        help="ForzaETH On-Track-SysID model files (default: ../shared/vehicle-data/forzaeth-on-track-sysid)",
+    )
     p.set_defaults(func=_cli)
 
 

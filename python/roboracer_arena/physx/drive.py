@@ -351,6 +351,19 @@ class _Lidar:
         return self.scan[0, 0].copy()
 
 
+def _scanner(kind: str, track: Any, sim: SimConfig) -> Callable[[Any, dict[str, float]], np.ndarray]:
+    """The lidar of a PhysX run: ``"ours"`` (our exact caster at the car's pose) or
+    ``"physx"`` (PhysX raycasts against the stage's collision walls, as a PhysX lidar)."""
+    if kind == "physx":
+        from .check import physx_scan
+
+        return lambda scene, odo: physx_scan(scene, (odo["x"], odo["y"], odo["yaw"]), sim)
+    if kind != "ours":
+        raise ConfigError(f"lidar must be 'ours' or 'physx', got {kind!r}")
+    ours = _Lidar(track, sim)
+    return lambda scene, odo: ours(odo["x"], odo["y"], odo["yaw"])
+
+
 def drive_physx(
     stage: str | Path,
     controller: Controller,
@@ -361,19 +374,21 @@ def drive_physx(
     max_seconds: float = 120.0,
     stop_at_lap: bool = True,
     scan: bool = True,
+    lidar: str = "ours",
 ) -> Trace:
     """Drive the stage's PhysX car with ``controller(scan, odometry) -> (steer, speed)`` at
     ``control_rate_hz`` (default: the env's, ``EnvConfig().control_rate_hz``) for up to
     ``max_seconds`` (or one lap, with ``stop_at_lap``). ``scan``: our lidar's raw ranges (m)
     at the car's pose on ``track`` (default: the stage's own track), or an empty array with
-    ``scan=False``; ``odometry``: ``x, y, yaw, vx, vy, yaw_rate, steer, speed`` (SI, body
+    ``scan=False``; ``lidar="physx"``: PhysX's own raycasts instead (:func:`_scanner`);
+    ``odometry``: ``x, y, yaw, vx, vy, yaw_rate, steer, speed`` (SI, body
     frame velocities). ``sim``: the car's config, the one the stage was built with."""
     from .check import track_of_stage
 
     sim = sim or SimConfig()
     rate = float(control_rate_hz or EnvConfig().control_rate_hz)
     track = track if track is not None else track_of_stage(stage)
-    lidar = _Lidar(track, sim) if scan else None
+    scanner = _scanner(lidar, track, sim) if scan else None
     sub = max(1, round(1.0 / (rate * float(sim.physics.dt))))
     with PhysxScene(stage) as scene, PhysxCar(scene, sim) as car:
         car.settle()
@@ -381,7 +396,7 @@ def drive_physx(
         t0, t = time.perf_counter(), 0.0
         while t < max_seconds - 1e-9:
             odo = car.state.to_json_dict()
-            ranges = lidar(odo["x"], odo["y"], odo["yaw"]) if lidar else np.zeros(0, np.float32)
+            ranges = scanner(scene, odo) if scanner else np.zeros(0, np.float32)
             cmd = tuple(float(c) for c in controller(ranges, odo))
             for _ in range(sub):
                 car.step(*cmd)
@@ -414,7 +429,7 @@ def drive_native(
     ``controller(scan, odometry)`` with the env's raw scan."""
     sim = sim or SimConfig()
     rate = float(control_rate_hz or EnvConfig().control_rate_hz)
-    env = RoboRacerEnv(track=track, config=EnvConfig(sim=sim, control_rate_hz=rate, normalise=False))
+    env = RoboRacerEnv(track=track, config=EnvConfig(sim=sim, control_rate_hz=rate))
     try:
         obs, _ = env.reset(seed=0)
         odo = _native_odometry(env)
