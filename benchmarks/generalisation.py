@@ -1,42 +1,49 @@
-"""``python -m benchmarks generalisation``: does training on many tracks transfer to
-tracks never seen? The same ES policy (:mod:`roboracer_arena.learn.es`) and the same
-budget of env-steps are spent
+"""``python -m benchmarks generalisation``: do policies trained on the library drive
+recorded maps they have never seen? Every condition trains ``--seeds`` policy files with
+``roboracer_arena.learn.trainer.train_policy`` (what ``roboracer-arena train`` runs) and
+drives one lap from the grid start of each held-out recorded map
+(``roboracer_arena.learn.recipe.HELD_OUT``: whole families of recorded maps, none in any
+training pool), as ``drive --policy`` does. The conditions:
 
-* on ONE track (``--single``, default the recorded f1tenth-gym Berlin map), and
-* on a POOL of generated tracks plus the 1:10 F1 circuits (drawn per episode, equal
-  weight to each group),
+* ``single``: the default recipe on one track (``--single``, the recorded Berlin map);
+* ``pool``: the default recipe's pool (every catalog track but the held-out maps),
+  without domain randomisation;
+* ``pool_rand``: the default recipe (pool and randomisation: friction, mass, lags, lidar
+  noise and dropout, actuation delay 0-2 steps);
+* ``plain``: the same pool and randomisation, but a plain MLP with no base controller
+  (the recipe of the project's earlier rounds), to show what the residual buys.
 
-then each trained policy drives one lap from the grid start of every held-out recorded
-map (``--held-out``): recorded maps from ../shared/track-sources, none of them in the
-pool and none the single training track. Reported per condition over ``--seeds`` seeds:
-clean-lap rate (lap completed without touching a wall) and mean lap time of the clean
-laps, plus the per-track result.
-
-CPU note: the defaults are deliberately small (the project's machine has 2 cores shared
-with other work); raise ``--generations`` / ``--pairs`` for stronger policies.
+Reported per condition over the seeds: the clean-lap rate (a lap completed without a
+contact or driving the wrong way) with a 95 % Student-t interval over seeds; the lap
+time of clean laps relative to the reference pure-pursuit driver's lap on the same map
+(``roboracer-arena drive``), with its interval; training wall and CPU seconds. With
+``--physx-seeds K`` the first K ``pool_rand`` policy files also drive every held-out map
+on the PhysX car (``drive --engine physx``, PhysX's own lidar raycasts).
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import time
 from dataclasses import replace
+from pathlib import Path
 
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
 
 SINGLE = "gym-berlin"
-POOL = {"generated": 1.0, "circuits": 1.0}
-#: Recorded maps whose layouts are neither in the pool (no F1 circuit layouts) nor Berlin.
-HELD_OUT = ("gym-skirk", "gym-vegas", "gym-example", "cps-torino-redraw", "cps-columbia-small")
+CONDITIONS = ("single", "pool", "pool_rand", "plain")
 
 
 class HeldOutLap(BenchModel):
-    """One lap from the grid start of a held-out track (:func:`~roboracer_arena.learn.es.evaluate_laps`)."""
+    """One lap from the grid start of a held-out map."""
 
     track: str
     clean_lap: bool
     lap_time: float | None
     progress: float
+    reference_lap_time: float | None
+    ratio: float | None  # lap_time / reference_lap_time, clean laps only
 
 
 class TrainingRun(BenchModel):
@@ -44,159 +51,367 @@ class TrainingRun(BenchModel):
 
     condition: str
     seed: int
+    generations: int
     env_steps: int
     train_seconds: float
     cpu_seconds: float
-    wall_seconds: float
     final_mean_return: float
+    clean_laps: int
     laps: list[HeldOutLap]
+    policy_file: str | None = None
+    physx_clean_laps: int | None = None
+    physx_laps: list[dict] | None = None
+
+
+class Interval(BenchModel):
+    """Mean over seeds with a two-sided 95 % Student-t interval."""
+
+    mean: float
+    low: float
+    high: float
+    n: int
 
 
 class ConditionSummary(BenchModel):
     """One condition over its seeds; see :func:`summarise`."""
 
-    clean_lap_rate: float
-    mean_env_steps: int
-    mean_lap_time_s: float | None
+    description: str
+    clean_lap_rate: Interval
+    lap_time_ratio: Interval | None
+    train_wall_seconds: float
+    train_cpu_seconds: float
+    env_steps: int
     clean_laps_per_track: dict[str, int]
+    physx_clean_lap_rate: Interval | None = None
 
 
-class Budget(BenchModel):
-    """The ES budget of every run."""
+class GeneralisationResult(BenchModel):
+    """``generalisation``: the budget, the maps, the summaries and every run."""
 
     generations: int
     pairs: int
     episode_steps: int
-
-
-class GeneralisationResult(BenchModel):
-    """``bench generalisation``: budget, the two conditions, held-out maps, summaries, runs."""
-
-    budget: Budget
     single: str
-    pool: dict[str, float]
+    pool_size: int
     held_out: list[str]
+    reference_laps: dict[str, float | None]
     seeds: int
     summary: dict[str, ConditionSummary]
     runs: list[TrainingRun]
 
 
+_T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228}
+
+
+def interval(values: list[float]) -> Interval:
+    """Mean and 95 % Student-t interval of ``values`` (independent seeds)."""
+    n = len(values)
+    mean = sum(values) / n
+    if n < 2:
+        return Interval(mean=round(mean, 4), low=round(mean, 4), high=round(mean, 4), n=n)
+    sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (n - 1))
+    half = _T95.get(n - 1, 1.96) * sd / math.sqrt(n)
+    return Interval(mean=round(mean, 4), low=round(mean - half, 4), high=round(mean + half, 4), n=n)
+
+
 def register(kinds) -> None:
-    p = add_bench_parser(kinds, "generalisation", "ES on one track vs on a track pool, laps on held-out maps", __doc__)
-    p.add_argument("--seeds", type=int, default=3, help="training seeds per condition (default 3)")
-    p.add_argument("--generations", type=int, default=40, help="ES generations per run (default 40)")
-    p.add_argument("--pairs", type=int, default=16, help="antithetic pairs per generation (default 16)")
-    p.add_argument("--episode-steps", type=int, default=200, help="steps per training episode (default 200)")
+    p = add_bench_parser(
+        kinds, "generalisation", "policies trained on the library, laps on held-out recorded maps", __doc__
+    )
+    p.add_argument("--seeds", type=int, default=5, help="training seeds per condition (default 5)")
+    p.add_argument("--generations", type=int, default=None, help="ES generations per run (default: the recipe's)")
+    p.add_argument("--conditions", nargs="+", choices=CONDITIONS, default=list(CONDITIONS), help="which conditions")
     p.add_argument("--single", default=SINGLE, help=f"the one training track (default {SINGLE})")
-    p.add_argument("--held-out", nargs="+", default=list(HELD_OUT), help="evaluation tracks (catalog ids)")
+    p.add_argument("--policies", type=Path, metavar="DIR", help="keep every trained policy file in DIR")
+    p.add_argument("--physx-seeds", type=int, default=0, help="pool_rand policies also driven in PhysX (default 0)")
+    p.add_argument(
+        "--physx-files",
+        nargs="+",
+        type=Path,
+        metavar="FILE",
+        help="only drive these policy files on every held-out map, in PhysX and in our engine (no training)",
+    )
     p.set_defaults(func=_run_cli)
 
 
-def run(
-    seeds: int = 3,
-    generations: int = 40,
-    pairs: int = 16,
-    episode_steps: int = 200,
-    single: str = SINGLE,
-    held_out: tuple[str, ...] | list[str] = HELD_OUT,
-    verbose: bool = True,
-    pool: dict[str, float] | None = None,
-) -> GeneralisationResult:
-    """Train both conditions for every seed and evaluate on ``held_out``; see module docstring."""
-    from roboracer_arena.errors import ConfigError
-    from roboracer_arena.learn.es import ESConfig, evaluate_laps, make_training_env, train
+def reference_laps(held_out: list[str]) -> dict[str, float | None]:
+    """The reference pure-pursuit driver's lap time on each map (None: no clean lap)."""
+    from roboracer_arena.drivers import drive_laps
 
-    if seeds < 1 or generations < 1 or pairs < 1:
-        raise ConfigError("bench generalisation: --seeds, --generations and --pairs must be >= 1")
-    if single in held_out:
-        raise ConfigError(f"bench generalisation: the training track {single!r} is in --held-out")
-    pool = dict(POOL if pool is None else pool)
-    conditions: dict[str, str | dict[str, float]] = {"single": single, "pool": pool}
+    out: dict[str, float | None] = {}
+    for tid in held_out:
+        r = drive_laps(tid)
+        out[tid] = r.lap_times[0] if r.completed else None
+    return out
+
+
+def _recipe(condition: str, generations: int | None):
+    from roboracer_arena.learn.recipe import Recipe
+
+    r = Recipe()
+    if generations is not None:
+        r = replace(r, generations=generations)
+    if condition == "pool":
+        r = replace(r, randomise=False)
+    if condition == "plain":
+        r = replace(r, base="none")
+    return r
+
+
+def run(
+    seeds: int = 5,
+    generations: int | None = None,
+    conditions: list[str] | tuple[str, ...] = CONDITIONS,
+    single: str = SINGLE,
+    policies: Path | None = None,
+    physx_seeds: int = 0,
+    verbose: bool = True,
+    held_out: list[str] | None = None,
+) -> GeneralisationResult:
+    """Train every condition for every seed and drive the held-out maps; see the module docstring."""
+    from roboracer_arena.cli.train import default_pool
+    from roboracer_arena.errors import ConfigError
+    from roboracer_arena.learn.evaluate import evaluate_policy
+    from roboracer_arena.learn.recipe import HELD_OUT
+    from roboracer_arena.learn.trainer import make_env, train_policy
+
+    held = list(held_out or HELD_OUT)
+    if seeds < 1 or (generations is not None and generations < 1) or physx_seeds < 0:
+        raise ConfigError("generalisation: --seeds and --generations must be >= 1, --physx-seeds >= 0")
+    if single in held:
+        raise ConfigError(f"generalisation: the training track {single!r} is held out")
+    pool = default_pool()
+    refs = reference_laps(held)
+    if verbose:
+        print(f"reference pure-pursuit laps: {refs}", flush=True)
     runs: list[TrainingRun] = []
-    base = replace(ESConfig(), generations=generations, pairs=pairs, episode_steps=episode_steps)
-    for name, track in conditions.items():
-        env = make_training_env(track, base)  # once per condition: the pool has ~100 tracks to load
+    envs: dict[tuple, object] = {}
+    for cond in conditions:
+        recipe = _recipe(cond, generations)
+        tracks = [single] if cond == "single" else pool
+        key = (cond == "single", recipe.randomise)
+        if key not in envs:
+            envs[key] = make_env(tracks, recipe)  # the pool's ~155 tracks load once per env config
         for seed in range(seeds):
-            cfg = replace(base, seed=seed)
-            t0, c0 = time.perf_counter(), time.process_time()
-            result = train(track, cfg, env=env)
-            laps = evaluate_laps(result.theta, list(held_out), cfg)
-            run = TrainingRun(
-                condition=name,
+            r = replace(recipe, seed=seed)
+            c0, t0 = time.process_time(), time.perf_counter()
+            policy = train_policy(tracks, r, env=envs[key])
+            train_wall, train_cpu = time.perf_counter() - t0, time.process_time() - c0
+            path = None
+            if policies is not None:
+                policies.mkdir(parents=True, exist_ok=True)
+                path = policy.save(policies / f"{cond}-seed{seed}.npz")
+            laps = []
+            for lap in evaluate_policy(policy, held):
+                ref = refs.get(lap["track"])
+                ratio = lap["lap_time"] / ref if lap["clean_lap"] and ref else None
+                laps.append(
+                    HeldOutLap(
+                        track=lap["track"],
+                        clean_lap=lap["clean_lap"],
+                        lap_time=None if lap["lap_time"] is None else round(lap["lap_time"], 3),
+                        progress=lap["progress"],
+                        reference_lap_time=ref,
+                        ratio=None if ratio is None else round(ratio, 4),
+                    )
+                )
+            run_ = TrainingRun(
+                condition=cond,
                 seed=seed,
-                env_steps=result.env_steps,
-                train_seconds=round(result.seconds, 1),
-                cpu_seconds=round(time.process_time() - c0, 1),
-                wall_seconds=round(time.perf_counter() - t0, 1),
-                final_mean_return=result.curve[-1]["mean_return"],
-                laps=[HeldOutLap.model_validate(lap) for lap in laps],
+                generations=int(policy.training["generation"]),
+                env_steps=int(policy.training["env_steps"]),
+                train_seconds=round(train_wall, 1),
+                cpu_seconds=round(train_cpu, 1),
+                final_mean_return=float(policy.training["curve"][-1]["mean_return"]),
+                clean_laps=sum(lap.clean_lap for lap in laps),
+                laps=laps,
+                policy_file=None if path is None else str(path),
             )
-            runs.append(run)
+            if cond == "pool_rand" and seed < physx_seeds:
+                run_ = _with_physx(run_, policy, held)
+            runs.append(run_)
             if verbose:
-                clean = sum(lap.clean_lap for lap in run.laps)
+                px = "" if run_.physx_clean_laps is None else f", PhysX {run_.physx_clean_laps}/{len(held)}"
                 print(
-                    f"  {name:6s} seed {seed}: {clean}/{len(laps)} clean laps on held-out maps "
-                    f"({run.env_steps} env-steps, {run.wall_seconds} s)",
+                    f"  {cond:9s} seed {seed}: {run_.clean_laps}/{len(held)} clean laps{px} "
+                    f"({run_.env_steps} env-steps, {run_.train_seconds} s)",
                     flush=True,
                 )
+    for env in envs.values():
+        env.close()  # type: ignore[attr-defined]
     return GeneralisationResult(
-        budget=Budget(generations=generations, pairs=pairs, episode_steps=episode_steps),
+        generations=_recipe("pool_rand", generations).generations,
+        pairs=_recipe("pool_rand", generations).pairs,
+        episode_steps=_recipe("pool_rand", generations).episode_steps,
         single=single,
-        pool=pool,
-        held_out=list(held_out),
+        pool_size=len(pool),
+        held_out=held,
+        reference_laps=refs,
         seeds=seeds,
-        summary=summarise(runs),
+        summary=summarise(runs, single),
         runs=runs,
     )
 
 
-def summarise(runs: list[TrainingRun]) -> dict[str, ConditionSummary]:
-    """Per condition: clean-lap rate over all (seed, track) laps, mean clean lap time,
-    and per held-out track the clean laps out of the seeds."""
+def physx_laps(policy, held: list[str]) -> list[dict]:
+    """``policy`` on the PhysX car on every map of ``held`` (``drive --engine physx``)."""
+    from roboracer_arena.envs.env_config import EnvConfig
+    from roboracer_arena.learn import policy_env_kwargs
+    from roboracer_arena.learn.runner import policy_controller
+    from roboracer_arena.physx.laps import physx_lap
+
+    config = EnvConfig.build(policy_env_kwargs(policy))
+    lid = config.sim.lidar
+    laps = []
+    for tid in held:
+        lap = physx_lap(
+            tid,
+            lambda track: policy_controller(policy, track, lid.num_beams, lid.fov, config),
+            config.sim,
+            config.control_rate_hz,
+            name="policy",
+        )
+        laps.append(lap.to_json_dict() | {"clean": lap.clean})
+    return laps
+
+
+def _with_physx(run_: TrainingRun, policy, held: list[str]) -> TrainingRun:
+    """``run_`` with its policy's laps on the PhysX car."""
+    laps = physx_laps(policy, held)
+    return run_.model_copy(update={"physx_laps": laps, "physx_clean_laps": sum(x["clean"] for x in laps)})
+
+
+class PhysxPolicyRun(BenchModel):
+    """One policy file on the PhysX car and in our engine, every held-out map."""
+
+    file: str
+    laps: list[dict]
+    ours: list[dict]
+    mean_ratio_to_ours: float
+
+
+class PhysxPolicies(BenchModel):
+    """``generalisation --physx-files``: each file's laps in PhysX beside ours."""
+
+    files: list[str]
+    held_out: list[str]
+    runs: list[PhysxPolicyRun]
+
+
+def physx_runs(files: list[Path], held_out: list[str] | None = None, verbose: bool = True) -> PhysxPolicies:
+    """Drive each policy file on every held-out map in PhysX and in our engine."""
+    from roboracer_arena.learn import evaluate_policy, load_policy
+    from roboracer_arena.learn.recipe import HELD_OUT
+
+    held = list(held_out or HELD_OUT)
+    runs = []
+    for f in files:
+        policy = load_policy(f)
+        laps, ours = physx_laps(policy, held), evaluate_policy(policy, held)
+        ratios = [
+            p["lap_time_s"] / o["lap_time"]
+            for p, o in zip(laps, ours)
+            if p["clean"] and o["clean_lap"] and o["lap_time"]
+        ]
+        runs.append(
+            PhysxPolicyRun(
+                file=str(f),
+                laps=laps,
+                ours=ours,
+                mean_ratio_to_ours=round(sum(ratios) / len(ratios), 4) if ratios else float("nan"),
+            )
+        )
+        if verbose:
+            print(f"  {f}: {sum(x['clean'] for x in laps)}/{len(held)} clean laps in PhysX", flush=True)
+    return PhysxPolicies(files=[str(f) for f in files], held_out=held, runs=runs)
+
+
+_DESCRIPTIONS = {
+    "single": "residual, one track ({single}), randomised",
+    "pool": "residual, pool, no randomisation",
+    "pool_rand": "residual, pool, randomised (default recipe)",
+    "plain": "plain MLP, pool, randomised",
+}
+
+
+def summarise(runs: list[TrainingRun], single: str = SINGLE) -> dict[str, ConditionSummary]:
+    """Per condition: clean-lap rate and lap-time ratio (mean of per-seed means, 95 % t
+    intervals over seeds), mean training cost, clean laps per map out of the seeds."""
     out: dict[str, ConditionSummary] = {}
-    for name in dict.fromkeys(r.condition for r in runs):
-        laps = [lap for r in runs if r.condition == name for lap in r.laps]
-        clean = [lap for lap in laps if lap.clean_lap]
-        times = [lap.lap_time for lap in clean if lap.lap_time is not None]
+    for cond in dict.fromkeys(r.condition for r in runs):
+        rs = [r for r in runs if r.condition == cond]
+        rates = [r.clean_laps / len(r.laps) for r in rs]
+        ratios = []
+        for r in rs:
+            vals = [lap.ratio for lap in r.laps if lap.ratio is not None]
+            if vals:
+                ratios.append(sum(vals) / len(vals))
         per_track: dict[str, int] = {}
-        for lap in laps:
-            per_track[lap.track] = per_track.get(lap.track, 0) + int(lap.clean_lap)
-        steps = [r.env_steps for r in runs if r.condition == name]
-        out[name] = ConditionSummary(
-            clean_lap_rate=round(len(clean) / len(laps), 3),
-            mean_env_steps=round(sum(steps) / len(steps)),
-            mean_lap_time_s=round(sum(times) / len(times), 2) if times else None,
+        for r in rs:
+            for lap in r.laps:
+                per_track[lap.track] = per_track.get(lap.track, 0) + int(lap.clean_lap)
+        px = [r.physx_clean_laps / len(r.laps) for r in rs if r.physx_clean_laps is not None]
+        out[cond] = ConditionSummary(
+            description=_DESCRIPTIONS[cond].format(single=single),
+            clean_lap_rate=interval(rates),
+            lap_time_ratio=interval(ratios) if ratios else None,
+            train_wall_seconds=round(sum(r.train_seconds for r in rs) / len(rs), 1),
+            train_cpu_seconds=round(sum(r.cpu_seconds for r in rs) / len(rs), 1),
+            env_steps=round(sum(r.env_steps for r in rs) / len(rs)),
             clean_laps_per_track=per_track,
+            physx_clean_lap_rate=interval(px) if px else None,
         )
     return out
 
 
+def _fmt(i: Interval | None, pct: bool = False) -> str:
+    if i is None:
+        return "-"
+    k = 100 if pct else 1
+    d = 1 if pct else 3
+    return f"{i.mean * k:.{d}f} [{i.low * k:.{d}f}, {i.high * k:.{d}f}]"
+
+
 def print_table(res: GeneralisationResult) -> None:
-    b = res.budget
     print(
-        f"ES budget per run: {b.generations} generations x {2 * b.pairs} envs x <= {b.episode_steps} steps "
-        f"(episodes end at a contact); {res.seeds} seeds per condition"
+        f"ES: {res.generations} generations x {2 * res.pairs} envs x <= {res.episode_steps} steps; "
+        f"{res.seeds} seeds per condition; pool: {res.pool_size} catalog tracks"
     )
-    print(f"held-out recorded maps: {', '.join(res.held_out)}")
-    print(f"{'condition':<34}{'env-steps/run':>14}{'clean-lap rate':>16}{'mean lap time (s)':>20}")
-    names = {"single": f"one track ({res.single})", "pool": "pool (" + " + ".join(res.pool) + ")"}
+    print(f"held-out recorded maps ({len(res.held_out)}): {', '.join(res.held_out)}")
+    head = f"{'condition':<46}{'clean laps % [95% CI]':>26}{'lap time / reference':>28}{'train s':>9}{'CPU s':>8}"
+    print(head)
+    for s in res.summary.values():
+        print(
+            f"{s.description:<46}{_fmt(s.clean_lap_rate, True):>26}{_fmt(s.lap_time_ratio):>28}"
+            f"{s.train_wall_seconds:>9.1f}{s.train_cpu_seconds:>8.1f}"
+        )
     for name, s in res.summary.items():
-        t = "-" if s.mean_lap_time_s is None else f"{s.mean_lap_time_s:.2f}"
-        print(f"{names[name]:<34}{s.mean_env_steps:>14}{s.clean_lap_rate:>16.2f}{t:>20}")
+        if s.physx_clean_lap_rate is not None:
+            print(
+                f"{name} in PhysX: clean laps {_fmt(s.physx_clean_lap_rate, True)} % over {s.physx_clean_lap_rate.n} policy files"
+            )
     for name, s in res.summary.items():
-        per = ", ".join(f"{k} {v}/{res.seeds}" for k, v in s.clean_laps_per_track.items())
-        print(f"  {name}: {per}")
+        missed = {k: v for k, v in s.clean_laps_per_track.items() if v < res.seeds}
+        print(f"  {name}: " + (", ".join(f"{k} {v}/{res.seeds}" for k, v in missed.items()) or "every map every seed"))
 
 
 def _run_cli(args: argparse.Namespace) -> int:
-    res = run(args.seeds, args.generations, args.pairs, args.episode_steps, args.single, args.held_out)
+    if args.physx_files:
+        px = physx_runs(args.physx_files)
+        for r in px.runs:
+            print(
+                f"{r.file}: {sum(x['clean'] for x in r.laps)}/{len(r.laps)} clean in PhysX, lap time x{r.mean_ratio_to_ours:.3f} ours"
+            )
+        write_json(args.json, px)
+        return 0
+    res = run(args.seeds, args.generations, args.conditions, args.single, args.policies, args.physx_seeds)
     print_table(res)
     write_json(args.json, res)
     return 0
 
 
 def run_quick() -> GeneralisationResult:
-    """``bench all``: one seed, a small budget, three held-out maps."""
-    res = run(seeds=1, generations=10, pairs=8, episode_steps=150, held_out=HELD_OUT[:3])
+    """``bench all``: one seed, 5 generations, the two headline conditions."""
+    res = run(seeds=1, generations=5, conditions=("single", "pool_rand"))
     print_table(res)
     return res

@@ -99,40 +99,98 @@ def es_block(doc: dict[str, Any]) -> str:
 
 
 # ---------------------------------------------------------------- generalisation (BENCHMARKS)
+POLICIES = LEARNING / "policies"  # the benchmark's policy files, kept: the PhysX figure drives them
+PHYSX_SEEDS = 2  # pool_rand policy files driven in PhysX (about 9 min each on 2 cores)
+
+
 def generalisation_data(profile: str = "") -> dict[str, Any]:
-    """``python -m benchmarks generalisation`` with its defaults."""
+    """``python -m benchmarks generalisation --policies docs/learning/policies`` (defaults)."""
     from benchmarks import generalisation
 
-    res, timing = _timed(lambda: generalisation.run())
+    res, timing = _timed(lambda: generalisation.run(policies=POLICIES))
     doc = res.model_dump(mode="json")
+    for r in doc["runs"]:  # relative to the checkout, so the data does not name this machine
+        if r["policy_file"]:
+            r["policy_file"] = str(Path(r["policy_file"]).resolve().relative_to(ROOT))
     doc["timing"] = timing
     return doc
 
 
 def generalisation_deterministic(doc: dict[str, Any]) -> dict[str, Any]:
-    keep = ("condition", "seed", "env_steps", "final_mean_return", "laps")
-    return {"summary": doc["summary"], "runs": [{k: r[k] for k in keep} for r in doc["runs"]]}
+    keep = ("condition", "seed", "env_steps", "final_mean_return", "clean_laps", "laps")
+    return {"runs": [{k: r[k] for k in keep} for r in doc["runs"]]}
+
+
+def _ci(i: dict[str, Any] | None, pct: bool = False) -> str:
+    if i is None:
+        return "–"
+    k, d = (100, 1) if pct else (1, 3)
+    return f"{i['mean'] * k:.{d}f} [{i['low'] * k:.{d}f}, {i['high'] * k:.{d}f}]"
 
 
 def generalisation_block(doc: dict[str, Any]) -> str:
     t, s, seeds = doc["timing"], doc["summary"], doc["seeds"]
-    laps = len(doc["held_out"]) * seeds
-    names = {"single": f"one track ({doc['single']})", "pool": "pool (" + " + ".join(doc["pool"]) + ")"}
     rows = [
-        f"| {names[k]} | {v['mean_env_steps']:,} | **{v['clean_lap_rate']:.2f}** | "
-        + ("–" if v["mean_lap_time_s"] is None else f"{v['mean_lap_time_s']:.2f} s")
-        + " |"
-        for k, v in s.items()
+        f"| {v['description']} | **{_ci(v['clean_lap_rate'], True)}** | {_ci(v['lap_time_ratio'])} | "
+        f"{v['train_wall_seconds']:.0f} s | {v['train_cpu_seconds']:.0f} s |"
+        for v in s.values()
     ]
-    per = "; ".join(
-        f"{k} — " + ", ".join(f"{track} {n}" for track, n in v["clean_laps_per_track"].items()) for k, v in s.items()
-    )
+    missed = []
+    for k, v in s.items():
+        low = {m: n for m, n in v["clean_laps_per_track"].items() if n < seeds}
+        missed.append(f"{k}: " + (", ".join(f"{m} {n}/{seeds}" for m, n in low.items()) or "every map, every seed"))
+    refs = ", ".join(f"{m} {'–' if r is None else f'{r:.2f} s'}" for m, r in doc["reference_laps"].items())
     return (
-        f"Whole command: {t['wall_seconds'] / 60:.1f} min wall, {t['cpu_seconds'] / 60:.1f} min CPU on the shared "
-        f"2-core machine (load average about {t['load_average']:.1f}; pool start-up included).\n\n"
-        f"| condition | env-steps/run | clean-lap rate ({laps} laps) | mean lap time of clean laps |\n"
-        f"|---|---:|---:|---:|\n" + "\n".join(rows) + "\n\n"
-        f"Per held-out map (clean laps / {seeds} seeds): {per}.\n"
+        f"`python -m benchmarks generalisation --policies docs/learning/policies`: {doc['generations']} ES generations "
+        f"x {2 * doc['pairs']} envs x <= {doc['episode_steps']} steps per run, {seeds} seeds per condition, pool of "
+        f"{doc['pool_size']} catalog tracks; {len(doc['held_out'])} held-out recorded maps, {seeds} laps each per "
+        f"condition. Whole command: {t['wall_seconds'] / 60:.1f} min wall, {t['cpu_seconds'] / 60:.1f} min CPU on "
+        f"the shared 2-core machine (load average about {t['load_average']:.1f}; pool start-up included). "
+        f"Intervals are 95 % Student-t over seeds.\n\n"
+        f"| condition | clean laps % [95 % CI] | lap time / reference lap [95 % CI] | train wall | train CPU |\n"
+        f"|---|---:|---:|---:|---:|\n" + "\n".join(rows) + "\n\n"
+        f"Held-out maps: {', '.join(doc['held_out'])}.\n\n"
+        f"Maps not lapped cleanly by every seed: {'; '.join(missed)}.\n\n"
+        f"Reference pure-pursuit laps (`roboracer-arena drive`): {refs}.\n"
+    )
+
+
+def physx_policies_data(profile: str = "") -> dict[str, Any]:
+    """The first PHYSX_SEEDS default-recipe policy files of the generalisation figure on the
+    PhysX car (``drive --engine physx --policy``), every held-out map."""
+    from benchmarks import generalisation
+
+    files = [(POLICIES / f"pool_rand-seed{k}.npz").relative_to(ROOT) for k in range(PHYSX_SEEDS)]
+    res, timing = _timed(lambda: generalisation.physx_runs([ROOT / f for f in files]))
+    res = res.model_copy(
+        update={
+            "files": [str(f) for f in files],
+            "runs": [r.model_copy(update={"file": str(f)}) for r, f in zip(res.runs, files)],
+        }
+    )
+    doc = res.model_dump(mode="json")
+    doc["timing"] = timing
+    return doc
+
+
+def physx_policies_deterministic(doc: dict[str, Any]) -> dict[str, Any]:
+    return {"files": doc["files"], "clean": [[lap["clean"] for lap in f["laps"]] for f in doc["runs"]]}
+
+
+def physx_policies_block(doc: dict[str, Any]) -> str:
+    t = doc["timing"]
+    rows = []
+    for r in doc["runs"]:
+        clean = sum(lap["clean"] for lap in r["laps"])
+        rows.append(f"| `{Path(r['file']).name}` | **{clean}/{len(r['laps'])}** | {r['mean_ratio_to_ours']:.3f} |")
+    failed = [f"{Path(r['file']).name}: {lap['track']}" for r in doc["runs"] for lap in r["laps"] if not lap["clean"]]
+    return (
+        f"`python -m benchmarks generalisation --physx-files {' '.join(doc['files'])}`: {t['wall_seconds'] / 60:.1f} min wall on the shared 2-core "
+        f"machine (load average about {t['load_average']:.1f}).\n\n"
+        f"| policy file | clean laps in PhysX | PhysX lap time / our lap time |\n|---|---:|---:|\n"
+        + "\n".join(rows)
+        + "\n\n"
+        + ("Not clean in PhysX: " + "; ".join(failed) + ".\n" if failed else "Every map clean in PhysX.\n")
     )
 
 
@@ -153,8 +211,17 @@ FIGURES: dict[str, dict[str, Any]] = {
         "picture": None,
         "deterministic": generalisation_deterministic,
         "blocks": [("BENCHMARKS.md", "generalisation", generalisation_block)],
-        "about": "bench generalisation: ES on one track vs a pool, held-out clean-lap rates (minutes)",
-        "ci": "rerun",
+        "about": "bench generalisation: policies on one track vs the pool, held-out recorded maps (about 30 min)",
+        "ci": "long",
+    },
+    "generalisation-physx": {
+        "data": LEARNING / "generalisation_physx.json",
+        "run": physx_policies_data,
+        "picture": None,
+        "deterministic": physx_policies_deterministic,
+        "blocks": [("BENCHMARKS.md", "generalisation-physx", physx_policies_block)],
+        "about": "the generalisation figure's default-recipe policy files on the PhysX car (about 20 min)",
+        "ci": "long",
     },
     **BENCH_FIGURES,
 }

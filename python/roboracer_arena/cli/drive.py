@@ -2,6 +2,10 @@
 (ROS map YAML, or a catalog id) in its racing direction (``--reverse``: the other way)
 and report lap times and contacts; optionally write a GIF/MP4 of the drive.
 
+``--policy FILE`` drives a trained policy file (``roboracer-arena train``) instead, in
+the env settings the file names; ``--engine physx`` drives it (or the pure pursuit) on
+the PhysX car of the stage ``build --car`` writes (needs the [physx] extra).
+
 Exit codes: 0 every lap completed, 5 the car crashed or did not finish the laps in the
 time allowed, 2 bad input."""
 
@@ -34,6 +38,19 @@ def register(sub) -> None:
         metavar="RUN.mcap",
         help="record the drive as ROS 2 messages to an MCAP file (needs the [ros2] extra)",
     )
+    p.add_argument("--policy", type=Path, metavar="FILE", help="drive this policy file instead of the pure pursuit")
+    p.add_argument(
+        "--engine",
+        choices=("ours", "physx"),
+        default="ours",
+        help="ours (default) or physx: the PhysX car of a stage built with 'build --car' (see --stage)",
+    )
+    p.add_argument(
+        "--stage",
+        type=Path,
+        metavar="STAGE.usda",
+        help="with --engine physx: the stage to drive (default: built from MAP with a car into a temporary folder)",
+    )
     add_json_flag(p)
     p.set_defaults(func=run)
 
@@ -56,6 +73,16 @@ def run(args: argparse.Namespace) -> int:
         def wrapper(env):
             return McapEpisodeRecorder(env, args.mcap)
 
+    policy, extra = None, {}
+    if args.policy is not None:
+        from ..learn import PolicyDriver, load_policy, policy_env_kwargs
+
+        policy = load_policy(args.policy)
+        extra = {"controller": lambda env: PolicyDriver(env, policy), **policy_env_kwargs(policy)}
+    if args.engine == "physx":
+        from .drive_physx import run_physx
+
+        return run_physx(args, policy, params)
     res = drive_laps(
         args.map,
         args.laps,
@@ -66,6 +93,7 @@ def run(args: argparse.Namespace) -> int:
         progress=not args.json,
         reverse=args.reverse,
         env_wrapper=wrapper,
+        **extra,
     )
     status = EXIT_OK if res.completed else EXIT_LAP_FAILED
     if args.json:

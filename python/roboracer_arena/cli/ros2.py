@@ -89,6 +89,12 @@ def register(sub) -> None:
         "bridge (cyclonedds: the CYCLONEDDS_URI value; fastdds: the XML file FASTRTPS_DEFAULT_PROFILES_FILE "
         "names) and exit",
     )
+    p.add_argument(
+        "--policy",
+        type=Path,
+        metavar="FILE",
+        help="also run a trained policy file (roboracer-arena train) as a ROS 2 node driving the ego car over DDS",
+    )
     p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S wall seconds")
     p.add_argument("--sim-time", type=float, default=None, metavar="S", help="stop after S simulated seconds")
     add_json_flag(p)
@@ -119,6 +125,11 @@ def run(args: argparse.Namespace) -> int:
         domain = int(env)
     check_domain_id(domain)
     config = BridgeConfig.load(args.config) if args.config else BridgeConfig()
+    policy = None
+    if args.policy is not None:
+        from ..learn import load_policy
+
+        policy = load_policy(args.policy)
     if args.reset_poses is not None:
         config = config.model_copy(update={"start": config.start.model_copy(update={"reset_poses": args.reset_poses})})
     bridge = Bridge(
@@ -139,6 +150,14 @@ def run(args: argparse.Namespace) -> int:
         stop["flag"] = True
 
     signal.signal(signal.SIGTERM, on_signal)
+    node = None
+    if policy is not None:
+        from types import SimpleNamespace
+
+        from ..ros2.policy_node import PolicyNode
+
+        node = PolicyNode(policy, SimpleNamespace(centreline=bridge.src.centreline), domain, loopback=args.loopback)
+        node.start()
     bridge.start()
     if not args.json:
         mode = "lockstep" if args.lockstep else ("max rate" if args.rate is None else f"{args.rate:g}x real time")
@@ -153,6 +172,11 @@ def run(args: argparse.Namespace) -> int:
     except KeyboardInterrupt:
         pass
     stats = bridge.stop()
+    if node is not None:
+        node.stop()
+        stats["policy_commands"] = node.commands
+        if node.error is not None and not stats["error"]:
+            stats["error"] = f"policy node: {node.error!r}"
     if args.record:
         stats["record"] = str(args.record)
     if args.json:

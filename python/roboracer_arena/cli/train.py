@@ -49,6 +49,13 @@ def register(sub) -> None:
         help="residual: an MLP correcting the reference pure pursuit (default); plain: an MLP alone",
     )
     p.add_argument("--no-randomise", action="store_true", help="train without domain randomisation")
+    p.add_argument(
+        "--checkpoint-every",
+        type=int,
+        default=5,
+        metavar="N",
+        help="write a checkpoint every N generations (default 5)",
+    )
     p.add_argument("--curve", type=Path, metavar="OUT.png", help="learning-curve picture (default: beside --out)")
     p.add_argument("--no-eval", action="store_true", help="skip the laps on the held-out maps after training")
     add_json_flag(p)
@@ -67,6 +74,8 @@ def _recipe(args: argparse.Namespace):
             if not lo <= v <= hi:
                 raise InvalidArgumentError(f"--{flag} must be in [{lo}, {hi}], got {v}")
             r = replace(r, **{flag: v})
+    if not 1 <= args.checkpoint_every <= 100_000:
+        raise InvalidArgumentError(f"--checkpoint-every must be in [1, 100000], got {args.checkpoint_every}")
     if args.minutes is not None and not 0 < args.minutes <= 1e6:
         raise InvalidArgumentError(f"--minutes must be > 0, got {args.minutes}")
     return r
@@ -118,6 +127,7 @@ def run(args: argparse.Namespace) -> int:
             max_seconds=None if args.minutes is None else 60.0 * args.minutes,
             progress=progress,
             env=env,
+            checkpoint_every=args.checkpoint_every,
         )
     except KeyboardInterrupt:
         if bar is not None:

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import io
 import json
-import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -94,13 +93,17 @@ def policy_from_bytes(data: bytes, where: str | Path = "<bytes>") -> Policy:
     def bad(why: str) -> PolicyFileError:
         return PolicyFileError(f"{where}: not a usable policy file: {why}")
 
+    if not data.startswith(b"PK"):
+        raise bad("not an npz archive (no zip signature)")
     try:
         npz = np.load(io.BytesIO(data), allow_pickle=False)
         if not isinstance(npz, np.lib.npyio.NpzFile):
             raise bad("it holds one array, not an npz archive")
         with npz:
             arrays = {k: npz[k] for k in npz.files}
-    except (zipfile.BadZipFile, ValueError, OSError, EOFError, KeyError) as e:
+    except Exception as e:  # noqa: BLE001 - zipfile/zlib/numpy raise a dozen kinds on hostile bytes
+        if isinstance(e, PolicyFileError):
+            raise
         raise bad(
             f"not a readable npz archive ({str(e).splitlines()[0][:120] if str(e) else type(e).__name__})"
         ) from None

@@ -124,3 +124,30 @@ class PolicyDriver:
 
     def reset(self) -> None:
         self.runner.reset()
+
+
+def policy_controller(policy: Any, track: Any, lidar_beams: int, lidar_fov: float, config: Any = None) -> Any:
+    """A trained policy as a ``controller(scan, odometry) -> (steer, speed)`` for one car
+    on ``track`` in any engine (PhysX, the ROS 2 bridge): ``scan`` is that engine's ranges
+    (m) of ``lidar_beams`` beams over ``lidar_fov`` (the policy reads its own beams of
+    them, :func:`scan_indices`), ``odometry`` a mapping with ``x, y, yaw`` (map frame),
+    ``vx`` (forward speed) and ``steer``. ``config``: the env config whose car the base
+    pure pursuit steers (default :class:`~roboracer_arena.envs.env_config.EnvConfig`)."""
+    from ..envs.env_config import EnvConfig
+
+    spec = policy.spec
+    beams = scan_indices(spec, int(lidar_beams), float(lidar_fov))
+    base = None
+    if spec.base == "pure_pursuit":
+        base = PursuitBase([track.centreline], base_params(config or EnvConfig(), policy.env.get("pure_pursuit")))
+    zero = np.zeros(1, np.int64)
+
+    def act(scan: np.ndarray, odo: Any) -> tuple[float, float]:
+        ranges = np.asarray(scan, np.float64).reshape(-1)[beams][None]
+        b = None
+        if base is not None:
+            b = np.stack(base.act(zero, odo["x"], odo["y"], odo["yaw"], odo["vx"]), 1)
+        cmd = policy.act(ranges, odo["vx"], odo["steer"], b)
+        return float(cmd[0, 0]), float(cmd[0, 1])
+
+    return act

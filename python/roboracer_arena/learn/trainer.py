@@ -126,7 +126,11 @@ def _training_header(recipe: Recipe, tracks: Any, names: list[str], state: Train
 def resume_state(policy: Policy, recipe: Recipe, spec: PolicySpec, where: str | Path) -> TrainState:
     """The state a checkpoint holds, if it was written by the same recipe and spec."""
     tr = policy.training
-    if policy.spec != spec or tr.get("recipe") != _jsonable(recipe.to_dict()):
+
+    def same(d: Any) -> Any:  # a resumed run may ask for more generations
+        return {k: v for k, v in (d or {}).items() if k != "generations"}
+
+    if policy.spec != spec or same(tr.get("recipe")) != same(_jsonable(recipe.to_dict())):
         raise PolicyFileError(f"{where}: --resume needs the same recipe and settings as the run that wrote it")
     if policy.optimiser is None:
         raise PolicyFileError(f"{where}: has no optimiser state (not a training checkpoint)")

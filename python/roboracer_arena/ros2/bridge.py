@@ -33,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from .._core import EVENT_WALL
 from ..errors import InvalidArgumentError
 from ..fileio import check_output
 from . import state_msgs as sm
@@ -149,6 +150,8 @@ class Bridge:
         self._reset_pose: tuple[float, float, float] | None = None
         self.published: collections.Counter = collections.Counter()
         self.drive_latency_s: collections.deque = collections.deque(maxlen=10_000)
+        #: Per car, the simulation calls (each one control period or less) with a wall contact.
+        self.wall_contact_steps = np.zeros(self.src.vehicles, np.int64)
         self.error: BaseException | None = None
         self._wall0 = self._cpu0 = 0.0
         self._periods_done = 0
@@ -227,6 +230,8 @@ class Bridge:
                 "max": round(float(lat.max()) * 1e3, 3),
             },
             "rejected": dict(self.rejected),
+            "laps": [int(v) for v in self.state[0, :, self.src.fields["laps"]]] if "laps" in self.src.fields else None,
+            "wall_contact_steps": [int(v) for v in self.wall_contact_steps],
             "error": None if self.error is None else repr(self.error),
         }
 
@@ -420,6 +425,7 @@ class Bridge:
             self.drive_latency_s.extend((now - ts) * 1e-9 for ts in self._pending_latency)
             self._pending_latency.clear()
         self.src.sim.step(self.actions, n, self.scans if scan else None, self.state, self.events)
+        self.wall_contact_steps += (self.events[0] & EVENT_WALL) != 0
         self.step += n
         self._publish_due(self.schedule.due(self.step))
 
