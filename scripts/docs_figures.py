@@ -155,6 +155,21 @@ def generalisation_block(doc: dict[str, Any]) -> str:
     )
 
 
+def generalisation_readme_block(doc: dict[str, Any]) -> str:
+    s, seeds, n = doc["summary"], doc["seeds"], len(doc["held_out"])
+    rows = [
+        f"| {v['description']} | {_ci(v['clean_lap_rate'], True)} % | {_ci(v['lap_time_ratio'])} |"
+        for v in s.values()
+    ]
+    return (
+        f"On {n} held-out recorded maps, one lap each from the grid start, {seeds} training seeds per "
+        f"condition (95 % intervals over seeds; lap time divided by the reference pure pursuit's on the "
+        f"same map; training about {s.get('pool_rand', next(iter(s.values())))['train_wall_seconds']:.0f} s "
+        f"per policy on the shared 2-core machine, plus about half a minute to load the pool):\n\n"
+        f"| condition | clean laps | lap time / reference |\n|---|---:|---:|\n" + "\n".join(rows) + "\n"
+    )
+
+
 def physx_policies_data(profile: str = "") -> dict[str, Any]:
     """The first PHYSX_SEEDS default-recipe policy files of the generalisation figure on the
     PhysX car (``drive --engine physx --policy``), every held-out map."""
@@ -210,7 +225,10 @@ FIGURES: dict[str, dict[str, Any]] = {
         "run": generalisation_data,
         "picture": None,
         "deterministic": generalisation_deterministic,
-        "blocks": [("BENCHMARKS.md", "generalisation", generalisation_block)],
+        "blocks": [
+            ("BENCHMARKS.md", "generalisation", generalisation_block),
+            ("README.md", "generalisation-readme", generalisation_readme_block),
+        ],
         "about": "bench generalisation: policies on one track vs the pool, held-out recorded maps (about 30 min)",
         "ci": "long",
     },

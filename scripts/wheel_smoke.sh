@@ -96,6 +96,13 @@ from roboracer_arena.envs.tracks import track_from_map_path
 d = track_from_map_path('gen/map.yaml').direction
 assert d == 'clockwise', d
 print('   gen/map.yaml runs', d)"
+step "train a policy from the wheel (tiny budget, no torch) and drive the user's map with it"
+"$BIN/roboracer-arena" train --tracks gen/map.yaml --generations 2 --pairs 2 --no-eval --out policy.npz | tail -n 1
+"$BIN/roboracer-arena" drive gen/map.yaml --policy policy.npz --max-time 30 || [[ $? == 5 ]]
+"$BIN/python" -c "
+import roboracer_arena as ra
+p = ra.load_policy('policy.npz')
+print('   policy.npz:', p.spec.base, p.spec.num_beams, 'beams,', p.training['generation'], 'generations')"
 step "demo"
 "$BIN/python" -m roboracer_arena.demo --out demo
 ls demo

@@ -70,3 +70,24 @@ def test_ctrl_c_keeps_the_last_whole_checkpoint(tmp_path):
     done = ra.load_policy(out).training["generation"]
     assert done >= 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["p.npz"]  # nothing half-written beside it
+
+
+def test_a_policy_trained_once_drives_a_map_the_user_brings(tmp_path, ellipse_map, capsys):
+    from roboracer_arena.envs.single import RoboRacerEnv
+    from roboracer_arena.learn import PolicyDriver, evaluate_policy, policy_env_kwargs
+
+    out = tmp_path / "p.npz"
+    assert main(["train", *TINY, "--generations", "2", "--out", str(out), "--json"]) == 0
+    capsys.readouterr()
+    assert main(["drive", str(ellipse_map), "--policy", str(out), "--json"]) == 0
+    cli_lap = json.loads(capsys.readouterr().out)["lap_times"][0]
+    policy = ra.load_policy(out)
+    (lap,) = evaluate_policy(policy, [str(ellipse_map)])
+    assert lap["clean_lap"] and abs(lap["lap_time"] - cli_lap) < 0.2
+    env = RoboRacerEnv(track=str(ellipse_map), **policy_env_kwargs(policy))
+    driver = PolicyDriver(env, policy)
+    obs, _ = env.reset(seed=0)
+    for _ in range(40):
+        obs, _, terminated, _, info = env.step(driver.act(obs))
+        assert not terminated
+    assert info["progress"] > 3.0
