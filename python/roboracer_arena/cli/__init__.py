@@ -30,6 +30,7 @@ COMMANDS: list[str] = [
     "parse",
     "physx_check",
     "preview",
+    "raceline",
     "ros2",
     "tracks",
     "train",
