@@ -50,6 +50,8 @@ from roboracer_arena import _core
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
 from roboracer_arena.sim_config import SimConfig, VehicleConfig
 
+from .engines_laps import PairedLap
+
 MUS = [0.4, 0.6, 0.83, 1.0]
 MASSES = [0.8, 1.0, 1.5]
 TARGET = 0.10
@@ -196,7 +198,7 @@ def step_steer(car: Any) -> StepSteer:
         if len(above10) and len(above90):
             rise = float(t[above90[0]] - t[above10[0]])
     overshoot = float(max(0.0, r.max() / steady - 1.0)) if steady > 0 else 0.0
-    every = max(1, round(0.01 / car.dt))
+    every = max(1, round(0.02 / car.dt))
     return StepSteer(
         rise_time=rise,
         overshoot=overshoot,
@@ -226,7 +228,7 @@ def cornering(car: Any, sim: SimConfig) -> Cornering:
         speeds = RAMP_V
         y = d[lin] - v.wheelbase * a[lin] / speeds**2  # delta - L r / v with r = a / v
         grad = float(np.polyfit(a[lin], y, 1)[0])
-    every = max(1, round(0.05 / car.dt))
+    every = max(1, round(0.1 / car.dt))
     return Cornering(
         ay_at=at,
         ay_peak=float(a.max()),
@@ -246,7 +248,7 @@ def accel(car: Any, sim: SimConfig) -> Accel:
         vs.append(s["speed"])
         if t5 is None and s["speed"] >= ACCEL_TO:
             t5 = t
-    every = max(1, round(0.02 / car.dt))
+    every = max(1, round(0.05 / car.dt))
     return Accel(
         t_to_5=t5,
         top_speed=float(max(vs)),
@@ -270,7 +272,7 @@ def brake(car: Any) -> Brake:
     t_stop, d_stop = stop if stop else (ts[-1], s["x"] - x0)
     # the first step's travel counts too
     d_stop += BRAKE_V * car.dt
-    every = max(1, round(0.01 / car.dt))
+    every = max(1, round(0.02 / car.dt))
     return Brake(
         distance=float(d_stop),
         time=float(t_stop),
@@ -313,6 +315,7 @@ class EnginesResult(BenchModel):
     target: float
     cells: list[Cell]
     anchor: list[AnchorRow]
+    laps: list[PairedLap] = []
     within_target: int
     compared: int
     seconds: float
@@ -515,6 +518,11 @@ def print_table(res: EnginesResult) -> None:
         print("|---|---:|---:|---:|---:|")
         for a in res.anchor:
             print(f"| {a.car} | {_f(a.real_model)} | {a.ours:.3f} | {a.physx:.3f} | {a.kinematic:.3f} |")
+    if res.laps:
+        from .engines_laps import print_laps
+
+        print("\nClosed loop: pure pursuit at the env's control rate, same stage, both engines")
+        print_laps(res.laps)
     print(f"\nwithin {100 * res.target:.0f} %: {res.within_target} of {res.compared} comparisons ({res.seconds:.0f} s)")
 
 
@@ -554,6 +562,12 @@ def plot(res: EnginesResult, path: Path) -> None:
 def _cli(args: argparse.Namespace) -> int:
     mus, masses = ([0.83], [1.0]) if args.quick else (args.mu or MUS, args.mass or MASSES)
     res = run(mus, masses, with_anchor=args.anchor)
+    if args.laps:
+        from roboracer_arena.paths import default_sources_dir
+
+        from .engines_laps import run_laps
+
+        res = res.model_copy(update={"laps": run_laps(args.sources or default_sources_dir(), quick=args.quick)})
     print_table(res)
     write_json(args.json, res)
     if args.plot:
@@ -576,6 +590,12 @@ def register(kinds: Any) -> None:
     p.add_argument("--mass", type=float, nargs="+", help=f"mass scales (default {MASSES})")
     p.add_argument("--plot", metavar="FILE", type=Path, help="draw the curves to FILE (png)")
     p.add_argument("--anchor", action="store_true", help="the real-car anchor rows (ForzaETH presets)")
+    p.add_argument(
+        "--laps", action="store_true", help="closed loop: pure pursuit laps on three stages in both engines (minutes)"
+    )
+    p.add_argument(
+        "--sources", metavar="DIR", type=Path, help="track sources for --laps (default: ../shared/track-sources)"
+    )
     p.add_argument("--tyre-plot", metavar="FILE", type=Path, help="draw the tyre curves beside the real-car fits")
     p.add_argument(
         "--vehicle-data",

@@ -561,6 +561,108 @@ def physx_deterministic(doc: Doc) -> Any:
     return [{"track": r["track"]} | {k: {f: r[k][f] for f in keep} for k in ("ours", "physx")} for r in doc["result"]]
 
 
+# ---------------------------------------------------------------- engines (issue 36)
+_LAT = [
+    ("step rise time (s)", "rise (s)"),
+    ("step overshoot", "overshoot"),
+    ("step gain (1/s)", "gain (1/s)"),
+    ("understeer gradient (rad s^2/m)", "K (rad s²/m)"),
+    ("a_y at steer 0.10 (m/s^2)", "a_y @0.10"),
+    ("a_y at steer 0.20 (m/s^2)", "a_y @0.20"),
+    ("peak a_y (m/s^2)", "peak a_y"),
+]
+_LON = [
+    ("0-5 m/s (s)", "0-5 m/s (s)"),
+    ("top speed (m/s)", "top speed (m/s)"),
+    ("braking distance (m)", "stop from 5 m/s (m)"),
+    ("braking time (s)", "stop time (s)"),
+    ("a_y at steer 0.05 (m/s^2)", "a_y @0.05"),
+    ("a_y at steer 0.15 (m/s^2)", "a_y @0.15"),
+]
+
+
+def _pair(v: dict[str, Any], target: float, digits: int = 3) -> str:
+    def f(x: float | None) -> str:
+        return "–" if x is None else f"{x:.{digits}f}"
+
+    d = v["diff"]
+    pct = "–" if d is None else f"{100 * d:.1f} %"
+    if d is not None and d > target:
+        pct = f"**{pct}**"
+    return f"{f(v['ours'])} / {f(v['physx'])} ({pct})"
+
+
+def _lap(x: float | None) -> str:
+    return "no lap" if x is None else f"{x:.2f}"
+
+
+def engines_block(doc: Doc) -> str:
+    r = doc["result"]
+    t = r["target"]
+    lines = [header(doc, "engines", timed=False), ""]
+    for cols, what in ((_LAT, "yaw and cornering"), (_LON, "straight line, and the cornering samples left")):
+        lines += [
+            f"Open loop, {what}: ours / PhysX (difference; **bold** above {100 * t:.0f} %):",
+            "",
+            "| mu | mass x | " + " | ".join(h for _, h in cols) + " |",
+            "|---:|---:|" + "---:|" * len(cols),
+        ]
+        for c in r["cells"]:
+            cells = " | ".join(_pair(c["metrics"][k], t) for k, _ in cols)
+            lines.append(f"| {c['mu']:g} | {c['mass_scale']:g} | {cells} |")
+        lines.append("")
+    lines.append(
+        f"Within {100 * t:.0f} %: **{r['within_target']} of {r['compared']}** comparisons "
+        "(overshoot compared absolutely, as a fraction of the steady value)."
+    )
+    if r.get("anchor"):
+        lines += [
+            "",
+            "Real-car anchor: steady yaw rate (rad/s) at 5 m/s and 0.05 rad of steer:",
+            "",
+            "| car | real car's identified model | ours | PhysX | kinematic |",
+            "|---|---:|---:|---:|---:|",
+        ]
+        for a in r["anchor"]:
+            real = "–" if a["real_model"] is None else f"{a['real_model']:.3f}"
+            lines.append(f"| {a['car']} | {real} | {a['ours']:.3f} | {a['physx']:.3f} | {a['kinematic']:.3f} |")
+    if r.get("laps"):
+        lines += [
+            "",
+            "Closed loop: the reference pure pursuit at the env's control rate (20 Hz) on the same stage; RMS of the "
+            "difference between the engines at the same arc length:",
+            "",
+            "| track | car | lap ours (s) | lap PhysX (s) | difference | lateral error mean / max, ours (m) | PhysX (m) "
+            "| RMS speed (m/s) | RMS yaw rate (rad/s) | RMS steer (rad) | RMS offset (m) |",
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        for p in r["laps"]:
+            lap = _lap
+            d = p["lap_diff"]
+            diff = "–" if d is None else (f"{100 * d:.1f} %" if d <= 0.05 else f"**{100 * d:.1f} %**")
+            lines.append(
+                f"| {p['track']} | {p['condition']} | {lap(p['ours_lap_s'])} | {lap(p['physx_lap_s'])} | {diff} | "
+                f"{p['ours_lateral_mean_m']:.3f} / {p['ours_lateral_max_m']:.3f} | "
+                f"{p['physx_lateral_mean_m']:.3f} / {p['physx_lateral_max_m']:.3f} | {p['rms_speed_m_s']:.3f} | "
+                f"{p['rms_yaw_rate']:.3f} | {p['rms_steer_rad']:.4f} | {p['rms_lateral_offset_m']:.3f} |"
+            )
+    return "\n".join(lines) + "\n"
+
+
+def engines_picture(doc: Doc) -> None:
+    from benchmarks.engines import EnginesResult, plot, plot_tyres
+
+    res = EnginesResult.model_validate(doc["result"])
+    plot(res, FIGURE_DATA / "engines.png")
+    plot_tyres(FIGURE_DATA / "engines-tyres.png", _vehicle_data())
+
+
+def _vehicle_data() -> Path:
+    from benchmarks.engines import _default_vehicle_data
+
+    return _default_vehicle_data()
+
+
 # ---------------------------------------------------------------- the registry of bench figures
 # ci: "rerun" = CI reruns the command (seconds) and compares the deterministic part;
 #     "long"  = only `make docs-figures` reruns it (minutes); CI checks block == data;
@@ -664,6 +766,14 @@ BENCH_FIGURES: dict[str, dict[str, Any]] = {
         "run": physx_run,
         "blocks": [("BENCHMARKS.md", "physx-laps", physx_block)],
         "deterministic": physx_deterministic,
+        "ci": "long",
+    },
+    "engines": {
+        "about": "bench engines --anchor --laps: one car open loop and closed loop in ours and PhysX (physx extra, ~15 min)",
+        "run": _cmd(("engines", ["bench", "engines", "--anchor", "--laps"])),
+        "blocks": [("BENCHMARKS.md", "engines", engines_block)],
+        "picture": engines_picture,
+        "deterministic": None,
         "ci": "long",
     },
 }

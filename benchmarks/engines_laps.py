@@ -1,0 +1,214 @@
+"""Closed loop for ``python -m benchmarks engines --laps``: the same pure pursuit at the
+same control rate (the env's, 20 Hz) on the same stage in both engines (issue 36).
+
+Stages: a recorded map (f1tenth-gym Berlin), a circuit (Monaco at 1:10) and a generated
+track (40 m, seed 3), each built with ``build --car``; on Berlin also the conditions of the
+issue's table (mu 0.4, mass x1.5, mass x2) and the NUC6 preset (ForzaETH's real car). Each
+run is a :class:`roboracer_arena.physx.drive.Trace`; the pair is compared on arc length
+along the centreline (5 cm bins): lap time, lateral error, and the RMS difference of
+speed, yaw rate and steering between the engines at the same place on the track.
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from roboracer_arena.bench.output import BenchModel
+from roboracer_arena.sim_config import SimConfig, VehicleConfig
+
+LAP_TARGET = 0.05
+
+
+class PairedLap(BenchModel):
+    """One stage and condition: both engines' lap time (s; None = no lap), mean and max
+    lateral error (m), and the RMS differences at the same arc length."""
+
+    track: str
+    condition: str
+    length_m: float
+    ours_lap_s: float | None
+    physx_lap_s: float | None
+    lap_diff: float | None
+    ours_lateral_mean_m: float
+    ours_lateral_max_m: float
+    physx_lateral_mean_m: float
+    physx_lateral_max_m: float
+    rms_speed_m_s: float
+    rms_yaw_rate: float
+    rms_steer_rad: float
+    rms_lateral_offset_m: float
+    traces: dict[str, dict[str, list[float]]]
+
+
+def _arc(track: Any, run: Any) -> np.ndarray:
+    """Unwrapped arc length (m) of each sample of ``run`` along the track's centreline."""
+    from roboracer_arena.drivers import PurePursuitDriver
+
+    ref = PurePursuitDriver(track.centreline)
+    n = len(ref.points)
+    out, s, last = [], 0.0, None
+    for x, y in zip(run.x, run.y):
+        i = ref.project(x, y)
+        if last is not None:
+            s += ((i - last + n // 2) % n - n // 2) * ref.ds
+        last = i
+        out.append(s)
+    return np.asarray(out)
+
+
+def _signed_offset(track: Any, run: Any) -> np.ndarray:
+    """Signed lateral offset (m, left positive) of each sample from the centreline."""
+    from roboracer_arena.drivers import PurePursuitDriver
+
+    ref = PurePursuitDriver(track.centreline)
+    pts = ref.points
+    out = []
+    for x, y in zip(run.x, run.y):
+        i = ref.project(x, y)
+        a, b = pts[i], pts[(i + 1) % len(pts)]
+        t = b - a
+        out.append(float(np.cross(t / (np.linalg.norm(t) + 1e-12), np.array([x, y]) - a)))
+    return np.asarray(out)
+
+
+def compare(track: Any, name: str, condition: str, ours: Any, physx: Any) -> PairedLap:
+    """The paired comparison of two runs on ``track``."""
+    so, sp = _arc(track, ours), _arc(track, physx)
+    end = min(so[-1], sp[-1])
+    grid = np.arange(0.5, end, 0.05)
+    cols = {
+        "speed": (ours.speed, physx.speed),
+        "yaw_rate": (ours.yaw_rate, physx.yaw_rate),
+        "steer": (ours.steer, physx.steer),
+        "offset": (_signed_offset(track, ours), _signed_offset(track, physx)),
+    }
+    rms = {}
+    for k, (a, b) in cols.items():
+        ia = np.interp(grid, so, np.asarray(a))
+        ib = np.interp(grid, sp, np.asarray(b))
+        rms[k] = float(np.sqrt(np.mean((ia - ib) ** 2))) if len(grid) else float("nan")
+    lo, lp = ours.lap_time_s, physx.lap_time_s
+    every = 4
+    traces = {
+        run.engine: {
+            "s": [round(float(x), 3) for x in arc[::every]],
+            "t": [round(x, 3) for x in run.t[::every]],
+            "speed": [round(x, 4) for x in run.speed[::every]],
+            "yaw_rate": [round(x, 4) for x in run.yaw_rate[::every]],
+            "steer": [round(x, 4) for x in run.steer[::every]],
+            "lateral_error": [round(x, 4) for x in run.lateral_error[::every]],
+        }
+        for run, arc in ((ours, so), (physx, sp))
+    }
+    return PairedLap(
+        track=name,
+        condition=condition,
+        length_m=float(track.length),
+        ours_lap_s=lo,
+        physx_lap_s=lp,
+        lap_diff=abs(lp - lo) / lo if lo and lp else None,
+        ours_lateral_mean_m=float(np.mean(ours.lateral_error)),
+        ours_lateral_max_m=float(np.max(ours.lateral_error)),
+        physx_lateral_mean_m=float(np.mean(physx.lateral_error)),
+        physx_lateral_max_m=float(np.max(physx.lateral_error)),
+        rms_speed_m_s=rms["speed"],
+        rms_yaw_rate=rms["yaw_rate"],
+        rms_steer_rad=rms["steer"],
+        rms_lateral_offset_m=rms["offset"],
+        traces=traces,
+    )
+
+
+def _stages(sources: Path, work: Path) -> dict[str, Path]:
+    from roboracer_arena import TrackSpec, generate_track
+    from roboracer_arena.cli import main
+    from roboracer_arena.generate import write_outputs
+
+    if main(["circuits", "--sources", str(sources), "-o", str(work), "--only", "monaco", "--jobs", "1"]) != 0:
+        raise RuntimeError("could not build the Monaco circuit")
+    gen = write_outputs(generate_track(TrackSpec(lap_length_m=40.0), seed=3), work / "generated")
+    return {
+        "berlin (recorded)": sources / "f1tenth-gym" / "maps" / "berlin.yaml",
+        "monaco (circuit, 1:10)": work / "monaco" / "map.yaml",
+        "generated (40 m, seed 3)": gen["map_yaml"],
+    }
+
+
+def conditions() -> dict[str, SimConfig]:
+    """The Berlin conditions: the paper's car, mu 0.4, mass x1.5, mass x2 (yaw inertia
+    unchanged, as the issue's runs), and ForzaETH's NUC6."""
+    from roboracer_arena.vehicle_presets import forzaeth_preset
+
+    base = VehicleConfig()
+
+    def veh(**kw: float) -> SimConfig:
+        return SimConfig(vehicle=VehicleConfig(**{**base.model_dump(), **kw}))
+
+    return {
+        "paper's car": SimConfig(),
+        "mu 0.4": veh(tyre_friction=0.4),
+        "mass x1.5": veh(mass=1.5 * base.mass),
+        "mass x2": veh(mass=2.0 * base.mass),
+        "NUC6 preset": SimConfig(vehicle=forzaeth_preset("NUC6")),
+    }
+
+
+def run_laps(sources: Path, max_seconds: float = 150.0, quick: bool = False, progress: bool = True) -> list[PairedLap]:
+    """Every stage with the paper's car, and Berlin under every condition (``quick``: Berlin only)."""
+    from roboracer_arena.builder import build_environment
+    from roboracer_arena.physx.check import track_of_stage
+    from roboracer_arena.physx.drive import drive_native, drive_physx, pure_pursuit
+    from roboracer_arena.usd.vehicle import replace_car
+
+    out = []
+    t0 = time.perf_counter()
+    with tempfile.TemporaryDirectory() as tmp:
+        work = Path(tmp)
+        stages = _stages(sources, work)
+        if quick:
+            stages = dict(list(stages.items())[:1])
+        for k, (name, map_yaml) in enumerate(stages.items()):
+            conds = conditions() if name.startswith("berlin") else {"paper's car": SimConfig()}
+            for cname, sim in conds.items():
+                stage = work / f"{k}-{len(out)}.usdc"
+                build_environment(map_yaml, stage, car=True)
+                replace_car(stage, sim)
+                track = track_of_stage(stage)
+                ours = drive_native(track, pure_pursuit(track), sim, max_seconds=max_seconds)
+                physx = drive_physx(stage, pure_pursuit(track), sim, track=track, max_seconds=max_seconds, scan=False)
+                out.append(compare(track, name, cname, ours, physx))
+                if progress:
+                    r = out[-1]
+                    print(
+                        f"  {name}, {cname}: ours {r.ours_lap_s} s, PhysX {r.physx_lap_s} s "
+                        f"({time.perf_counter() - t0:.0f} s)",
+                        flush=True,
+                    )
+    return out
+
+
+def _f(x: float | None, fmt: str = ".2f") -> str:
+    return "no lap" if x is None else format(x, fmt)
+
+
+def print_laps(rows: list[PairedLap]) -> None:
+    print(
+        "| track | car | lap ours (s) | lap PhysX (s) | difference | lateral error mean / max, ours (m) | PhysX (m) | RMS speed (m/s) | RMS yaw rate (rad/s) | RMS steer (rad) | RMS offset (m) |"
+    )
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        d = (
+            "–"
+            if r.lap_diff is None
+            else f"{100 * r.lap_diff:.1f} %" + ("" if r.lap_diff <= LAP_TARGET else " **miss**")
+        )
+        print(
+            f"| {r.track} | {r.condition} | {_f(r.ours_lap_s)} | {_f(r.physx_lap_s)} | {d} | "
+            f"{r.ours_lateral_mean_m:.3f} / {r.ours_lateral_max_m:.3f} | {r.physx_lateral_mean_m:.3f} / {r.physx_lateral_max_m:.3f} | "
+            f"{r.rms_speed_m_s:.3f} | {r.rms_yaw_rate:.3f} | {r.rms_steer_rad:.4f} | {r.rms_lateral_offset_m:.3f} |"
+        )
