@@ -68,7 +68,9 @@ class Policy:
             arrays.update({f"adam_{k}": np.asarray(v, np.float64) for k, v in self.optimiser.items()})
         header = json.dumps(self.header(), sort_keys=True, allow_nan=False).encode()
         buf = io.BytesIO()
-        np.savez(buf, header=np.frombuffer(header, dtype=np.uint8), **arrays)
+        arrays["header"] = np.frombuffer(header, dtype=np.uint8)
+        savez: Any = np.savez  # numpy's stub types **arrays as its keyword flags
+        savez(buf, **arrays)
         return buf.getvalue()
 
     def save(self, path: str | Path) -> Path:

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..drivers import PurePursuitParams
+from ..envs.env_config import EnvConfig
 from ..errors import PolicyFileError
 from .policy import PolicySpec, act
 from .pursuit_base import PursuitBase
@@ -133,8 +134,6 @@ def policy_controller(policy: Any, track: Any, lidar_beams: int, lidar_fov: floa
     them, :func:`scan_indices`), ``odometry`` a mapping with ``x, y, yaw`` (map frame),
     ``vx`` (forward speed) and ``steer``. ``config``: the env config whose car the base
     pure pursuit steers (default :class:`~roboracer_arena.envs.env_config.EnvConfig`)."""
-    from ..envs.env_config import EnvConfig
-
     spec = policy.spec
     beams = scan_indices(spec, int(lidar_beams), float(lidar_fov))
     base = None

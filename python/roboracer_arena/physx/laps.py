@@ -18,7 +18,12 @@ from typing import Any
 
 import numpy as np
 
+from ..builder import build_environment
+from ..catalog.catalog_file import load_catalog
+from ..catalog.tracks import entry_track
+from ..envs.tracks import resolve_tracks
 from ..frozen_model import FrozenModel
+from .drive import drive_physx
 
 #: A footprint point closer than this to a wall counts as a contact (m).
 CONTACT_M = 0.02
@@ -45,10 +50,6 @@ class PhysxLap(FrozenModel):
 
 def map_and_track(map_arg: str | Path) -> tuple[Path, Any]:
     """``(map YAML, Track in its racing direction)`` for a map path or a catalog id."""
-    from ..catalog.catalog_file import load_catalog
-    from ..catalog.tracks import entry_track
-    from ..envs.tracks import resolve_tracks
-
     p = Path(map_arg)
     if p.suffix.lower() in (".yaml", ".yml") or p.is_file():
         return p, resolve_tracks([str(p)])[0]
@@ -85,9 +86,6 @@ def physx_lap(
     """Drive one lap of ``map_arg`` on the PhysX car (see the module docstring).
     ``controller_for(track) -> controller(scan, odometry)``; ``sim``: the car's and lidar's
     config (a :class:`~roboracer_arena.sim_config.SimConfig`)."""
-    from ..builder import build_environment
-    from .drive import drive_physx
-
     yaml_path, track = map_and_track(map_arg)
     limit = max_seconds if max_seconds is not None else track.length / 0.5 + 30.0
     with tempfile.TemporaryDirectory(prefix="roboracer-physx-") as tmp:
