@@ -41,7 +41,6 @@ PUBLIC_PRIVATES = {"_core", "_asdict", "_replace", "_fields", "_make"}
 # sub-command's parser (cli/__init__.make_parser), so a module-level import in cli/ is paid
 # by every command; these load pxr, PIL or the env stack only when their command runs.
 _CLI = "CLI start-up: loads pxr/PIL/the env stack only when the sub-command runs"
-_NEXT = "file rewritten by a parallel issue #24 branch (see reason); hoist after that merge"
 
 #: (file relative to the package, imported module as written) -> why it stays local.
 ALLOWED_LOCAL: dict[tuple[str, str], str] = {
