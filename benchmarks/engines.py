@@ -560,6 +560,15 @@ def plot(res: EnginesResult, path: Path) -> None:
 
 
 def _cli(args: argparse.Namespace) -> int:
+    if args.mass_study:
+        from roboracer_arena.paths import default_sources_dir
+
+        from .engines_laps import MassStudy, mass_study, print_mass
+
+        study = MassStudy(rows=mass_study(args.sources or default_sources_dir()))
+        print_mass(study.rows)
+        write_json(args.json, study)
+        return 0
     mus, masses = ([0.83], [1.0]) if args.quick else (args.mu or MUS, args.mass or MASSES)
     res = run(mus, masses, with_anchor=args.anchor)
     if args.laps:
@@ -592,6 +601,11 @@ def register(kinds: Any) -> None:
     p.add_argument("--anchor", action="store_true", help="the real-car anchor rows (ForzaETH presets)")
     p.add_argument(
         "--laps", action="store_true", help="closed loop: pure pursuit laps on three stages in both engines (minutes)"
+    )
+    p.add_argument(
+        "--mass-study",
+        action="store_true",
+        help="only: why a heavier car laps Berlin faster in our engine (speed vs the driver's plan)",
     )
     p.add_argument(
         "--sources", metavar="DIR", type=Path, help="track sources for --laps (default: ../shared/track-sources)"

@@ -212,3 +212,71 @@ def print_laps(rows: list[PairedLap]) -> None:
             f"{r.ours_lateral_mean_m:.3f} / {r.ours_lateral_max_m:.3f} | {r.physx_lateral_mean_m:.3f} / {r.physx_lateral_max_m:.3f} | "
             f"{r.rms_speed_m_s:.3f} | {r.rms_yaw_rate:.3f} | {r.rms_steer_rad:.4f} | {r.rms_lateral_offset_m:.3f} |"
         )
+
+
+class MassRow(BenchModel):
+    """One car on Berlin in our engine: lap time (s), mean speed and command (m/s), the share
+    of control steps above the command by more than 0.05 m/s and the mean excess there."""
+
+    car: str
+    lap_s: float | None
+    mean_speed: float
+    mean_command: float
+    above_command: float
+    mean_excess: float
+    max_lateral_error_m: float
+
+
+def mass_study(sources: Path, max_seconds: float = 60.0) -> list[MassRow]:
+    """Why a heavier car laps Berlin faster in our engine: the pure pursuit's speed plan with
+    the paper's car, mass x1.5 and x2 (yaw inertia kept, as the issue's runs, and scaled),
+    and the paper's car with half the braking or half the driving current."""
+    from roboracer_arena.envs.tracks import resolve_tracks
+    from roboracer_arena.physx.drive import drive_native, pure_pursuit
+
+    track = resolve_tracks(str(sources / "f1tenth-gym" / "maps" / "berlin.yaml"))[0]
+    base = VehicleConfig()
+    cars = {
+        "paper's car": {},
+        "mass x1.5": {"mass": 1.5 * base.mass},
+        "mass x2": {"mass": 2 * base.mass},
+        "mass x2, yaw inertia x2": {"mass": 2 * base.mass, "yaw_inertia": 2 * base.yaw_inertia},
+        "max_brake_current x0.5": {"max_brake_current": 0.5 * base.max_brake_current},
+        "max_motor_current x0.5": {"max_motor_current": 0.5 * base.max_motor_current},
+    }
+    rows = []
+    for name, upd in cars.items():
+        sim = SimConfig(vehicle=VehicleConfig(**{**base.model_dump(), **upd}))
+        r = drive_native(track, pure_pursuit(track), sim, max_seconds=max_seconds)
+        v, c = np.asarray(r.speed), np.asarray(r.speed_cmd)
+        over = v - c
+        rows.append(
+            MassRow(
+                car=name,
+                lap_s=r.lap_time_s,
+                mean_speed=float(v.mean()),
+                mean_command=float(c.mean()),
+                above_command=float(np.mean(over > 0.05)),
+                mean_excess=float(over[over > 0].mean()) if (over > 0).any() else 0.0,
+                max_lateral_error_m=float(max(r.lateral_error)),
+            )
+        )
+    return rows
+
+
+class MassStudy(BenchModel):
+    """``python -m benchmarks engines --mass-study``."""
+
+    rows: list[MassRow]
+
+
+def print_mass(rows: list[MassRow]) -> None:
+    print(
+        "| car (ours, Berlin, pure pursuit) | lap (s) | mean speed (m/s) | mean command (m/s) | time above command | mean excess (m/s) | max lateral error (m) |"
+    )
+    print("|---|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        print(
+            f"| {r.car} | {_f(r.lap_s)} | {r.mean_speed:.3f} | {r.mean_command:.3f} | {100 * r.above_command:.0f} % | "
+            f"{r.mean_excess:.3f} | {r.max_lateral_error_m:.3f} |"
+        )
