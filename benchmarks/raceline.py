@@ -12,8 +12,9 @@ whose longitudinal envelope ``--fit-preset`` reads from their files):
   and the margin) with our profile; the target is ``ours <= published + 1 %``;
 * **seconds**: the time to plan it (one core).
 
-``--drive`` adds the driven laps in our physics: the racing driver on a raceline planned
-with the car's own limits (scaled by ``--driver-scale``) beside its planned time, and the
+``--drive`` adds the laps in our physics with the car's own limits: the planned lap with
+the full measured limits, the racing driver's plan (the limits derated for it,
+:mod:`roboracer_arena.raceline.driver`) and its driven flying lap, and the reference
 pure-pursuit centreline lap (``drivers.drive_laps``, reference settings).
 """
 
@@ -49,7 +50,8 @@ class RacelineRow(BenchModel):
     ratio: float
     seconds: float
     min_wall_clearance_m: float
-    driven_planned_s: float | None = None
+    car_planned_s: float | None = None
+    driver_planned_s: float | None = None
     driven_s: float | None = None
     driven_clean: bool | None = None
     centreline_pp_s: float | None = None
@@ -114,11 +116,7 @@ def fit_f1tenth_limits(files: list[Path]) -> VehicleLimits:
 
 
 def run(
-    ids: list[str] | None = None,
-    margin: float = 0.10,
-    drive: bool = False,
-    driver_scale: float = 0.8,
-    sources: Path | None = None,
+    ids: list[str] | None = None, margin: float = 0.10, drive: bool = False, sources: Path | None = None
 ) -> RacelineResult:
     lim = preset("f1tenth-racetracks")
     rows = []
@@ -144,7 +142,7 @@ def run(
             min_wall_clearance_m=round(ours.min_clearance, 3),
         )
         if drive:
-            row.update(_drive(tid, track, margin, driver_scale))
+            row.update(_drive(tid, track))
         rows.append(RacelineRow(**row))
         _print_row(rows[-1])
     ratios = [r.ratio for r in rows]
@@ -161,16 +159,21 @@ def run(
     )
 
 
-def _drive(tid: str, track, margin: float, scale: float) -> dict:
+def _drive(tid: str, track) -> dict:
+    """The racing driver on its line (the car's limits derated, :mod:`raceline.driver`):
+    its plan and its flying lap (the second from a standing start), the plan with the
+    car's full limits, and the reference pure pursuit's centreline lap."""
     from roboracer_arena.drivers import drive_laps
-    from roboracer_arena.raceline.driver import drive_raceline
+    from roboracer_arena.raceline.driver import drive_raceline, plan_for_driver
 
-    line = plan_raceline(track, preset("car").scaled(scale), margin=margin)
-    r = drive_raceline(tid, line, 1)
+    full = plan_raceline(track, preset("car"))
+    line = plan_for_driver(track)
+    r = drive_raceline(tid, line, 2)
     pp = drive_laps(tid, 1)
     return {
-        "driven_planned_s": round(line.lap_time, 3),
-        "driven_s": r.lap_times[0] if r.lap_times else None,
+        "car_planned_s": round(full.lap_time, 3),
+        "driver_planned_s": round(line.lap_time, 3),
+        "driven_s": r.lap_times[-1] if r.completed and r.lap_times else None,
         "driven_clean": bool(r.completed),
         "centreline_pp_s": pp.lap_times[0] if pp.lap_times and pp.completed else None,
     }
@@ -184,15 +187,18 @@ def _print_row(r: RacelineRow) -> None:
         f"{r.id:28s} {r.published_s:9.2f} {r.their_line_our_profile_s:9.2f} {r.ours_s:8.2f} "
         f"{r.ratio:7.4f} {r.seconds:7.2f} {r.min_wall_clearance_m:6.3f}"
     )
-    if r.driven_planned_s is not None:
+    if r.driver_planned_s is not None:
         d = f"{r.driven_s:.2f}" if r.driven_s is not None else "-"
         c = f"{r.centreline_pp_s:.2f}" if r.centreline_pp_s is not None else "-"
-        line += f" | car plan {r.driven_planned_s:6.2f} driven {d:>6s} {'clean' if r.driven_clean else 'CONTACT'} pp {c:>6s}"
+        line += (
+            f" | car plan {r.car_planned_s:6.2f} driver plan {r.driver_planned_s:6.2f} driven {d:>6s} "
+            f"{'clean' if r.driven_clean else 'CONTACT'} centreline pp {c:>6s}"
+        )
     print(line, flush=True)
 
 
 def markdown(res: RacelineResult) -> str:
-    """The table for BENCHMARKS.md."""
+    """The tables for BENCHMARKS.md."""
     out = [
         "| track | published (s) | their line, our profile (s) | ours (s) | ours / published | plan time (s) |",
         "|---|---:|---:|---:|---:|---:|",
@@ -202,6 +208,20 @@ def markdown(res: RacelineResult) -> str:
             f"| {r.id} | {r.published_s:.2f} | {r.their_line_our_profile_s:.2f} | {r.ours_s:.2f} | "
             f"{r.ratio:.4f} | {r.seconds:.2f} |"
         )
+    if any(r.driver_planned_s is not None for r in res.rows):
+        out += [
+            "",
+            "| track | planned, car limits (s) | racing driver: plan (s) | driven flying lap (s) | clean "
+            "| pure pursuit, centreline (s) |",
+            "|---|---:|---:|---:|---|---:|",
+        ]
+        for r in res.rows:
+            d = f"{r.driven_s:.2f}" if r.driven_s is not None else "-"
+            c = f"{r.centreline_pp_s:.2f}" if r.centreline_pp_s is not None else "-"
+            out.append(
+                f"| {r.id} | {r.car_planned_s:.2f} | {r.driver_planned_s:.2f} | {d} | "
+                f"{'yes' if r.driven_clean else 'no'} | {c} |"
+            )
     return "\n".join(out)
 
 
@@ -233,7 +253,7 @@ def _main(args: argparse.Namespace) -> int:
         atomic_write_text(PRESET_FILE, limits_json(lim))
         print(f"wrote {PRESET_FILE}")
     print(HEADER)
-    res = run(args.ids, args.margin, args.drive, args.driver_scale, args.sources)
+    res = run(args.ids, args.margin, args.drive, args.sources)
     print(
         f"{res.within_target}/{len(res.rows)} within {100 * (TARGET_RATIO - 1):.0f} % of the published lap time; "
         f"worst ratio {res.worst_ratio:.4f}; median plan time {res.median_seconds:.2f} s; "

@@ -40,6 +40,11 @@ def register(sub) -> None:
     )
     p.add_argument("--policy", type=Path, metavar="FILE", help="drive this policy file instead of the pure pursuit")
     p.add_argument(
+        "--raceline",
+        action="store_true",
+        help="race the track's raceline at its planned speeds (the racing driver) instead of the centreline",
+    )
+    p.add_argument(
         "--engine",
         choices=("ours", "physx"),
         default="ours",
@@ -79,6 +84,15 @@ def run(args: argparse.Namespace) -> int:
 
         policy = load_policy(args.policy)
         extra = {"controller": lambda env: PolicyDriver(env, policy), **policy_env_kwargs(policy)}
+    if args.raceline:
+        if args.reverse or args.policy is not None or args.engine == "physx":
+            raise InvalidArgumentError(
+                "--raceline drives our engine's pure pursuit the racing way: no --reverse, --policy or --engine physx"
+            )
+        from ..raceline.driver import raceline_drive_kwargs_for
+
+        race = raceline_drive_kwargs_for(args.map, wrapper)
+        params, wrapper, extra = race["params"], race["env_wrapper"], {"path": race["path"]}
     if args.engine == "physx":
         from .drive_physx import run_physx
 

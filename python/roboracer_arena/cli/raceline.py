@@ -67,6 +67,13 @@ def register(sub) -> None:
         metavar="FILE.json",
         help="drive the simulator's car to measure its limits (ggv, motor curve, v_max) and write them to FILE",
     )
+    p.add_argument(
+        "--catalog",
+        metavar="SELECTION",
+        help="library job: plan and race every catalog track of SELECTION (all, circuits, recorded, generated, "
+        "or ids) into tracks/racelines.json; staged per track, a rerun skips what is recorded",
+    )
+    p.add_argument("--redo", action="store_true", help="with --catalog: plan again tracks already recorded")
     add_json_flag(p)
     p.set_defaults(func=run, output_dirs=("out",))
 
@@ -97,6 +104,8 @@ def run(args: argparse.Namespace) -> int:
             print(f"wrote {args.measure_limits}: v_max {lim.v_max:.2f} m/s, {len(lim.ggv)} ggv rows")
         if args.map is None:
             return 0
+    if args.catalog is not None:
+        return _catalog_job(args)
     if args.map is None:
         raise InvalidArgumentError("give a map YAML or a catalog id (or only --measure-limits FILE)")
     outputs = _outputs(args)
@@ -138,6 +147,46 @@ def run(args: argparse.Namespace) -> int:
         )
         for p in written:
             print(f"  wrote {p}")
+    return 0
+
+
+def _catalog_job(args: argparse.Namespace) -> int:
+    from ..catalog.catalog_file import load_catalog
+    from ..library.racelines import build_racelines
+
+    ids = [e.id for e in load_catalog().select_many(args.catalog.split(","))]
+    done = [0]
+
+    def report(rec) -> None:
+        done[0] += 1
+        d = rec.driver
+        drive = (
+            f"driver plan {d.planned_s:.2f} s, driven {d.driven_s if d.driven_s is not None else '-'}"
+            f"{'' if d.clean else ' CONTACT'}"
+            if d
+            else ""
+        )
+        what = rec.error or f"{rec.length_m:.1f} m, planned lap {rec.lap_time_s:.2f} s; {drive}"
+        if not args.json:
+            print(f"[{done[0]}/{len(ids)}] {rec.id}: {what}", flush=True)
+
+    index = build_racelines(ids, redo=args.redo, progress=report)
+    recs = [r for r in index.records if r.id in set(ids)]
+    clean = sum(1 for r in recs if r.driver and r.driver.clean)
+    within = sum(1 for r in recs if r.driver and r.driver.within_5pct)
+    summary = {
+        "tracks": len(recs),
+        "planned": sum(r.error is None for r in recs),
+        "driver_clean": clean,
+        "driver_within_5pct": within,
+    }
+    if args.json:
+        print_json(summary)
+    else:
+        print(
+            f"{summary['planned']}/{len(recs)} tracks planned; the racing driver lapped {clean} cleanly, "
+            f"{within} within 5 % of its plan"
+        )
     return 0
 
 

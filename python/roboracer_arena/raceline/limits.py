@@ -90,17 +90,19 @@ class VehicleLimits(FrozenModel):
         doc = {k: v for k, v in self.model_dump(mode="json").items() if k not in ("name", "source")}
         return hashlib.sha1(json.dumps(doc, sort_keys=True).encode()).hexdigest()
 
-    def scaled(self, factor: float) -> VehicleLimits:
-        """A copy with every acceleration (tyre and motor) times ``factor`` (0 < factor <= 1),
-        e.g. the share of the car's grip a driver is to use."""
-        if not 0.0 < factor <= 1.0:
-            raise ConfigError(f"limits scale must be in (0, 1], got {factor}")
+    def scaled(self, factor: float, longitudinal: float | None = None) -> VehicleLimits:
+        """A copy with the lateral limit times ``factor`` and the longitudinal ones (tyre and
+        motor) times ``longitudinal`` (default ``factor``), each in (0, 1]: the share of the
+        car's grip a driver is to use."""
+        lon = factor if longitudinal is None else longitudinal
+        if not (0.0 < factor <= 1.0 and 0.0 < lon <= 1.0):
+            raise ConfigError(f"limits scales must be in (0, 1], got {factor} and {lon}")
         return type(self).model_validate(
             {
                 **self.to_json_dict(),
-                "name": f"{self.name} x{factor:g}",
-                "ggv": [(v, ax * factor, ay * factor) for v, ax, ay in self.ggv],
-                "ax_max_machines": [(v, a * factor) for v, a in self.ax_max_machines],
+                "name": f"{self.name} x{factor:g}" + ("" if lon == factor else f"/x{lon:g}"),
+                "ggv": [(v, ax * lon, ay * factor) for v, ax, ay in self.ggv],
+                "ax_max_machines": [(v, a * lon) for v, a in self.ax_max_machines],
             }
         )
 
