@@ -10,6 +10,8 @@ partial or redirected output behind. Every ``OSError`` becomes a one-line
 
 from __future__ import annotations
 
+import errno
+import fcntl
 import json
 import os
 import shutil
@@ -20,10 +22,15 @@ import weakref
 from collections.abc import Callable, Container, Iterable, Iterator, Sequence
 from contextlib import contextmanager, suppress
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
+
+from pydantic import BaseModel, ValidationError
 
 from .errors import InvalidArgumentError, MapFormatError, MapIOError
 from .maps import image_named_by
+from .strict import validation_line
+
+M = TypeVar("M", bound=BaseModel)
 
 _UMASK = os.umask(0)  # read the process umask once (os.umask can only read by setting)
 os.umask(_UMASK)
@@ -32,6 +39,8 @@ os.umask(_UMASK)
 MAX_TEXT_BYTES = 16 << 20
 #: Longest file name most file systems accept, in bytes.
 MAX_NAME_BYTES = 255
+#: Deepest nesting of arrays and objects a JSON input may have (ours need fewer than 8).
+MAX_JSON_DEPTH = 64
 
 
 _HELD_SIGNALS = {signal.SIGINT, signal.SIGTERM}
@@ -189,7 +198,8 @@ def atomic_paths(paths: Sequence[str | Path]) -> Iterator[list[Path]]:
         ok = True
     except OSError as e:
         where = getattr(e, "filename", None) or (targets[0] if targets else "")
-        raise MapIOError(f"{where}: cannot write: {_why(e)}") from e
+        named = {str(t): str(target) for t, target in zip(temps, targets)}  # the target, not its temporary
+        raise write_failure(named.get(str(where), where), e) from e
     finally:
         leftovers = temps if ok else [*temps, *committed]
         for p in leftovers:
@@ -274,17 +284,35 @@ def read_text(path: str | Path, what: str, max_bytes: int = MAX_TEXT_BYTES) -> s
 
 
 def parse_json(text: str, where: str | Path, what: str, error: type[Exception] = MapFormatError) -> Any:
-    """The one JSON parser of the package's input files: malformed JSON, absurd nesting and
-    values Python refuses (an integer of more than 4300 digits) raise ``error`` with one
-    line naming ``where`` and ``what`` it is."""
+    """The one JSON parser of the package's input files: malformed JSON, nesting deeper
+    than :data:`MAX_JSON_DEPTH` and values Python refuses (an integer of more than 4300
+    digits) raise ``error`` with one line naming ``where`` and ``what`` it is."""
     try:
-        return json.loads(text)
+        data = json.loads(text)
     except json.JSONDecodeError as e:
         raise error(f"{where}: {what} is not valid JSON (line {e.lineno}, column {e.colno}): {e.msg}") from None
     except RecursionError:
-        raise error(f"{where}: {what} is JSON nested too deeply") from None
+        raise error(f"{where}: {what} is JSON nested too deeply (more than {MAX_JSON_DEPTH} levels)") from None
     except ValueError as e:  # int_max_str_digits: a 5000-digit integer
         raise error(f"{where}: {what} holds a number JSON cannot be read as: {str(e).split(';')[0]}") from None
+    if json_depth(data) > MAX_JSON_DEPTH:
+        raise error(f"{where}: {what} is JSON nested too deeply (more than {MAX_JSON_DEPTH} levels)")
+    return data
+
+
+def json_depth(data: Any) -> int:
+    """Nesting depth of a parsed JSON value (a scalar is 0), counted without recursion."""
+    deepest, todo = 0, [(data, 0)]
+    while todo:
+        item, depth = todo.pop()
+        if isinstance(item, dict):
+            item = list(item.values())
+        if isinstance(item, list):
+            deepest = max(deepest, depth + 1)
+            if deepest > MAX_JSON_DEPTH:
+                return deepest
+            todo.extend((x, depth + 1) for x in item if isinstance(x, (list, dict)))
+    return deepest
 
 
 def read_json(
@@ -293,6 +321,78 @@ def read_json(
     """A JSON document from :func:`read_text` (regular file, size cap, UTF-8) parsed by
     :func:`parse_json`."""
     return parse_json(read_text(path, what, max_bytes), path, what, error)
+
+
+def validate_model(
+    data: Any, model: type[M], where: str | Path, what: str, error: type[Exception] = MapFormatError
+) -> M:
+    """``data`` (parsed JSON) as the pydantic ``model``; a value of the wrong shape or type
+    raises ``error`` with one line naming ``where``, ``what`` and each field at fault."""
+    try:
+        return model.model_validate(data)
+    except ValidationError as e:
+        raise error(f"{where}: {what}: {validation_line(e)}") from None
+    except (RecursionError, OverflowError, ValueError, TypeError) as e:  # a validator meeting a hostile value
+        raise error(f"{where}: {what}: {type(e).__name__}: {str(e)[:200]}") from None
+
+
+def parse_json_model(
+    text: str, model: type[M], where: str | Path, what: str, error: type[Exception] = MapFormatError
+) -> M:
+    """:func:`parse_json`, then :func:`validate_model`: the one reader of a typed JSON text."""
+    return validate_model(parse_json(text, where, what, error), model, where, what, error)
+
+
+def read_json_model(
+    path: str | Path,
+    model: type[M],
+    what: str,
+    error: type[Exception] = MapFormatError,
+    max_bytes: int = MAX_TEXT_BYTES,
+) -> M:
+    """The one reader of a typed JSON file: regular file, at most ``max_bytes``, UTF-8,
+    valid JSON nested at most :data:`MAX_JSON_DEPTH` deep, and of ``model``'s shape; else
+    ``error`` with one line naming the file and the field (CLI exit 2)."""
+    return validate_model(read_json(path, what, error, max_bytes), model, path, what, error)
+
+
+@contextmanager
+def file_lock(path: str | Path) -> Iterator[None]:
+    """Hold an exclusive lock (``fcntl.flock``) on the hidden lock file ``.NAME.lock``
+    beside ``path`` for the block: writers that read, change and write back ``path`` take
+    it around the whole step, so none works on a copy another has since replaced. The
+    lock file stays (removing it would race with a waiting writer); the lock is released
+    when the block ends or the process dies."""
+    p = Path(path)
+    lock = p.with_name(f".{p.name}.lock")
+    try:
+        fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666 & ~_UMASK)
+    except OSError as e:
+        raise MapIOError(f"{p}: cannot create its lock file {lock.name}: {_why(e)}") from None
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)  # releases the lock
+
+
+def write_failure(target: str | Path, e: BaseException) -> MapIOError:
+    """The one-line error for a write of ``target`` that failed with ``e`` (an ``OSError``
+    or a writer's own exception, e.g. usd-core's ``Tf.ErrorException``): a full disk, a
+    quota or a file-size limit says so and names the file the command was writing."""
+    code = getattr(e, "errno", None)
+    text = str(e).strip().splitlines()[-1] if str(e).strip() else type(e).__name__
+    if code == errno.ENOSPC or "No space left" in str(e):
+        why = "no space left on the device (the disk is full)"
+    elif code == errno.EDQUOT or "quota" in str(e).lower():
+        why = "disk quota exceeded"
+    elif code == errno.EFBIG or "File too large" in str(e):
+        why = "file too large (a file-size limit)"
+    elif isinstance(e, OSError):
+        why = _why(e)
+    else:
+        why = text[:200]
+    return MapIOError(f"{target}: cannot write: {why}")
 
 
 @contextmanager

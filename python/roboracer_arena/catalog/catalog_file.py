@@ -12,20 +12,21 @@ from __future__ import annotations
 import hashlib
 import json
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVar
 
-from pydantic import BaseModel, ValidationError
+from pydantic import BaseModel, ConfigDict, ValidationError
 
 from ..errors import InvalidArgumentError, MapIOError
-from ..fileio import read_json
-from ..paths import sources_dir, tracks_dir
+from ..fileio import atomic_write_text, file_lock, read_json, validate_model
+from ..paths import PACKAGE_DIR, sources_dir, tracks_dir
 from ..spec import format_validation_error
 from .entry import CatalogMeta, Kind, LeftOut, OpenMap, TrackEntry
 
 M = TypeVar("M", bound=BaseModel)
+T = TypeVar("T")
 KINDS = ("recorded", "circuit", "generated")
 SCHEMA = "roboracer-arena track catalog v1"
 #: Selections accepted by :func:`resolve` besides single ids.
@@ -142,21 +143,81 @@ class Catalog:
         return json.dumps(doc, indent=2) + "\n"
 
 
+class CatalogShape(BaseModel):
+    """The catalog file's outline, checked before its entries: an object whose
+    ``tracks``, ``left_out`` and ``open_maps`` are lists of objects (each entry is then
+    read as its own model, so an error names the entry)."""
+
+    model_config = ConfigDict(extra="allow")
+
+    tracks: list[dict[str, Any]] = []
+    left_out: list[dict[str, Any]] = []
+    open_maps: list[dict[str, Any]] = []
+    count: int | None = None
+
+
 def load_catalog(path: str | Path | None = None) -> Catalog:
-    """Read ``tracks/catalog.json`` (or ``path``); an entry that does not fit
-    :class:`TrackEntry` is a :class:`MapIOError` naming the file and the entry."""
+    """Read ``tracks/catalog.json`` (or ``path``) with the package's one JSON reader
+    (regular file, 64 MiB, bounded nesting); a document of the wrong shape or an entry
+    that does not fit :class:`TrackEntry` is a :class:`MapIOError` naming the file and
+    the entry or field."""
     p = Path(path) if path else default_tracks_dir() / "catalog.json"
     doc = read_json(p, "track catalog", MapIOError, max_bytes=64 * 2**20)
+    if not isinstance(doc, dict):
+        raise MapIOError(f"{p}: track catalog must be a JSON object, not {_json_kind(doc)}")
+    shape = validate_model(doc, CatalogShape, p, "track catalog", MapIOError)
     meta = _parse(
         p,
         "header",
         CatalogMeta,
         {k: v for k, v in doc.items() if k not in ("tracks", "left_out", "count", "open_maps")},
     )
-    entries = [_parse(p, f"tracks[{_name(x, i)!r}]", TrackEntry, x) for i, x in enumerate(doc.get("tracks", []))]
-    left_out = [_parse(p, f"left_out[{_name(x, i)!r}]", LeftOut, x) for i, x in enumerate(doc.get("left_out", []))]
-    opens = [_parse(p, f"open_maps[{_name(x, i)!r}]", OpenMap, x) for i, x in enumerate(doc.get("open_maps", []))]
+    entries = [_parse(p, f"tracks[{_name(x, i)!r}]", TrackEntry, x) for i, x in enumerate(shape.tracks)]
+    left_out = [_parse(p, f"left_out[{_name(x, i)!r}]", LeftOut, x) for i, x in enumerate(shape.left_out)]
+    opens = [_parse(p, f"open_maps[{_name(x, i)!r}]", OpenMap, x) for i, x in enumerate(shape.open_maps)]
     return Catalog(entries=entries, left_out=left_out, meta=meta, path=p, open_maps=opens)
+
+
+def _json_kind(doc: Any) -> str:
+    return {list: "an array", str: "a string", bool: "a boolean", type(None): "null"}.get(
+        type(doc), "a number" if isinstance(doc, (int, float)) else type(doc).__name__
+    )
+
+
+def writable_catalog(path: str | Path | None, flag: str = "--catalog") -> Path:
+    """The catalog file a job that records results may write: given explicitly (``flag``)
+    and outside the installed package (whose catalog is package data and never written).
+    Raises :class:`InvalidArgumentError` (CLI exit 2) otherwise, before any work."""
+    if path is None:
+        raise InvalidArgumentError(
+            f"{flag} FILE is required to record results: the default catalog is the installed package's "
+            f"({default_tracks_dir() / 'catalog.json'}), which is never written; copy it and pass the copy"
+        )
+    p = Path(path)
+    try:
+        inside = p.resolve().is_relative_to(PACKAGE_DIR)
+    except OSError:
+        inside = False
+    if inside:
+        raise InvalidArgumentError(
+            f"{p}: is inside the installed package ({PACKAGE_DIR}), which is never written; copy the catalog "
+            f"elsewhere and pass the copy as {flag}"
+        )
+    return p
+
+
+def update_catalog(path: str | Path, change: Callable[[Catalog], T]) -> T:
+    """Read the catalog at ``path`` afresh, apply ``change`` to it and write it back
+    atomically, all under :func:`~roboracer_arena.fileio.file_lock`: concurrent writers
+    (two ``tracks verify --update-catalog`` runs on one library) take turns, and each
+    merges its change into what the other wrote, so no change is lost. Returns what
+    ``change`` returns."""
+    p = Path(path)
+    with file_lock(p):
+        cat = load_catalog(p)
+        out = change(cat)
+        atomic_write_text(p, cat.to_json())
+    return out
 
 
 def _name(item: Any, i: int) -> Any:

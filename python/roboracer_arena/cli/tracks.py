@@ -19,12 +19,12 @@ import sys
 from pathlib import Path
 
 from ..builder import build_environment
-from ..catalog import Catalog, load_catalog
+from ..catalog import Catalog, default_tracks_dir, load_catalog
+from ..catalog.catalog_file import update_catalog, writable_catalog
 from ..catalog.entry import TrackEntry
 from ..catalog.entry_text import entry_lines
 from ..distributed.executor import make_executor
 from ..errors import InvalidArgumentError
-from ..fileio import atomic_write_text
 from ..library.sweep import load_sweep
 from ..library.verify_report import CHECKS
 from ..paths import sources_dir, writable_tracks_dir
@@ -276,6 +276,8 @@ def run_verify(args) -> int:
 
     if args.reverse and args.update_catalog:
         raise InvalidArgumentError("--reverse and --update-catalog: the catalog records laps in the racing direction")
+    if args.update_catalog:  # before any work: the installed package's catalog is never written
+        writable_catalog(args.catalog, "--catalog")
     cat = _load(args)
     entries = _select(cat, args)
     with _executor(args) as ex:
@@ -291,14 +293,17 @@ def run_verify(args) -> int:
             physx=False if args.no_physx else None,
         )
     if args.update_catalog:
-        from ..library.verify import prune_catalog
+        from ..library.verify import failed_recorded, record_results
 
-        moved = prune_catalog(cat, s)
-        if moved:  # a recorded map that no longer laps may still be an open map
-            from ..library.open_maps import open_maps
+        failed = failed_recorded(cat, s)
+        opens = {}
+        if failed:  # a recorded map that no longer laps may still be an open map
+            from ..library.open_maps import is_open_candidate, open_map_entry
 
-            cat.open_maps = open_maps(sources_dir(args.sources, "open maps"), cat.left_out)
-        atomic_write_text(cat.path, cat.to_json())
+            src = sources_dir(args.sources, "open maps")
+            opens = {lo.id: o for lo in failed if is_open_candidate(lo) and (o := open_map_entry(src, lo))}
+        assert cat.path is not None
+        moved = record_results(cat.path, s, opens)
         s = s.model_copy(update={"moved_to_left_out": moved})
         if not args.json:
             print(f"updated {cat.path}: {len(moved)} recorded map(s) moved to left_out: {', '.join(moved) or '-'}")
@@ -386,11 +391,13 @@ def run_catalog(args) -> int:
 def _rejudge(args: argparse.Namespace, sources: Path, jobs: int) -> int:
     from ..library.open_maps import map_kinds, open_maps, rejudge
 
-    cat = _load(args)
-    joined = rejudge(cat, sources, jobs)
-    cat.open_maps = open_maps(sources, cat.left_out, jobs)
-    assert cat.path is not None
-    atomic_write_text(cat.path, cat.to_json())
+    def change(cat: Catalog) -> tuple[list[str], Catalog]:
+        joined = rejudge(cat, sources, jobs)
+        cat.open_maps = open_maps(sources, cat.left_out, jobs)
+        return joined, cat
+
+    # under the catalog's lock throughout: a verify --update-catalog meanwhile waits, then merges
+    joined, cat = update_catalog(args.catalog or default_tracks_dir() / "catalog.json", change)
     kinds = map_kinds(cat)
     counts = {k: sum(v == k for v in kinds.values()) for k in ("track", "open", "duplicate", "broken", "left out")}
     if args.json:

@@ -20,8 +20,8 @@ import numpy as np
 
 from .. import _core
 from ..builder import build_environment
-from ..catalog.catalog_file import Catalog, sha256_file
-from ..catalog.entry import LeftOut, TrackEntry
+from ..catalog.catalog_file import Catalog, sha256_file, update_catalog
+from ..catalog.entry import LeftOut, OpenMap, TrackEntry
 from ..catalog.tracks import entry_track
 from ..clearance_path import clearance_path
 from ..corridor import extract_corridor
@@ -29,6 +29,7 @@ from ..distributed.executor import Executor
 from ..drivers import PurePursuitParams, drive_laps
 from ..errors import ArenaError
 from ..maps import OccupancyMap, load_map
+from ..paths import sources_dir
 from ..physx import available
 from ..physx.check import check_stage
 from ..pool import Progress, local_unless, map_ordered
@@ -233,8 +234,12 @@ def verify(
 ) -> VerifySummary:
     """Verify ``entries`` (laps against the racing direction with ``reverse``) on ``executor``
     (default: a local pool of ``jobs`` processes); returns per-track results in entry order
-    and a summary. On a Ray cluster every node must see the same catalog and sources paths."""
+    and a summary. On a Ray cluster every node must see the same catalog and sources paths.
+    A sources folder that recorded maps need and that does not exist is a
+    :class:`~roboracer_arena.errors.MapIOError` before any work, never a verdict on them."""
     t0 = time.perf_counter()
+    if sources is not None or any(e.kind == "recorded" for e in entries):
+        sources = sources_dir(sources, f"verifying recorded maps ({_first_recorded(entries)})")
     tasks = [(cat, e, sources, usd, drive, reverse, physx) for e in entries]
     with local_unless(executor, jobs) as ex:
         results = map_ordered(ex, _work, tasks, progress)
@@ -255,10 +260,18 @@ def recorded_verdicts(entry: TrackEntry, result: TrackResult) -> dict[str, Any]:
     return {"verified": verified, "drive": drive.detail}
 
 
-def prune_catalog(cat: Catalog, summary: VerifySummary) -> list[str]:
+def _first_recorded(entries: list[TrackEntry]) -> str:
+    ids = [e.id for e in entries if e.kind == "recorded"]
+    return ", ".join(ids[:3]) + (f" and {len(ids) - 3} more" if len(ids) > 3 else "") if ids else "none"
+
+
+def prune_catalog(cat: Catalog, summary: VerifySummary, opens: dict[str, OpenMap] | None = None) -> list[str]:
     """Move recorded maps that failed verify to ``left_out`` (with the failing check as the
     reason) and record each verified entry's drive result; returns the ids moved.
-    Circuits and generated tracks are never moved: a failure there is a bug to fix."""
+    Circuits and generated tracks are never moved: a failure there is a bug to fix.
+    Only the entries ``summary`` checked change: every other track, left-out map and open
+    map stays as it is; ``opens`` (id -> open-map entry) adds the open maps of the maps
+    moved (replacing an earlier entry of the same id)."""
     by_id = {r.id: r for r in summary.results}
     moved, keep = [], []
     for e in cat.entries:
@@ -268,10 +281,33 @@ def prune_catalog(cat: Catalog, summary: VerifySummary) -> list[str]:
             continue
         if not r.passed and e.kind == "recorded":
             reason = f"verify failed: {'; '.join(r.failures())}"
+            cat.left_out = [lo for lo in cat.left_out if lo.id != e.id]
             cat.left_out.append(LeftOut(id=e.id, source_path=e.map, reason=reason))
             moved.append(e.id)
             continue
         keep.append(e.with_fields(**recorded_verdicts(e, r)))
     cat.entries = keep
+    new = [o for i, o in (opens or {}).items() if i in moved]
+    if new:
+        fresh = {o.id for o in new}
+        cat.open_maps = [o for o in cat.open_maps if o.id not in fresh] + new
     cat.meta = cat.meta.model_copy(update={"counts": cat.counts()})
     return moved
+
+
+def failed_recorded(cat: Catalog, summary: VerifySummary) -> list[LeftOut]:
+    """The left-out entries :func:`prune_catalog` would make of ``summary``'s failed recorded maps."""
+    kinds = {e.id: e for e in cat.entries}
+    return [
+        LeftOut(id=r.id, source_path=kinds[r.id].map, reason=f"verify failed: {'; '.join(r.failures())}")
+        for r in summary.results
+        if not r.passed and r.id in kinds and kinds[r.id].kind == "recorded"
+    ]
+
+
+def record_results(path: Path, summary: VerifySummary, opens: dict[str, OpenMap] | None = None) -> list[str]:
+    """``tracks verify --update-catalog``'s write: :func:`prune_catalog` applied to the
+    catalog file as it is now (re-read under its lock, written atomically:
+    :func:`~roboracer_arena.catalog.catalog_file.update_catalog`), so a concurrent run on
+    other ids keeps its verdicts and this one keeps its own. Returns the ids moved."""
+    return update_catalog(path, lambda cat: prune_catalog(cat, summary, opens))
