@@ -25,7 +25,15 @@ from ..catalog.catalog_file import default_tracks_dir, load_catalog
 from ..errors import ArenaError
 from ..fileio import atomic_write_text, read_json, signals_held
 from ..frozen_model import FrozenModel
-from ..raceline.driver import DRIVER_LATERAL, DRIVER_LONGITUDINAL, DRIVER_MARGIN, drive_raceline, plan_for_driver
+from ..raceline.driver import (
+    DRIVER_LATERAL,
+    DRIVER_LONGITUDINAL,
+    DRIVER_MARGIN,
+    RACING_LOOKAHEAD,
+    UNDERSTEER_FACTOR,
+    drive_raceline,
+    plan_for_driver,
+)
 from ..raceline.export import raceline_csv_text
 from ..raceline.limits import preset
 from ..raceline.plan import DEFAULT_MARGIN, plan_raceline
@@ -94,7 +102,13 @@ def _empty_index() -> RacelineIndex:
             "limits": lim.name,
             "limits_sha1": lim.sha1(),
             "margin_m": DEFAULT_MARGIN,
-            "driver": {"lateral": DRIVER_LATERAL, "longitudinal": DRIVER_LONGITUDINAL, "margin_m": DRIVER_MARGIN},
+            "driver": {
+                "lateral": DRIVER_LATERAL,
+                "longitudinal": DRIVER_LONGITUDINAL,
+                "margin_m": DRIVER_MARGIN,
+                "understeer_factor": UNDERSTEER_FACTOR,
+                **RACING_LOOKAHEAD,
+            },
             "records": [],
         }
     )

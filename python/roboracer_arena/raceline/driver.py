@@ -6,7 +6,7 @@ The line it races is planned for it (:func:`plan_for_driver`) with the car's mea
 limits derated to what pure pursuit holds in our physics: 75 % of the lateral grip and
 35 % of the longitudinal (braking hard into a corner spins the simulated car, as it does
 a real 1:10 car: the rear goes light), and a 0.15 m margin for its tracking error. Its
-steering assumes a 15 % longer wheelbase than the car's, which makes up for the car's
+steering assumes a 30 % longer wheelbase than the car's, which makes up for the car's
 understeer at the planned lateral accelerations. These numbers were tuned on a handful
 of catalog tracks; the catalog job reports how they hold on all of them.
 
@@ -33,7 +33,7 @@ DRIVER_LATERAL, DRIVER_LONGITUDINAL = 0.75, 0.35
 #: Safety margin (m) of the driver's line beyond half the car's width.
 DRIVER_MARGIN = 0.15
 #: Steering geometry's wheelbase over the car's (understeer compensation).
-UNDERSTEER_FACTOR = 1.15
+UNDERSTEER_FACTOR = 1.3
 #: Lookahead of the racing driver: 0.5 m + 0.15 s x speed, at most 1.8 m.
 RACING_LOOKAHEAD = {"lookahead_min": 0.5, "lookahead_gain": 0.15, "lookahead_max": 1.8}
 
