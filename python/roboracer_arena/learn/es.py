@@ -27,6 +27,7 @@ from ..distributed.ray_vector import RayVectorEnv
 from ..envs.track_pool import resolve_track_pool
 from ..envs.vector import RoboRacerVectorEnv
 from ..errors import ConfigError
+from .evaluate import grid_laps
 
 
 @dataclass(frozen=True)
@@ -227,21 +228,9 @@ def evaluate_laps(
     tracks, _ = resolve_track_pool(track)
     env = _make_env(tracks, len(tracks), cfg, reset_poses="grid", wrong_way_ends_episode=True)
     policy = MLPPolicy(cfg.num_beams + 2, cfg.hidden, cfg)
-    obs, info = env.reset(seed=0, options={"track_ids": np.arange(len(tracks))})
-    dt = env.config.control_dt
+    obs, _ = env.reset(seed=0, options={"track_ids": np.arange(len(tracks))})
     limit = max_time_s if max_time_s is not None else max(t.length for t in tracks) / 0.8
-    n = len(tracks)
-    done, clean, progress = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n)
-    lap_time: list[float | None] = [None] * n
-    for _ in range(int(limit / dt)):
-        obs, _, term, _, info = env.step(policy.act(theta, features(obs)))
-        live = ~done
-        progress[live] = info["progress"][live]
-        for e in np.flatnonzero(live & info["lap_completed"] & ~term):
-            clean[e], lap_time[e] = True, float(info["last_lap_time"][e])
-        done |= term | info["lap_completed"]
-        if done.all():
-            break
+    clean, lap_time, progress = grid_laps(env, lambda o: policy.act(theta, features(o)), limit, obs)
     return [
         {"track": t.name, "clean_lap": bool(clean[i]), "lap_time": lap_time[i], "progress": float(progress[i])}
         for i, t in enumerate(tracks)

@@ -35,6 +35,26 @@ def policy_env_kwargs(policy: Policy, **extra: Any) -> dict[str, Any]:
     return kw
 
 
+def grid_laps(env: Any, act: Any, limit_s: float, obs: Any = None) -> tuple[np.ndarray, list[float | None], np.ndarray]:
+    """Step a vector env just reset with one env per track (autoreset disabled) with
+    ``act(obs)`` until every env completed a lap, ended its episode or ``limit_s`` of
+    simulated time passed. Returns per env: clean lap (completed without ending the
+    episode), lap time (s, or None) and progress (m)."""
+    n, dt = env.num_envs, env.config.control_dt
+    done, clean, progress = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n)
+    lap_time: list[float | None] = [None] * n
+    for _ in range(int(limit_s / dt)):
+        obs, _, term, _, info = env.step(act(obs))
+        live = ~done
+        progress[live] = info["progress"][live]
+        for e in np.flatnonzero(live & info["lap_completed"] & ~term):
+            clean[e], lap_time[e] = True, float(info["last_lap_time"][e])
+        done |= term | info["lap_completed"]
+        if done.all():
+            break
+    return clean, lap_time, progress
+
+
 def evaluate_policy(
     policy: Policy, track: Any, max_time_s: float | None = None, theta: np.ndarray | None = None
 ) -> list[dict[str, Any]]:
@@ -60,20 +80,9 @@ def evaluate_policy(
     )
     runner = PolicyRunner(env, policy.spec, policy.env.get("pure_pursuit"))
     params = policy.theta if theta is None else theta
-    _, info = env.reset(seed=0, options={"track_ids": np.arange(len(tracks))})
-    n, dt = len(tracks), env.config.control_dt
+    env.reset(seed=0, options={"track_ids": np.arange(len(tracks))})
     limit = max_time_s if max_time_s is not None else max(t.length for t in tracks) / 0.8
-    done, clean, progress = np.zeros(n, bool), np.zeros(n, bool), np.zeros(n)
-    lap_time: list[float | None] = [None] * n
-    for _ in range(int(limit / dt)):
-        _, _, term, _, info = env.step(runner.act(params))
-        live = ~done
-        progress[live] = info["progress"][live]
-        for e in np.flatnonzero(live & info["lap_completed"] & ~term):
-            clean[e], lap_time[e] = True, float(info["last_lap_time"][e])
-        done |= term | info["lap_completed"]
-        if done.all():
-            break
+    clean, lap_time, progress = grid_laps(env, lambda _obs: runner.act(params), limit)
     env.close()
     return [
         {
