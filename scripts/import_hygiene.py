@@ -77,6 +77,7 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
     ("cli/raceline.py", "..catalog.catalog_file"): _CLI + " (raceline --catalog: the library job)",
     ("cli/raceline.py", "..library.racelines"): _CLI + " (raceline --catalog: scipy, the env stack)",
     ("cli/drive.py", "..raceline.driver"): _CLI + " (--raceline: scipy)",
+    ("cli/tracks.py", "..library.racelines"): _CLI + " (verify --raceline plans racelines: scipy)",
     ("cli/ros2.py", "..ros2.bridge"): _CLI + " (the bridge drives the env stack)",
     ("cli/tracks.py", "..library.verify"): _CLI + " (verify builds USD and drives laps)",
     ("cli/tracks.py", "..library.open_maps"): _CLI + " (open maps are verified: pxr, the env stack)",

@@ -25,6 +25,7 @@ from ..catalog.entry import TrackEntry
 from ..catalog.entry_text import entry_lines
 from ..distributed.executor import make_executor
 from ..errors import InvalidArgumentError
+from ..library.raceline_index import load_index, record_lines
 from ..library.sweep import load_sweep
 from ..library.verify_report import CHECKS
 from ..paths import sources_dir, writable_tracks_dir
@@ -83,6 +84,11 @@ def register(sub) -> None:
         "--no-physx", action="store_true", help="skip the PhysX check (run when the 'physx' extra is installed)"
     )
     a.add_argument("--no-drive", action="store_true", help="skip the pure-pursuit lap")
+    a.add_argument(
+        "--raceline",
+        action="store_true",
+        help="also check each track's recorded raceline (tracks/racelines.json): planned again, same lap and CSV",
+    )
     a.add_argument("--reverse", action="store_true", help="drive each lap against the track's racing direction")
     a.add_argument(
         "--update-catalog",
@@ -252,11 +258,16 @@ def run_show(args) -> int:
     cat = _load(args)
     e = cat.get(args.id)
     path = cat.map_path(e, args.sources)
+    index = load_index()
+    rec = index.get(e.id) if index else None
     if args.json:
-        print_json({**e.to_json_dict(), "map_path": str(path)})
+        extra = {"raceline": rec.to_json_dict()} if rec else {}
+        print_json({**e.to_json_dict(), "map_path": str(path), **extra})
         return EXIT_OK
 
     print("\n".join(entry_lines({**e.to_json_dict(), "map_path": str(path)})))
+    if rec:
+        print("\n".join(record_lines(rec)))
     return EXIT_OK
 
 
@@ -326,7 +337,20 @@ def run_verify(args) -> int:
             f"{s.passed}/{s.tracks} tracks without a failed check in {s.seconds:.1f} s "
             f"({s.jobs} worker(s)); by kind: " + ", ".join(f"{k} {v.passed}/{v.tracks}" for k, v in s.by_kind.items())
         )
-    return EXIT_OK if not s.failed else EXIT_BAD_INPUT
+    raceline_problems = _verify_racelines([r.id for r in s.results]) if args.raceline else []
+    return EXIT_OK if not s.failed and not raceline_problems else EXIT_BAD_INPUT
+
+
+def _verify_racelines(ids: list[str]) -> list[str]:
+    """``tracks verify --raceline``: plan each track's raceline again against its record."""
+    from ..library.racelines import verify_record
+
+    index = load_index()
+    problems = [p for i in ids for p in verify_record(i, index)]
+    for p in problems:
+        print(f"raceline: {p}", file=sys.stderr)
+    print(f"racelines: {len(ids) - len({p.split(':')[0] for p in problems})}/{len(ids)} as recorded")
+    return problems
 
 
 def run_sheet(args) -> int:

@@ -21,10 +21,9 @@ import time
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-from ..catalog.catalog_file import default_tracks_dir, load_catalog
+from ..catalog.catalog_file import load_catalog
 from ..errors import ArenaError
-from ..fileio import atomic_write_text, read_json, signals_held
-from ..frozen_model import FrozenModel
+from ..fileio import atomic_write_text, signals_held
 from ..raceline.driver import (
     DRIVER_LATERAL,
     DRIVER_LONGITUDINAL,
@@ -38,60 +37,13 @@ from ..raceline.export import raceline_csv_text
 from ..raceline.limits import preset
 from ..raceline.plan import DEFAULT_MARGIN, plan_raceline
 from ..raceline.source import resolve_track
+from .raceline_index import DriverLap, RacelineIndex, RacelineRecord, index_path, load_index
 
-INDEX_NAME = "racelines.json"
+__all__ = ["DriverLap", "RacelineIndex", "RacelineRecord", "build_racelines", "load_index", "verify_record"]
+
 #: Tolerances of :func:`verify_record` (a rebuild on another machine may differ in the
 #: last digits of the QP's solution).
 LAP_TOLERANCE_S = 0.05
-
-
-class DriverLap(FrozenModel):
-    """The racing driver on its own (derated) line: planned and driven flying lap (s)."""
-
-    planned_s: float
-    driven_s: float | None
-    clean: bool
-    within_5pct: bool
-
-
-class RacelineRecord(FrozenModel):
-    """One catalog track's raceline (car limits, mincurv, default margin)."""
-
-    id: str
-    length_m: float
-    lap_time_s: float
-    v_min_mps: float
-    v_max_mps: float
-    csv_sha1: str
-    plan_seconds: float
-    driver: DriverLap | None = None
-    error: str | None = None
-
-
-class RacelineIndex(FrozenModel):
-    """``tracks/racelines.json``: the limits and settings, and one record per track."""
-
-    version: int = 1
-    limits: str
-    limits_sha1: str
-    margin_m: float
-    driver: dict[str, float]
-    records: list[RacelineRecord]
-
-    def get(self, track_id: str) -> RacelineRecord | None:
-        return next((r for r in self.records if r.id == track_id), None)
-
-
-def index_path(tracks_dir: Path | None = None) -> Path:
-    return (tracks_dir or default_tracks_dir()) / INDEX_NAME
-
-
-def load_index(path: Path | None = None) -> RacelineIndex | None:
-    """The recorded index, or None if there is none yet."""
-    p = path or index_path()
-    if not p.is_file():
-        return None
-    return RacelineIndex.model_validate(read_json(p, "raceline index"))
 
 
 def _empty_index() -> RacelineIndex:
