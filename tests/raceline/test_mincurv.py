@@ -40,3 +40,11 @@ def test_raceline_is_closed_within_the_margin_and_straighter(stadium_line, oval)
     ref = closed_path(oval.loop, 0.2)
     assert np.sum(line.kappa**2 * line.ds) < 0.9 * np.sum(ref.kappa**2 * ref.ds)
     assert line.lap_time < 0.97 * speed_profile(ref.kappa, ref.ds, line.limits).lap_time
+
+
+def test_min_time_mode_keeps_the_margin_and_is_never_slower(oval, stadium_line):
+    from roboracer_arena.raceline import plan_raceline
+
+    fast = plan_raceline(oval, stadium_line.limits, mode="mintime")
+    assert fast.lap_time <= stadium_line.lap_time + 1e-9
+    assert oval.clearance(fast.xy).min() >= fast.half_width - 0.005

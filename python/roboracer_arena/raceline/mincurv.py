@@ -166,11 +166,15 @@ def iterate_min_curvature(
     iterations: int = 3,
     max_reach: float = 5.0,
     weights: Callable[[ClosedPath], np.ndarray] | None = None,
+    smooth: bool = True,
 ) -> tuple[ClosedPath, OffsetSolution]:
     """The minimum-curvature line within the walls less ``half_width``, starting from the
     ring ``reference`` (e.g. the centreline), solved ``iterations`` times, each about the
-    last solution. Returns the final line (resampled every ``step`` m) and the last QP."""
-    ref = smoothed(closed_path(reference, step), REFERENCE_SMOOTHING_M)
+    last solution. Returns the final line (resampled every ``step`` m) and the last QP.
+    ``smooth``: smooth the first reference (:data:`REFERENCE_SMOOTHING_M`)."""
+    ref = closed_path(reference, step)
+    if smooth:  # a raster centreline; a planned line (already inside the margin) is not smoothed
+        ref = smoothed(ref, REFERENCE_SMOOTHING_M)
     sol = OffsetSolution(np.zeros(len(ref.xy)), np.zeros(len(ref.xy)), np.zeros(len(ref.xy)), "not run")
     for _ in range(max(1, iterations)):
         left, right = lateral_bounds(ref.xy, ref.normals, clearance, half_width, max_reach)

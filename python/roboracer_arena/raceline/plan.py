@@ -166,7 +166,8 @@ def _min_time(
 ) -> tuple[ClosedPath, SpeedProfile]:
     """Minimum-time heuristic: re-solve the curvature QP with the curvature at each point
     weighted by how slow the current profile is there ((v_max / v)^2), three times, and
-    keep the fastest line found (so never slower than minimum curvature)."""
+    keep the fastest line found that keeps the margin (so never slower than minimum
+    curvature)."""
     best_line, best = line, prof
     for _ in range(3):
         cur_line, cur = best_line, best
@@ -177,9 +178,10 @@ def _min_time(
             w = (limits.v_max / np.maximum(v, 0.1)) ** 2
             return w / w.mean()
 
-        cand, _ = iterate_min_curvature(cur_line.xy, walls, half, step, 2, weights=weights)
+        cand, _ = iterate_min_curvature(cur_line.xy, walls, half, step, 2, weights=weights, smooth=False)
         cand_prof = speed_profile(cand.kappa, cand.ds, limits)
-        if cand_prof.lap_time < best.lap_time:
+        inside = float(walls(cand.xy).min()) >= half - SPLINE_TOLERANCE
+        if inside and cand_prof.lap_time < best.lap_time:
             best_line, best = cand, cand_prof
         else:
             break
