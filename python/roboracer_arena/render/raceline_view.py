@@ -1,6 +1,6 @@
 """A raceline picture: the track preview (map, corridor, ducts, collision walls, racing
 direction and start) with a raceline drawn on it, coloured by its planned speed from
-blue (slowest) through green to red (fastest), and the speed scale in the legend."""
+dark violet (slowest) through magenta to orange (fastest), and the speed scale in the legend."""
 
 from __future__ import annotations
 
@@ -15,15 +15,18 @@ from .frame import LegendEntry, framed
 from .preview import map_canvas, track_name
 from .race_marks import draw_race_marks
 
+#: Speed scale, slow to fast: dark violet, magenta, orange (apart from the red walls,
+#: the blue direction arrows and the green corridor).
+SPEED_STOPS = ((40, 10, 140), (200, 40, 150), (245, 150, 20))
+
 
 def speed_colour(frac: float) -> tuple[int, int, int]:
-    """Blue (0) -> green (0.5) -> red (1)."""
-    f = float(np.clip(frac, 0.0, 1.0))
-    if f < 0.5:
-        g = f / 0.5
-        return (0, int(90 + 130 * g), int(230 * (1 - g)))
-    r = (f - 0.5) / 0.5
-    return (int(230 * r), int(220 * (1 - r)), 0)
+    """The colour of a speed ``frac`` of the way from the slowest (0) to the fastest (1)."""
+    f = float(np.clip(frac, 0.0, 1.0)) * (len(SPEED_STOPS) - 1)
+    i = min(int(f), len(SPEED_STOPS) - 2)
+    a, b = np.array(SPEED_STOPS[i]), np.array(SPEED_STOPS[i + 1])
+    c = a + (f - i) * (b - a)
+    return (int(c[0]), int(c[1]), int(c[2]))
 
 
 def raceline_picture(
@@ -45,7 +48,7 @@ def raceline_picture(
     pts = np.vstack([xy, xy[:1]])
     v = np.append(speed, speed[0])
     for i in range(len(xy)):
-        canvas.polyline(pts[i : i + 2], speed_colour((0.5 * (v[i] + v[i + 1]) - lo) / span), width_m=width, min_px=3)
+        canvas.polyline(pts[i : i + 2], speed_colour((0.5 * (v[i] + v[i + 1]) - lo) / span), width_m=width, min_px=4)
     scale = [
         LegendEntry(f"raceline {lo + f * span:.1f} m/s", speed_colour(f), "line") for f in (0.0, 0.25, 0.5, 0.75, 1.0)
     ]
