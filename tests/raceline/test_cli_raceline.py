@@ -42,3 +42,15 @@ def test_raceline_bad_input_exits_2(tmp_path, capsys):
         err = capsys.readouterr().err.strip()
         assert err.startswith("roboracer-arena raceline: error:") and "\n" not in err, err
     assert not list(tmp_path.glob("*.png"))
+
+
+def test_catalog_job_never_writes_into_an_installed_package(monkeypatch, capsys, tmp_path):
+    from roboracer_arena import paths
+
+    monkeypatch.delenv(paths.TRACKS_ENV, raising=False)
+    monkeypatch.setattr(paths, "checkout_dir", lambda: None)  # as an installed wheel
+    assert main(["raceline", "--catalog", SMALL]) == EXIT_BAD_INPUT
+    assert "--tracks DIR is required" in capsys.readouterr().err
+    assert main(["raceline", "--catalog", SMALL, "--tracks", str(tmp_path), "--json"]) == EXIT_OK
+    assert json.loads(capsys.readouterr().out)["driver_clean"] == 1
+    assert (tmp_path / "racelines.json").is_file()

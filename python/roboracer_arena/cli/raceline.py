@@ -18,6 +18,8 @@ from pathlib import Path
 
 from ..errors import InvalidArgumentError
 from ..fileio import check_output
+from ..library.raceline_index import index_path
+from ..paths import writable_tracks_dir
 from ._common import add_json_flag, print_json
 
 #: Accepted range of each numeric flag (inclusive).
@@ -74,6 +76,13 @@ def register(sub) -> None:
         "or ids) into tracks/racelines.json; staged per track, a rerun skips what is recorded",
     )
     p.add_argument("--redo", action="store_true", help="with --catalog: plan again tracks already recorded")
+    p.add_argument(
+        "--tracks",
+        type=Path,
+        metavar="DIR",
+        help="with --catalog: the tracks directory whose racelines.json is written (default: the package's "
+        "tracks/ in a source checkout; required for an installed package)",
+    )
     add_json_flag(p)
     p.set_defaults(func=run, output_dirs=("out",))
 
@@ -154,6 +163,7 @@ def _catalog_job(args: argparse.Namespace) -> int:
     from ..catalog.catalog_file import load_catalog
     from ..library.racelines import build_racelines
 
+    path = index_path(writable_tracks_dir(args.tracks, "--tracks"))  # never into an installed package
     ids = [e.id for e in load_catalog().select_many(args.catalog.split(","))]
     done = [0]
 
@@ -170,7 +180,7 @@ def _catalog_job(args: argparse.Namespace) -> int:
         if not args.json:
             print(f"[{done[0]}/{len(ids)}] {rec.id}: {what}", flush=True)
 
-    index = build_racelines(ids, redo=args.redo, progress=report)
+    index = build_racelines(ids, path=path, redo=args.redo, progress=report)
     recs = [r for r in index.records if r.id in set(ids)]
     clean = sum(1 for r in recs if r.driver and r.driver.clean)
     within = sum(1 for r in recs if r.driver and r.driver.within_5pct)
