@@ -58,3 +58,13 @@ def test_scaling_and_overrides():
     assert o.v_max == 5.0 and o.ay_tyre(1.0) == 6.0 and o.ax_tyre(1.0) == car.ax_tyre(1.0)
     with pytest.raises(ConfigError, match="v_max"):
         car.with_overrides(v_max=-1.0)
+
+
+@pytest.mark.slow
+def test_the_car_preset_is_what_the_simulator_measures():
+    """``presets/car.json`` is ``raceline --measure-limits``' output for the default car, not typed in."""
+    from roboracer_arena.raceline.measure import measure_limits
+
+    measured, shipped = measure_limits(), preset("car")
+    assert measured.v_max == shipped.v_max
+    assert measured.ggv == shipped.ggv and measured.ax_max_machines == shipped.ax_max_machines
