@@ -15,6 +15,7 @@ from .format_error import RacelineFormatError
 from .forza_json import ForzaWaypoints, read_forza_json
 from .limits import PRESETS, VehicleLimits, load_limits, preset, resolve_limits
 from .plan import DEFAULT_MARGIN, MODES, Raceline, plan_raceline
+from .source import resolve_track
 from .speed import SpeedProfile, speed_profile
 from .tum_csv import TumRaceline, read_tum_csv
 
@@ -34,5 +35,6 @@ __all__ = [
     "read_forza_json",
     "read_tum_csv",
     "resolve_limits",
+    "resolve_track",
     "speed_profile",
 ]
