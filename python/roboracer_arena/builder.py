@@ -159,6 +159,7 @@ def build_environment(
     map, no closed corridor, leaking walls, bad config); nothing is written then.
     """
     from .usd import write_stage
+    from .usd.metadata import source_fingerprint
     from .usd.stage import resolve_format
 
     cfg = resolve_config(config)
@@ -179,9 +180,17 @@ def build_environment(
     meshes = stage_meshes(geo, cfg)
     t3 = time.perf_counter()
     source = str(getattr(occ, "path", "") or "")
+    if car and geo.kind == "open":  # the car starts on a track's grid, which an open map has not
+        raise InvalidArgumentError(
+            f"{source or 'the map'}: --car needs a closed track (the car starts on the grid along its "
+            f"centreline); this map builds only as an open map (walls only, no centreline): "
+            f"{geo.open_reason or 'built as an open map'}"
+        )
+    # the source by absolute path and checksums: a later check reads this map or none
+    recorded = source_fingerprint(source) if source else {"source_map": ""}
     metadata = {
         "generator": f"roboracer-arena {__version__}",
-        "source_map": source,
+        **recorded,
         "resolution": float(occ.resolution),
         "origin": [float(v) for v in occ.origin],
         "raster_px": [int(occ.data.shape[1]), int(occ.data.shape[0])],

@@ -45,6 +45,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from .car_fit import NoRoomForCarError, check_start, clearance_cells, place_car
 from .errors import CorridorError, InvalidArgumentError
 from .maps import OccupancyMap, load_map
 
@@ -155,6 +156,8 @@ def extract_corridor(
         if open is None:
             try:
                 geo = extract_open(m, params, start, unknown)
+            except NoRoomForCarError:
+                raise  # it names the map and its free space: more than "no closed corridor"
             except CorridorError:
                 raise err from None
             return replace(geo, open_reason=str(e))
@@ -206,7 +209,13 @@ def extract_open(
     except CorridorError as e:
         raise CorridorError(f"{where}{e}") from None
     geo = _geometry(out, m)
-    x, y, yaw = (float(v) for v in out.start_pose or ()) if s is not None else _default_start(geo, out.start_pose)
+    mask = np.asarray(geo.corridor_mask, bool)
+    origin = (float(m.origin[0]), float(m.origin[1]), float(m.origin[2]))
+    if s is not None:  # the user's start: the whole car must fit there
+        x, y, yaw = (float(v) for v in out.start_pose or ())
+        check_start(mask, origin, float(m.resolution), (x, y, yaw), where)
+    else:
+        x, y, yaw = _default_start(geo, out.start_pose, where)
     return replace(geo, kind="open", start_pose=(x, y, yaw))
 
 
@@ -214,25 +223,32 @@ def extract_open(
 ORIGIN_START_CLEARANCE_M = 0.3
 
 
-def _default_start(geo: CorridorGeometry, farthest: Any) -> tuple[float, float, float]:
+def _default_start(geo: CorridorGeometry, farthest: Any, where: str = "") -> tuple[float, float, float]:
     """An open map's default start, as f1tenth_gym_ros gives it: the map-frame origin
     (0, 0) heading along +x (its ``sx, sy, stheta`` defaults; a SLAM map starts where the
     car was) when that is a drivable cell at least :data:`ORIGIN_START_CLEARANCE_M` from
-    the walls; else the drivable cell farthest from the walls (the core's choice)."""
+    the walls and the map edge and the car's whole footprint fits there; else the drivable
+    cell farthest from the walls (the core's choice), else the best-clearance place where
+    the footprint fits (:func:`roboracer_arena.car_fit.place_car`); a map with none is a
+    :class:`~roboracer_arena.car_fit.NoRoomForCarError` naming the map and its free space."""
     m = geo.map
+    mask = np.asarray(geo.corridor_mask, bool)
+    origin = (float(m.origin[0]), float(m.origin[1]), float(m.origin[2]))
+    preferred: list[tuple[float, float, float]] = []
     c, s = np.cos(m.origin[2]), np.sin(m.origin[2])
     u = (c * -m.origin[0] + s * -m.origin[1]) / m.resolution
     v = (-s * -m.origin[0] + c * -m.origin[1]) / m.resolution
     h, w = m.data.shape
     if 0 <= u < w and 0 <= v < h:
         col, row = int(u), h - 1 - int(v)
-        mask = np.asarray(geo.corridor_mask, bool)
         if mask[row, col]:
-            clear = float(_core.distance_transform(~mask)[row, col]) * m.resolution
+            clear = float(clearance_cells(mask)[row, col]) * m.resolution
             if clear >= ORIGIN_START_CLEARANCE_M:
-                return 0.0, 0.0, 0.0
-    x, y, yaw = (float(v) for v in farthest)
-    return x, y, yaw
+                preferred.append((0.0, 0.0, 0.0))
+    if farthest is not None:
+        x, y, yaw = (float(v) for v in farthest)
+        preferred.append((x, y, yaw))
+    return place_car(mask, origin, float(m.resolution), preferred, where)
 
 
 def _params(params: Mapping[str, Any] | None) -> dict[str, Any]:

@@ -20,10 +20,13 @@ from . import __version__
 from .builder import build_environment
 from .drivers import drive_laps
 from .errors import ArenaError
+from .fileio import check_output
 from .generate import Acceptance, generate_track, write_outputs
 from .parse import parse_request
 from .render.preview import preview_map
 
+#: What the demo writes into its folder (``track/`` holds the generated map).
+OUTPUT_FILES = ("track.usdc", "preview.png", "lap.gif", "track/map.yaml")
 DEFAULT_REQUEST = "A 60 m lap with two hairpins and a chicane in a 20 by 15 m hall, counter-clockwise."
 
 
@@ -63,6 +66,13 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--no-drive", action="store_true", help="skip the simulated lap")
     args = p.parse_args(argv)
 
+    try:  # every output checked before any work: a file as --out, a read-only folder, the map itself
+        check_output(args.out, directory=True)
+        for name in OUTPUT_FILES:
+            check_output(args.out / name, inputs=[args.map])
+    except ArenaError as e:
+        print(f"demo: error: {e}", file=sys.stderr)
+        return 2
     print(f"RoboRacer Arena {__version__} demo → {args.out}/")
     try:
         map_yaml = args.map or _generate(args.request, args.seed, args.out)

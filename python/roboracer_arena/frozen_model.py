@@ -1,18 +1,21 @@
 """The base of the package's typed reports and records (catalog entries, verify results,
 circuit reports): a frozen pydantic model that refuses unknown keys and writes JSON with
 only the fields it was given, so a report written, read back and written again is the
-same text."""
+same text. Numbers are numbers here too (:class:`~roboracer_arena.strict.NumbersAreNumbers`):
+a catalog entry or report read back with ``"40"`` for a length is refused, not read as 40."""
 
 from __future__ import annotations
 
 from typing import Any, TypeVar
 
-from pydantic import BaseModel, ConfigDict
+from pydantic import ConfigDict
+
+from .strict import NumbersAreNumbers
 
 M = TypeVar("M", bound="FrozenModel")
 
 
-class FrozenModel(BaseModel):
+class FrozenModel(NumbersAreNumbers):
     """Immutable, ``extra="forbid"``; see the module doc."""
 
     model_config = ConfigDict(frozen=True, extra="forbid")

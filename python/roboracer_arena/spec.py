@@ -190,9 +190,18 @@ def format_validation_error(e: ValidationError, top: str = "(spec)") -> str:
     """One line for all problems: ``field: message (got value)``, joined by ``; ``; a
     problem with the whole object is named ``top``."""
     parts = []
-    for err in e.errors():
-        loc = ".".join(str(x) for x in err["loc"]) or top
+    for err in e.errors()[:8]:
+        loc = ".".join(_short(str(x), 40) for x in err["loc"]) or top
         value = err.get("input")
-        shown = "" if isinstance(value, dict) else f" (got {value!r})"
-        parts.append(f"{loc}: {err['msg']}{shown}")
+        if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 100:
+            shown = f" (got an integer of about {int(value.bit_length() * 0.30103) + 1} digits)"
+        else:
+            shown = "" if isinstance(value, dict) else f" (got {_short(repr(value), 80)})"
+        msg = str(err["msg"]).removeprefix("Value error, ")
+        parts.append(f"{loc}: {_short(msg, 200)}{shown}")
     return "; ".join(parts)
+
+
+def _short(text: str, n: int) -> str:
+    """``text`` cut to ``n`` characters (a hostile key or value never floods a message)."""
+    return text if len(text) <= n else text[: n - 1] + "…"

@@ -110,7 +110,9 @@ def validation_line(e: ValidationError, top: str = "(whole document)") -> str:
     errors = e.errors()
     for err in errors[:5]:
         loc = ".".join(str(x)[:40] for x in err["loc"]) or top
-        parts.append(f"{loc}: {err['msg'][:160]}{_shown(err.get('input'))}")
+        msg = str(err["msg"]).removeprefix("Value error, ")[:160]
+        shown = "" if err["type"] == "value_error" else _shown(err.get("input"))  # (ours name the value)
+        parts.append(f"{loc}: {msg}{shown}")
     if len(errors) > 5:
         parts.append(f"and {len(errors) - 5} more")
     return "; ".join(parts)

@@ -221,7 +221,8 @@ def update_catalog(path: str | Path, change: Callable[[Catalog], T]) -> T:
 
 
 def _name(item: Any, i: int) -> Any:
-    return item.get("id", i) if isinstance(item, dict) else i
+    name = item.get("id", i) if isinstance(item, dict) else i
+    return name if not isinstance(name, str) or len(name) <= 60 else f"{name[:59]}…"
 
 
 def _parse(path: Path, where: str, model: type[M], item: Any) -> M:

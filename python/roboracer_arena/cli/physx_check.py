@@ -29,6 +29,22 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+def _stdout_done() -> None:
+    """After the JSON: point fd 1 at stderr for the rest of the process, so what the native
+    engine prints at exit (its teardown) cannot follow the JSON on stdout. Only in a real
+    command process (``sys.stdout`` is the process's own), never under a test's capture."""
+    import os
+    import sys
+
+    if sys.stdout is not sys.__stdout__ or sys.__stderr__ is None:
+        return
+    try:
+        sys.stdout.flush()
+        os.dup2(sys.__stderr__.fileno(), sys.__stdout__.fileno())
+    except (OSError, ValueError):
+        pass
+
+
 def run(args: argparse.Namespace) -> int:
     from ..physx.check import check_stage
 
@@ -39,6 +55,7 @@ def run(args: argparse.Namespace) -> int:
     report = check_stage(args.stage, points=args.points, seconds=args.seconds)
     if args.json:
         print_json(report.to_json_dict())
+        _stdout_done()
     else:
         print(report.summary())
     return EXIT_OK if report.ok else EXIT_PHYSX_FAILED

@@ -50,6 +50,9 @@ _WIDE = alt("wide", "in width", "width", "across")
 _MINR = "(?:" + alt("minimum", "min", "smallest", "tightest", "least", "lowest") + " )?"
 _RKIND = "(?:" + alt("turning", "turn", "corner", "cornering", "curve", "bend", "centreline", "curvature") + " )?"
 _STRAIGHT_ADJ = "(?:" + alt("longest", "main", "long", "back", "home", "front", "start", "finish") + " )?"
+#: Words that make a straight a cap ("max straight 3 m") or a floor ("min straight 3 m").
+_CAP = alt("max", "max .", "maximum", "at most", "maximal", "biggest allowed", "largest allowed")
+_FLOOR = alt("min", "min .", "minimum", "at least", "minimal")
 _TURNS = alt("turn", "turns", "corner", "corners", "bend", "bends", "curve", "curves")
 
 Handler = Callable[[re.Match[str], Canon, Found], None]
@@ -162,6 +165,18 @@ RULES: list[tuple[re.Pattern[str], Handler]] = [
             rf"(?:longer than|more than|over|above|exceeding|exceeds) {_q('q')}(?: long| in length)?{_QEND}"
         ),
         _setter("max_straight_m"),
+    ),
+    # -- a capped straight: "max straight 3 m", "maximum straight length of 3 m", "3 m max
+    # straight", "at most a 3 m straight" is the cap max_straight_m, never the floor
+    (
+        _rx(rf"{_CAP} (?:{_STRAIGHT_ADJ})?straights?(?: length)? (?:{FILL}){_q('q')}(?: long| in length)?{_QEND}"),
+        _setter("max_straight_m"),
+    ),
+    (_rx(rf"{_FREE}{_q('q')} (?:long )?{_CAP} {_STRAIGHT_ADJ}straights?(?: length)?"), _setter("max_straight_m")),
+    # ... and a "min"/"minimum" one the floor longest_straight_m, whose meaning it is
+    (
+        _rx(rf"{_FLOOR} (?:{_STRAIGHT_ADJ})?straights?(?: length)? (?:{FILL}){_q('q')}(?: long| in length)?{_QEND}"),
+        _setter("longest_straight_m"),
     ),
     # -- quantity then noun ("no turn tighter than 2 m radius" first: it ends in "radius")
     (

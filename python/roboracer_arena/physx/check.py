@@ -22,7 +22,6 @@ the floor plan, and "inside" is the free region connected to the start
 
 from __future__ import annotations
 
-import json
 import math
 import tempfile
 import time
@@ -33,19 +32,19 @@ from typing import Any
 import numpy as np
 from pydantic import Field
 
-from ..build_config import BuildConfig
 from ..corridor import extract_corridor
 from ..direction import direction_for_map
 from ..envs.env_config import EnvConfig
 from ..envs.single import RoboRacerEnv
-from ..errors import ConfigError, MapIOError
+from ..errors import ConfigError
+from ..fileio import require_regular
 from ..frozen_model import FrozenModel
 from ..sim_config import SimConfig
 from ..start_grid import centreline_pose
 from ..track import Track, track_from_corridor
-from ..usd import open_stage, stage_metadata
-from .open_probes import FreeRegion, crosses_walls, open_stations
-from .runtime import PhysxScene, require
+from ..usd.metadata import checked_source, read_stage_metadata
+from .open_probes import FreeRegion, WallSegments, open_stations
+from .runtime import PhysxScene, native_stdout_to_stderr, require
 
 #: A beam agrees when PhysX and our lidar differ by at most this (m).
 BEAM_TOLERANCE_M = 0.01
@@ -137,19 +136,17 @@ def track_of_stage(stage_path: str | Path) -> Any:
     (``map_kind`` "open") gives the open map the build made: the same start pose and
     ``unknown_cells``; its ``source`` is the corridor geometry (raster and free mask)."""
     path = Path(stage_path)
-    meta = stage_metadata(open_stage(path))
-    source, cfg_json = meta.get("source_map"), meta.get("build_config")
-    if not source or not cfg_json:
-        raise ConfigError(f"{path}: not a roboracer-arena stage (no source_map/build_config in its metadata)")
-    src = Path(str(source))
-    if not src.is_file():
-        raise MapIOError(f"{path}: the stage's source map {src} is not readable here (needed for our env's scan)")
-    cfg = BuildConfig.from_dict(json.loads(str(cfg_json)), source=f"{path} metadata")
-    start = meta.get("start")
-    if meta.get("map_kind") == "open":
-        unknown = str(meta.get("unknown_cells") or "occupied")
+    meta = read_stage_metadata(path)
+    src = checked_source(path, meta)  # the map it was built from, unchanged, or an error naming both
+    cfg = meta.build_config_model(path)
+    start = meta.start
+    if meta.map_kind == "open":
         geo = extract_corridor(
-            src, params=cfg.geometry_params(), start=tuple(start) if start else None, open=True, unknown=unknown
+            src,
+            params=cfg.geometry_params(),
+            start=tuple(start) if start else None,
+            open=True,
+            unknown=meta.unknown_cells,
         )
         return track_from_corridor(geo, src.stem)
     geo = extract_corridor(src, params=cfg.geometry_params(), start=tuple(start) if start else None)
@@ -299,6 +296,7 @@ def containment(
     probe_file = workdir / "probes.usda"
     paths = write_probe_stage(stage_path, plan, sim, probe_file)
     walls = [np.asarray(w, dtype=np.float64) for w in track.walls]
+    segments = WallSegments(walls) if free is not None else None
     dt = float(sim.physics.dt)
     steps = max(1, round(seconds / dt))
     reasons: dict[int, tuple[str, np.ndarray]] = {}
@@ -324,7 +322,8 @@ def containment(
                 through = np.zeros(len(pos), dtype=bool)
             else:
                 out = ~free.contains(pos[:, :2])
-                through = crosses_walls(walls, last, pos[:, :2])
+                assert segments is not None
+                through = segments.crossed(last, pos[:, :2])
                 last = pos[:, :2].copy()
             low = pos[:, 2] < FLOOR_LIMIT_M
             for k in np.flatnonzero(out | low | through):
@@ -357,21 +356,24 @@ def check_stage(
     stage_path: str | Path, sim: SimConfig | None = None, points: int = 12, seconds: float = 2.0
 ) -> PhysxCheckReport:
     """Run the whole check on a stage file; raises :class:`ConfigError` without the
-    ``physx`` extra and :class:`MapIOError` for an unreadable stage."""
-    ovphysx, _ = require()
-    t0 = time.perf_counter()
+    ``physx`` extra, :class:`MapIOError` for an unreadable stage (naming a directory or a
+    symlink loop as such) or a source map that is missing or has changed since the build,
+    :class:`MapFormatError` for metadata that does not read. Whatever the native engine
+    prints on stdout meanwhile goes to stderr (:func:`native_stdout_to_stderr`)."""
     path = Path(stage_path)
-    if not path.is_file():
-        raise MapIOError(f"{path}: no such stage file")
-    sim = sim or SimConfig()
-    track = track_of_stage(path)
-    ours, pose = env_scan(track, sim)
-    with PhysxScene(path) as scene:
-        load = scene.load_seconds
-        theirs = physx_scan(scene, pose, sim)
-    lidar = compare_scans(ours, theirs, pose)
-    with tempfile.TemporaryDirectory(prefix="roboracer-physx-") as tmp:
-        cont = containment(path, track, sim, points, seconds, Path(tmp))
+    require_regular(path, "USD stage")  # names a directory, a FIFO, a symlink loop, a missing file
+    with native_stdout_to_stderr():  # the engine's own prints (e.g. its GPU warnings) never reach stdout
+        ovphysx, _ = require()
+        t0 = time.perf_counter()
+        sim = sim or SimConfig()
+        track = track_of_stage(path)
+        ours, pose = env_scan(track, sim)
+        with PhysxScene(path) as scene:
+            load = scene.load_seconds
+            theirs = physx_scan(scene, pose, sim)
+        lidar = compare_scans(ours, theirs, pose)
+        with tempfile.TemporaryDirectory(prefix="roboracer-physx-") as tmp:
+            cont = containment(path, track, sim, points, seconds, Path(tmp))
     return PhysxCheckReport(
         stage=str(path),
         map_kind=str(track.kind),

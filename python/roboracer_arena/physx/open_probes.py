@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 from scipy import ndimage
+from scipy.spatial import cKDTree
 
 #: Clearance beyond the box's half-diagonal a station needs (m): the walls are smoothed
 #: polygons within about half a cell of the raster, so the box starts clear of them.
@@ -28,6 +29,8 @@ STATION_BAND_M = 0.5
 #: Candidate cells are taken on this stride (cells) before the spread: plenty for a
 #: handful of stations, and it keeps a 4-megapixel map fast.
 CANDIDATE_STRIDE = 3
+#: Wall edges are indexed in pieces of at most this length (m) for the crossing test.
+MAX_EDGE_PIECE_M = 0.5
 
 
 @dataclass(frozen=True)
@@ -117,26 +120,80 @@ def open_stations(
     return out
 
 
+class WallSegments:
+    """Every edge of a set of closed wall rings, indexed once for crossing tests: moves are
+    tested against only the edges near them (a k-d tree over edge midpoints), all in numpy
+    (segment against many segments), so the cost per call grows with the number of moves
+    and the edges near each, not with the number of walls. A floor plan speckled with
+    thousands of one-pixel islands (a common SLAM artefact) costs no more per move than
+    one with a few long walls."""
+
+    def __init__(self, walls: list[np.ndarray]) -> None:
+        rings = [np.asarray(w, dtype=np.float64).reshape(-1, 2) for w in walls if len(w) >= 2]
+        p = np.concatenate(rings) if rings else np.zeros((0, 2))
+        q = np.concatenate([np.roll(w, -1, axis=0) for w in rings]) if rings else np.zeros((0, 2))
+        p, q = _split_long(p, q, MAX_EDGE_PIECE_M)
+        self.p, self.q = p, q
+        self.mid = 0.5 * (p + q)
+        self.half_len = 0.5 * np.hypot(*(q - p).T) if len(p) else np.zeros(0)
+        self.reach = float(self.half_len.max()) if len(p) else 0.0
+        self._tree = cKDTree(self.mid) if len(p) else None
+
+    def crossed(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """True where the move from ``a[i]`` to ``b[i]`` ((N, 2)) properly crosses a wall edge."""
+        a = np.asarray(a, dtype=np.float64).reshape(-1, 2)
+        b = np.asarray(b, dtype=np.float64).reshape(-1, 2)
+        hit = np.zeros(len(a), dtype=bool)
+        if self._tree is None or not len(a):
+            return hit
+        ok = np.isfinite(a).all(axis=1) & np.isfinite(b).all(axis=1)
+        centre = np.where(ok[:, None], 0.5 * (a + b), 0.0)
+        radius = np.where(ok, 0.5 * np.hypot(*(b - a).T), 0.0) + self.reach + 1e-9
+        # an edge can meet a move only if their midpoints are within both half-lengths
+        near = self._tree.query_ball_point(centre, radius)
+        counts = np.fromiter((len(n) for n in near), dtype=np.int64, count=len(near))
+        if not counts.sum():
+            return hit
+        move = np.repeat(np.arange(len(a)), counts)
+        edge = np.fromiter((j for n in near for j in n), dtype=np.int64, count=int(counts.sum()))
+        keep = ok[move]
+        move, edge = move[keep], edge[keep]
+        crossing = _proper_crossings(a[move], b[move], self.p[edge], self.q[edge])
+        hit[move[crossing]] = True
+        return hit
+
+
+def _split_long(p: np.ndarray, q: np.ndarray, longest: float) -> tuple[np.ndarray, np.ndarray]:
+    """Edges ``p-q`` cut into collinear pieces of at most ``longest`` (m), so the index's
+    search radius stays small beside a long straight wall."""
+    n = np.maximum(1, np.ceil(np.hypot(*(q - p).T) / longest).astype(np.int64)) if len(p) else np.zeros(0, np.int64)
+    if not len(p) or n.max() == 1:
+        return p, q
+    edge = np.repeat(np.arange(len(p)), n)
+    k = np.arange(len(edge)) - np.repeat(np.cumsum(n) - n, n)
+    t0, t1 = (k / n[edge])[:, None], ((k + 1) / n[edge])[:, None]
+    d = q[edge] - p[edge]
+    return p[edge] + t0 * d, p[edge] + t1 * d
+
+
+def _proper_crossings(a: np.ndarray, b: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Row-wise: does segment ``a-b`` properly cross segment ``p-q`` (strict sign changes)."""
+
+    def side(x0: np.ndarray, x1: np.ndarray, x: np.ndarray) -> np.ndarray:
+        d, e = x1 - x0, x - x0
+        return np.sign(d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0])
+
+    return (side(a, b, p) * side(a, b, q) < 0) & (side(p, q, a) * side(p, q, b) < 0)
+
+
 def crosses_walls(walls: list[np.ndarray], a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """True where the move from ``a[i]`` to ``b[i]`` ((N, 2)) crosses a wall edge (walls are
     closed rings). On a floor plan a body that passes through a thin wall lands in free
     space again, often the same connected region, so its path is what shows the escape; a
     body that stays clear of the walls (its centre at least half its width away) never
-    crosses one between two close samples, even when it bounces."""
-    hit = np.zeros(len(a), dtype=bool)
-    ax, ay, bx, by = (v[:, None] for v in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
-    for w in walls:
-        p, q = w, np.roll(w, -1, axis=0)
-        px, py, qx, qy = (v[None, :] for v in (p[:, 0], p[:, 1], q[:, 0], q[:, 1]))
-
-        def side(x0, y0, x1, y1, x, y):  # sign of the cross product (x1 - x0, y1 - y0) x (x - x0, y - y0)
-            return np.sign((x1 - x0) * (y - y0) - (y1 - y0) * (x - x0))
-
-        hit |= (
-            (side(ax, ay, bx, by, px, py) * side(ax, ay, bx, by, qx, qy) < 0)
-            & (side(px, py, qx, qy, ax, ay) * side(px, py, qx, qy, bx, by) < 0)
-        ).any(axis=1)
-    return hit
+    crosses one between two close samples, even when it bounces. One call indexes the
+    walls; a caller testing many times keeps a :class:`WallSegments`."""
+    return WallSegments(walls).crossed(a, b)
 
 
-__all__ = ["FreeRegion", "crosses_walls", "open_stations"]
+__all__ = ["FreeRegion", "WallSegments", "crosses_walls", "open_stations"]

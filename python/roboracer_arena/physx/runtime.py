@@ -8,8 +8,14 @@ the process (:func:`_register_schemas`).
 
 from __future__ import annotations
 
+import ctypes
+import os
+import sys
+import threading
 import time
 import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from types import TracebackType
 from typing import Any
@@ -32,6 +38,50 @@ def _quiet_warp() -> None:
     except ImportError:
         return
     warp.config.log_level = max(warp.config.log_level, getattr(warp, "LOG_WARNING", 30))
+
+
+_REDIRECT = threading.Lock()
+_DEPTH = [0]
+
+
+def _flush_c_stdio() -> None:
+    """Flush the C library's stdio buffers (the engine's ``printf`` output waits there)."""
+    try:
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError):
+        pass
+
+
+@contextmanager
+def native_stdout_to_stderr() -> Iterator[None]:
+    """Point file descriptor 1 at stderr for the block (``os.dup2``), so whatever native
+    code prints to stdout meanwhile (PhysX's "GPU broadphase requires a CUDA context
+    manager" on a CPU-only machine, Warp's banner) lands on stderr: ``--json`` output
+    stays the only text on stdout. Python's own ``sys.stdout`` is flushed first and the C
+    library's buffers before fd 1 is restored. Re-entrant; a no-op when stdout or stderr
+    has no file descriptor (e.g. under a test's capture)."""
+    try:
+        out_fd, err_fd = sys.__stdout__.fileno(), sys.__stderr__.fileno()  # type: ignore[union-attr]
+    except (AttributeError, ValueError, OSError):
+        yield
+        return
+    with _REDIRECT:
+        _DEPTH[0] += 1
+        first = _DEPTH[0] == 1
+        if first:
+            sys.stdout.flush()
+            _flush_c_stdio()
+            saved = os.dup(out_fd)
+            os.dup2(err_fd, out_fd)
+    try:
+        yield
+    finally:
+        with _REDIRECT:
+            _DEPTH[0] -= 1
+            if first:
+                _flush_c_stdio()
+                os.dup2(saved, out_fd)
+                os.close(saved)
 
 
 def require() -> tuple[Any, Any]:

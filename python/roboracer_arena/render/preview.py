@@ -21,10 +21,11 @@ import numpy as np
 from ..builder import parse_start, resolve_config
 from ..corridor import extract_corridor
 from ..direction import direction_for_map
-from ..errors import MapFormatError
+from ..errors import ArenaError, MapFormatError
 from ..maps import load_map
 from ..track import Track, track_from_map_path
-from ..usd import open_stage, read_meshes, stage_metadata
+from ..usd import open_stage, read_meshes
+from ..usd.metadata import checked_source, stage_metadata_of
 from .formats import image_format
 from .frame import LegendEntry, framed
 from .race_marks import draw_race_marks
@@ -153,18 +154,27 @@ def map_title(name: str, race: dict[str, Any], occ: Any, open_map: bool = False)
     return f"{name}: {', '.join(f for f in facts if f)}"
 
 
+def _recorded_source(usd_path: str | Path, stage: Any) -> Path | None:
+    """The stage's source map when it is still there as built (absolute path, same
+    checksums: :func:`~roboracer_arena.usd.metadata.checked_source`), else None: the
+    picture is then drawn from the meshes alone, never over another map of that name."""
+    try:
+        return checked_source(usd_path, stage_metadata_of(stage, usd_path))
+    except ArenaError:
+        return None
+
+
 def preview_usd(usd_path: str | Path, out_png: str | Path, max_px: int = 2048, vehicles: int = 1) -> PreviewSummary:
     """Read a built stage's meshes back and draw floor, ducts and collision walls over the
     source map (when the map named in the stage metadata is still there, also its racing
     direction, start line and grid); write PNG or JPEG."""
     image_format(out_png)
     stage = open_stage(usd_path)
-    meta = stage_metadata(stage)
     meshes = read_meshes(stage)
     if not meshes:
         raise MapFormatError(f"{usd_path}: no meshes under /World/Track; not a RoboRacer Arena stage")
     drawn: list[str] = []
-    src = Path(str(meta.get("source_map", ""))) if meta.get("source_map") else None
+    src = _recorded_source(usd_path, stage)
     canvas = None
     if src is not None and src.is_file():
         occ = load_map(src)

@@ -39,6 +39,9 @@ def open_stage(path: str | Path) -> Usd.Stage:
 def stage_metadata(stage: Usd.Stage) -> dict[str, Any]:
     """The builder's ``customLayerData`` entry (source map, resolution, origin, config)."""
     data = stage.GetRootLayer().customLayerData.get(METADATA_KEY, {})
+    if not isinstance(data, dict):  # typed reading: roboracer_arena.usd.metadata
+        where = stage.GetRootLayer().realPath or "stage"
+        raise MapFormatError(f"{where}: stage metadata {METADATA_KEY} must be a dictionary, not {type(data).__name__}")
     return {k: (list(v) if hasattr(v, "__len__") and not isinstance(v, (str, dict)) else v) for k, v in data.items()}
 
 

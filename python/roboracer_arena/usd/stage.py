@@ -27,7 +27,7 @@ from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics, Vt
 
 from ..build_config import BuildConfig
 from ..errors import ConfigError, MapIOError
-from ..fileio import atomic_paths
+from ..fileio import atomic_paths, write_failure
 from ..sim_config import SimConfig
 from . import materials as looks
 from . import physx_schemas
@@ -144,7 +144,11 @@ def write_stage(
     fresh = [(p, tex) for p, tex in zip(written, textures) if not tex.present(out.parent)]
     with atomic_paths([out, *(p for p, _ in fresh)]) as (tmp, *tex_tmps):
         args = {"format": fmt} if out.suffix.lower() == ".usd" else {}
-        if not stage.GetRootLayer().Export(os.fspath(tmp), args=args):
+        try:
+            exported = stage.GetRootLayer().Export(os.fspath(tmp), args=args)
+        except Exception as e:  # usd-core's Tf.ErrorException: a full disk, a file-size limit, ...
+            raise write_failure(out, e) from None
+        if not exported:
             raise MapIOError(f"{out}: usd-core could not write the stage")
         for t, (_, tex) in zip(tex_tmps, fresh):
             t.write_bytes(tex.png)
