@@ -113,3 +113,35 @@ def test_write_failure_names_the_target_and_the_reason():
     )
     tf = RuntimeError("\tError in 'SdfLayer::Export': Failed to write: No space left on device\n")
     assert "no space left" in str(write_failure("/x/s.usda", tf))
+
+
+def test_generate_out_holding_a_hostile_report_is_refused_not_a_traceback(tmp_path, capsys):
+    """``generate -o DIR`` reads DIR's report.json to tell an earlier output from someone
+    else's folder: nested 100 000 deep it was a RecursionError traceback."""
+    from roboracer_arena.cli import main
+
+    d = tmp_path / "out"
+    d.mkdir()
+    (d / "report.json").write_text("[" * 100_000 + "]" * 100_000)
+    assert main(["generate", "a 40 m lap", "-o", str(d)]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and "did not write" in err.strip().splitlines()[-1], err
+
+
+def test_a_catalog_rebuild_names_a_hostile_generated_spec(tmp_path):
+    """``tracks catalog`` reads each generated track's spec.json and report.json with the
+    one JSON reader: another shape is one line naming the folder."""
+    import shutil
+
+    from roboracer_arena.errors import MapFormatError
+    from roboracer_arena.library.index import _generated_entries
+    from roboracer_arena.paths import PACKAGE_DIR
+
+    src = next((PACKAGE_DIR / "tracks" / "generated").iterdir())
+    dst = tmp_path / "generated" / src.name
+    shutil.copytree(src, dst)
+    assert len(_generated_entries(tmp_path)) == 1
+    for text in ("[1, 2]", '{"name": "x"}', "[" * 5000 + "]" * 5000):
+        (dst / "spec.json").write_text(text)
+        with pytest.raises(MapFormatError, match=src.name):
+            _generated_entries(tmp_path)

@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InvalidArgumentError
-from ..fileio import atomic_dir, atomic_write_text
+from ..errors import ArenaError, InvalidArgumentError
+from ..fileio import atomic_dir, atomic_write_text, read_json
 from .outcomes import Acceptance
 
 REPORT_NAME = "report.json"
@@ -66,9 +66,9 @@ def _is_generate_folder(d: Path) -> bool:
     names = os.listdir(d)
     if not names:
         return True
-    try:
-        report = json.loads((d / REPORT_NAME).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+    try:  # the one JSON reader: a report nested 10 000 deep or of 5000-digit numbers is simply not ours
+        report = read_json(d / REPORT_NAME, "generate report")
+    except (ArenaError, OSError):
         return False
     return isinstance(report, dict) and "constructor" in report and "checks" in report
 

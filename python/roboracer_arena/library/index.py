@@ -4,16 +4,19 @@ sources directory."""
 
 from __future__ import annotations
 
-import json
 import time
 from pathlib import Path
+from typing import Any
+
+from pydantic import ValidationError
 
 from .. import __version__
 from ..catalog.catalog_file import SCHEMA, Catalog, count_kinds, provenance, sha256_file
 from ..catalog.directions import annotate_directions
 from ..catalog.entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
 from ..circuits.report import CircuitReport
-from ..fileio import StagedFile, atomic_write_text
+from ..errors import MapFormatError
+from ..fileio import StagedFile, atomic_write_text, read_json
 from ..maps import load_map
 from ..pool import Progress
 from .generated import generate_into, staged_generated
@@ -78,42 +81,48 @@ def _generated_entries(tracks: Path, folder: Path | None = None) -> list[TrackEn
     out = []
     for spec_f in sorted((folder or tracks / "generated").glob("*/spec.json")):
         d = spec_f.parent
-        spec = json.loads(spec_f.read_text(encoding="utf-8"))
-        rep = json.loads((d / "report.json").read_text(encoding="utf-8"))
-        meas = rep["measurements"]  # the validator's numbers (its checks' text is for people)
-        m = load_map(d / "map.yaml")
-        h, w = m.shape
-        feats = f"{spec['hairpins']} hairpin(s), {spec['chicanes']} chicane(s), {spec['sweepers']} sweeper(s)"
-        out.append(
-            TrackEntry(
-                id=d.name,
-                name=spec["name"],
-                kind="generated",
-                source=Source(
-                    **PROJECT,
-                    path=f"generated/{d.name}/spec.json",
-                    derived=f"generate_track(spec, seed={rep['seed']}) with the {rep['constructor']} constructor",
-                ),
-                # Rounded as the validator reports them (cm for lengths, mm for widths).
-                scale=1.0,
-                resolution_m=m.resolution,
-                lap_length_m=round(meas["lap_length_m"], 2),
-                width_mean_m=round(meas["width_mean_m"], 3),
-                width_min_m=round(meas["width_min_m"], 3),
-                min_radius_m=round(meas["min_radius_m"], 2),
-                raster=Raster(width_px=w, height_px=h),
-                sha256=sha256_file(Path(m.meta["image_path"])),
-                map=f"generated/{d.name}/map.yaml",
-                centreline=f"generated/{d.name}/centreline.csv",
-                spec=f"generated/{d.name}/spec.json",
-                seed=rep["seed"],
-                notes=[
-                    f"{spec['lap_length_m']:g} m lap, {spec['corridor_width_m']:g} m wide, {spec['direction']}, {feats}, "
-                    f"in a {spec['hall_x_m']:g} x {spec['hall_y_m']:g} m hall"
-                ],
-            )
-        )
+        try:  # the one JSON reader (bounded); a file of another shape names itself
+            out.append(_generated_entry(d, read_json(spec_f, "generated spec"), read_json(d / "report.json", "report")))
+        except (KeyError, TypeError, AttributeError, ValueError, ValidationError) as e:
+            raise MapFormatError(
+                f"{d}: spec.json / report.json do not describe a generated track ({type(e).__name__}: {str(e)[:120]})"
+            ) from None
     return out
+
+
+def _generated_entry(d: Path, spec: Any, rep: Any) -> TrackEntry:
+    """One generated track's entry from its folder ``d`` and its spec and report."""
+    meas = rep["measurements"]  # the validator's numbers (its checks' text is for people)
+    m = load_map(d / "map.yaml")
+    h, w = m.shape
+    feats = f"{spec['hairpins']} hairpin(s), {spec['chicanes']} chicane(s), {spec['sweepers']} sweeper(s)"
+    return TrackEntry(
+        id=d.name,
+        name=spec["name"],
+        kind="generated",
+        source=Source(
+            **PROJECT,
+            path=f"generated/{d.name}/spec.json",
+            derived=f"generate_track(spec, seed={rep['seed']}) with the {rep['constructor']} constructor",
+        ),
+        # Rounded as the validator reports them (cm for lengths, mm for widths).
+        scale=1.0,
+        resolution_m=m.resolution,
+        lap_length_m=round(meas["lap_length_m"], 2),
+        width_mean_m=round(meas["width_mean_m"], 3),
+        width_min_m=round(meas["width_min_m"], 3),
+        min_radius_m=round(meas["min_radius_m"], 2),
+        raster=Raster(width_px=w, height_px=h),
+        sha256=sha256_file(Path(m.meta["image_path"])),
+        map=f"generated/{d.name}/map.yaml",
+        centreline=f"generated/{d.name}/centreline.csv",
+        spec=f"generated/{d.name}/spec.json",
+        seed=rep["seed"],
+        notes=[
+            f"{spec['lap_length_m']:g} m lap, {spec['corridor_width_m']:g} m wide, {spec['direction']}, {feats}, "
+            f"in a {spec['hall_x_m']:g} x {spec['hall_y_m']:g} m hall"
+        ],
+    )
 
 
 def _recorded_entries(sources: Path, jobs: int, progress: Progress | None) -> tuple[list[TrackEntry], list[LeftOut]]:
