@@ -5,7 +5,8 @@ Stages: a recorded map (f1tenth-gym Berlin), a circuit (Monaco at 1:10) and a ge
 track (40 m, seed 3), each built with ``build --car``; on Berlin also the conditions of the
 issue's table (mu 0.4, mass x1.5, mass x2) and the NUC6 preset (ForzaETH's real car). Each
 run is a :class:`roboracer_arena.physx.drive.Trace`; the pair is compared on arc length
-along the centreline (5 cm bins): lap time, lateral error, and the RMS difference of
+along the centreline from one origin (5 cm bins; ``start_gap_m``: how far apart along the
+centreline the two engines' cars started): lap time, lateral error, and the RMS difference of
 speed, yaw rate and steering between the engines at the same place on the track.
 """
 
@@ -42,20 +43,23 @@ class PairedLap(BenchModel):
     rms_yaw_rate: float
     rms_steer_rad: float
     rms_lateral_offset_m: float
+    start_gap_m: float
     traces: dict[str, dict[str, list[float]]]
 
 
 def _arc(track: Any, run: Any) -> np.ndarray:
-    """Unwrapped arc length (m) of each sample of ``run`` along the track's centreline."""
+    """Arc length (m) of each sample of ``run`` along the track's centreline from the
+    centreline's first point, unwrapped from the run's first sample on (the two engines'
+    runs then share one origin even when they start at different places)."""
     from roboracer_arena.drivers import PurePursuitDriver
 
     ref = PurePursuitDriver(track.centreline)
     n = len(ref.points)
-    out, s, last = [], 0.0, None
+    out, last = [], None
+    s = 0.0
     for x, y in zip(run.x, run.y):
         i = ref.project(x, y)
-        if last is not None:
-            s += ((i - last + n // 2) % n - n // 2) * ref.ds
+        s = i * ref.ds if last is None else s + ((i - last + n // 2) % n - n // 2) * ref.ds
         last = i
         out.append(s)
     return np.asarray(out)
@@ -79,8 +83,13 @@ def _signed_offset(track: Any, run: Any) -> np.ndarray:
 def compare(track: Any, name: str, condition: str, ours: Any, physx: Any) -> PairedLap:
     """The paired comparison of two runs on ``track``."""
     so, sp = _arc(track, ours), _arc(track, physx)
-    end = min(so[-1], sp[-1])
-    grid = np.arange(0.5, end, 0.05)
+    length = float(track.length)
+    if sp[0] - so[0] > length / 2:
+        sp = sp - length
+    elif so[0] - sp[0] > length / 2:
+        sp = sp + length
+    start_gap = float(abs(sp[0] - so[0]))
+    grid = np.arange(max(so[0], sp[0]) + 0.5, min(so[-1], sp[-1]), 0.05)
     cols = {
         "speed": (ours.speed, physx.speed),
         "yaw_rate": (ours.yaw_rate, physx.yaw_rate),
@@ -120,6 +129,7 @@ def compare(track: Any, name: str, condition: str, ours: Any, physx: Any) -> Pai
         rms_yaw_rate=rms["yaw_rate"],
         rms_steer_rad=rms["steer"],
         rms_lateral_offset_m=rms["offset"],
+        start_gap_m=start_gap,
         traces=traces,
     )
 
@@ -180,7 +190,15 @@ def run_laps(sources: Path, max_seconds: float = 150.0, quick: bool = False, pro
                 replace_car(stage, sim)
                 track = track_of_stage(stage)
                 ours = drive_native(track, pure_pursuit(track), sim, max_seconds=max_seconds)
-                physx = drive_physx(stage, pure_pursuit(track), sim, track=track, max_seconds=max_seconds, scan=False)
+                physx = drive_physx(
+                    stage,
+                    pure_pursuit(track),
+                    sim,
+                    track=track,
+                    max_seconds=max_seconds,
+                    scan=False,
+                    start=tuple(ours.start),  # the env's grid start (the stage's car may sit elsewhere)
+                )
                 out.append(compare(track, name, cname, ours, physx))
                 if progress:
                     r = out[-1]
@@ -198,9 +216,9 @@ def _f(x: float | None, fmt: str = ".2f") -> str:
 
 def print_laps(rows: list[PairedLap]) -> None:
     print(
-        "| track | car | lap ours (s) | lap PhysX (s) | difference | lateral error mean / max, ours (m) | PhysX (m) | RMS speed (m/s) | RMS yaw rate (rad/s) | RMS steer (rad) | RMS offset (m) |"
+        "| track | car | lap ours (s) | lap PhysX (s) | difference | lateral error mean / max, ours (m) | PhysX (m) | RMS speed (m/s) | RMS yaw rate (rad/s) | RMS steer (rad) | RMS offset (m) | start gap (m) |"
     )
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
         d = (
             "–"
@@ -210,7 +228,8 @@ def print_laps(rows: list[PairedLap]) -> None:
         print(
             f"| {r.track} | {r.condition} | {_f(r.ours_lap_s)} | {_f(r.physx_lap_s)} | {d} | "
             f"{r.ours_lateral_mean_m:.3f} / {r.ours_lateral_max_m:.3f} | {r.physx_lateral_mean_m:.3f} / {r.physx_lateral_max_m:.3f} | "
-            f"{r.rms_speed_m_s:.3f} | {r.rms_yaw_rate:.3f} | {r.rms_steer_rad:.4f} | {r.rms_lateral_offset_m:.3f} |"
+            f"{r.rms_speed_m_s:.3f} | {r.rms_yaw_rate:.3f} | {r.rms_steer_rad:.4f} | {r.rms_lateral_offset_m:.3f} | "
+            f"{r.start_gap_m:.2f} |"
         )
 
 

@@ -633,8 +633,8 @@ def engines_block(doc: Doc) -> str:
             "difference between the engines at the same arc length:",
             "",
             "| track | car | lap ours (s) | lap PhysX (s) | difference | lateral error mean / max, ours (m) | PhysX (m) "
-            "| RMS speed (m/s) | RMS yaw rate (rad/s) | RMS steer (rad) | RMS offset (m) |",
-            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+            "| RMS speed (m/s) | RMS yaw rate (rad/s) | RMS steer (rad) | RMS offset (m) | start gap (m) |",
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
         ]
         for p in r["laps"]:
             lap = _lap
@@ -644,7 +644,8 @@ def engines_block(doc: Doc) -> str:
                 f"| {p['track']} | {p['condition']} | {lap(p['ours_lap_s'])} | {lap(p['physx_lap_s'])} | {diff} | "
                 f"{p['ours_lateral_mean_m']:.3f} / {p['ours_lateral_max_m']:.3f} | "
                 f"{p['physx_lateral_mean_m']:.3f} / {p['physx_lateral_max_m']:.3f} | {p['rms_speed_m_s']:.3f} | "
-                f"{p['rms_yaw_rate']:.3f} | {p['rms_steer_rad']:.4f} | {p['rms_lateral_offset_m']:.3f} |"
+                f"{p['rms_yaw_rate']:.3f} | {p['rms_steer_rad']:.4f} | {p['rms_lateral_offset_m']:.3f} | "
+                f"{p.get('start_gap_m', 0.0):.2f} |"
             )
     return "\n".join(lines) + "\n"
 

@@ -151,6 +151,14 @@ class PhysxCar:
         self._queries = []
         self.physx.wait_all()
 
+    def place(self, x: float, y: float, yaw: float) -> None:
+        """Put the chassis at rest at ``(x, y, yaw)`` (its CoM at ``com_height``); settle after."""
+        h = float(self.sim.vehicle.com_height)
+        quat = [0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)]  # PhysX order: x, y, z, w
+        self._write(self._bq, {"position": [x, y, h], "orientation": quat})
+        self._write(self._bq, {"linearVelocity": [0.0, 0.0, 0.0], "angularVelocity": [0.0, 0.0, 0.0]})
+        self.state = self._read()
+
     def settle(self, steps: int = SETTLE_STEPS) -> None:
         """Let the car sink onto its suspension with no command (not counted in :attr:`steps`)."""
         for _ in range(steps):
@@ -292,6 +300,8 @@ class Trace(FrozenModel):
     physics_steps: int
     wall_seconds: float
     steps_per_second: float
+    start: list[float] = []
+    """The car's pose (x, y, yaw) when the run began."""
 
 
 class _Progress:
@@ -373,6 +383,7 @@ def drive_physx(
     control_rate_hz: float | None = None,
     max_seconds: float = 120.0,
     stop_at_lap: bool = True,
+    start: tuple[float, float, float] | None = None,
     scan: bool = True,
     lidar: str = "ours",
 ) -> Trace:
@@ -382,7 +393,8 @@ def drive_physx(
     at the car's pose on ``track`` (default: the stage's own track), or an empty array with
     ``scan=False``; ``lidar="physx"``: PhysX's own raycasts instead (:func:`_scanner`);
     ``odometry``: ``x, y, yaw, vx, vy, yaw_rate, steer, speed`` (SI, body
-    frame velocities). ``sim``: the car's config, the one the stage was built with."""
+    frame velocities). ``sim``: the car's config, the one the stage was built with. ``start``: put the car
+    at this pose (x, y, yaw) first (default: where the stage has it)."""
     from .check import track_of_stage
 
     sim = sim or SimConfig()
@@ -391,8 +403,11 @@ def drive_physx(
     scanner = _scanner(lidar, track, sim) if scan else None
     sub = max(1, round(1.0 / (rate * float(sim.physics.dt))))
     with PhysxScene(stage) as scene, PhysxCar(scene, sim) as car:
+        if start is not None:
+            car.place(*start)
         car.settle()
         rec = _Recorder(track, car.state.x, car.state.y)
+        pose0 = [car.state.x, car.state.y, car.state.yaw]
         t0, t = time.perf_counter(), 0.0
         while t < max_seconds - 1e-9:
             odo = car.state.to_json_dict()
@@ -413,6 +428,7 @@ def drive_physx(
         physics_steps=steps,
         wall_seconds=wall,
         steps_per_second=steps / busy if busy > 0 else 0.0,
+        start=pose0,
     )
 
 
@@ -434,6 +450,7 @@ def drive_native(
         obs, _ = env.reset(seed=0)
         odo = _native_odometry(env)
         rec = _Recorder(track, odo["x"], odo["y"])
+        pose0 = [odo["x"], odo["y"], odo["yaw"]]
         t, t0, steps = 0.0, time.perf_counter(), 0
         while t < max_seconds - 1e-9:
             cmd = tuple(float(c) for c in controller(np.asarray(obs["scan"], np.float32).reshape(-1), odo))
@@ -454,6 +471,7 @@ def drive_native(
         physics_steps=steps,
         wall_seconds=wall,
         steps_per_second=steps / wall if wall > 0 else 0.0,
+        start=pose0,
     )
 
 
