@@ -120,6 +120,14 @@ def register(kinds) -> None:
     )
     p.add_argument("--seeds", type=int, default=5, help="training seeds per condition (default 5)")
     p.add_argument("--generations", type=int, default=None, help="ES generations per run (default: the recipe's)")
+    p.add_argument(
+        "--seeds-for",
+        nargs="+",
+        default=[],
+        metavar="COND=N",
+        help="per-condition seeds instead of --seeds, e.g. single=10 pool_rand=10",
+    )
+    p.add_argument("--reuse", type=Path, metavar="JSON", help="take the runs of an earlier --json result as they are")
     p.add_argument("--conditions", nargs="+", choices=CONDITIONS, default=list(CONDITIONS), help="which conditions")
     p.add_argument("--single", default=SINGLE, help=f"the one training track (default {SINGLE})")
     p.add_argument("--policies", type=Path, metavar="DIR", help="keep every trained policy file in DIR")
@@ -167,8 +175,14 @@ def run(
     physx_seeds: int = 0,
     verbose: bool = True,
     held_out: list[str] | None = None,
+    seeds_for: dict[str, int] | None = None,
+    reuse: GeneralisationResult | None = None,
 ) -> GeneralisationResult:
-    """Train every condition for every seed and drive the held-out maps; see the module docstring."""
+    """Train every condition for every seed and drive the held-out maps; see the module
+    docstring. ``seeds_for``: a per-condition number of seeds instead of ``seeds``.
+    ``reuse``: an earlier result of the same settings whose runs (condition, seed) are
+    taken as they are, not retrained (training is deterministic: the same seed gives the
+    same policy), so more seeds can be added to a finished run."""
     from roboracer_arena.cli.train import default_pool
     from roboracer_arena.errors import ConfigError
     from roboracer_arena.learn.evaluate import evaluate_policy
@@ -186,13 +200,22 @@ def run(
         print(f"reference pure-pursuit laps: {refs}", flush=True)
     runs: list[TrainingRun] = []
     envs: dict[tuple, object] = {}
+    counts = {c: (seeds_for or {}).get(c, seeds) for c in conditions}
+    done = {(r.condition, r.seed): r for r in (reuse.runs if reuse is not None else [])}
+    if reuse is not None and (
+        reuse.held_out != held or reuse.generations != _recipe("pool_rand", generations).generations
+    ):
+        raise ConfigError("generalisation: --reuse needs a result with the same held-out maps and budget")
     for cond in conditions:
         recipe = _recipe(cond, generations)
         tracks = [single] if cond == "single" else pool
         key = (cond == "single", recipe.randomise)
-        if key not in envs:
-            envs[key] = make_env(tracks, recipe)  # the pool's ~155 tracks load once per env config
-        for seed in range(seeds):
+        for seed in range(counts[cond]):
+            if (cond, seed) in done:
+                runs.append(done[(cond, seed)])
+                continue
+            if key not in envs:
+                envs[key] = make_env(tracks, recipe)  # the pool's ~155 tracks load once per env config
             r = replace(recipe, seed=seed)
             c0, t0 = time.process_time(), time.perf_counter()
             policy = train_policy(tracks, r, env=envs[key])
@@ -247,7 +270,7 @@ def run(
         pool_size=len(pool),
         held_out=held,
         reference_laps=refs,
-        seeds=seeds,
+        seeds=max(counts.values()),
         summary=summarise(runs, single),
         runs=runs,
     )
@@ -375,7 +398,8 @@ def _fmt(i: Interval | None, pct: bool = False) -> str:
 def print_table(res: GeneralisationResult) -> None:
     print(
         f"ES: {res.generations} generations x {2 * res.pairs} envs x <= {res.episode_steps} steps; "
-        f"{res.seeds} seeds per condition; pool: {res.pool_size} catalog tracks"
+        f"seeds per condition: {', '.join(f'{k} {v.clean_lap_rate.n}' for k, v in res.summary.items())}; "
+        f"pool: {res.pool_size} catalog tracks"
     )
     print(f"held-out recorded maps ({len(res.held_out)}): {', '.join(res.held_out)}")
     head = f"{'condition':<46}{'clean laps % [95% CI]':>26}{'lap time / reference':>28}{'train s':>9}{'CPU s':>8}"
@@ -391,8 +415,9 @@ def print_table(res: GeneralisationResult) -> None:
                 f"{name} in PhysX: clean laps {_fmt(s.physx_clean_lap_rate, True)} % over {s.physx_clean_lap_rate.n} policy files"
             )
     for name, s in res.summary.items():
-        missed = {k: v for k, v in s.clean_laps_per_track.items() if v < res.seeds}
-        print(f"  {name}: " + (", ".join(f"{k} {v}/{res.seeds}" for k, v in missed.items()) or "every map every seed"))
+        n = s.clean_lap_rate.n
+        missed = {k: v for k, v in s.clean_laps_per_track.items() if v < n}
+        print(f"  {name}: " + (", ".join(f"{k} {v}/{n}" for k, v in missed.items()) or "every map every seed"))
 
 
 def _run_cli(args: argparse.Namespace) -> int:
@@ -404,7 +429,25 @@ def _run_cli(args: argparse.Namespace) -> int:
             )
         write_json(args.json, px)
         return 0
-    res = run(args.seeds, args.generations, args.conditions, args.single, args.policies, args.physx_seeds)
+    from roboracer_arena.errors import ConfigError
+
+    seeds_for = {}
+    for item in args.seeds_for:
+        cond, _, n = item.partition("=")
+        if cond not in CONDITIONS or not n.isdigit() or int(n) < 1:
+            raise ConfigError(f"--seeds-for: expected COND=N with COND in {CONDITIONS} and N >= 1, got {item!r}")
+        seeds_for[cond] = int(n)
+    reuse = GeneralisationResult.model_validate_json(args.reuse.read_text()) if args.reuse else None
+    res = run(
+        args.seeds,
+        args.generations,
+        args.conditions,
+        args.single,
+        args.policies,
+        args.physx_seeds,
+        seeds_for=seeds_for,
+        reuse=reuse,
+    )
     print_table(res)
     write_json(args.json, res)
     return 0
