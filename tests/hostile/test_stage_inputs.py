@@ -235,3 +235,15 @@ def test_fuzz_stage_metadata_sees_only_the_typed_error(built):
             outcomes["typed"] += 1
     assert outcomes["typed"] > 2000 and outcomes["unsettable"] < 1000, outcomes
     assert time.perf_counter() - t0 < 60, outcomes
+
+
+@pytest.mark.parametrize("case", ["build config deep", "start not numbers", "source a number"])
+def test_preview_of_a_stage_with_hostile_metadata_draws_its_meshes(built, tmp_path, capsys, case):
+    """The picture of a stage reads the same typed metadata: what does not read is left
+    out (the map under the meshes), never a traceback."""
+    stage, _ = built
+    key, line, _ = HOSTILE[case]
+    bad = _edit(stage, tmp_path / "bad.usda", key, line)
+    assert main(["preview", str(bad), "-o", str(tmp_path / "p.png")]) == 0
+    assert "Traceback" not in capsys.readouterr().err
+    assert (tmp_path / "p.png").stat().st_size > 0

@@ -10,7 +10,6 @@ display, so it runs headless on a machine without a GPU."""
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,11 +19,12 @@ import numpy as np
 from PIL import Image, ImageDraw
 
 from ..build_config import BuildConfig
-from ..errors import ConfigError, MapFormatError
+from ..errors import ArenaError, ConfigError, MapFormatError
 from ..sim_config import SimConfig
 from ..start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
 from ..track import track_from_map_path
-from ..usd import open_stage, read_meshes, stage_metadata
+from ..usd import open_stage, read_meshes
+from ..usd.metadata import StageMetadata, checked_source, stage_metadata_of
 from .formats import image_format
 from .topdown import font, save_image
 
@@ -55,8 +55,8 @@ def render_still(usd_path: str | Path, out: str | Path, size: tuple[int, int] = 
     meshes = read_meshes(stage)
     if not meshes:
         raise MapFormatError(f"{usd_path}: no meshes under /World/Track; not a RoboRacer Arena stage")
-    meta = stage_metadata(stage)
-    colours = _material_colours(meta)
+    meta = _metadata(stage, usd_path)
+    colours = _material_colours(meta, usd_path)
     ren = vtk.vtkRenderer()
     ren.SetBackground(*BACKGROUND)
     drawn: list[str] = []
@@ -75,7 +75,7 @@ def render_still(usd_path: str | Path, out: str | Path, size: tuple[int, int] = 
         elif path.endswith("/Walls"):
             _add(vtk, ren, m.points, m.triangles, WALL_RGB, opacity=0.35)
             drawn.append("collision walls")
-    car = _car_pose(meta)
+    car = _car_pose(meta, usd_path)
     if car is not None:
         _add_car(vtk, ren, car)
         drawn.append("car")
@@ -104,25 +104,36 @@ def _vtk() -> Any:
     return vtk
 
 
-def _material_colours(meta: dict[str, Any]) -> dict[str, tuple[float, float, float]]:
+def _metadata(stage: Any, usd_path: str | Path) -> StageMetadata | None:
+    """The stage's typed metadata, or None for a stage whose metadata does not read (a
+    foreign or edited stage still renders its shapes, in the default colours)."""
+    try:
+        return stage_metadata_of(stage, usd_path)
+    except ArenaError:
+        return None
+
+
+def _material_colours(meta: StageMetadata | None, usd_path: str | Path) -> dict[str, tuple[float, float, float]]:
     """Floor, duct and ring colours the stage was built with (its build config), else the defaults."""
     cfg = BuildConfig()
-    raw = meta.get("build_config")
-    if raw:
+    if meta is not None and meta.build_config:
         try:
-            cfg = BuildConfig.from_dict(json.loads(raw) if isinstance(raw, str) else dict(raw))
-        except (ValueError, TypeError, ConfigError):
+            cfg = meta.build_config_model(usd_path)
+        except ArenaError:
             pass  # an older or foreign stage: default colours still show the shapes
     mc = cfg.materials
     return {"floor": mc.floor_colour, "duct": mc.duct_colour, "ring": mc.ring_colour}
 
 
-def _car_pose(meta: dict[str, Any]) -> tuple[float, float, float] | None:
-    """(x, y, yaw) of the env's grid start on the stage's source map, if it is still there."""
-    src = meta.get("source_map")
-    if not src or not Path(str(src)).is_file():
+def _car_pose(meta: StageMetadata | None, usd_path: str | Path) -> tuple[float, float, float] | None:
+    """(x, y, yaw) of the env's grid start on the stage's source map, if it is still there
+    as built (absolute path, same checksums; never a same-named map in the current folder)."""
+    if meta is None:
         return None
-
+    try:
+        src = checked_source(usd_path, meta)
+    except ArenaError:
+        return None
     x, y, yaw = grid_poses(track_from_map_path(str(src)), 1, GRID_SPACING, GRID_OFFSET)[0]
     return float(x), float(y), float(yaw)
 
