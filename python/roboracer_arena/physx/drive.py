@@ -31,13 +31,16 @@ from typing import Any
 import numpy as np
 
 from .. import _core
+from ..build_config import BuildConfig
 from ..drivers import PurePursuitDriver
 from ..envs.env_config import EnvConfig
 from ..envs.single import RoboRacerEnv
 from ..errors import ConfigError
 from ..frozen_model import FrozenModel
 from ..sim_config import SimConfig
+from ..usd.stage import StageMesh, author_stage
 from ..usd.vehicle import AIR_DENSITY, CAR, ROLL_FADE, ackermann_command, author_car, physx_params
+from .check import physx_scan, track_of_stage
 from .runtime import PhysxScene
 
 #: Settling steps on the suspension before a run starts (not counted in its time).
@@ -261,9 +264,6 @@ class PhysxCar:
 def write_flat_stage(path: str | Path, sim: SimConfig, half_size: float = 150.0) -> Path:
     """A stage of a flat square floor (``2 half_size`` m, no walls) with the car of ``sim``
     at the origin heading +x: the open-loop manoeuvres' ground."""
-    from ..build_config import BuildConfig
-    from ..usd.stage import StageMesh, author_stage
-
     h = float(half_size)
     floor = StageMesh(
         path="/World/Track/Floor",
@@ -365,8 +365,6 @@ def _scanner(kind: str, track: Any, sim: SimConfig) -> Callable[[Any, dict[str, 
     """The lidar of a PhysX run: ``"ours"`` (our exact caster at the car's pose) or
     ``"physx"`` (PhysX raycasts against the stage's collision walls, as a PhysX lidar)."""
     if kind == "physx":
-        from .check import physx_scan
-
         return lambda scene, odo: physx_scan(scene, (odo["x"], odo["y"], odo["yaw"]), sim)
     if kind != "ours":
         raise ConfigError(f"lidar must be 'ours' or 'physx', got {kind!r}")
@@ -395,8 +393,6 @@ def drive_physx(
     ``odometry``: ``x, y, yaw, vx, vy, yaw_rate, steer, speed`` (SI, body
     frame velocities). ``sim``: the car's config, the one the stage was built with. ``start``: put the car
     at this pose (x, y, yaw) first (default: where the stage has it)."""
-    from .check import track_of_stage
-
     sim = sim or SimConfig()
     rate = float(control_rate_hz or EnvConfig().control_rate_hz)
     track = track if track is not None else track_of_stage(stage)

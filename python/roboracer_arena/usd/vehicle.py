@@ -82,6 +82,7 @@ from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics
 
 from ..direction import direction_for_map
 from ..errors import ConfigError
+from ..fileio import atomic_paths
 from ..sim_config import SimConfig, VehicleConfig
 from ..start_grid import centreline_pose, grid_start_s
 from ..track import Track
@@ -336,8 +337,6 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
 def replace_car(stage_path: str | Path, sim: SimConfig) -> None:
     """Re-author a built stage's car (``build --car``) from ``sim`` at the same pose, in place
     (written atomically): the same stage for another ``VehicleConfig``."""
-    from ..fileio import atomic_paths
-
     path = Path(stage_path)
     stage = Usd.Stage.Open(str(path))
     car = stage.GetPrimAtPath(CAR) if stage else None
