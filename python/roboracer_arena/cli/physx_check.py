@@ -36,11 +36,12 @@ def _stdout_done() -> None:
     import os
     import sys
 
-    if sys.stdout is not sys.__stdout__ or sys.__stderr__ is None:
+    out, err = sys.__stdout__, sys.__stderr__
+    if out is None or err is None or sys.stdout is not out:
         return
     try:
-        sys.stdout.flush()
-        os.dup2(sys.__stderr__.fileno(), sys.__stdout__.fileno())
+        out.flush()
+        os.dup2(err.fileno(), out.fileno())
     except (OSError, ValueError):
         pass
 

@@ -146,7 +146,7 @@ class WallSegments:
         hit = np.zeros(len(a), dtype=bool)
         if self._tree is None or not len(a):
             return hit
-        ok = np.isfinite(a).all(axis=1) & np.isfinite(b).all(axis=1)
+        ok: np.ndarray = np.asarray(np.isfinite(a).all(axis=1) & np.isfinite(b).all(axis=1))
         centre = np.where(ok[:, None], 0.5 * (a + b), 0.0)
         radius = np.where(ok, 0.5 * np.hypot(*(b - a).T), 0.0) + self.reach + 1e-9
         # an edge can meet a move only if their midpoints are within both half-lengths
