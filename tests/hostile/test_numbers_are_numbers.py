@@ -66,3 +66,38 @@ def test_configs_and_records_refuse_strings():
     for bad in ({"resolution_m": "0.05"}, {"narrowest_gap_m": "1"}, {"start": [0, "0", 0]}):
         with pytest.raises(ValidationError, match="must be a"):
             OpenMap.model_validate({**good, **bad})
+
+
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        ("[1, 2]", "mapping"),
+        ("[" * 3000 + "]" * 3000, "nested too deeply"),
+        ('{"v_max": ' + "9" * 5000 + "}", "digits"),
+        ("not json", "not valid JSON"),
+    ],
+)
+def test_a_hostile_limits_file_is_one_typed_line(tmp_path, text, words):
+    """Limits files (``raceline --limits``) go through the same reader: bounded, typed."""
+    from roboracer_arena.errors import ConfigError
+    from roboracer_arena.raceline.limits import load_limits
+
+    p = tmp_path / "limits.json"
+    p.write_text(text)
+    with pytest.raises(ConfigError, match=words) as e:
+        load_limits(p)
+    assert "limits.json" in str(e.value) and "\n" not in str(e.value)
+
+
+def test_a_limits_number_given_as_text_is_refused(tmp_path):
+    import json
+
+    from roboracer_arena.errors import ConfigError
+    from roboracer_arena.raceline.limits import limits_json, load_limits, preset
+
+    doc = json.loads(limits_json(preset("car")))
+    doc["v_max"] = str(doc["v_max"])
+    p = tmp_path / "limits.json"
+    p.write_text(json.dumps(doc))
+    with pytest.raises(ConfigError, match="v_max"):
+        load_limits(p)
