@@ -360,19 +360,35 @@ def read_json_model(
 def file_lock(path: str | Path) -> Iterator[None]:
     """Hold an exclusive lock (``fcntl.flock``) on the hidden lock file ``.NAME.lock``
     beside ``path`` for the block: writers that read, change and write back ``path`` take
-    it around the whole step, so none works on a copy another has since replaced. The
-    lock file stays (removing it would race with a waiting writer); the lock is released
-    when the block ends or the process dies."""
+    it around the whole step, so none works on a copy another has since replaced. The lock
+    file exists only while held: the holder removes it before releasing, and a waiter that
+    then wakes on the removed file (its inode no longer the path's) takes the lock again on
+    a fresh one, so two holders never overlap and no lock file is left behind. The lock is
+    also released when the process dies."""
     p = Path(path)
     lock = p.with_name(f".{p.name}.lock")
+    while True:
+        try:
+            fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666 & ~_UMASK)
+        except OSError as e:
+            raise MapIOError(f"{p}: cannot create its lock file {lock.name}: {_why(e)}") from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX)
+            try:
+                current = os.stat(lock).st_ino
+            except FileNotFoundError:
+                current = None
+        except BaseException:
+            os.close(fd)
+            raise
+        if current == os.fstat(fd).st_ino:
+            break
+        os.close(fd)  # woke on a lock file its holder removed: take the lock on the new one
     try:
-        fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666 & ~_UMASK)
-    except OSError as e:
-        raise MapIOError(f"{p}: cannot create its lock file {lock.name}: {_why(e)}") from None
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX)
         yield
     finally:
+        with suppress(OSError):
+            os.unlink(lock)  # (while still held: see above)
         os.close(fd)  # releases the lock
 
 

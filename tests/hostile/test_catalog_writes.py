@@ -125,3 +125,36 @@ def test_two_concurrent_verify_runs_never_lose_a_verdict(library):
         json.loads(PACKAGE_CATALOG.read_text())["left_out"]
     )
     assert not [p.name for p in library.parent.iterdir() if p.name.startswith(".arena-")]  # no temporary left
+
+
+LOCK_RACE = r"""
+import os, sys
+from pathlib import Path
+from roboracer_arena.fileio import file_lock
+target = Path(sys.argv[1])
+target.write_text("0")
+kids = []
+for k in range(8):
+    pid = os.fork()
+    if pid == 0:
+        for _ in range(25):
+            with file_lock(target):
+                n = int(target.read_text())
+                target.write_text(str(n + 1))
+        os._exit(0)
+    kids.append(pid)
+codes = [os.waitstatus_to_exitcode(os.waitpid(p, 0)[1]) for p in kids]
+print(target.read_text(), codes, sorted(p.name for p in target.parent.iterdir()))
+"""
+
+
+def test_file_lock_serialises_writers_and_leaves_no_lock_file(tmp_path):
+    """8 processes x 25 read-increment-write steps under ``fileio.file_lock``: every
+    increment lands (200), and the lock file is gone afterwards (its holder removes it;
+    a waiter that wakes on a removed one locks the fresh one)."""
+    r = subprocess.run(
+        [sys.executable, "-c", LOCK_RACE, str(tmp_path / "counter")], capture_output=True, text=True, timeout=300
+    )
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.split("[")[0].strip() == "200", r.stdout
+    assert "[0, 0, 0, 0, 0, 0, 0, 0]" in r.stdout and "['counter']" in r.stdout, r.stdout

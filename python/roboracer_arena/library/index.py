@@ -16,7 +16,7 @@ from ..catalog.directions import annotate_directions
 from ..catalog.entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
 from ..circuits.report import CircuitReport
 from ..errors import MapFormatError
-from ..fileio import StagedFile, atomic_write_text, read_json
+from ..fileio import StagedFile, atomic_write_text, file_lock, read_json
 from ..maps import load_map
 from ..pool import Progress
 from .generated import generate_into, staged_generated
@@ -138,7 +138,8 @@ def _recorded_entries(sources: Path, jobs: int, progress: Progress | None) -> tu
 def build_catalog(sources: Path, tracks: Path, jobs: int = 1, progress: Progress | None = None) -> Catalog:
     """Assemble every entry and write ``tracks/catalog.json`` atomically."""
     cat = assemble_catalog(sources, tracks, jobs, progress)
-    atomic_write_text(tracks / "catalog.json", cat.to_json())
+    with file_lock(tracks / "catalog.json"):  # a verify --update-catalog meanwhile waits, then re-reads
+        atomic_write_text(tracks / "catalog.json", cat.to_json())
     return cat
 
 
@@ -156,8 +157,9 @@ def build_catalog_generating(
     folder and ``tracks/catalog.json`` in together, signals held. An interrupt (SIGINT,
     SIGTERM) or an error at any moment leaves both as they were, and no stage behind."""
     out = StagedFile(tracks / "catalog.json")
+    # the catalog's lock throughout: a verify --update-catalog meanwhile waits, then re-reads
     try:
-        with staged_generated(tracks / "generated", also=out.commit) as stage:
+        with file_lock(tracks / "catalog.json"), staged_generated(tracks / "generated", also=out.commit) as stage:
             summary = generate_into(stage, count, jobs, generate_progress, max_requests=max_requests)
             cat = assemble_catalog(sources, tracks, jobs, progress, generated=stage)
             out.tmp.write_text(cat.to_json(), encoding="utf-8")
