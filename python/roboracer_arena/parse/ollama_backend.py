@@ -26,6 +26,7 @@ from ..errors import (
     ModelNotFoundError,
     SpecError,
 )
+from ..fileio import MAX_JSON_DEPTH, json_depth
 from ..spec import TrackSpec
 from .result import DEFAULTS
 
@@ -107,6 +108,12 @@ def ask_ollama(
         raise MalformedOutputError(
             f"model {model!r} returned text that is not JSON ({e.msg} at column {e.colno}): {content[:200]!r}"
         ) from None
+    except (RecursionError, ValueError):  # nested too deeply; an integer of more than 4300 digits
+        raise MalformedOutputError(
+            f"model {model!r} returned JSON nested too deeply or a number too long to read"
+        ) from None
+    if json_depth(data) > MAX_JSON_DEPTH:
+        raise MalformedOutputError(f"model {model!r} returned JSON nested more than {MAX_JSON_DEPTH} levels deep")
     try:
         spec = TrackSpec.from_dict(data, source=f"model {model!r} output")
     except SpecError as e:
