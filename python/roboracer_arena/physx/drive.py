@@ -408,11 +408,12 @@ def drive_physx(
         while t < max_seconds - 1e-9:
             odo = car.state.to_json_dict()
             ranges = scanner(scene, odo) if scanner else np.zeros(0, np.float32)
-            cmd = tuple(float(c) for c in controller(ranges, odo))
+            steer, speed = controller(ranges, odo)
+            cmd = (float(steer), float(speed))
             for _ in range(sub):
                 car.step(*cmd)
             t += sub * car.dt
-            if rec.add(t, car.state.to_json_dict(), cmd) and stop_at_lap:  # type: ignore[arg-type]
+            if rec.add(t, car.state.to_json_dict(), cmd) and stop_at_lap:
                 break
         wall = time.perf_counter() - t0
         steps, busy = car.steps, car.step_seconds
@@ -449,12 +450,13 @@ def drive_native(
         pose0 = [odo["x"], odo["y"], odo["yaw"]]
         t, t0, steps = 0.0, time.perf_counter(), 0
         while t < max_seconds - 1e-9:
-            cmd = tuple(float(c) for c in controller(np.asarray(obs["scan"], np.float32).reshape(-1), odo))
+            steer, speed = controller(np.asarray(obs["scan"], np.float32).reshape(-1), odo)
+            cmd = (float(steer), float(speed))
             obs, *_ = env.step(env.from_ackermann(np.array(cmd)))
             t += float(env.config.control_dt)
             steps += env.config.substeps
             odo = _native_odometry(env)
-            if rec.add(t, odo, cmd) and stop_at_lap:  # type: ignore[arg-type]
+            if rec.add(t, odo, cmd) and stop_at_lap:
                 break
         wall = time.perf_counter() - t0
     finally:
