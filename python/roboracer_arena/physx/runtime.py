@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ConfigError, MapIOError
+from ..fileio import require_regular
 
 EXTRA_HINT = "pip install 'roboracer-arena[physx]' (ovphysx + physx-usd-schemas, CPU PhysX, ~1.3 GB)"
 _REGISTERED: dict[str, bool] = {}
@@ -143,8 +144,7 @@ class PhysxScene:
     def __init__(self, usd_path: str | Path) -> None:
         ovphysx, ovstage = require()
         path = Path(usd_path)
-        if not path.is_file():
-            raise MapIOError(f"{path}: no such stage file")
+        require_regular(path, "USD stage")  # a directory, a FIFO or a symlink loop is named as such
         _register_schemas(ovstage)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # ovphysx's deprecation notes on scene queries
