@@ -650,6 +650,15 @@ def engines_block(doc: Doc) -> str:
     return "\n".join(lines) + "\n"
 
 
+def engines_deterministic(doc: Doc) -> Any:
+    r = doc["result"]
+    return {
+        "cells": [{"mu": c["mu"], "mass_scale": c["mass_scale"], "metrics": c["metrics"]} for c in r["cells"]],
+        "anchor": r.get("anchor", []),
+        "laps": [{k: p[k] for k in ("track", "condition", "ours_lap_s", "physx_lap_s")} for p in r.get("laps", [])],
+    }
+
+
 def engines_picture(doc: Doc) -> None:
     from benchmarks.engines import EnginesResult, plot, plot_tyres
 
@@ -774,7 +783,7 @@ BENCH_FIGURES: dict[str, dict[str, Any]] = {
         "run": _cmd(("engines", ["bench", "engines", "--anchor", "--laps"])),
         "blocks": [("BENCHMARKS.md", "engines", engines_block)],
         "picture": engines_picture,
-        "deterministic": None,
+        "deterministic": engines_deterministic,
         "ci": "long",
     },
 }
