@@ -29,6 +29,7 @@ KINDS: list[str] = [
     "ros2",
     "generalisation",
     "ray",
+    "raceline",
 ]
 # Kinds `all` leaves out: they need a peer installed by hand (F1TENTH Gym is not on PyPI), or
 # the `physx` extra and minutes of CPU (engines: our engine and PhysX, open loop).

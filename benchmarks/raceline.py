@@ -1,4 +1,4 @@
-"""``python -m benchmarks raceline`` (or ``python -m benchmarks.raceline``): our
+"""``python -m benchmarks raceline`` (or ``python -m benchmarks.raceline``; ``all`` runs three maps): our
 minimum-curvature racelines against the ones f1tenth_racetracks publishes.
 
 On each of the f1tenth_racetracks maps that ship a ``*_raceline.csv`` (TUM's optimiser,
