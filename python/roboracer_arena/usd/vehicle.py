@@ -35,7 +35,7 @@ Derivation, our model (``arena_core::sim::vehicle``) -> PhysX vehicle 2
   static load per wheel) is ours at ``N0``, and ours summed over an axle under any lateral
   load transfer (``C_a (N_l + N_r) = 2 C_a N0``); measured at 3 m/s: ``k / Y = 0.98``, the
   brush curve's own bend at that slip. The peak is ``mu N`` in both (the friction table holds
-  ``tyre_friction``; the friction-vs-slip graph is flat at 1). What is left differs in
+  ``tyre_friction`` through the load filter, below; the friction-vs-slip graph is flat at 1). What is left differs in
   shape, not in any parameter: the brush curve bends over earlier than ours (at our
   saturation slip ``alpha* = mu / C_a`` it gives ``0.70 mu N`` where ours gives ``mu N``)
   and reaches ``mu N`` at ``3 alpha*``. Both engines share the cornering stiffness, the
@@ -60,8 +60,8 @@ Derivation, our model (``arena_core::sim::vehicle``) -> PhysX vehicle 2
   The wheels' own damping is 0: rolling resistance (``C_rr N r`` per wheel, faded in over
   0.1 m/s as ours) is a torque in the same loop, and aerodynamic drag a force on the
   chassis (``0.5 rho C_d A v^2``), so the losses match at every speed.
-* **Integration.** :data:`VEHICLE_SUBSTEPS` vehicle sub-steps at every speed: the
-  smallest count whose result no longer changes with more (or with a halved step).
+* **Integration.** :data:`VEHICLE_SUBSTEPS` vehicle sub-steps at every speed: two already
+  give the result that more sub-steps or a halved step give; one does not (see the constant).
 * **Suspension.** Spring, damper and travel are the config's; tyre and suspension forces
   act at the contact patch at rest (``PhysxVehicleSuspensionComplianceAPI``), as ours
   applies them at the contact point.
