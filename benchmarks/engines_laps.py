@@ -1,9 +1,10 @@
-"""Closed loop for ``python -m benchmarks engines --laps``: the same pure pursuit at the
-same control rate (the env's, 20 Hz) on the same stage in both engines (issue 36).
+"""Closed loop for ``python -m benchmarks engines --laps``: the same driver at the same
+control rate (the env's, 20 Hz) on the same stage in both engines (issue 36).
 
 Stages: a recorded map (f1tenth-gym Berlin), a circuit (Monaco at 1:10) and a generated
-track (40 m, seed 3), each built with ``build --car``; on Berlin also the conditions of the
-issue's table (mu 0.4, mass x1.5, mass x2) and the NUC6 preset (ForzaETH's real car). Each
+track (40 m, seed 3), each built with ``build --car``, driven by the reference pure pursuit
+and by the racing driver on the raceline it plans (``raceline.driver``, from a standing
+start on the line); on Berlin also the conditions of the issue's table (mu 0.4, mass x1.5, mass x2) and the NUC6 preset (ForzaETH's real car). Each
 run is a :class:`roboracer_arena.physx.drive.Trace`; the pair is compared on arc length
 along the centreline from one origin (5 cm bins; ``start_gap_m``: how far apart along the
 centreline the two engines' cars started): lap time, lateral error, and the RMS difference of
@@ -168,8 +169,32 @@ def conditions() -> dict[str, SimConfig]:
     }
 
 
-def run_laps(sources: Path, max_seconds: float = 150.0, quick: bool = False, progress: bool = True) -> list[PairedLap]:
-    """Every stage with the paper's car, and Berlin under every condition (``quick``: Berlin only)."""
+def _racing_driver(track: Any) -> tuple[Any, tuple[float, float, float]]:
+    """The racing driver on ``track`` (the raceline it plans, its speed plan capping the
+    speed) as a controller factory, and its start: standing on the line's first point."""
+    from roboracer_arena.drivers import PurePursuitDriver
+    from roboracer_arena.raceline.driver import plan_for_driver, racing_params, speed_cap
+
+    line = plan_for_driver(track)
+    params, cap = racing_params(line), speed_cap(line)
+
+    def make() -> Any:
+        driver = PurePursuitDriver(line.xy, params, speed_cap=cap)
+
+        def act(_scan: np.ndarray, odo: dict[str, float]) -> tuple[float, float]:
+            steer, speed = driver.act_pose(odo["x"], odo["y"], odo["yaw"], odo["vx"])
+            return float(steer), float(speed)
+
+        return act
+
+    return make, (float(line.xy[0, 0]), float(line.xy[0, 1]), float(line.psi[0]))
+
+
+def run_laps(
+    sources: Path, max_seconds: float = 150.0, quick: bool = False, progress: bool = True, racing: bool = True
+) -> list[PairedLap]:
+    """Every stage with the paper's car under the pure pursuit and the racing driver (on its
+    own raceline), and Berlin under every condition (``quick``: Berlin only)."""
     from roboracer_arena.builder import build_environment
     from roboracer_arena.physx.check import track_of_stage
     from roboracer_arena.physx.drive import drive_native, drive_physx, pure_pursuit
@@ -184,20 +209,28 @@ def run_laps(sources: Path, max_seconds: float = 150.0, quick: bool = False, pro
             stages = dict(list(stages.items())[:1])
         for k, (name, map_yaml) in enumerate(stages.items()):
             conds = conditions() if name.startswith("berlin") else {"paper's car": SimConfig()}
-            for cname, sim in conds.items():
+            runs = [(c, sim, "pure pursuit") for c, sim in conds.items()]
+            if racing:
+                runs.append(("paper's car, racing driver", SimConfig(), "racing"))
+            for cname, sim, driver in runs:
                 stage = work / f"{k}-{len(out)}.usdc"
                 build_environment(map_yaml, stage, car=True)
                 replace_car(stage, sim)
                 track = track_of_stage(stage)
-                ours = drive_native(track, pure_pursuit(track), sim, max_seconds=max_seconds)
+                if driver == "racing":
+                    make, start = _racing_driver(track)
+                    ours = drive_native(track, make(), sim, max_seconds=max_seconds, start=start)
+                else:
+                    make = lambda track=track: pure_pursuit(track)
+                    ours = drive_native(track, make(), sim, max_seconds=max_seconds)
                 physx = drive_physx(
                     stage,
-                    pure_pursuit(track),
+                    make(),
                     sim,
                     track=track,
                     max_seconds=max_seconds,
                     scan=False,
-                    start=tuple(ours.start),  # the env's grid start (the stage's car may sit elsewhere)
+                    start=tuple(ours.start),  # the env's start (the stage's car may sit elsewhere)
                 )
                 out.append(compare(track, name, cname, ours, physx))
                 if progress:

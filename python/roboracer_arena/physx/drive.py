@@ -437,14 +437,17 @@ def drive_native(
     control_rate_hz: float | None = None,
     max_seconds: float = 120.0,
     stop_at_lap: bool = True,
+    start: tuple[float, float, float] | None = None,
 ) -> Trace:
     """The same run in our simulator: the env (grid start, ``control_rate_hz``), the same
-    ``controller(scan, odometry)`` with the env's raw scan."""
+    ``controller(scan, odometry)`` with the env's raw scan. ``start``: reset the car at this
+    pose (x, y, yaw) instead of the grid start."""
     sim = sim or SimConfig()
     rate = float(control_rate_hz or EnvConfig().control_rate_hz)
     env = RoboRacerEnv(track=track, config=EnvConfig(sim=sim, control_rate_hz=rate))
     try:
-        obs, _ = env.reset(seed=0)
+        options = {"poses": np.asarray(start, dtype=np.float64)} if start is not None else None
+        obs, _ = env.reset(seed=0, options=options)
         odo = _native_odometry(env)
         rec = _Recorder(track, odo["x"], odo["y"])
         pose0 = [odo["x"], odo["y"], odo["yaw"]]
