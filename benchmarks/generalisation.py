@@ -78,6 +78,7 @@ class ConditionSummary(BenchModel):
     description: str
     clean_lap_rate: Interval
     lap_time_ratio: Interval | None
+    racing_ratio: Interval | None = None
     train_wall_seconds: float
     train_cpu_seconds: float
     env_steps: int
@@ -95,6 +96,7 @@ class GeneralisationResult(BenchModel):
     pool_size: int
     held_out: list[str]
     reference_laps: dict[str, float | None]
+    racing_laps: dict[str, float | None] = {}
     seeds: int
     summary: dict[str, ConditionSummary]
     runs: list[TrainingRun]
@@ -140,6 +142,21 @@ def register(kinds) -> None:
         help="only drive these policy files on every held-out map, in PhysX and in our engine (no training)",
     )
     p.set_defaults(func=_run_cli)
+
+
+def racing_laps(held_out: list[str]) -> dict[str, float | None]:
+    """The racing driver's flying lap on each map (``tracks/racelines.json``; None: none
+    recorded or not clean). A standing lap from the grid cannot beat it by much: it is
+    the yardstick of how fast a map can be driven (issue 35)."""
+    from roboracer_arena.library.raceline_index import load_index
+
+    index = load_index()
+    out: dict[str, float | None] = {}
+    for tid in held_out:
+        rec = index.get(tid) if index is not None else None
+        d = rec.driver if rec is not None else None
+        out[tid] = d.driven_s if d is not None and d.clean else None
+    return out
 
 
 def reference_laps(held_out: list[str]) -> dict[str, float | None]:
@@ -196,6 +213,7 @@ def run(
         raise ConfigError(f"generalisation: the training track {single!r} is held out")
     pool = default_pool()
     refs = reference_laps(held)
+    racing = racing_laps(held)
     if verbose:
         print(f"reference pure-pursuit laps: {refs}", flush=True)
     runs: list[TrainingRun] = []
@@ -271,8 +289,9 @@ def run(
         held_out=held,
         reference_laps=refs,
         seeds=max(counts.values()),
-        summary=summarise(runs, single),
+        summary=summarise(runs, single, racing),
         runs=runs,
+        racing_laps=racing,
     )
 
 
@@ -357,18 +376,28 @@ _DESCRIPTIONS = {
 }
 
 
-def summarise(runs: list[TrainingRun], single: str = SINGLE) -> dict[str, ConditionSummary]:
-    """Per condition: clean-lap rate and lap-time ratio (mean of per-seed means, 95 % t
+def summarise(
+    runs: list[TrainingRun], single: str = SINGLE, racing: dict[str, float | None] | None = None
+) -> dict[str, ConditionSummary]:
+    """Per condition: clean-lap rate and lap-time ratios to the reference pure pursuit and
+    (with ``racing``) to the racing driver's flying lap (means of per-seed means, 95 % t
     intervals over seeds), mean training cost, clean laps per map out of the seeds."""
     out: dict[str, ConditionSummary] = {}
     for cond in dict.fromkeys(r.condition for r in runs):
         rs = [r for r in runs if r.condition == cond]
         rates = [r.clean_laps / len(r.laps) for r in rs]
-        ratios = []
+        ratios, racing_ratios = [], []
         for r in rs:
             vals = [lap.ratio for lap in r.laps if lap.ratio is not None]
             if vals:
                 ratios.append(sum(vals) / len(vals))
+            fast = [
+                lap.lap_time / racing[lap.track]
+                for lap in r.laps
+                if racing and lap.clean_lap and lap.lap_time and racing.get(lap.track)
+            ]
+            if fast:
+                racing_ratios.append(sum(fast) / len(fast))
         per_track: dict[str, int] = {}
         for r in rs:
             for lap in r.laps:
@@ -378,6 +407,7 @@ def summarise(runs: list[TrainingRun], single: str = SINGLE) -> dict[str, Condit
             description=_DESCRIPTIONS[cond].format(single=single),
             clean_lap_rate=interval(rates),
             lap_time_ratio=interval(ratios) if ratios else None,
+            racing_ratio=interval(racing_ratios) if racing_ratios else None,
             train_wall_seconds=round(sum(r.train_seconds for r in rs) / len(rs), 1),
             train_cpu_seconds=round(sum(r.cpu_seconds for r in rs) / len(rs), 1),
             env_steps=round(sum(r.env_steps for r in rs) / len(rs)),

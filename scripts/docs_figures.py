@@ -153,7 +153,7 @@ def generalisation_block(doc: dict[str, Any]) -> str:
     per_cond = ", ".join(f"{k} {v['clean_lap_rate']['n']}" for k, v in s.items())
     rows = [
         f"| {v['description']} | **{_ci(v['clean_lap_rate'], True)}** | {_ci(v['lap_time_ratio'])} | "
-        f"{v['train_wall_seconds']:.0f} s | {v['train_cpu_seconds']:.0f} s |"
+        f"{_ci(v.get('racing_ratio'))} | {v['train_wall_seconds']:.0f} s | {v['train_cpu_seconds']:.0f} s |"
         for v in s.values()
     ]
     missed = []
@@ -162,6 +162,7 @@ def generalisation_block(doc: dict[str, Any]) -> str:
         low = {m: n for m, n in v["clean_laps_per_track"].items() if n < n_seeds}
         missed.append(f"{k}: " + (", ".join(f"{m} {n}/{n_seeds}" for m, n in low.items()) or "every map, every seed"))
     refs = ", ".join(f"{m} {'–' if r is None else f'{r:.2f} s'}" for m, r in doc["reference_laps"].items())
+    racing = ", ".join(f"{m} {'–' if r is None else f'{r:.2f} s'}" for m, r in doc.get("racing_laps", {}).items())
     return (
         f"`python -m benchmarks generalisation --policies docs/learning/policies --seeds-for single=10 pool_rand=10`: "
         f"{doc['generations']} ES generations "
@@ -170,11 +171,14 @@ def generalisation_block(doc: dict[str, Any]) -> str:
         f"policy. Whole command: {t['wall_seconds'] / 60:.1f} min wall, {t['cpu_seconds'] / 60:.1f} min CPU on "
         f"the shared 2-core machine (load average about {t['load_average']:.1f}; pool start-up included). "
         f"Intervals are 95 % Student-t over seeds.\n\n"
-        f"| condition | clean laps % [95 % CI] | lap time / reference lap [95 % CI] | train wall | train CPU |\n"
-        f"|---|---:|---:|---:|---:|\n" + "\n".join(rows) + "\n\n"
+        f"| condition | clean laps % [95 % CI] | lap time / reference lap [95 % CI] | lap time / racing driver's "
+        f"flying lap [95 % CI] | train wall | train CPU |\n"
+        f"|---|---:|---:|---:|---:|---:|\n" + "\n".join(rows) + "\n\n"
         f"Held-out maps: {', '.join(doc['held_out'])}.\n\n"
         f"Maps not lapped cleanly by every seed: {'; '.join(missed)}.\n\n"
-        f"Reference pure-pursuit laps (`roboracer-arena drive`): {refs}.\n"
+        f"Reference pure-pursuit laps (`roboracer-arena drive`): {refs}.\n\n"
+        f"Racing driver's flying laps (`tracks/racelines.json`, `drive --raceline`; the yardstick of how fast "
+        f"a map can be driven, from a rolling start): {racing}.\n"
     )
 
 
