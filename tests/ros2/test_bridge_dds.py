@@ -35,6 +35,7 @@ def _subscribe_all(node, cars: int = 1) -> None:
         ("/clock", CLOCK),
         ("/map", MAP),
         ("/centreline", CENTRELINE),
+        ("/global_path", "nav_msgs/msg/Path"),
     ):
         node.subscribe(name, typ)
     for i in range(cars):
@@ -83,6 +84,15 @@ def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, 
     marker = ros_node.wait_for("/centreline")[0]
     line = np.array([[p.x, p.y] for p in marker.points])
     assert len(line) > 50 and np.allclose(line[0], line[-1])
+    # The raceline (issue 35): a closed nav_msgs/Path in map, yaw along the line, inside the corridor.
+    path = ros_node.wait_for("/global_path")[0]
+    xy = np.array([[p.pose.position.x, p.pose.position.y] for p in path.poses])
+    assert path.header.frame_id == "map" and len(xy) > 50 and np.allclose(xy[0], xy[-1])
+    step = np.diff(xy, axis=0)
+    q = path.poses[0].pose.orientation
+    assert math.atan2(2 * q.w * q.z, 1 - 2 * q.z * q.z) == pytest.approx(math.atan2(step[0, 1], step[0, 0]), abs=1e-6)
+    r = np.hypot(xy[:, 0] / 6.0, xy[:, 1] / 3.5)  # the ellipse's centreline is r = 1; the corridor is 1.8 m wide
+    assert np.all(np.abs(r - 1.0) < 0.2)
     static = ros_node.wait_for("/tf_static")[0].transforms[0]
     assert (static.header.frame_id, static.child_frame_id) == ("ego_racecar/base_link", "ego_racecar/laser")
     assert static.transform.translation.x == pytest.approx(0.12)

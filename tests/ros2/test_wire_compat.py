@@ -125,6 +125,7 @@ def test_the_bridge_messages_serialise_like_rosbags(typestore):
         (sm.occupancy_grid(occ), "nav_msgs/msg/OccupancyGrid"),
         (sm.centreline_marker(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]])), "visualization_msgs/msg/Marker"),
         (sm.drive_command(0.05, n.base_link, 0.1, 1.5), "ackermann_msgs/msg/AckermannDriveStamped"),
+        (sm.global_path(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]])), "nav_msgs/msg/Path"),
     ]
     for msg, typename in cases:
         _check(msg, typename, typestore)

@@ -2,7 +2,8 @@
 
 A ROS 2 node on the same domain id sees the topics of :mod:`.topics` with ROS 2 type
 names and QoS (:mod:`.msgs`, :mod:`.qos`): scans, odometry, ``/tf``, ``/tf_static``,
-``/clock``, ``/map`` and ``/centreline``; it drives the cars with ``/drive`` (and
+``/clock``, ``/map``, ``/centreline`` and ``/global_path`` (``nav_msgs/Path``: the track's
+minimum-curvature raceline with the car's own limits, latched); it drives the cars with ``/drive`` (and
 ``/opp_drive``, ``/car<i>/drive``) and resets the ego with ``/initialpose``.
 
 Time is simulated (:mod:`.clock`): ``rate=1.0`` (default) holds it to real time,
@@ -46,7 +47,7 @@ from .qos import qos_for
 from .recorder import McapRecorder
 from .source import SimSource, sim_source
 from .start import fixed_poses, fixed_speeds
-from .topics import CENTRELINE, CLOCK, INITIALPOSE, MAP, TF, TF_STATIC, TYPE_OF, car_names, dds_topic
+from .topics import CENTRELINE, CLOCK, GLOBAL_PATH, INITIALPOSE, MAP, TF, TF_STATIC, TYPE_OF, car_names, dds_topic
 
 _POLL_S = 0.002  # longest sleep between checks for commands while pacing
 #: A reset pose may lie this far (m) outside the centreline's bounding box, or half its
@@ -253,6 +254,8 @@ class Bridge:
             typename = TYPE_OF[INITIALPOSE] if name == INITIALPOSE else TYPE_OF["drive"]
             self._readers[name] = DataReader(dp, topic(name, typename), qos=qos_for(name))
         outs = [(TF, TF), (TF_STATIC, TF_STATIC), (CLOCK, CLOCK), (MAP, MAP), (CENTRELINE, CENTRELINE)]
+        if self.src.raceline is not None:
+            outs.append((GLOBAL_PATH, GLOBAL_PATH))
         outs += [(n.scan, "scan") for n in self.names] + [(n.odom, "odom") for n in self.names]
         for name, role in outs:
             self._writers[name] = w = DataWriter(dp, topic(name, TYPE_OF[role]), qos=qos_for(name))
@@ -285,6 +288,8 @@ class Bridge:
         if self.src.occupancy_map is not None:
             self._emit(MAP, sm.occupancy_grid(self.src.occupancy_map), TYPE_OF[MAP])
         self._emit(CENTRELINE, sm.centreline_marker(self.src.centreline), TYPE_OF[CENTRELINE])
+        if self.src.raceline is not None:
+            self._emit(GLOBAL_PATH, sm.global_path(self.src.raceline), TYPE_OF[GLOBAL_PATH])
 
     def _publish_due(self, due: list[str]) -> None:
         t, f, st = self.sim_time, self.src.fields, self.state[0]

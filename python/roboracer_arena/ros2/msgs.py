@@ -35,6 +35,7 @@ DEFINITIONS: dict[str, str] = {
     "geometry_msgs/msg/Quaternion": "float64 x\nfloat64 y\nfloat64 z\nfloat64 w",
     "geometry_msgs/msg/Pose": "Point position\nQuaternion orientation",
     "geometry_msgs/msg/PoseWithCovariance": "Pose pose\nfloat64[36] covariance",
+    "geometry_msgs/msg/PoseStamped": "std_msgs/Header header\nPose pose",
     "geometry_msgs/msg/PoseWithCovarianceStamped": "std_msgs/Header header\nPoseWithCovariance pose",
     "geometry_msgs/msg/Twist": "Vector3 linear\nVector3 angular",
     "geometry_msgs/msg/TwistWithCovariance": "Twist twist\nfloat64[36] covariance",
@@ -57,6 +58,7 @@ DEFINITIONS: dict[str, str] = {
         "geometry_msgs/Pose origin"
     ),
     "nav_msgs/msg/OccupancyGrid": "std_msgs/Header header\nMapMetaData info\nint8[] data",
+    "nav_msgs/msg/Path": "std_msgs/Header header\ngeometry_msgs/PoseStamped[] poses",
     "ackermann_msgs/msg/AckermannDrive": (
         "float32 steering_angle\nfloat32 steering_angle_velocity\nfloat32 speed\nfloat32 acceleration\nfloat32 jerk"
     ),
@@ -214,6 +216,7 @@ _EXPORTS = {
     "Vector3": "geometry_msgs/msg/Vector3",
     "Quaternion": "geometry_msgs/msg/Quaternion",
     "Pose": "geometry_msgs/msg/Pose",
+    "PoseStamped": "geometry_msgs/msg/PoseStamped",
     "PoseWithCovariance": "geometry_msgs/msg/PoseWithCovariance",
     "PoseWithCovarianceStamped": "geometry_msgs/msg/PoseWithCovarianceStamped",
     "Twist": "geometry_msgs/msg/Twist",
@@ -226,6 +229,7 @@ _EXPORTS = {
     "Odometry": "nav_msgs/msg/Odometry",
     "MapMetaData": "nav_msgs/msg/MapMetaData",
     "OccupancyGrid": "nav_msgs/msg/OccupancyGrid",
+    "Path": "nav_msgs/msg/Path",
     "AckermannDrive": "ackermann_msgs/msg/AckermannDrive",
     "AckermannDriveStamped": "ackermann_msgs/msg/AckermannDriveStamped",
     "Marker": "visualization_msgs/msg/Marker",

@@ -16,7 +16,7 @@ from ._deps import require
 #: History depth of every topic (ROS 2 default).
 DEPTH = 10
 #: ROS 2 topics that are latched (transient local).
-LATCHED = ("/map", "/tf_static", "/centreline")
+LATCHED = ("/map", "/tf_static", "/centreline", "/global_path")
 
 
 def ros_qos(latched: bool = False) -> Any:

@@ -9,6 +9,7 @@ the env starts them (:meth:`SimSource.reset`, see :mod:`.start`).
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -17,11 +18,15 @@ import numpy as np
 
 from .. import _core
 from ..envs.tracks import resolve_tracks
-from ..errors import ConfigError
+from ..errors import ArenaError, ConfigError
 from ..maps import load_map
+from ..raceline.limits import preset
+from ..raceline.plan import plan_raceline
 from ..sim_config import SimConfig
 from ..start_grid import start_spec
 from .start import StartConfig, bridge_start_spec
+
+_log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -33,6 +38,8 @@ class SimSource:
     config: SimConfig
     centreline: np.ndarray
     occupancy_map: Any = None
+    #: The track's raceline (M, 2) with the car's own limits, published on /global_path.
+    raceline: np.ndarray | None = None
     name: str = "track"
     track_id: int = 0
     fields: dict[str, int] = field(default_factory=dict)
@@ -54,6 +61,19 @@ class SimSource:
         fixed_track = np.full(E, self.track_id, np.int64)  # the bridge shows one track
         self.sim.reset_drawn(np.ones(E, bool), ids, out_poses, out_speeds, fixed_track, poses, speeds)
         return out_poses[:1]
+
+
+def raceline_xy(track: Any) -> np.ndarray | None:
+    """The minimum-curvature raceline of ``track`` with the car's own limits (what
+    ``roboracer-arena raceline`` plans), or None for an open map or a track it cannot plan
+    (logged): the bridge then publishes no /global_path."""
+    if getattr(track, "is_open", False):
+        return None
+    try:
+        return np.asarray(plan_raceline(track, preset("car")).xy)
+    except ArenaError as e:
+        _log.warning("ros2 bridge: no raceline for %s (%s); /global_path is not published", track.name, e)
+        return None
 
 
 def _load_map(source: Any) -> Any:
@@ -100,6 +120,7 @@ def sim_source(
             inner.config.sim,
             np.asarray(track.centreline),
             occupancy_map=_load_map(track.source),
+            raceline=raceline_xy(track),
             name=track.name,
             track_id=tid,
         )
@@ -112,4 +133,12 @@ def sim_source(
     sim = _core.Simulator([track.native()], 1, n, cfg, seed)
     sim.set_start_spec(bridge_start_spec(track, n, start or StartConfig(), cfg.vehicle.chassis_width))
     src = track.source if track.source is not None else env_or_sim
-    return SimSource(sim, n, cfg, np.asarray(track.centreline), occupancy_map=_load_map(src), name=track.name)
+    return SimSource(
+        sim,
+        n,
+        cfg,
+        np.asarray(track.centreline),
+        occupancy_map=_load_map(src),
+        raceline=raceline_xy(track),
+        name=track.name,
+    )

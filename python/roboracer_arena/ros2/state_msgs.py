@@ -129,6 +129,28 @@ def centreline_marker(centreline: np.ndarray, t: float = 0.0) -> Any:
     )
 
 
+def global_path(xy: np.ndarray, t: float = 0.0) -> Any:
+    """A closed raceline (M, 2) as ``nav_msgs/Path`` in ``map``: one pose per point, its yaw
+    along the line (the direction of travel), the first point repeated at the end."""
+    p = np.asarray(xy, dtype=np.float64)
+    nxt = np.roll(p, -1, axis=0)
+    yaw = np.arctan2(nxt[:, 1] - p[:, 1], nxt[:, 0] - p[:, 0])
+    if len(p) > 1:
+        p, yaw = np.vstack([p, p[:1]]), np.append(yaw, yaw[0])
+    h = header(t, MAP_FRAME)
+    poses = [
+        msgs.PoseStamped(
+            header=h,
+            pose=msgs.Pose(
+                position=msgs.Point(x=float(x), y=float(y), z=0.0),
+                orientation=msgs.Quaternion(z=float(np.sin(a / 2)), w=float(np.cos(a / 2))),
+            ),
+        )
+        for (x, y), a in zip(p, yaw)
+    ]
+    return msgs.Path(header=h, poses=poses)
+
+
 def drive_command(t: float, frame_id: str, steer: float, speed: float) -> Any:
     """``ackermann_msgs/AckermannDriveStamped`` (what the bridge records of a command)."""
     return msgs.AckermannDriveStamped(

@@ -15,13 +15,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 MAP_FRAME = "map"
-TF, TF_STATIC, CLOCK, MAP, INITIALPOSE, CENTRELINE = (
+TF, TF_STATIC, CLOCK, MAP, INITIALPOSE, CENTRELINE, GLOBAL_PATH = (
     "/tf",
     "/tf_static",
     "/clock",
     "/map",
     "/initialpose",
     "/centreline",
+    "/global_path",
 )
 
 # ROS 2 type of every topic the bridge uses (per-car topics by their role).
@@ -35,6 +36,7 @@ TYPE_OF = {
     MAP: "nav_msgs/msg/OccupancyGrid",
     INITIALPOSE: "geometry_msgs/msg/PoseWithCovarianceStamped",
     CENTRELINE: "visualization_msgs/msg/Marker",
+    GLOBAL_PATH: "nav_msgs/msg/Path",
 }
 
 
