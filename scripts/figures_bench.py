@@ -629,8 +629,9 @@ def engines_block(doc: Doc) -> str:
     if r.get("laps"):
         lines += [
             "",
-            "Closed loop: the reference pure pursuit at the env's control rate (20 Hz) on the same stage; RMS of the "
-            "difference between the engines at the same arc length:",
+            "Closed loop: the same driver (the reference pure pursuit, or the racing driver on its raceline) at the "
+            "env's control rate (20 Hz) on the same stage; RMS of the difference between the engines at the same arc "
+            "length:",
             "",
             "| track | car | lap ours (s) | lap PhysX (s) | difference | lateral error mean / max, ours (m) | PhysX (m) "
             "| RMS speed (m/s) | RMS yaw rate (rad/s) | RMS steer (rad) | RMS offset (m) | start gap (m) |",
