@@ -103,7 +103,7 @@ def policy_from_bytes(data: bytes, where: str | Path = "<bytes>") -> Policy:
             raise bad("it holds one array, not an npz archive")
         with npz:
             arrays = {k: npz[k] for k in npz.files}
-    except Exception as e:  # noqa: BLE001 - zipfile/zlib/numpy raise a dozen kinds on hostile bytes
+    except Exception as e:
         if isinstance(e, PolicyFileError):
             raise
         raise bad(
