@@ -140,6 +140,7 @@ def build_environment(
     open: bool | None = None,
     unknown: str = "occupied",
     close_gaps_m: float | None = None,
+    record_source_as: str | Path | None = None,
 ) -> BuildReport:
     """Build the USD environment of a ROS occupancy map.
 
@@ -153,7 +154,9 @@ def build_environment(
     ``open_reason`` say so), ``True`` always, ``False`` never; ``unknown`` is how an open
     map reads unknown cells (``"occupied"`` or ``"free"``). ``close_gaps_m`` closes the
     openings of the walls up to that width first (:mod:`roboracer_arena.gaps`); the
-    report, the stage metadata and the summary list every gap closed.
+    report, the stage metadata and the summary list every gap closed. ``record_source_as``:
+    the path the stage records for its source map when the map is read from a staging copy
+    that is moved there afterwards (its checksums are the copy's, the same bytes).
 
     Raises a :class:`~roboracer_arena.errors.ArenaError` subclass on bad input (unreadable
     map, no closed corridor, leaking walls, bad config); nothing is written then.
@@ -187,7 +190,7 @@ def build_environment(
             f"{geo.open_reason or 'built as an open map'}"
         )
     # the source by absolute path and checksums: a later check reads this map or none
-    recorded = source_fingerprint(source) if source else {"source_map": ""}
+    recorded = source_fingerprint(source, record_source_as) if source else {"source_map": ""}
     metadata = {
         "generator": f"roboracer-arena {__version__}",
         **recorded,

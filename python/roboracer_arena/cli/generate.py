@@ -15,7 +15,6 @@ Example: roboracer-arena generate "a 60 m lap with two hairpins in a 20 by 15 m 
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import sys
 from pathlib import Path
 
@@ -164,10 +163,9 @@ def _build_stage(map_yaml: Path, tmp: Path, final: Path, args: argparse.Namespac
         from ..maps import load_map
     except ImportError as e:
         raise InvalidArgumentError(f"--build needs the USD builder, which this installation lacks ({e})") from e
-    occ = load_map(map_yaml)
-    # The stage records where its source map lives: the final folder, not the temporary one.
-    occ = dataclasses.replace(occ, path=final / map_yaml.name)
-    build_environment(occ, tmp / "track.usda")
+    # The stage records where its source map lives: the final folder, not the temporary one
+    # (the checksums are of the staged copy, which becomes that file).
+    build_environment(load_map(map_yaml), tmp / "track.usda", record_source_as=final / map_yaml.name)
 
 
 def _drive(map_yaml: Path, args: argparse.Namespace, summary: dict) -> int:

@@ -130,12 +130,15 @@ def sha256_bytes(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
 
 
-def source_fingerprint(yaml_path: str | Path) -> dict[str, str]:
+def source_fingerprint(yaml_path: str | Path, recorded_as: str | Path | None = None) -> dict[str, str]:
     """What a stage records of its source map: its absolute path and the sha256 of its
-    YAML and of its image."""
+    YAML and of its image. ``recorded_as``: the path to record when the map is read from
+    a staging copy that moves there afterwards (``generate --build`` builds its stage from
+    the temporary output folder, which becomes ``-o``)."""
     p = Path(yaml_path).absolute()
     text = read_regular_bytes(p, "map YAML", _MAX_YAML_BYTES)
-    out = {"source_map": str(p), "source_sha256": sha256_bytes(text)}
+    where = Path(recorded_as).absolute() if recorded_as is not None else p
+    out = {"source_map": str(where), "source_sha256": sha256_bytes(text)}
     image = _image_of(p, text)
     if image is not None:
         out["source_image_sha256"] = sha256_file(image)
