@@ -106,3 +106,17 @@ def test_physx_check_holds_on_builds_own_stage_of_the_corner_map(corner_map, tmp
     out = tmp_path / "corner.usda"
     assert main(["build", str(corner_map), "-o", str(out)]) == 0
     assert main(["physx-check", str(out), "--points", "2", "--seconds", "0.5"]) == 0
+
+
+def test_the_ros2_bridge_refuses_a_start_that_does_not_fit_on_an_open_map(corner_map, capsys):
+    pytest.importorskip("cyclonedds", reason="needs the [ros2] extra")
+    from roboracer_arena.ros2.bridge import Bridge
+
+    with pytest.raises(NoRoomForCarError, match="does not fit the car"):
+        Bridge(str(corner_map), start_poses=[0.0, 0.0, 0.0], dds=False)
+    args = ["ros2", str(corner_map), "--start", "0", "0", "0", "--sim-time", "0.1", "--rate", "max", "--loopback"]
+    assert main([*args, "--domain-id", "117"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "corner.yaml" in err[0] and "does not fit" in err[0]
+    bridge = Bridge(str(corner_map), start_poses=[3.0, 1.0, 0.0], dds=False)  # open floor: fits
+    assert bridge.src.open_map

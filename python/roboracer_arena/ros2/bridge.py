@@ -45,7 +45,7 @@ from .graph import announce
 from .msgs import msg_class
 from .qos import qos_for
 from .recorder import McapRecorder
-from .source import SimSource, sim_source
+from .source import SimSource, check_open_map_starts, sim_source
 from .start import fixed_poses, fixed_speeds
 from .topics import CENTRELINE, CLOCK, GLOBAL_PATH, INITIALPOSE, MAP, TF, TF_STATIC, TYPE_OF, car_names, dds_topic
 
@@ -107,6 +107,7 @@ class Bridge:
             start = start.model_copy(update={"reset_poses": "centreline_start"})
         self.src: SimSource = sim_source(env_or_sim, cars=cars, config=self.config.sim, seed=seed, start=start)
         self._start_poses = fixed_poses(start_poses, self.src.vehicles)
+        check_open_map_starts(self.src, self._start_poses)
         self._start_speeds = fixed_speeds(start_speeds, self.src.vehicles)
         #: Where the cars started (1, V, 3), set by :meth:`start`.
         self.start_poses: np.ndarray | None = None

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from .. import _core
+from ..corridor import extract_corridor
 from ..envs.tracks import resolve_tracks
 from ..errors import ArenaError, ConfigError
 from ..maps import load_map
@@ -40,6 +41,8 @@ class SimSource:
     occupancy_map: Any = None
     #: The track's raceline (M, 2) with the car's own limits, published on /global_path.
     raceline: np.ndarray | None = None
+    #: The track is an open map (walls only): a fixed start must fit the car's footprint.
+    open_map: bool = False
     name: str = "track"
     track_id: int = 0
     fields: dict[str, int] = field(default_factory=dict)
@@ -74,6 +77,16 @@ def raceline_xy(track: Any) -> np.ndarray | None:
     except ArenaError as e:
         _log.warning("ros2 bridge: no raceline for %s (%s); /global_path is not published", track.name, e)
         return None
+
+
+def check_open_map_starts(src: SimSource, poses: np.ndarray | None) -> None:
+    """On an open map, refuse (exit 2, naming the map and its free space) a fixed start
+    pose where the car's whole footprint does not fit, as ``build --start`` does
+    (:func:`roboracer_arena.car_fit.check_start` through the open-map extraction)."""
+    if poses is None or not src.open_map or src.occupancy_map is None:
+        return
+    for x, y, yaw in np.asarray(poses, dtype=np.float64).reshape(-1, 3):
+        extract_corridor(src.occupancy_map, start=(float(x), float(y), float(yaw)), open=True)
 
 
 def _load_map(source: Any) -> Any:
@@ -121,6 +134,7 @@ def sim_source(
             np.asarray(track.centreline),
             occupancy_map=_load_map(track.source),
             raceline=raceline_xy(track),
+            open_map=bool(track.is_open),
             name=track.name,
             track_id=tid,
         )
@@ -140,5 +154,6 @@ def sim_source(
         np.asarray(track.centreline),
         occupancy_map=_load_map(src),
         raceline=raceline_xy(track),
+        open_map=bool(track.is_open),
         name=track.name,
     )
