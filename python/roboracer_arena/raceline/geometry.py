@@ -16,17 +16,12 @@ from scipy.interpolate import CubicSpline
 from ..errors import InvalidArgumentError
 
 
-@dataclass(frozen=True)
-class ClosedPath:
-    """A closed path sampled every ``step`` metres: ``xy`` (N, 2) (no repeated closing
-    point), ``s`` (N,) arc length of each point from the first, ``length`` of the loop,
-    ``psi`` (N,) heading, ``kappa`` (N,) curvature (1/m)."""
+class ArcSampled:
+    """What a closed path sampled along its arc length (``s``, ``length``, ``psi``) gives."""
 
-    xy: np.ndarray
     s: np.ndarray
     length: float
     psi: np.ndarray
-    kappa: np.ndarray
 
     @property
     def ds(self) -> np.ndarray:
@@ -37,6 +32,19 @@ class ClosedPath:
     def normals(self) -> np.ndarray:
         """(N, 2) unit normals pointing left of the direction of travel."""
         return np.column_stack([-np.sin(self.psi), np.cos(self.psi)])
+
+
+@dataclass(frozen=True)
+class ClosedPath(ArcSampled):
+    """A closed path sampled every ``step`` metres: ``xy`` (N, 2) (no repeated closing
+    point), ``s`` (N,) arc length of each point from the first, ``length`` of the loop,
+    ``psi`` (N,) heading, ``kappa`` (N,) curvature (1/m)."""
+
+    xy: np.ndarray
+    s: np.ndarray
+    length: float
+    psi: np.ndarray
+    kappa: np.ndarray
 
 
 def _ring(xy: np.ndarray) -> np.ndarray:

@@ -19,7 +19,7 @@ from ..errors import InvalidArgumentError
 from ..sim_config import VehicleConfig
 from .bounds import Clearance, lateral_bounds
 from .clearance import WallDistance
-from .geometry import ClosedPath
+from .geometry import ArcSampled, ClosedPath
 from .limits import VehicleLimits
 from .mincurv import iterate_min_curvature
 from .speed import SpeedProfile, speed_profile
@@ -33,7 +33,7 @@ SPLINE_TOLERANCE = 0.015
 
 
 @dataclass(frozen=True)
-class Raceline:
+class Raceline(ArcSampled):
     """A closed raceline with its speed profile (map frame, SI units). Arrays are (N,), one
     entry per point, every ``step`` metres from the point nearest the track's start line;
     ``s`` is the arc length along the raceline, ``psi`` the heading (0 along +x), ``kappa``
@@ -56,16 +56,6 @@ class Raceline:
     half_width: float = 0.0
     min_clearance: float = 0.0
     timings: dict[str, float] = field(default_factory=dict)
-
-    @property
-    def ds(self) -> np.ndarray:
-        """(N,) distance from each point to the next (the last one back to the first)."""
-        return np.diff(np.append(self.s, self.length))
-
-    @property
-    def normals(self) -> np.ndarray:
-        """(N, 2) unit normals, left of the direction of travel."""
-        return np.column_stack([-np.sin(self.psi), np.cos(self.psi)])
 
     @property
     def path(self) -> tuple[np.ndarray, np.ndarray]:
