@@ -51,6 +51,17 @@ def _timed(body: Callable[[], Any]) -> tuple[Any, dict[str, float]]:
     return out, timing
 
 
+def _added_timing(a: dict[str, float], b: dict[str, float]) -> dict[str, float]:
+    """The timing of two runs that make one figure: wall and CPU added, load weighted by wall."""
+    w = a["wall_seconds"] + b["wall_seconds"]
+    load = (a["load_average"] * a["wall_seconds"] + b["load_average"] * b["wall_seconds"]) / max(w, 1e-9)
+    return {
+        "wall_seconds": round(w, 1),
+        "cpu_seconds": round(a["cpu_seconds"] + b["cpu_seconds"], 1),
+        "load_average": round(load, 1),
+    }
+
+
 # ---------------------------------------------------------------- ES on Berlin (README)
 def es_data(profile: str = "") -> dict[str, Any]:
     """``examples/train_es.py`` with its defaults on gym-berlin: curve, lap, parameters."""
@@ -121,13 +132,7 @@ def generalisation_data(profile: str = "") -> dict[str, Any]:
         reuse = generalisation.GeneralisationResult.model_validate({**fields, "runs": runs})
     res, timing = _timed(lambda: generalisation.run(policies=POLICIES, seeds_for=HEADLINE_SEEDS, reuse=reuse))
     if before is not None:  # the whole figure's cost: the reused run's and this one's
-        t0 = before["timing"]
-        w0, w1 = t0["wall_seconds"], timing["wall_seconds"]
-        timing = {
-            "wall_seconds": round(w0 + w1, 1),
-            "cpu_seconds": round(t0["cpu_seconds"] + timing["cpu_seconds"], 1),
-            "load_average": round((t0["load_average"] * w0 + timing["load_average"] * w1) / max(w0 + w1, 1e-9), 1),
-        }
+        timing = _added_timing(before["timing"], timing)
     doc = res.model_dump(mode="json")
     for r in doc["runs"]:  # relative to the checkout, so the data does not name this machine
         if r["policy_file"]:
@@ -213,13 +218,7 @@ def physx_policies_data(profile: str = "") -> dict[str, Any]:
     res, timing = _timed(lambda: generalisation.physx_runs([ROOT / f for f in todo]))
     fresh = {str(f): r.model_copy(update={"file": str(f)}).model_dump(mode="json") for r, f in zip(res.runs, todo)}
     if before is not None:
-        t0 = before["timing"]
-        w0, w1 = t0["wall_seconds"], timing["wall_seconds"]
-        timing = {
-            "wall_seconds": round(w0 + w1, 1),
-            "cpu_seconds": round(t0["cpu_seconds"] + timing["cpu_seconds"], 1),
-            "load_average": round((t0["load_average"] * w0 + timing["load_average"] * w1) / max(w0 + w1, 1e-9), 1),
-        }
+        timing = _added_timing(before["timing"], timing)
     doc = {
         "files": [str(f) for f in files],
         "held_out": res.held_out,
