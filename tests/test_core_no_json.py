@@ -1,7 +1,8 @@
 """No JSON text crosses ``_core`` (issue 24): specs, configs and params go in as Python
 objects and results come out as objects. Checked on ``_core.pyi``, which stubtest (``make
 lint``) holds to the extension's real signatures: no parameter named ``json`` or
-``*_json``, and ``str`` only where the value is genuinely text (a path, a kind, a name).
+``*_json``, and ``str`` only where the value is genuinely text (a path, a name); closed domains are
+``Literal`` types.
 """
 
 from __future__ import annotations
@@ -21,9 +22,6 @@ STUB = Path(roboracer_arena.__file__).with_name("_core.pyi")
 TEXT_PARAMS = {
     ("load_map", "path"),
     ("save_map", "yaml_path"),
-    ("save_map", "image_format"),
-    ("config_defaults", "kind"),
-    ("check_config", "kind"),
 }
 #: Results holding ``str`` as text (how many of their values): an image path, an outcome
 #: kind (the rest of ``generate_lattice``'s tuple must not be text), field names.

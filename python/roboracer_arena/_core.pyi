@@ -2,7 +2,7 @@
 
 import os
 from collections.abc import Mapping, Sequence
-from typing import Any, Protocol, TypeAlias, final
+from typing import Any, Literal, Protocol, TypeAlias, final
 
 import numpy as np
 import numpy.typing as npt
@@ -77,13 +77,19 @@ class _Dumps(Protocol):
 _Doc: TypeAlias = Mapping[str, Any] | _Dumps
 _Result: TypeAlias = dict[str, Any]
 
+# Closed domains, converted to the core's enums at the signature (InvalidArgumentError
+# naming the allowed values for any other value); save_map also takes them in any case.
+_ConfigKind: TypeAlias = Literal["sim", "build", "constructor", "spec"]
+_ImageFormat: TypeAlias = Literal["png", "pgm"]
+
+# The bad-value errors are ValueErrors too (as pydantic's ValidationError is).
 class ArenaError(Exception): ...
 class MapIOError(ArenaError): ...
-class MapFormatError(ArenaError): ...
+class MapFormatError(ArenaError, ValueError): ...
 class CorridorError(ArenaError): ...
-class InvalidArgumentError(ArenaError): ...
-class ConfigError(ArenaError): ...
-class SpecError(ArenaError): ...
+class InvalidArgumentError(ArenaError, ValueError): ...
+class ConfigError(ArenaError, ValueError): ...
+class SpecError(ArenaError, ValueError): ...
 class SimulationError(ArenaError): ...
 
 class InternalError(ArenaError):
@@ -142,10 +148,11 @@ def validate_map(
 ) -> tuple[_Result, npt.NDArray[np.float64]]:
     """Raster validator: (report (``ValidationReport``), measured centreline (N, 2) in the driving direction)."""
 
-def config_defaults(kind: str) -> _Result:
-    """The core's defaults for ``kind`` ("sim", "build", "constructor")."""
+def config_defaults(kind: _ConfigKind) -> _Result:
+    """The core's defaults for ``kind`` ("sim", "build", "constructor"; "spec" has none:
+    InvalidArgumentError)."""
 
-def check_config(kind: str, config: _Doc) -> _Result:
+def check_config(kind: _ConfigKind, config: _Doc) -> _Result:
     """Read and validate a document as the core does (``kind`` "sim", "build", "constructor"
     or "spec"; raises ConfigError, SpecError for a spec); returns it normalised."""
 
@@ -165,7 +172,7 @@ def save_map(
     resolution: float,
     origin: tuple[float, float, float],
     yaml_path: str | os.PathLike[str],
-    image_format: str = "png",
+    image_format: _ImageFormat = "png",
 ) -> str:
     """Write a trinary map image (png/pgm) beside ``yaml_path`` and the YAML, atomically; returns the image path."""
 

@@ -3,6 +3,11 @@
 
 The classes raised by the Rust core are defined there and re-exported here, so
 ``except roboracer_arena.errors.MapFormatError`` catches them wherever they come from.
+
+The bad-value errors (:class:`MapFormatError`, :class:`InvalidArgumentError`,
+:class:`ConfigError`, :class:`SpecError`) are also ``ValueError``s, as pydantic's
+``ValidationError`` is, so ``except ValueError`` catches a wrong action shape or a bad
+config wherever the check runs.
 """
 
 from __future__ import annotations

@@ -19,13 +19,16 @@ import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _core
 from .errors import InvalidArgumentError
+
+#: The image encodings ``save_map`` writes (the core also takes them in upper case).
+ImageFormat = Literal["png", "pgm"]
 
 FREE, OCCUPIED, UNKNOWN = 254, 0, 205
 
@@ -75,7 +78,7 @@ class OccupancyMap:
         """Raster size in megapixels (the paper's "raster MP")."""
         return self.data.size / 1e6
 
-    def save(self, yaml_path: str | Path, image_format: str = "png") -> Path:
+    def save(self, yaml_path: str | Path, image_format: ImageFormat = "png") -> Path:
         """Write ``STEM.png`` (or ``.pgm``) beside ``yaml_path`` and the YAML, both
         atomically, in the trinary ``map_saver`` form. Returns the YAML path."""
         save_map(self.data, self.resolution, self.origin, yaml_path, image_format)
@@ -108,7 +111,7 @@ def save_map(
     resolution: float,
     origin: tuple[float, float, float],
     yaml_path: str | Path,
-    image_format: str = "png",
+    image_format: ImageFormat = "png",
 ) -> Path:
     """Write a trinary map (values 254/0/205 only) as image + YAML; returns the image path."""
     arr = np.ascontiguousarray(data, dtype=np.uint8)
@@ -120,4 +123,4 @@ def save_map(
     return Path(_core.save_map(arr, float(resolution), o, Path(yaml_path), image_format))
 
 
-__all__ = ["FREE", "OCCUPIED", "UNKNOWN", "OccupancyMap", "image_named_by", "load_map", "save_map"]
+__all__ = ["FREE", "ImageFormat", "OCCUPIED", "UNKNOWN", "OccupancyMap", "image_named_by", "load_map", "save_map"]

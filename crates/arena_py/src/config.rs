@@ -12,14 +12,7 @@ use pyo3::types::PyDict;
 
 use crate::boundary;
 use crate::convert::{from_py, to_dict};
-
-const KINDS: &str = "'sim', 'build', 'constructor' or 'spec'";
-
-fn unknown(kind: &str) -> PyErr {
-    crate::errors::to_py(ArenaError::invalid(format!(
-        "config kind {kind:?}: expected {KINDS}"
-    )))
-}
+use crate::domain::{ConfigKind, Wrap};
 
 fn config_error(message: String) -> ArenaError {
     ArenaError::config(message)
@@ -28,12 +21,15 @@ fn config_error(message: String) -> ArenaError {
 /// The core's defaults for one schema, as a dict (``"spec"`` has no defaults of its own:
 /// the schema's defaults live in ``TrackSpec``).
 #[pyfunction]
-fn config_defaults<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> {
-    match kind {
-        "sim" => to_dict(py, &SimParams::default()),
-        "build" => to_dict(py, &BuildParams::default()),
-        "constructor" => to_dict(py, &ConstructorConfig::default()),
-        _ => Err(unknown(kind)),
+fn config_defaults<'py>(py: Python<'py>, kind: Wrap<ConfigKind>) -> PyResult<Bound<'py, PyDict>> {
+    match kind.0 {
+        ConfigKind::Sim => to_dict(py, &SimParams::default()),
+        ConfigKind::Build => to_dict(py, &BuildParams::default()),
+        ConfigKind::Constructor => to_dict(py, &ConstructorConfig::default()),
+        ConfigKind::Spec => Err(crate::errors::to_py(ArenaError::invalid(format!(
+            "config kind {:?} has no core defaults: expected 'sim', 'build' or 'constructor' (TrackSpec holds the spec's)",
+            ConfigKind::Spec.name()
+        )))),
     }
 }
 
@@ -43,30 +39,29 @@ fn config_defaults<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDi
 #[pyfunction]
 fn check_config<'py>(
     py: Python<'py>,
-    kind: &str,
+    kind: Wrap<ConfigKind>,
     config: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = Some(config);
-    match kind {
-        "sim" => {
+    match kind.0 {
+        ConfigKind::Sim => {
             let p: SimParams = from_py(py, c, "simulator config", config_error)?;
             let p = boundary::call(py, "check_config", move || p.validate().map(|_| p))?;
             to_dict(py, &p)
         }
-        "build" => {
+        ConfigKind::Build => {
             let p: BuildParams = from_py(py, c, "build params", config_error)?;
             let p = boundary::call(py, "check_config", move || p.validate().map(|_| p))?;
             to_dict(py, &p)
         }
-        "constructor" => {
+        ConfigKind::Constructor => {
             let p: ConstructorConfig = from_py(py, c, "constructor config", config_error)?;
             to_dict(py, &boundary::call(py, "check_config", move || p.check())?)
         }
-        "spec" => {
+        ConfigKind::Spec => {
             let s: Spec = from_py(py, c, "spec", ArenaError::Spec)?;
             to_dict(py, &boundary::call(py, "check_config", move || s.check())?)
         }
-        _ => Err(unknown(kind)),
     }
 }
 

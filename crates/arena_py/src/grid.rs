@@ -4,6 +4,7 @@
 
 use crate::boundary;
 use crate::convert::{grid_to_py, points_from_py, MapTuple};
+use crate::domain::Wrap;
 use arena_core::grid::mapfile::{self, ImageFormat};
 use arena_core::grid::OccupancyGrid;
 use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -59,18 +60,21 @@ fn load_map<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<LoadedMa
 /// Write a trinary map: ``STEM.png|pgm`` beside ``yaml_path``, then the YAML (atomically).
 /// Returns the image path.
 #[pyfunction]
-#[pyo3(signature = (data, resolution, origin, yaml_path, image_format="png"))]
+#[pyo3(
+    signature = (data, resolution, origin, yaml_path, image_format=Wrap(ImageFormat::Png)),
+    text_signature = "(data, resolution, origin, yaml_path, image_format='png')"
+)]
 fn save_map(
     py: Python<'_>,
     data: PyReadonlyArray2<'_, u8>,
     resolution: f64,
     origin: (f64, f64, f64),
     yaml_path: std::path::PathBuf,
-    image_format: &str,
+    image_format: Wrap<ImageFormat>,
 ) -> PyResult<String> {
     let g = grid_from_py(py, &data, resolution, origin)?;
     let img = boundary::call(py, "save_map", move || {
-        mapfile::save_map(&g, &yaml_path, ImageFormat::parse(image_format)?)
+        mapfile::save_map(&g, &yaml_path, image_format.0)
     })?;
     Ok(img.display().to_string())
 }

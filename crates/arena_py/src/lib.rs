@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 mod boundary;
 mod config;
 mod convert;
+mod domain;
 mod episode;
 mod errors;
 mod generate;

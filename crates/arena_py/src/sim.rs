@@ -467,7 +467,17 @@ impl Simulator {
         let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
         let acts = read_f64(actions, "actions", [e, v, 2])?;
         let substeps = uint_arg(substeps, "substeps", 100_000)? as usize;
-        self.run(py, Ok((acts, substeps)), scans, state, events, episode)
+        self.run(
+            py,
+            Advance::Step {
+                actions: acts,
+                substeps,
+            },
+            scans,
+            state,
+            events,
+            episode,
+        )
     }
 
     /// Write state, events and (unless `scans` is None) scans without stepping: of every
@@ -487,7 +497,14 @@ impl Simulator {
             Some(m) if !m.is_none() => Some(read_mask(m, self.inner.num_envs())?),
             _ => None,
         };
-        self.run(py, Err(mask), scans, state, events, episode)
+        self.run(
+            py,
+            Advance::Observe { env_mask: mask },
+            scans,
+            state,
+            events,
+            episode,
+        )
     }
 
     /// Pose (x, y, heading) on track `track_id`'s centreline at arc length `s` (wrapped).
@@ -563,6 +580,14 @@ impl Simulator {
     }
 }
 
+/// What [`Simulator::run`] does before writing the outputs.
+enum Advance {
+    /// `substeps` physics steps with `actions` (E x V x 2, flat).
+    Step { actions: Vec<f64>, substeps: usize },
+    /// No stepping: observe every env, or only those where `env_mask` is true.
+    Observe { env_mask: Option<Vec<bool>> },
+}
+
 impl Simulator {
     /// The track named by a `track_id` argument (an integer in range).
     fn track_arg(&self, obj: &Bound<'_, PyAny>) -> PyResult<&Arc<Track>> {
@@ -579,7 +604,7 @@ impl Simulator {
     fn run(
         &mut self,
         py: Python<'_>,
-        step: Result<(Vec<f64>, usize), Option<Vec<bool>>>,
+        advance: Advance,
         scans: &Bound<'_, PyAny>,
         state: &Bound<'_, PyAny>,
         events: &Bound<'_, PyAny>,
@@ -619,13 +644,19 @@ impl Simulator {
             None => None,
         };
         let inner = &mut self.inner;
-        boundary::call(py, "step", move || match (step, out) {
-            (Ok((acts, substeps)), None) => inner.step(&acts, substeps, sc, st, ev),
-            (Ok((acts, substeps)), Some(out)) => {
-                inner.step_episode(&acts, substeps, sc, st, ev, out)
+        boundary::call(py, "step", move || match (advance, out) {
+            (Advance::Step { actions, substeps }, None) => {
+                inner.step(&actions, substeps, sc, st, ev)
             }
-            (Err(mask), None) => inner.observe_masked(mask.as_deref(), sc, st, ev),
-            (Err(mask), Some(out)) => inner.observe_episode(mask.as_deref(), sc, st, ev, out),
+            (Advance::Step { actions, substeps }, Some(out)) => {
+                inner.step_episode(&actions, substeps, sc, st, ev, out)
+            }
+            (Advance::Observe { env_mask }, None) => {
+                inner.observe_masked(env_mask.as_deref(), sc, st, ev)
+            }
+            (Advance::Observe { env_mask }, Some(out)) => {
+                inner.observe_episode(env_mask.as_deref(), sc, st, ev, out)
+            }
         })
     }
 }
