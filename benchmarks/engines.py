@@ -67,10 +67,34 @@ def config(mu: float, mass_scale: float, base: VehicleConfig | None = None) -> S
     """The car of one cell: ``base`` (default: the paper's) with tyre friction ``mu`` and mass
     and yaw inertia times ``mass_scale``."""
     b = base or VehicleConfig()
-    v = b.model_copy(
-        update={"tyre_friction": mu, "mass": b.mass * mass_scale, "yaw_inertia": b.yaw_inertia * mass_scale}
+    return SimConfig(
+        vehicle=VehicleConfig(
+            **{
+                **b.model_dump(),
+                "tyre_friction": mu,
+                "mass": b.mass * mass_scale,
+                "yaw_inertia": b.yaw_inertia * mass_scale,
+            }
+        )
     )
-    return SimConfig(vehicle=VehicleConfig(**v.model_dump()))
+
+
+def with_tyre(vehicle: VehicleConfig, lateral_tyre: str) -> VehicleConfig:
+    """``vehicle`` with the lateral tyre law ``lateral_tyre`` ('brush' or 'linear')."""
+    return VehicleConfig(**{**vehicle.model_dump(), "lateral_tyre": lateral_tyre})
+
+
+def crossing(t: np.ndarray, y: np.ndarray, level: float, below: bool = False) -> float | None:
+    """The time ``y`` first reaches ``level`` (from below; ``below``: falls under it), linearly
+    interpolated between the samples: a 5 ms physics step is 3 % of a 0.15 s rise time."""
+    hit = np.nonzero(y < level if below else y >= level)[0]
+    if not len(hit):
+        return None
+    i = int(hit[0])
+    if i == 0:
+        return float(t[0])
+    y0, y1 = float(y[i - 1]), float(y[i])
+    return float(t[i - 1] + (t[i] - t[i - 1]) * (level - y0) / (y1 - y0)) if y1 != y0 else float(t[i])
 
 
 # ---------------------------------------------------------------------------- engines
@@ -194,9 +218,9 @@ def step_steer(car: Any) -> StepSteer:
     t = np.asarray(ts)
     rise = None
     if steady > 0:
-        above10, above90 = np.nonzero(r >= 0.1 * steady)[0], np.nonzero(r >= 0.9 * steady)[0]
-        if len(above10) and len(above90):
-            rise = float(t[above90[0]] - t[above10[0]])
+        t10, t90 = crossing(t, r, 0.1 * steady), crossing(t, r, 0.9 * steady)
+        if t10 is not None and t90 is not None:
+            rise = t90 - t10
     overshoot = float(max(0.0, r.max() / steady - 1.0)) if steady > 0 else 0.0
     every = max(1, round(0.02 / car.dt))
     return StepSteer(
@@ -240,14 +264,12 @@ def cornering(car: Any, sim: SimConfig) -> Cornering:
 
 def accel(car: Any, sim: SimConfig) -> Accel:
     n = round(ACCEL_T / car.dt)
-    ts, vs, t5 = [], [], None
+    ts, vs = [0.0], [0.0]
     for k in range(n):
         s = car.step(0.0, sim.vehicle.max_speed)
-        t = (k + 1) * car.dt
-        ts.append(t)
+        ts.append((k + 1) * car.dt)
         vs.append(s["speed"])
-        if t5 is None and s["speed"] >= ACCEL_TO:
-            t5 = t
+    t5 = crossing(np.asarray(ts), np.asarray(vs), ACCEL_TO)
     every = max(1, round(0.05 / car.dt))
     return Accel(
         t_to_5=t5,
@@ -259,19 +281,21 @@ def accel(car: Any, sim: SimConfig) -> Accel:
 
 def brake(car: Any) -> Brake:
     n = round(BRAKE_T / car.dt)
-    s = car.step(0.0, 0.0)
-    x0 = s["x"]
-    ts, vs, stop = [car.dt], [s["speed"]], None
-    for k in range(1, n):
+    x0 = None
+    ts, vs, xs = [0.0], [BRAKE_V], [0.0]
+    for k in range(n):
         s = car.step(0.0, 0.0)
+        if x0 is None:  # the first step's travel counts too
+            x0 = s["x"] - BRAKE_V * car.dt
         ts.append((k + 1) * car.dt)
         vs.append(s["speed"])
+        xs.append(s["x"] - x0)
         if s["speed"] < BRAKE_STOP:
-            stop = (ts[-1], s["x"] - x0)
             break
-    t_stop, d_stop = stop if stop else (ts[-1], s["x"] - x0)
-    # the first step's travel counts too
-    d_stop += BRAKE_V * car.dt
+    t, v = np.asarray(ts), np.asarray(vs)
+    t_stop = crossing(t, v, BRAKE_STOP, below=True)
+    t_stop = t_stop if t_stop is not None else float(t[-1])
+    d_stop = float(np.interp(t_stop, t, np.asarray(xs)))
     every = max(1, round(0.02 / car.dt))
     return Brake(
         distance=float(d_stop),
@@ -310,8 +334,11 @@ class Cell(BenchModel):
 
 
 class EnginesResult(BenchModel):
-    """``python -m benchmarks engines``: every cell; the share of metric comparisons within target."""
+    """``python -m benchmarks engines``: every cell; the share of metric comparisons within target.
+    ``lateral_tyre``: our engine's lateral tyre law in every run ('brush': PhysX's law, the same
+    car; 'linear': the default car, which PhysX's brush tyre can only approximate)."""
 
+    lateral_tyre: str = "linear"
     target: float
     cells: list[Cell]
     anchor: list[AnchorRow]
@@ -350,6 +377,7 @@ def metrics(o: EngineRun, p: EngineRun) -> dict[str, dict[str, float | None]]:
 
 
 def run_cell(mu: float, mass_scale: float, work: Path, base: VehicleConfig | None = None) -> Cell:
+    """Both engines' four manoeuvres on the car of one cell."""
     from roboracer_arena.physx.drive import write_flat_stage
 
     sim = config(mu, mass_scale, base)
@@ -365,7 +393,10 @@ def run(
     base: VehicleConfig | None = None,
     progress: bool = True,
     with_anchor: bool = False,
+    lateral_tyre: str = "brush",
 ) -> EnginesResult:
+    """The open-loop grid over ``mus`` x ``masses`` on ``base`` (default: the paper's car) with
+    the lateral tyre law ``lateral_tyre`` in our engine (PhysX's is always the brush)."""
     from roboracer_arena.physx import available
 
     if not available():
@@ -378,12 +409,13 @@ def run(
     with tempfile.TemporaryDirectory() as tmp:
         for mu in mus:
             for m in masses:
-                cells.append(run_cell(mu, m, Path(tmp), base))
+                cells.append(run_cell(mu, m, Path(tmp), with_tyre(base or VehicleConfig(), lateral_tyre)))
                 if progress:
                     print(f"  cell mu {mu:g}, mass x{m:g}: {time.perf_counter() - t0:.0f} s", flush=True)
-        rows = anchor(Path(tmp)) if with_anchor else []
+        rows = anchor(Path(tmp), lateral_tyre=lateral_tyre) if with_anchor else []
     diffs = [v["diff"] for c in cells for v in c.metrics.values() if v["diff"] is not None]
     return EnginesResult(
+        lateral_tyre=lateral_tyre,
         target=TARGET,
         cells=cells,
         anchor=rows,
@@ -414,14 +446,15 @@ def _steady_yaw(car: Any) -> float:
     return float(np.mean(rs[-round(1.0 / car.dt) :]))
 
 
-def anchor(work: Path, cars: list[str] | None = None) -> list[AnchorRow]:
-    """The anchor rows: the paper's car and ForzaETH's NUC2, NUC6, NUC7 (presets)."""
+def anchor(work: Path, cars: list[str] | None = None, lateral_tyre: str = "brush") -> list[AnchorRow]:
+    """The anchor rows: the paper's car and ForzaETH's NUC2, NUC6, NUC7 (presets), with the
+    lateral tyre law ``lateral_tyre``."""
     from roboracer_arena.physx.drive import write_flat_stage
     from roboracer_arena.vehicle_presets import FORZAETH_MODELS, forzaeth_preset, single_track_yaw_rate
 
     rows = []
     for name in ["paper (Traxxas)", *(cars or ["NUC2", "NUC6", "NUC7"])]:
-        vc = VehicleConfig() if name.startswith("paper") else forzaeth_preset(name)
+        vc = with_tyre(VehicleConfig() if name.startswith("paper") else forzaeth_preset(name), lateral_tyre)
         sim = SimConfig(vehicle=vc)
         stage = write_flat_stage(work / f"anchor-{len(rows)}.usda", sim, half_size=HALL)
         res = {}
@@ -570,13 +603,14 @@ def _cli(args: argparse.Namespace) -> int:
         write_json(args.json, study)
         return 0
     mus, masses = ([0.83], [1.0]) if args.quick else (args.mu or MUS, args.mass or MASSES)
-    res = run(mus, masses, with_anchor=args.anchor)
+    res = run(mus, masses, with_anchor=args.anchor, lateral_tyre=args.tyre)
     if args.laps:
         from roboracer_arena.paths import default_sources_dir
 
         from .engines_laps import run_laps
 
-        res = res.model_copy(update={"laps": run_laps(args.sources or default_sources_dir(), quick=args.quick)})
+        laps = run_laps(args.sources or default_sources_dir(), quick=args.quick, lateral_tyre=args.tyre)
+        res = res.model_copy(update={"laps": laps})
     print_table(res)
     write_json(args.json, res)
     if args.plot:
@@ -595,6 +629,13 @@ def _default_vehicle_data() -> Path:
 def register(kinds: Any) -> None:
     p = add_bench_parser(kinds, "engines", "the same car open loop in our engine and PhysX", __doc__)
     p.add_argument("--quick", action="store_true", help="the nominal cell only (mu 0.83, mass x1)")
+    p.add_argument(
+        "--tyre",
+        choices=("brush", "linear"),
+        default="brush",
+        help="our engine's lateral tyre law (VehicleConfig.lateral_tyre): 'brush' (default) is PhysX's law, the same "
+        "car in both engines; 'linear' is the default car, which PhysX's brush tyre approximates",
+    )
     p.add_argument("--mu", type=float, nargs="+", help=f"tyre friction values (default {MUS})")
     p.add_argument("--mass", type=float, nargs="+", help=f"mass scales (default {MASSES})")
     p.add_argument("--plot", metavar="FILE", type=Path, help="draw the curves to FILE (png)")

@@ -4,7 +4,9 @@ control rate (the env's, 20 Hz) on the same stage in both engines (issue 36).
 Stages: a recorded map (f1tenth-gym Berlin), a circuit (Monaco at 1:10) and a generated
 track (40 m, seed 3), each built with ``build --car``, driven by the reference pure pursuit
 and by the racing driver on the raceline it plans (``raceline.driver``, from a standing
-start on the line); on Berlin also the conditions of the issue's table (mu 0.4, mass x1.5, mass x2) and the NUC6 preset (ForzaETH's real car). Each
+start on the line); on Berlin also the conditions of the issue's table (mu 0.4, mass x1.5, mass x2) and the NUC6 preset (ForzaETH's real car); and
+one trained policy file (:data:`POLICY_FILE`, the default recipe's seed 0) on a recorded map it
+never trained on (:data:`POLICY_MAP`), each engine casting its own lidar. Each
 run is a :class:`roboracer_arena.physx.drive.Trace`; the pair is compared on arc length
 along the centreline from one origin (5 cm bins; ``start_gap_m``: how far apart along the
 centreline the two engines' cars started): lap time, lateral error, and the RMS difference of
@@ -24,6 +26,9 @@ from roboracer_arena.bench.output import BenchModel
 from roboracer_arena.sim_config import SimConfig, VehicleConfig
 
 LAP_TARGET = 0.05
+#: The policy file driven in both engines, and the held-out recorded map (catalog id) it drives.
+POLICY_FILE = Path(__file__).resolve().parents[1] / "docs" / "learning" / "policies" / "pool_rand-seed0.npz"
+POLICY_MAP = "gym-skirk"
 
 
 class PairedLap(BenchModel):
@@ -150,23 +155,65 @@ def _stages(sources: Path, work: Path) -> dict[str, Path]:
     }
 
 
-def conditions() -> dict[str, SimConfig]:
+def _with_tyre(sim: SimConfig, lateral_tyre: str) -> SimConfig:
+    vehicle = VehicleConfig(**{**sim.vehicle.model_dump(), "lateral_tyre": lateral_tyre})
+    return SimConfig(**{**sim.model_dump(), "vehicle": vehicle.model_dump()})
+
+
+def conditions(lateral_tyre: str = "brush") -> dict[str, SimConfig]:
     """The Berlin conditions: the paper's car, mu 0.4, mass x1.5, mass x2 (yaw inertia
-    unchanged, as the issue's runs), and ForzaETH's NUC6."""
+    unchanged, as the issue's runs), and ForzaETH's NUC6; all with ``lateral_tyre``."""
     from roboracer_arena.vehicle_presets import forzaeth_preset
 
-    base = VehicleConfig()
+    base = VehicleConfig(lateral_tyre=lateral_tyre)  # type: ignore[arg-type]
 
     def veh(**kw: float) -> SimConfig:
         return SimConfig(vehicle=VehicleConfig(**{**base.model_dump(), **kw}))
 
     return {
-        "paper's car": SimConfig(),
+        "paper's car": SimConfig(vehicle=base),
         "mu 0.4": veh(tyre_friction=0.4),
         "mass x1.5": veh(mass=1.5 * base.mass),
         "mass x2": veh(mass=2.0 * base.mass),
-        "NUC6 preset": SimConfig(vehicle=forzaeth_preset("NUC6")),
+        "NUC6 preset": _with_tyre(SimConfig(vehicle=forzaeth_preset("NUC6")), lateral_tyre),
     }
+
+
+def policy_lap(work: Path, lateral_tyre: str, max_seconds: float) -> PairedLap:
+    """:data:`POLICY_FILE` on :data:`POLICY_MAP` in both engines: the policy's own env config
+    (control rate, car), ``lateral_tyre``, each engine's lidar (PhysX: its raycasts)."""
+    from roboracer_arena.builder import build_environment
+    from roboracer_arena.envs.env_config import EnvConfig
+    from roboracer_arena.learn import load_policy, policy_env_kwargs
+    from roboracer_arena.learn.runner import policy_controller
+    from roboracer_arena.physx.drive import drive_native, drive_physx
+    from roboracer_arena.physx.laps import map_and_track
+    from roboracer_arena.usd.vehicle import replace_car
+
+    policy = load_policy(POLICY_FILE)
+    config = EnvConfig.build(policy_env_kwargs(policy))
+    sim, rate = _with_tyre(config.sim, lateral_tyre), config.control_rate_hz
+    map_yaml, track = map_and_track(POLICY_MAP)
+    stage = work / "policy.usdc"
+    build_environment(map_yaml, stage, car=True)
+    replace_car(stage, sim)
+    lid = sim.lidar
+
+    def make() -> Any:
+        return policy_controller(policy, track, lid.num_beams, lid.fov, config)
+
+    ours = drive_native(track, make(), sim, control_rate_hz=rate, max_seconds=max_seconds)
+    physx = drive_physx(
+        stage,
+        make(),
+        sim,
+        track=track,
+        control_rate_hz=rate,
+        max_seconds=max_seconds,
+        lidar="physx",
+        start=tuple(ours.start),
+    )
+    return compare(track, f"{POLICY_MAP} (recorded, held out)", f"policy {POLICY_FILE.name}", ours, physx)
 
 
 def _racing_driver(track: Any) -> tuple[Any, tuple[float, float, float]]:
@@ -191,10 +238,16 @@ def _racing_driver(track: Any) -> tuple[Any, tuple[float, float, float]]:
 
 
 def run_laps(
-    sources: Path, max_seconds: float = 150.0, quick: bool = False, progress: bool = True, racing: bool = True
+    sources: Path,
+    max_seconds: float = 150.0,
+    quick: bool = False,
+    progress: bool = True,
+    racing: bool = True,
+    lateral_tyre: str = "brush",
 ) -> list[PairedLap]:
     """Every stage with the paper's car under the pure pursuit and the racing driver (on its
-    own raceline), and Berlin under every condition (``quick``: Berlin only)."""
+    own raceline), Berlin under every condition, and the policy file on its held-out map
+    (``quick``: Berlin only); our engine's lateral tyre law ``lateral_tyre``."""
     from roboracer_arena.builder import build_environment
     from roboracer_arena.physx.check import track_of_stage
     from roboracer_arena.physx.drive import drive_native, drive_physx, pure_pursuit
@@ -208,10 +261,11 @@ def run_laps(
         if quick:
             stages = dict(list(stages.items())[:1])
         for k, (name, map_yaml) in enumerate(stages.items()):
-            conds = conditions() if name.startswith("berlin") else {"paper's car": SimConfig()}
+            paper = conditions(lateral_tyre)["paper's car"]
+            conds = conditions(lateral_tyre) if name.startswith("berlin") else {"paper's car": paper}
             runs = [(c, sim, "pure pursuit") for c, sim in conds.items()]
             if racing:
-                runs.append(("paper's car, racing driver", SimConfig(), "racing"))
+                runs.append(("paper's car, racing driver", paper, "racing"))
             for cname, sim, driver in runs:
                 stage = work / f"{k}-{len(out)}.usdc"
                 build_environment(map_yaml, stage, car=True)
@@ -233,14 +287,20 @@ def run_laps(
                     start=tuple(ours.start),  # the env's start (the stage's car may sit elsewhere)
                 )
                 out.append(compare(track, name, cname, ours, physx))
-                if progress:
-                    r = out[-1]
-                    print(
-                        f"  {name}, {cname}: ours {r.ours_lap_s} s, PhysX {r.physx_lap_s} s "
-                        f"({time.perf_counter() - t0:.0f} s)",
-                        flush=True,
-                    )
+                _report(out[-1], t0, progress)
+        if not quick:
+            out.append(policy_lap(work, lateral_tyre, max_seconds))
+            _report(out[-1], t0, progress)
     return out
+
+
+def _report(r: PairedLap, t0: float, progress: bool) -> None:
+    if progress:
+        print(
+            f"  {r.track}, {r.condition}: ours {r.ours_lap_s} s, PhysX {r.physx_lap_s} s "
+            f"({time.perf_counter() - t0:.0f} s)",
+            flush=True,
+        )
 
 
 def _f(x: float | None, fmt: str = ".2f") -> str:

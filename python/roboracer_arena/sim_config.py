@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
@@ -85,6 +86,16 @@ class VehicleConfig(NumbersAreNumbers):
         5.4562,
         gt=0,
         description="Rear cornering stiffness per unit normal load (1/rad), the F1TENTH/CommonRoad Traxxas C_Sr.",
+    )
+    lateral_tyre: Literal["linear", "brush"] = Field(
+        "linear",
+        description=(
+            "The lateral tyre law up to the friction limit. 'linear': C_a N alpha clipped to mu N (the F1TENTH "
+            "single-track model's tyre). 'brush': mu N Fbar(C_a N0 tan(alpha) / (mu N)), Fbar(K) = K - K^2/3 + "
+            "K^3/27 up to K = 3, N0 the wheel's static load: the same slope at zero slip and the same peak, bending "
+            "over earlier; PhysX's lateral law, so the PhysX car built from this config is the same car "
+            "(BENCHMARKS.md, 'One car, two engines')."
+        ),
     )
     longitudinal_stiffness: float = Field(
         8.0,

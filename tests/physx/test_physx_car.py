@@ -161,6 +161,54 @@ def test_step_steer_and_stop_agree_in_both_engines(tmp_path):
     assert p_stop.distance == pytest.approx(o_stop.distance, rel=0.10)
 
 
+@pytest.mark.skipif(
+    not available(), reason="the 'physx' extra (ovphysx, physx-usd-schemas) is not installed; CI installs it"
+)
+def test_brush_car_understeers_alike_at_low_friction(tmp_path):
+    """The cell the default (linear) tyre missed (issue 36): at mu 0.4 the understeer gradient
+    of the brush-tyre car, the same law as PhysX's, agrees within 10 % in both engines."""
+    import warnings
+
+    from benchmarks.engines import _Ours, _Physx, config, cornering, with_tyre
+    from roboracer_arena.physx.drive import write_flat_stage
+    from roboracer_arena.sim_config import VehicleConfig
+
+    warnings.simplefilter("ignore")
+    sim = config(0.4, 1.0, with_tyre(VehicleConfig(), "brush"))
+    stage = write_flat_stage(tmp_path / "flat.usda", sim)
+    grads = {}
+    for name, make in (("ours", lambda: _Ours(sim, 3.0)), ("physx", lambda: _Physx(stage, sim, 3.0))):
+        car = make()
+        try:
+            grads[name] = cornering(car, sim).understeer_gradient
+        finally:
+            car.close()
+    assert grads["ours"] and grads["physx"]
+    assert grads["physx"] == pytest.approx(grads["ours"], rel=0.10)
+
+
+def test_the_car_authors_no_deprecated_controller_attribute(tmp_path):
+    """The deprecation warnings ovphysx 0.7 prints name attributes the car never authors
+    (issue 36): the controller holds accelerator, brake0, brake1, steer and targetGear only."""
+    from pxr import Usd
+
+    from roboracer_arena.usd import physx_schemas
+
+    if not physx_schemas.available():
+        pytest.skip("the 'physx' extra (physx-usd-schemas) is not installed; CI installs it")
+    from roboracer_arena.physx.drive import write_flat_stage
+    from roboracer_arena.sim_config import SimConfig
+
+    stage = Usd.Stage.Open(str(write_flat_stage(tmp_path / "flat.usda", SimConfig(), half_size=10.0)))
+    car = stage.GetPrimAtPath("/World/Car")
+    authored = {a.GetName() for a in car.GetAuthoredAttributes() if a.GetName().startswith("physxVehicleController:")}
+    assert authored == {
+        f"physxVehicleController:{k}" for k in ("accelerator", "brake0", "brake1", "steer", "targetGear")
+    }
+    for old in ("brake", "handbrake", "steerLeft", "steerRight"):
+        assert not car.GetAttribute(f"physxVehicleController:{old}").HasAuthoredValue()
+
+
 _WITHOUT_EXTRA = r"""
 import sys
 sys.modules["physx_usd_schemas"] = None  # as if the extra were not installed

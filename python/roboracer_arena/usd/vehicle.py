@@ -35,11 +35,15 @@ Derivation, our model (``arena_core::sim::vehicle``) -> PhysX vehicle 2
   static load per wheel) is ours at ``N0``, and ours summed over an axle under any lateral
   load transfer (``C_a (N_l + N_r) = 2 C_a N0``); measured at 3 m/s: ``k / Y = 0.98``, the
   brush curve's own bend at that slip. The peak is ``mu N`` in both (the friction table holds
-  ``tyre_friction`` through the load filter, below; the friction-vs-slip graph is flat at 1). What is left differs in
-  shape, not in any parameter: the brush curve bends over earlier than ours (at our
-  saturation slip ``alpha* = mu / C_a`` it gives ``0.70 mu N`` where ours gives ``mu N``)
-  and reaches ``mu N`` at ``3 alpha*``. Both engines share the cornering stiffness, the
-  understeer gradient and the friction limit; the transition between them is PhysX's own.
+  ``tyre_friction`` through the load filter, below; the friction-vs-slip graph is flat at 1).
+  With ``VehicleConfig.lateral_tyre = "brush"`` our engine uses this same law
+  (``mu N Fbar(C_a N0 tan(alpha) / (mu N))``, the stiffness fixed at the static load), so the
+  two tyres are one law; PhysX's load filter and combined slip remain its own. With the
+  default ``"linear"`` what is left differs in shape, not in any parameter: the brush curve
+  bends over earlier than ours (at our saturation slip ``alpha* = mu / C_a`` it gives
+  ``0.70 mu N`` where ours gives ``mu N``) and reaches ``mu N`` at ``3 alpha*``; both share the
+  slope at zero slip and the friction limit, and the brush needs about 15 % more slip below
+  0.4 mu g (the understeer gradient there; BENCHMARKS.md, "One car, two engines").
   The slip reference ``d`` (``minLateralSlipDenominator``) is 0.05 m/s, so that above
   0.5 m/s PhysX's slip angle is within 10 % of ours (1 % at 5 m/s).
 * **Tyre load.** PhysX's tyre does not see the suspension force ``N`` but a filtered load

@@ -19,6 +19,20 @@ pub const MIN_RATE_HZ: f64 = 0.01;
 /// Largest step the vehicle model integrates in one go (s).
 pub const MAX_INTERNAL_DT: f64 = 0.01;
 
+/// The lateral tyre law (issue 36): the force against the slip angle up to the friction limit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LateralTyre {
+    /// `C_a N alpha`, clipped to `mu N` (the F1TENTH single-track model's tyre).
+    #[default]
+    Linear,
+    /// The brush tyre `mu N Fbar(C_a N0 tan(alpha) / (mu N))`, `Fbar(K) = K - K^2/3 + K^3/27`
+    /// up to `K = 3`, then 1, `N0` the wheel's static load: the same slope at zero slip and the
+    /// same peak, bending over earlier (PhysX's lateral law; see
+    /// `roboracer_arena.usd.vehicle.physx_params`).
+    Brush,
+}
+
 /// The Traxxas 1:10 RoboRacer vehicle (paper's table) plus model constants.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -44,6 +58,8 @@ pub struct VehicleParams {
     /// Cornering stiffness per unit normal load (1/rad), front and rear axles.
     pub cornering_stiffness_front: f64,
     pub cornering_stiffness_rear: f64,
+    /// The lateral tyre law; the longitudinal law is linear in slip in both.
+    pub lateral_tyre: LateralTyre,
     /// Longitudinal slip stiffness per unit normal load (per unit slip ratio).
     pub longitudinal_stiffness: f64,
     /// Rolling-resistance coefficient (force per unit normal load).
@@ -97,6 +113,7 @@ impl Default for VehicleParams {
             longitudinal_friction_ratio: 1.0,
             cornering_stiffness_front: 4.718,
             cornering_stiffness_rear: 5.4562,
+            lateral_tyre: LateralTyre::Linear,
             longitudinal_stiffness: 8.0,
             rolling_resistance: 0.015,
             drag_area: 0.035,

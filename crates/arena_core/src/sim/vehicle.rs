@@ -7,7 +7,8 @@
 //! ground normal at the contact point (a wheel transmits no sideways push from its own
 //! load however the chassis is tilted). The tyre gives a lateral force
 //! `-C_a N atan(v_lat / max(|v_long|, v0))` (cornering stiffness per unit load, the
-//! F1TENTH/CommonRoad Traxxas values) and a longitudinal force `C_x N kappa` from the
+//! F1TENTH/CommonRoad Traxxas values; `lateral_tyre = brush` gives the brush law of the same
+//! slope and peak instead) and a longitudinal force `C_x N kappa` from the
 //! wheel's slip ratio `kappa = (r omega - v_long) / max(|v_long|, v0)`; both are scaled
 //! together into the friction ellipse `(Fx / mu_x N)^2 + (Fy / mu N)^2 <= 1`; at crawling
 //! speed the lateral force is capped to what stops the slip within one step and the
@@ -25,7 +26,7 @@
 
 use rapier3d::prelude::*;
 
-use super::params::{PhysicsParams, VehicleParams};
+use super::params::{LateralTyre, PhysicsParams, VehicleParams};
 
 /// Speed below which the slip angle and slip ratio use `V0` as reference speed (m/s).
 const V0: f64 = 0.5;
@@ -107,6 +108,27 @@ fn lag_step(tau: f64, dt: f64) -> f64 {
         1.0 - (-dt / tau).exp()
     } else {
         1.0
+    }
+}
+
+/// Lateral force (N, against the slip) of a tyre with cornering stiffness `c` per unit load
+/// under load `n` (static load `n0`), from the contact's lateral speed `vt` and reference
+/// speed `vref > 0`. The brush tyre's stiffness `c n0` is the tyre's own, fixed at its static
+/// load (as PhysX's lateral stiffness), the linear law's `c n` follows the load.
+fn lateral_force(law: LateralTyre, c: f64, mu: f64, n: f64, n0: f64, vt: f64, vref: f64) -> f64 {
+    match law {
+        LateralTyre::Linear => -c * n * vt.atan2(vref),
+        LateralTyre::Brush if n <= 0.0 => 0.0,
+        LateralTyre::Brush => {
+            let tan_a = vt / vref;
+            let k = c * n0 * tan_a.abs() / (mu * n);
+            let fbar = if k < 3.0 {
+                k - k * k / 3.0 + k * k * k / 27.0
+            } else {
+                1.0
+            };
+            -tan_a.signum() * mu * n * fbar
+        }
     }
 }
 
@@ -334,6 +356,8 @@ impl VehicleModel {
 
         // Pass 2: each wheel's heading, contact velocity and lateral force demand.
         let m_wheel = 0.5 * car.mass / 4.0;
+        let per_wheel = car.mass * self.gravity / (2.0 * l);
+        let n0_axle = [per_wheel * p.com_to_rear, per_wheel * p.com_to_front];
         let mut wheels = [Wheel::default(); 4];
         for (k, wh) in wheels.iter_mut().enumerate() {
             let n = loads[k];
@@ -345,7 +369,18 @@ impl VehicleModel {
             let vc = v + w.cross(contact[k] - com);
             let (vl, vt) = (vc.dot(wh.fw) as f64, vc.dot(wh.lw) as f64);
             let cap = m_wheel * vt.abs() / dt;
-            wh.fy = (-self.stiffness[k] * n * vt.atan2(vl.abs().max(V0))).clamp(-cap, cap);
+            let vref = vl.abs().max(V0);
+            let n0 = n0_axle[k / 2];
+            wh.fy = lateral_force(
+                p.lateral_tyre,
+                self.stiffness[k],
+                car.friction,
+                n,
+                n0,
+                vt,
+                vref,
+            )
+            .clamp(-cap, cap);
             wh.vl = vl;
             wh.n = n;
         }
@@ -480,5 +515,26 @@ mod tests {
         assert_eq!(m.sanitise(-9.0, -99.0), (-0.524, -3.0));
         assert_eq!(m.sanitise(0.1, 2.0), (0.1, 2.0));
         assert!(m.static_load_front() > 10.0 && m.static_load_front() < 13.0);
+    }
+
+    #[test]
+    fn brush_tyre_has_the_linear_slope_and_peak_and_bends_over_earlier() {
+        let (c, mu, n) = (4.718, 0.83, 12.0);
+        let f = |law, vt: f64| lateral_force(law, c, mu, n, n, vt, 3.0);
+        // The same slope at zero slip (within the cubic's curvature at 1e-6).
+        let small = 1e-6;
+        let ratio = f(LateralTyre::Brush, small) / f(LateralTyre::Linear, small);
+        assert!((ratio - 1.0).abs() < 1e-5, "{ratio}");
+        // Odd in the slip, and against it.
+        assert!(f(LateralTyre::Brush, 0.1) < 0.0);
+        assert_eq!(f(LateralTyre::Brush, 0.1), -f(LateralTyre::Brush, -0.1));
+        // Saturated at mu N from K = 3 on, i.e. tan(alpha) = 3 mu / c.
+        let sat = 3.0 * mu / c * 3.0;
+        assert!((f(LateralTyre::Brush, sat * 1.01) + mu * n).abs() < 1e-9);
+        assert!((f(LateralTyre::Brush, sat * 5.0) + mu * n).abs() < 1e-9);
+        // At the linear law's saturation slip (K = 1) the brush gives 19/27 of mu N.
+        let k1 = mu / c * 3.0;
+        let want = -mu * n * (1.0 - 1.0 / 3.0 + 1.0 / 27.0);
+        assert!((f(LateralTyre::Brush, k1) - want).abs() < 1e-9);
     }
 }
