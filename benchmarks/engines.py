@@ -585,7 +585,7 @@ def plot(res: EnginesResult, path: Path) -> None:
     for a in ax.flat:
         a.grid(alpha=0.3)
     ax[0, 1].legend(fontsize=7)
-    fig.suptitle("One car, two engines (mass x1): ours solid, PhysX dashed")
+    fig.suptitle(f"One car, two engines (mass x1, our lateral tyre: {res.lateral_tyre}): ours solid, PhysX dashed")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -596,10 +596,16 @@ def _lap(x: float | None) -> str:
     return "no lap" if x is None else f"{x:.2f}"
 
 
-def engines_block(doc: Doc) -> str:
+def engines_block(doc: Doc, name: str = "engines") -> str:
     r = doc["result"]
     t = r["target"]
-    lines = [header(doc, "engines", timed=False), ""]
+    tyre = r.get("lateral_tyre", "linear")
+    lines = [
+        header(doc, name, timed=False),
+        "",
+        f"Our engine's lateral tyre: **{tyre}** (`VehicleConfig.lateral_tyre`).",
+        "",
+    ]
     for cols, what in ((_LAT, "yaw and cornering"), (_LON, "straight line, and the cornering samples left")):
         lines += [
             f"Open loop, {what}: ours / PhysX (difference; **bold** above {100 * t:.0f} %):",
@@ -666,6 +672,16 @@ def engines_picture(doc: Doc) -> None:
     res = EnginesResult.model_validate(doc["result"])
     plot(res, FIGURE_DATA / "engines.png")
     plot_tyres(FIGURE_DATA / "engines-tyres.png", _vehicle_data())
+
+
+def engines_linear_block(doc: Doc) -> str:
+    return engines_block(doc, "engines-linear")
+
+
+def engines_linear_picture(doc: Doc) -> None:
+    from benchmarks.engines import EnginesResult, plot
+
+    plot(EnginesResult.model_validate(doc["result"]), FIGURE_DATA / "engines-linear.png")
 
 
 def _vehicle_data() -> Path:
@@ -780,10 +796,20 @@ BENCH_FIGURES: dict[str, dict[str, Any]] = {
         "ci": "long",
     },
     "engines": {
-        "about": "bench engines --anchor --laps: one car open loop and closed loop in ours and PhysX (physx extra, ~15 min)",
-        "run": _cmd(("engines", ["bench", "engines", "--anchor", "--laps"])),
+        "about": "bench engines --anchor --laps: the brush-tyre car open loop and closed loop in ours and PhysX "
+        "(physx extra, ~15 min)",
+        "run": _cmd(("engines", ["bench", "engines", "--tyre", "brush", "--anchor", "--laps"])),
         "blocks": [("BENCHMARKS.md", "engines", engines_block)],
         "picture": engines_picture,
+        "deterministic": engines_deterministic,
+        "ci": "long",
+    },
+    "engines-linear": {
+        "about": "bench engines --tyre linear --laps: the default (linear-tyre) car in ours against PhysX's brush "
+        "tyre (physx extra, ~15 min)",
+        "run": _cmd(("engines", ["bench", "engines", "--tyre", "linear", "--laps"])),
+        "blocks": [("BENCHMARKS.md", "engines-linear", engines_linear_block)],
+        "picture": engines_linear_picture,
         "deterministic": engines_deterministic,
         "ci": "long",
     },
