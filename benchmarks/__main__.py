@@ -15,7 +15,7 @@ from pathlib import Path
 
 from roboracer_arena.cli._common import check_numeric_flags, check_outputs, raise_interrupt_on_sigterm
 from roboracer_arena.errors import ArenaError
-from roboracer_arena.fileio import atomic_write_text
+from roboracer_arena.foundation.fileio import atomic_write_text
 
 # Benchmark kinds, in the order `all` runs them.
 KINDS: list[str] = [

@@ -37,7 +37,7 @@ import numpy as np
 from scipy.optimize import differential_evolution
 
 from roboracer_arena import _core
-from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.config.constructor import ConstructorConfig
 from roboracer_arena.generate.report import CurveAnalysis
 from roboracer_arena.spec import TrackSpec
 

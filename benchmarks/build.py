@@ -28,7 +28,7 @@ import numpy as np
 
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, json_text
 from roboracer_arena.builder import MeshCount
-from roboracer_arena.fileio import atomic_write_text
+from roboracer_arena.foundation.fileio import atomic_write_text
 
 from . import CHECKOUT
 
@@ -118,8 +118,8 @@ class BuildResult(BenchModel):
 
 
 def sources_dir() -> Path:
-    """The track-sources folder (:func:`roboracer_arena.paths.sources_dir`)."""
-    from roboracer_arena.paths import sources_dir as resolve
+    """The track-sources folder (:func:`roboracer_arena.foundation.paths.sources_dir`)."""
+    from roboracer_arena.foundation.paths import sources_dir as resolve
 
     return resolve(None, "bench build (it measures maps from the track sources)")
 
@@ -149,7 +149,7 @@ def resampled_map(yaml_path: Path, target_mp: float, outdir: Path) -> Path:
     extent, resolution scaled accordingly) as trinary PNG + YAML in ``outdir``."""
     from PIL import Image
 
-    from roboracer_arena.maps import load_map
+    from roboracer_arena.maps.occupancy import load_map
 
     m = load_map(yaml_path)
     h, w = m.data.shape
@@ -201,8 +201,8 @@ def _child(yaml_path: str, workdir: str, repeat: int, textures: bool) -> None:
     """Runs in the subprocess: import everything, then time ``repeat`` builds."""
     import resource
 
-    from roboracer_arena.build_config import BuildConfig
     from roboracer_arena.builder import build_environment
+    from roboracer_arena.config.build import BuildConfig
     from roboracer_arena.usd import textures as tex
     from roboracer_arena.usd.stage import warm_up
 

@@ -41,7 +41,8 @@ from collections import Counter
 from pathlib import Path
 
 from roboracer_arena.bench.output import BenchModel
-from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.config.constructor import ConstructorConfig
+from roboracer_arena.foundation.worker_pool import pool_map, tqdm_progress
 from roboracer_arena.generate import (
     Acceptance,
     GenerationFailure,
@@ -52,7 +53,6 @@ from roboracer_arena.generate import (
     write_outputs,
 )
 from roboracer_arena.library.sweep import GridSweep
-from roboracer_arena.pool import pool_map, tqdm_progress
 from roboracer_arena.spec import TrackSpec
 
 from . import bench_data

@@ -46,10 +46,10 @@ from tqdm import tqdm
 
 from roboracer_arena import _core
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
-from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.config.constructor import ConstructorConfig
 from roboracer_arena.errors import SpecError
 from roboracer_arena.generate import Acceptance, generate_track, rasterise, screen, validate_map
-from roboracer_arena.maps import load_map
+from roboracer_arena.maps.occupancy import load_map
 from roboracer_arena.spec import TrackSpec
 
 from . import bench_data

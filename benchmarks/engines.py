@@ -23,7 +23,7 @@ Manoeuvres, each at tyre friction mu in {0.4, 0.6, 0.83, 1.0} and mass x {0.8, 1
 
 **Real-car anchor** (``--anchor``): ForzaETH's identified cars (On-Track-SysID, MIT; read
 from ``../shared/vehicle-data`` when there) as ``VehicleConfig`` presets
-(:mod:`roboracer_arena.vehicle_presets`): the steady yaw rate at 5 m/s and 0.05 rad of the
+(:mod:`roboracer_arena.config.vehicle_presets`): the steady yaw rate at 5 m/s and 0.05 rad of the
 real car's own single-track model with its Pacejka tyres, of our engine and of PhysX on the
 preset, and of the paper's car; ``--tyre-plot FILE`` draws our tyre (linear to ``mu N``) and
 PhysX's (brush) beside the Pacejka fits at the same normal load.
@@ -48,7 +48,7 @@ import numpy as np
 
 from roboracer_arena import _core
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
-from roboracer_arena.sim_config import SimConfig, VehicleConfig
+from roboracer_arena.config.sim import SimConfig, VehicleConfig
 
 from .engines_laps import PairedLap
 
@@ -449,8 +449,8 @@ def _steady_yaw(car: Any) -> float:
 def anchor(work: Path, cars: list[str] | None = None, lateral_tyre: str = "brush") -> list[AnchorRow]:
     """The anchor rows: the paper's car and ForzaETH's NUC2, NUC6, NUC7 (presets), with the
     lateral tyre law ``lateral_tyre``."""
+    from roboracer_arena.config.vehicle_presets import FORZAETH_MODELS, forzaeth_preset, single_track_yaw_rate
     from roboracer_arena.physx.drive import write_flat_stage
-    from roboracer_arena.vehicle_presets import FORZAETH_MODELS, forzaeth_preset, single_track_yaw_rate
 
     rows = []
     for name in ["paper (Traxxas)", *(cars or ["NUC2", "NUC6", "NUC7"])]:
@@ -475,7 +475,7 @@ def anchor(work: Path, cars: list[str] | None = None, lateral_tyre: str = "brush
 
 def forzaeth_models(data_dir: Path | None = None) -> dict[str, dict[str, Any]]:
     """ForzaETH's models from ``data_dir`` (``<NAME>_pacejka.txt``) when it exists, else the presets' copy."""
-    from roboracer_arena.vehicle_presets import FORZAETH_MODELS, read_forzaeth_model
+    from roboracer_arena.config.vehicle_presets import FORZAETH_MODELS, read_forzaeth_model
 
     if data_dir and data_dir.is_dir():
         return {p.name.split("_")[0]: read_forzaeth_model(p) for p in sorted(data_dir.glob("*_pacejka.txt"))}
@@ -491,7 +491,7 @@ def plot_tyres(path: Path, data_dir: Path | None = None) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from roboracer_arena.vehicle_presets import forzaeth_preset, pacejka, static_axle_loads
+    from roboracer_arena.config.vehicle_presets import forzaeth_preset, pacejka, static_axle_loads
 
     models = forzaeth_models(data_dir)
     ref = models["NUC6"]
@@ -594,7 +594,7 @@ def plot(res: EnginesResult, path: Path) -> None:
 
 def _cli(args: argparse.Namespace) -> int:
     if args.mass_study:
-        from roboracer_arena.paths import default_sources_dir
+        from roboracer_arena.foundation.paths import default_sources_dir
 
         from .engines_laps import MassStudy, mass_study, print_mass
 
@@ -605,7 +605,7 @@ def _cli(args: argparse.Namespace) -> int:
     mus, masses = ([0.83], [1.0]) if args.quick else (args.mu or MUS, args.mass or MASSES)
     res = run(mus, masses, with_anchor=args.anchor, lateral_tyre=args.tyre)
     if args.laps:
-        from roboracer_arena.paths import default_sources_dir
+        from roboracer_arena.foundation.paths import default_sources_dir
 
         from .engines_laps import run_laps
 
@@ -621,7 +621,7 @@ def _cli(args: argparse.Namespace) -> int:
 
 
 def _default_vehicle_data() -> Path:
-    from roboracer_arena.paths import default_sources_dir
+    from roboracer_arena.foundation.paths import default_sources_dir
 
     return default_sources_dir().parent / "vehicle-data" / "forzaeth-on-track-sysid"
 

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from roboracer_arena.bench.output import BenchModel
-from roboracer_arena.sim_config import SimConfig, VehicleConfig
+from roboracer_arena.config.sim import SimConfig, VehicleConfig
 
 LAP_TARGET = 0.05
 #: The policy file driven in both engines, and the held-out recorded map (catalog id) it drives.
@@ -163,7 +163,7 @@ def _with_tyre(sim: SimConfig, lateral_tyre: str) -> SimConfig:
 def conditions(lateral_tyre: str = "brush") -> dict[str, SimConfig]:
     """The Berlin conditions: the paper's car, mu 0.4, mass x1.5, mass x2 (yaw inertia
     unchanged, as the issue's runs), and ForzaETH's NUC6; all with ``lateral_tyre``."""
-    from roboracer_arena.vehicle_presets import forzaeth_preset
+    from roboracer_arena.config.vehicle_presets import forzaeth_preset
 
     base = VehicleConfig(lateral_tyre=lateral_tyre)  # type: ignore[arg-type]
 
@@ -343,7 +343,7 @@ def mass_study(sources: Path, max_seconds: float = 60.0) -> list[MassRow]:
     """Why a heavier car laps Berlin faster in our engine: the pure pursuit's speed plan with
     the paper's car, mass x1.5 and x2 (yaw inertia kept, as the issue's runs, and scaled),
     and the paper's car with half the braking or half the driving current."""
-    from roboracer_arena.envs.tracks import resolve_tracks
+    from roboracer_arena.envs.track_argument import resolve_tracks
     from roboracer_arena.physx.drive import drive_native, pure_pursuit
 
     track = resolve_tracks(str(sources / "f1tenth-gym" / "maps" / "berlin.yaml"))[0]

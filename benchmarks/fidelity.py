@@ -31,7 +31,7 @@ from pydantic import ConfigDict, Field
 
 from roboracer_arena import _core
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
-from roboracer_arena.sim_config import PhysicsConfig, SimConfig, VehicleConfig
+from roboracer_arena.config.sim import PhysicsConfig, SimConfig, VehicleConfig
 
 from . import fidelity_limit
 from .f1tenth_st import GYM_PARAMS, SingleTrack

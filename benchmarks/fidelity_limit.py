@@ -30,8 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
+from roboracer_arena.config.sim import VehicleConfig
 from roboracer_arena.errors import InvalidArgumentError
-from roboracer_arena.sim_config import VehicleConfig
 
 AIR_DENSITY = 1.2  # kg/m^3, as in the simulator
 V0 = 0.5  # m/s: slip reference speed floor, as in the simulator

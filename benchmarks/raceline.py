@@ -28,7 +28,7 @@ import numpy as np
 
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
 from roboracer_arena.catalog.catalog_file import load_catalog
-from roboracer_arena.paths import sources_dir
+from roboracer_arena.foundation.paths import sources_dir
 from roboracer_arena.raceline import plan_raceline, preset, read_tum_csv, speed_profile
 from roboracer_arena.raceline.geometry import closed_path
 from roboracer_arena.raceline.limits import VehicleLimits, limits_json
@@ -247,7 +247,7 @@ def _add_args(p: argparse.ArgumentParser) -> None:
 
 def _main(args: argparse.Namespace) -> int:
     if args.fit_preset:
-        from roboracer_arena.fileio import atomic_write_text
+        from roboracer_arena.foundation.fileio import atomic_write_text
 
         lim = fit_f1tenth_limits([f for _, f in reference_files(args.sources)])
         atomic_write_text(PRESET_FILE, limits_json(lim))

@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from roboracer_arena.bench.output import BenchModel, Skipped, add_bench_parser, write_json
-from roboracer_arena.pool import pool_map
+from roboracer_arena.foundation.worker_pool import pool_map
 
 PROJECT_WORKERS = (8, 32, 128)
 

@@ -68,7 +68,7 @@ def register(kinds) -> None:
 
 
 def _default_map() -> Path:
-    from roboracer_arena.paths import sources_dir
+    from roboracer_arena.foundation.paths import sources_dir
 
     return sources_dir(None, "bench ros2 (its default map is f1tenth-gym berlin; or pass --map)") / DEFAULT_MAP
 

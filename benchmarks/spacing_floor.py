@@ -36,7 +36,7 @@ import numpy as np
 from scipy.optimize import linprog
 
 from roboracer_arena import _core
-from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.config.constructor import ConstructorConfig
 from roboracer_arena.generate import derived_geometry
 from roboracer_arena.spec import TrackSpec
 

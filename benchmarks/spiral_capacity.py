@@ -32,7 +32,7 @@ import numpy as np
 
 from benchmarks.constructor_sweep import sweep_specs
 from roboracer_arena import _core
-from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.config.constructor import ConstructorConfig
 from roboracer_arena.generate import derived_geometry
 from roboracer_arena.spec import TrackSpec
 

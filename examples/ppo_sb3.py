@@ -130,7 +130,7 @@ def train(args: argparse.Namespace) -> int:
         title = f"SB3 PPO on {args.track}: {model.num_timesteps / 1e3:.0f}k env-steps, {seconds / 60:.0f} min"
         plot_curve(curve.rows, args.png, title)
     if args.json:
-        from roboracer_arena.fileio import atomic_write_text
+        from roboracer_arena.foundation.fileio import atomic_write_text
 
         atomic_write_text(args.json, json.dumps(out, indent=2) + "\n")
     return 0 if lap["clean_lap"] else 5

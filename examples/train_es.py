@@ -84,7 +84,7 @@ def _run(args: argparse.Namespace) -> int:
 
         plot_curve(result.curve, args.png, f"ES on {args.track}: {result.env_steps} env-steps, {result.seconds:.0f} s")
     if args.json:
-        from roboracer_arena.fileio import atomic_write_text
+        from roboracer_arena.foundation.fileio import atomic_write_text
 
         atomic_write_text(args.json, json.dumps(out, indent=2) + "\n")
     return 0

@@ -329,7 +329,7 @@ def check(keys: list[str] | None = None) -> list[str]:
 
 
 def write_blocks(key: str, doc: dict[str, Any]) -> None:
-    from roboracer_arena.fileio import atomic_write_text
+    from roboracer_arena.foundation.fileio import atomic_write_text
 
     for file, name, render in FIGURES[key]["blocks"]:
         path = ROOT / file
@@ -372,7 +372,7 @@ def main(argv: list[str] | None = None) -> int:
         for line in problems:
             print(f"docs_figures.py: {line}", file=sys.stderr)
         return 1 if problems else 0
-    from roboracer_arena.fileio import atomic_write_text
+    from roboracer_arena.foundation.fileio import atomic_write_text
 
     for key in keys:
         fig = FIGURES[key]

@@ -62,7 +62,7 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
     ("cli/train.py", "..learn.trainer"): _CLI + " (learn: the env stack)",
     ("cli/train.py", "..learn.curve"): _CLI + " (render: PIL)",
     ("cli/generate.py", "..builder"): "guarded by except ImportError: a missing USD builder is bad input, exit 2",
-    ("cli/generate.py", "..maps"): "guarded by except ImportError together with the builder (--build)",
+    ("cli/generate.py", "..maps.occupancy"): "guarded by except ImportError together with the builder (--build)",
     ("cli/physx_check.py", "..physx.check"): _CLI + " (the check loads pxr and the env stack, ~1 s)",
     ("cli/preview.py", "..render.formats"): _CLI + " (render: PIL)",
     ("cli/preview.py", "..render.still3d"): _CLI + " (render: PIL)",
@@ -89,7 +89,7 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
     ("builder.py", ".usd.vehicle"): "usd loads pxr (~0.5 s); builder is imported by the CLI at start-up",
     ("builder.py", ".usd.metadata"): "usd loads pxr (~0.5 s); builder is imported by the CLI at start-up",
     ("builder.py", ".usd.materials"): "usd loads pxr (~0.5 s); builder is imported by the CLI at start-up",
-    ("corridor.py", ".gaps"): "gaps needs scipy (ndimage): only close_gaps_m pays; the envs import no scipy",
+    ("maps/corridor.py", ".gaps"): "gaps needs scipy (ndimage): only close_gaps_m pays; the envs import no scipy",
     ("distributed/__init__.py", ".ray_executor"): "PEP 562 lazy attribute: the Ray classes load on first use",
     ("distributed/__init__.py", ".ray_vector"): "PEP 562 lazy attribute: the Ray classes load on first use",
     ("drivers.py", ".render.formats"): "render loads PIL, only for video; drivers is imported by the CLI at start-up",
@@ -98,7 +98,7 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
         ".render.drive_view",
     ): "render loads PIL, only for video; drivers is imported by the CLI at start-up",
     ("drivers.py", ".render.video"): "render loads PIL, only for video; drivers is imported by the CLI at start-up",
-    ("envs/__init__.py", "..track"): "PEP 562 lazy attribute: `import roboracer_arena` (gym ids) stays light",
+    ("envs/__init__.py", "..track.drivable"): "PEP 562 lazy attribute: `import roboracer_arena` (gym ids) stays light",
     ("envs/single.py", "..render.sim_view"): "render (PIL) loads only when render() is called, not for gym.make",
     ("envs/vector.py", "..render.sim_view"): "render (PIL) loads only when render() is called, not for gym.make",
     ("physx/__init__.py", ".check"): "PEP 562 lazy attribute: physx.available() must not load pxr and the envs",
@@ -132,7 +132,7 @@ def _is_private(name: str) -> bool:
 
 
 def _module_name(node: ast.Import | ast.ImportFrom) -> list[str]:
-    """The modules an import names, as written (``..track``, ``roboracer_arena.maps``)."""
+    """The modules an import names, as written (``..track``, ``roboracer_arena.maps.occupancy``)."""
     if isinstance(node, ast.Import):
         return [a.name for a in node.names]
     return ["." * node.level + (node.module or "")]

@@ -34,7 +34,7 @@ def _tracks(sources: Path, work: Path) -> dict[str, Path]:
 
 def main() -> None:
     from roboracer_arena import build_environment
-    from roboracer_arena.paths import default_sources_dir
+    from roboracer_arena.foundation.paths import default_sources_dir
     from roboracer_arena.physx.check import track_of_stage
     from roboracer_arena.physx.drive import drive_native_lap, drive_physx_lap
 

@@ -56,7 +56,7 @@ cd "$WORK"
 
 step "the package is the installed one, with its data"
 "$BIN/python" - <<'EOF'
-import roboracer_arena, roboracer_arena.paths as p
+import roboracer_arena, roboracer_arena.foundation.paths as p
 assert "site-packages" in roboracer_arena.__file__, roboracer_arena.__file__
 assert p.checkout_dir() is None, p.checkout_dir()
 assert (p.tracks_dir() / "catalog.json").is_file()

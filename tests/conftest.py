@@ -33,7 +33,7 @@ def ellipse_map(tmp_path_factory) -> Path:
     import numpy as np
 
     from roboracer_arena import _core
-    from roboracer_arena.maps import OccupancyMap
+    from roboracer_arena.maps.occupancy import OccupancyMap
 
     t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
     xy = np.column_stack([6.0 * np.cos(t), 3.5 * np.sin(t)])

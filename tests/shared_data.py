@@ -9,8 +9,8 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def sources_dir() -> Path:
-    """The public track data: what the package resolves (``roboracer_arena.paths``), else
+    """The public track data: what the package resolves (``roboracer_arena.foundation.paths``), else
     ../shared/track-sources beside this checkout (the tests may run against an installed wheel)."""
-    from roboracer_arena.paths import default_sources_dir
+    from roboracer_arena.foundation.paths import default_sources_dir
 
     return default_sources_dir() or (REPO.parent / "shared" / "track-sources")

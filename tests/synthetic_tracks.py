@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from roboracer_arena.track import Track
+from roboracer_arena.track.drivable import Track
 
 
 def stadium(

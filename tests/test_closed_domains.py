@@ -9,7 +9,7 @@ import pytest
 
 from roboracer_arena import _core
 from roboracer_arena.errors import InvalidArgumentError
-from roboracer_arena.maps import load_map
+from roboracer_arena.maps.occupancy import load_map
 
 KINDS = "'sim', 'build', 'constructor' or 'spec'"
 

@@ -21,10 +21,10 @@ import pytest
 from pydantic import BaseModel, ValidationError
 
 from roboracer_arena import _core
-from roboracer_arena.build_config import GeometryConfig
-from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.config.build import GeometryConfig
+from roboracer_arena.config.constructor import ConstructorConfig
+from roboracer_arena.config.sim import SimConfig
 from roboracer_arena.errors import ArenaError
-from roboracer_arena.sim_config import SimConfig
 from roboracer_arena.spec import TrackSpec
 
 PAIRS: list[tuple[str, type[BaseModel]]] = [

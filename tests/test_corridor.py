@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from roboracer_arena.corridor import DEFAULT_PARAMS, extract_corridor
 from roboracer_arena.errors import ConfigError, CorridorError, MapFormatError
-from roboracer_arena.maps import FREE, OCCUPIED, UNKNOWN, OccupancyMap
+from roboracer_arena.maps.corridor import DEFAULT_PARAMS, extract_corridor
+from roboracer_arena.maps.occupancy import FREE, OCCUPIED, UNKNOWN, OccupancyMap
 
 RES = 0.05
 R_MID, WIDTH = 4.0, 1.5

@@ -7,7 +7,7 @@ import os
 import pytest
 
 from roboracer_arena.errors import InvalidArgumentError, MapIOError
-from roboracer_arena.fileio import atomic_path, atomic_paths, check_output, read_regular_bytes, read_text
+from roboracer_arena.foundation.fileio import atomic_path, atomic_paths, check_output, read_regular_bytes, read_text
 
 
 def test_all_files_appear_or_none(tmp_path):

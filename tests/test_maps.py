@@ -10,7 +10,7 @@ import pytest
 from PIL import Image
 
 from roboracer_arena.errors import InvalidArgumentError, MapFormatError, MapIOError
-from roboracer_arena.maps import FREE, OCCUPIED, UNKNOWN, OccupancyMap, load_map, save_map
+from roboracer_arena.maps.occupancy import FREE, OCCUPIED, UNKNOWN, OccupancyMap, load_map, save_map
 
 # white, black, mid-grey 205, dark grey 60 in a 2 x 2 image
 GREYS = np.array([[255, 0], [205, 60]], dtype=np.uint8)

@@ -1,4 +1,4 @@
-"""The package's one worker pool (:mod:`roboracer_arena.pool`): results in item order,
+"""The package's one worker pool (:mod:`roboracer_arena.foundation.worker_pool`): results in item order,
 ``jobs == 1`` in this process, threads and isolated workers on request, and an error
 that names the item that failed while keeping its type."""
 
@@ -11,7 +11,7 @@ import sys
 import pytest
 
 from roboracer_arena.errors import SpecError
-from roboracer_arena.pool import LocalExecutor, pool_map
+from roboracer_arena.foundation.worker_pool import LocalExecutor, pool_map
 
 
 def _pid(_: object) -> int:
@@ -101,7 +101,7 @@ def test_bad_jobs_are_refused():
 def test_a_main_script_from_stdin_gets_a_hint_not_only_dead_workers():
     """Spawned workers re-import ``__main__``; from stdin that fails in every worker, and
     the error says why instead of only counting deaths."""
-    script = "from roboracer_arena.pool import pool_map\nprint(pool_map(abs, [-1, -2], 2))\n"
+    script = "from roboracer_arena.foundation.worker_pool import pool_map\nprint(pool_map(abs, [-1, -2], 2))\n"
     run = subprocess.run([sys.executable, "-"], input=script, capture_output=True, text=True, timeout=120)
     assert run.returncode != 0
     assert "WorkerLostError" in run.stderr and "came from stdin: run it from a file, or use jobs=1" in run.stderr

@@ -7,7 +7,7 @@ import pytest
 from roboracer_arena import _core
 from roboracer_arena.envs.track_pool import resolve_track_pool
 from roboracer_arena.errors import InvalidArgumentError
-from roboracer_arena.start_grid import (
+from roboracer_arena.track.start_grid import (
     GRID_OFFSET,
     GRID_SPACING,
     centreline_pose,

@@ -14,7 +14,7 @@ import pytest
 
 import start_grid_oracle as oracle
 from roboracer_arena.envs.track_pool import resolve_track_pool
-from roboracer_arena.start_grid import centreline_pose, free_run_ahead, grid_poses, grid_start_s
+from roboracer_arena.track.start_grid import centreline_pose, free_run_ahead, grid_poses, grid_start_s
 
 TRACKS = [
     "austin",  # circuit

@@ -7,6 +7,11 @@ Public API (each name is documented where it is defined):
 * :func:`parse_request` -- natural-language request to a ``TrackSpec``
 * :func:`load_policy` -- a trained policy file (``roboracer-arena train``)
 * ``gymnasium.make("RoboRacerArena-v0", track=...)`` -- simulation
+
+This package's face: it imports nothing of its own floors. Every name above loads on first
+use (so ``import roboracer_arena`` stays fast, and a user who only parses requests never
+imports pxr or the simulator), and the gym id is registered from the leaf
+:mod:`.registration`, whose entry points are strings.
 """
 
 from __future__ import annotations
@@ -14,23 +19,22 @@ from __future__ import annotations
 from importlib import import_module
 from typing import Any
 
-from . import errors
-from ._core import __version__
-from .envs import register_envs
-from .spec import TrackSpec
+from .registration import register_envs
 
 # Gymnasium 1.x has no plugin entry points (removed in 1.0), so, as ale_py does, the
 # package registers RoboRacerArena-v0 when it is imported: the one import-time effect.
 register_envs()
 
-# Heavier submodules load on first use so `import roboracer_arena` stays fast and a
-# user who only parses requests never imports pxr or the simulator.
+#: Public name -> the module that defines it, imported on first use.
 _LAZY = {
-    "load_map": "roboracer_arena.maps",
-    "OccupancyMap": "roboracer_arena.maps",
-    "extract_corridor": "roboracer_arena.corridor",
+    "__version__": "roboracer_arena._core",
+    "errors": "roboracer_arena.errors",
+    "TrackSpec": "roboracer_arena.spec",
+    "load_map": "roboracer_arena.maps.occupancy",
+    "OccupancyMap": "roboracer_arena.maps.occupancy",
+    "extract_corridor": "roboracer_arena.maps.corridor",
     "build_environment": "roboracer_arena.builder",
-    "BuildConfig": "roboracer_arena.build_config",
+    "BuildConfig": "roboracer_arena.config.build",
     "BuildReport": "roboracer_arena.builder",
     "generate_track": "roboracer_arena.generate",
     "parse_request": "roboracer_arena.parse",
@@ -42,7 +46,13 @@ def __getattr__(name: str) -> Any:
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'roboracer_arena' has no attribute {name!r}")
+    if name == "errors":
+        return import_module(module)
     return getattr(import_module(module), name)
 
 
-__all__ = ["errors", "TrackSpec", "__version__", *_LAZY]
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_LAZY])
+
+
+__all__ = [*_LAZY]

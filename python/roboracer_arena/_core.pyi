@@ -179,7 +179,7 @@ def save_map(
 # --- track (track.rs): map → walls, ducts, centreline, meshes, round-trip check ------
 @final
 class Geometry:
-    """The geometry of one built map (``roboracer_arena.corridor.CorridorGeometry`` is its
+    """The geometry of one built map (``roboracer_arena.maps.corridor.CorridorGeometry`` is its
     public view; read-only)."""
 
     @property
@@ -229,7 +229,7 @@ def build_geometry(
     params: _Doc | None = None,
     start: Sequence[float] | None = None,
 ) -> Geometry:
-    """Corridor isolation and geometry of a map (see ``roboracer_arena.corridor``)."""
+    """Corridor isolation and geometry of a map (see ``roboracer_arena.maps.corridor``)."""
 
 def build_open_geometry(
     data: npt.NDArray[np.uint8],

@@ -18,12 +18,12 @@ from typing import Any
 import numpy as np
 from pydantic import BaseModel, Field
 
-from . import __version__
-from .build_config import BuildConfig
-from .corridor import extract_corridor
+from ._core import __version__
+from .config.build import BuildConfig
 from .errors import ConfigError, InvalidArgumentError
-from .fileio import check_output
-from .maps import load_map
+from .foundation.fileio import check_output
+from .maps.corridor import extract_corridor
+from .maps.occupancy import load_map
 
 MapLike = Any  # OccupancyMap | str | Path
 ConfigLike = BuildConfig | Mapping[str, Any] | str | Path | None
@@ -144,7 +144,7 @@ def build_environment(
 ) -> BuildReport:
     """Build the USD environment of a ROS occupancy map.
 
-    ``map_or_path`` is a map YAML path or an :class:`~roboracer_arena.maps.OccupancyMap`;
+    ``map_or_path`` is a map YAML path or an :class:`~roboracer_arena.maps.occupancy.OccupancyMap`;
     ``out_path`` ends in ``.usdc`` (default encoding), ``.usda`` or ``.usd`` (encoding from
     ``config.usd_format``); ``config`` is a :class:`BuildConfig`, a mapping or a TOML/JSON
     file; ``start`` optionally seeds the corridor from a pose ``(x, y[, yaw])`` (an open
@@ -153,7 +153,7 @@ def build_environment(
     open map (walls from every occupied region; the report's ``map_kind`` and
     ``open_reason`` say so), ``True`` always, ``False`` never; ``unknown`` is how an open
     map reads unknown cells (``"occupied"`` or ``"free"``). ``close_gaps_m`` closes the
-    openings of the walls up to that width first (:mod:`roboracer_arena.gaps`); the
+    openings of the walls up to that width first (:mod:`roboracer_arena.maps.gaps`); the
     report, the stage metadata and the summary list every gap closed. ``record_source_as``:
     the path the stage records for its source map when the map is read from a staging copy
     that is moved there afterwards (its checksums are the copy's, the same bytes).

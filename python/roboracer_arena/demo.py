@@ -16,11 +16,11 @@ import sys
 import time
 from pathlib import Path
 
-from . import __version__
+from ._core import __version__
 from .builder import build_environment
 from .drivers import drive_laps
 from .errors import ArenaError
-from .fileio import check_output
+from .foundation.fileio import check_output
 from .generate import Acceptance, generate_track, write_outputs
 from .parse import parse_request
 from .render.preview import preview_map

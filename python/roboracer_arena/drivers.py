@@ -52,7 +52,7 @@ class PurePursuitDriver:
 
     ``speed_cap`` ((M,) m/s, one per centreline vertex, optional) caps the speed profile
     before its braking and acceleration passes, e.g. by the wall clearance along a
-    narrow path (:mod:`roboracer_arena.clearance_path`)."""
+    narrow path (:mod:`roboracer_arena.maps.clearance_path`)."""
 
     def __init__(self, centreline: Any, params: PurePursuitParams | None = None, speed_cap: Any = None) -> None:
         self.params = p = params or PurePursuitParams()

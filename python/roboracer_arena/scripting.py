@@ -16,7 +16,7 @@ from pathlib import Path
 
 from .cli import EXIT_BAD_INPUT, EXIT_INTERNAL
 from .errors import ArenaError, InternalError
-from .paths import SOURCES_ENV, default_sources_dir, sources_dir
+from .foundation.paths import SOURCES_ENV, default_sources_dir, sources_dir
 
 
 def add_sources_argument(parser: argparse.ArgumentParser) -> None:

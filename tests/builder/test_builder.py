@@ -112,7 +112,7 @@ def test_bad_inputs_raise_typed_errors_and_write_nothing(tmp_path, ring_yaml):
 
 
 def test_ducts_get_the_cores_texture_coordinates(ring_yaml):
-    from roboracer_arena.corridor import extract_corridor
+    from roboracer_arena.maps.corridor import extract_corridor
 
     geo = extract_corridor(ring_yaml)
     g = BuildConfig().geometry

@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from roboracer_arena.build_config import BuildConfig
+from roboracer_arena.config.build import BuildConfig
 from roboracer_arena.errors import ArenaError, ConfigError
 
 # The Rust BuildParams field names the geometry section must mirror exactly.
@@ -104,6 +104,6 @@ def test_syntax_errors_and_missing_file(tmp_path):
 
 def test_geometry_defaults_equal_the_rust_build_params():
     """One source of truth: the Rust BuildParams defaults; BuildConfig.geometry mirrors them."""
-    from roboracer_arena.corridor import DEFAULT_PARAMS
+    from roboracer_arena.maps.corridor import DEFAULT_PARAMS
 
     assert BuildConfig().geometry_params() == DEFAULT_PARAMS

@@ -102,7 +102,7 @@ def test_build_circuit_end_to_end_on_a_tiny_ring(tmp_path):
 def test_shipped_circuit_reports_load_typed_and_round_trip():
     """Every committed ``circuit.json`` is a :class:`CircuitReport` and writes back as it is."""
     from roboracer_arena.circuits.report import CircuitReport
-    from roboracer_arena.paths import tracks_dir
+    from roboracer_arena.foundation.paths import tracks_dir
 
     files = sorted((tracks_dir() / "circuits").glob("*/circuit.json"))
     assert len(files) >= 44

@@ -8,7 +8,7 @@ from PIL import Image
 
 from roboracer_arena import _core
 from roboracer_arena.cli import main
-from roboracer_arena.maps import OccupancyMap
+from roboracer_arena.maps.occupancy import OccupancyMap
 
 
 @pytest.fixture(scope="module")

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from source_sense import source_sign
 
-from roboracer_arena.direction import (
+from roboracer_arena.errors import InvalidArgumentError, MapFormatError
+from roboracer_arena.maps.direction import (
     CLOCKWISE,
     COUNTERCLOCKWISE,
     TrackDirection,
@@ -19,7 +20,6 @@ from roboracer_arena.direction import (
     reverse,
     signed_area,
 )
-from roboracer_arena.errors import InvalidArgumentError, MapFormatError
 
 SQUARE_CCW = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
 

@@ -11,9 +11,9 @@ import pytest
 from drive_path import driven_lap
 from source_sense import shoelace, source_sign
 
-from roboracer_arena.direction import COUNTERCLOCKWISE
-from roboracer_arena.library import load_catalog
-from roboracer_arena.paths import tracks_dir
+from roboracer_arena.catalog import load_catalog
+from roboracer_arena.foundation.paths import tracks_dir
+from roboracer_arena.maps.direction import COUNTERCLOCKWISE
 
 
 def _clockwise_generated():
@@ -69,7 +69,7 @@ def test_clockwise_generated_track_is_driven_clockwise():
 def test_generated_map_path_outside_the_catalog_keeps_the_requested_direction(tmp_path):
     """A freshly generated clockwise track, driven from its folder (not the catalog)."""
     from roboracer_arena.generate import Acceptance, write_outputs
-    from roboracer_arena.track import track_from_map_path
+    from roboracer_arena.track.drivable import track_from_map_path
 
     out = _clockwise_generated()
     assert isinstance(out, Acceptance)

@@ -7,8 +7,8 @@ import gymnasium as gym
 import numpy as np
 
 import roboracer_arena  # noqa: F401  (registers the env)
-from roboracer_arena.direction import read_centreline_file
-from roboracer_arena.paths import tracks_dir
+from roboracer_arena.foundation.paths import tracks_dir
+from roboracer_arena.maps.direction import read_centreline_file
 
 
 def _heading(a: np.ndarray, b: np.ndarray) -> float:

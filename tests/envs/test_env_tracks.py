@@ -3,7 +3,7 @@ import pytest
 
 from roboracer_arena.envs.tracks import resolve_tracks
 from roboracer_arena.errors import ConfigError
-from roboracer_arena.track import Track
+from roboracer_arena.track.drivable import Track
 from synthetic_tracks import stadium
 
 

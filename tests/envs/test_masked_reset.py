@@ -16,7 +16,7 @@ from roboracer_arena.envs.env_config import EnvConfig
 from roboracer_arena.envs.single import RoboRacerEnv
 from roboracer_arena.envs.vector import RoboRacerVectorEnv
 from roboracer_arena.errors import ConfigError, InvalidArgumentError
-from roboracer_arena.start_grid import start_spec
+from roboracer_arena.track.start_grid import start_spec
 
 NOISY = {
     "sim": {"lidar": {"num_beams": 61, "noise_std": 0.01}},

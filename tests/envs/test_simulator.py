@@ -158,7 +158,7 @@ def test_tracks_switch_per_env():
 
 @pytest.fixture(scope="module")
 def berlin_geometry(sources):
-    from roboracer_arena.corridor import extract_corridor
+    from roboracer_arena.maps.corridor import extract_corridor
 
     return extract_corridor(sources / "f1tenth-gym" / "maps" / "berlin.yaml")
 
@@ -171,8 +171,8 @@ def berlin(berlin_geometry):
 def test_physics_walls_are_the_builders_wall_mesh(berlin_geometry, sources):
     """The collision mesh in every world is exactly the mesh the USD stage gets: the
     track carries the build's wall height (one knob), at its default and when changed."""
-    from roboracer_arena.corridor import extract_corridor
-    from roboracer_arena.track import track_from_corridor
+    from roboracer_arena.maps.corridor import extract_corridor
+    from roboracer_arena.track.drivable import track_from_corridor
 
     for geo in (
         berlin_geometry,

@@ -11,10 +11,10 @@ from pydantic import ValidationError
 from benchmarks import fidelity, fidelity_limit
 from benchmarks.f1tenth_st import GYM_PARAMS, SingleTrack
 from roboracer_arena import _core
+from roboracer_arena.config.sim import PhysicsConfig, SimConfig, VehicleConfig
 from roboracer_arena.envs.env_config import RandomisationConfig
 from roboracer_arena.envs.single import RoboRacerEnv
 from roboracer_arena.errors import InvalidArgumentError
-from roboracer_arena.sim_config import PhysicsConfig, SimConfig, VehicleConfig
 
 
 def _stop_distances(friction: np.ndarray, mass: np.ndarray) -> np.ndarray:

@@ -152,7 +152,7 @@ def catalog_library(tmp_path_factory) -> Path:
     its catalog; an empty sources folder (no recorded maps), made once."""
     import shutil
 
-    from roboracer_arena.paths import tracks_dir
+    from roboracer_arena.foundation.paths import tracks_dir
 
     root = tmp_path_factory.mktemp("catalog")
     shutil.copytree(tracks_dir() / "generated", root / "tracks" / "generated")

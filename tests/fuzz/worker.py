@@ -49,13 +49,13 @@ def _api_distance_transform(h, w):
 
 
 def _api_extract_corridor(map_yaml, params):
-    from roboracer_arena.corridor import extract_corridor
+    from roboracer_arena.maps.corridor import extract_corridor
 
     extract_corridor(map_yaml, params=params)
 
 
 def _api_load_map(path):
-    from roboracer_arena.maps import load_map
+    from roboracer_arena.maps.occupancy import load_map
 
     load_map(path)
 

@@ -74,7 +74,7 @@ def measure(yaml_path: Path) -> Measurement:
 def problems(spec, yaml_path: Path) -> list[str]:
     """What the independent re-measurement of a written map finds wrong with it (empty:
     independently valid) against its TrackSpec."""
-    from roboracer_arena.constructor_config import ConstructorConfig
+    from roboracer_arena.config.constructor import ConstructorConfig
 
     cfg = ConstructorConfig()
     m = measure(yaml_path)

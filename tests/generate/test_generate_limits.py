@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from roboracer_arena import TrackSpec
 from roboracer_arena.errors import ArenaError, InvalidArgumentError, SpecError
 from roboracer_arena.generate import Acceptance, GenerationFailure, Rejection, generate_track, validate_map
-from roboracer_arena.maps import OccupancyMap
+from roboracer_arena.maps.occupancy import OccupancyMap
 
 
 def test_time_budget_stops_a_2km_search_promptly():
@@ -42,7 +42,7 @@ def test_a_hall_over_the_raster_limit_is_refused_promptly():
 @pytest.mark.parametrize("size", [1e9, 1e12, 1e308])
 def test_huge_halls_are_refused_by_the_schema_and_by_the_core(size):
     from roboracer_arena import _core
-    from roboracer_arena.constructor_config import ConstructorConfig
+    from roboracer_arena.config.constructor import ConstructorConfig
 
     with pytest.raises(SpecError, match="hall_x_m"):
         TrackSpec.from_dict({"lap_length_m": 60, "hall_x_m": size, "hall_y_m": size})

@@ -8,7 +8,7 @@ import pytest
 
 from roboracer_arena import TrackSpec
 from roboracer_arena.generate import Acceptance, generate_track, validate_map, write_outputs
-from roboracer_arena.maps import load_map
+from roboracer_arena.maps.occupancy import load_map
 
 SMALL = TrackSpec(name="small", lap_length_m=40, hall_x_m=15, hall_y_m=12, hairpins=1, chicanes=1)
 
@@ -90,7 +90,7 @@ def test_validator_fails_a_map_against_the_wrong_spec():
 
 @pytest.mark.parametrize("resolution", [0.025, 0.1])
 def test_resolution_is_configurable(resolution):
-    from roboracer_arena.constructor_config import ConstructorConfig
+    from roboracer_arena.config.constructor import ConstructorConfig
 
     out = generate_track(SMALL, config=ConstructorConfig(resolution_m=resolution))
     assert isinstance(out, Acceptance) and out.map.resolution == resolution

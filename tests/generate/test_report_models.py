@@ -8,7 +8,7 @@ import pytest
 from pydantic import ValidationError
 
 from roboracer_arena import TrackSpec, _core
-from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.config.constructor import ConstructorConfig
 from roboracer_arena.generate import (
     Acceptance,
     CurveAnalysis,

@@ -3,7 +3,7 @@
 import pytest
 
 from roboracer_arena import TrackSpec
-from roboracer_arena.constructor_config import ConstructorConfig
+from roboracer_arena.config.constructor import ConstructorConfig
 from roboracer_arena.generate import Rejection, derived_geometry, generate_track, screen
 
 

@@ -17,7 +17,7 @@ import pytest
 from roboracer_arena.catalog import load_catalog
 from roboracer_arena.cli import main
 from roboracer_arena.errors import ArenaError, InternalError, MapIOError
-from roboracer_arena.paths import PACKAGE_DIR
+from roboracer_arena.foundation.paths import PACKAGE_DIR
 
 SHIPPED = json.loads((PACKAGE_DIR / "tracks" / "catalog.json").read_text(encoding="utf-8"))
 

@@ -28,7 +28,7 @@ import pytest
 
 from roboracer_arena.catalog import load_catalog
 from roboracer_arena.cli import main
-from roboracer_arena.paths import PACKAGE_DIR
+from roboracer_arena.foundation.paths import PACKAGE_DIR
 
 PACKAGE_CATALOG = PACKAGE_DIR / "tracks" / "catalog.json"
 CHECKS = ["--no-usd", "--no-drive", "--no-physx", "--jobs", "1"]
@@ -130,7 +130,7 @@ def test_two_concurrent_verify_runs_never_lose_a_verdict(library):
 LOCK_RACE = r"""
 import os, sys
 from pathlib import Path
-from roboracer_arena.fileio import file_lock
+from roboracer_arena.foundation.fileio import file_lock
 target = Path(sys.argv[1])
 target.write_text("0")
 kids = []

@@ -36,7 +36,7 @@ def library(tmp_path_factory) -> Path:
     """A tracks folder holding the 60 shipped generated tracks, a file of the user's beside
     them, and the catalog ``tracks catalog`` builds from them (no recorded maps: an empty
     sources folder)."""
-    from roboracer_arena.paths import tracks_dir
+    from roboracer_arena.foundation.paths import tracks_dir
 
     root = tmp_path_factory.mktemp("catalog")
     shutil.copytree(tracks_dir() / "generated", root / "tracks" / "generated")

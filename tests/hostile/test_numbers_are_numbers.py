@@ -7,10 +7,10 @@ from __future__ import annotations
 import pytest
 from pydantic import ValidationError
 
-from roboracer_arena.build_config import BuildConfig
 from roboracer_arena.catalog.entry import OpenMap
+from roboracer_arena.config.build import BuildConfig
+from roboracer_arena.foundation.strict import NumbersAreNumbers
 from roboracer_arena.spec import TrackSpec
-from roboracer_arena.strict import NumbersAreNumbers
 from roboracer_arena.usd.metadata import StageMetadata
 
 

@@ -20,10 +20,10 @@ import pytest
 from PIL import Image
 
 import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
-from roboracer_arena.car_fit import NoRoomForCarError, footprint_fits
 from roboracer_arena.cli import main
-from roboracer_arena.corridor import extract_corridor
 from roboracer_arena.errors import CorridorError
+from roboracer_arena.maps.car_fit import NoRoomForCarError, footprint_fits
+from roboracer_arena.maps.corridor import extract_corridor
 
 
 def _map(d: Path, name: str, img: np.ndarray, origin=(0.0, 0.0, 0.0), res: float = 0.05) -> Path:

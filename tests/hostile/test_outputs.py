@@ -23,7 +23,7 @@ def _digest(p: Path) -> str:
 
 
 def _image(map_yaml: Path) -> Path:
-    from roboracer_arena.maps import image_named_by
+    from roboracer_arena.foundation.fileio import image_named_by
 
     return map_yaml.parent / image_named_by(map_yaml.read_text())
 

@@ -24,7 +24,7 @@ import pytest
 
 from roboracer_arena import demo
 from roboracer_arena.errors import MapIOError
-from roboracer_arena.fileio import write_failure
+from roboracer_arena.foundation.fileio import write_failure
 
 
 def _mount_tmpfs(where: Path, options: str) -> bool:
@@ -134,8 +134,8 @@ def test_a_catalog_rebuild_names_a_hostile_generated_spec(tmp_path):
     import shutil
 
     from roboracer_arena.errors import MapFormatError
+    from roboracer_arena.foundation.paths import PACKAGE_DIR
     from roboracer_arena.library.index import _generated_entries
-    from roboracer_arena.paths import PACKAGE_DIR
 
     src = next((PACKAGE_DIR / "tracks" / "generated").iterdir())
     dst = tmp_path / "generated" / src.name

@@ -27,7 +27,7 @@ def test_bridge_rates_have_a_floor(tmp_path, rates):
     "sim", [{"physics": {"dt": 1e-300}}, {"physics": {"dt": 5e-324}}, {"lidar": {"rate_hz": 5e-324}}]
 )
 def test_sim_steps_and_rates_have_a_floor_on_both_sides(sim):
-    from roboracer_arena.sim_config import SimConfig
+    from roboracer_arena.config.sim import SimConfig
 
     with pytest.raises(ValueError):
         SimConfig.model_validate(sim)

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
-from roboracer_arena.corridor import extract_corridor
+from roboracer_arena.maps.corridor import extract_corridor
 from roboracer_arena.physx.open_probes import WallSegments, crosses_walls
 
 

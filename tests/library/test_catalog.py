@@ -6,10 +6,10 @@ import json
 
 import pytest
 
+from roboracer_arena.catalog import Catalog, load_catalog, resolve, resolve_tracks
 from roboracer_arena.catalog.catalog_file import sha256_file
 from roboracer_arena.cli import main
 from roboracer_arena.errors import InvalidArgumentError
-from roboracer_arena.library import Catalog, load_catalog, resolve, resolve_tracks
 
 REQUIRED = (
     "id",

@@ -10,9 +10,9 @@ import re
 import pytest
 from pydantic import ValidationError
 
+from roboracer_arena.catalog import load_catalog
 from roboracer_arena.catalog.entry import LeftOut, TrackEntry
 from roboracer_arena.errors import MapIOError
-from roboracer_arena.library import load_catalog
 
 
 def test_shipped_catalog_loads_typed_and_round_trips_byte_for_byte():
@@ -67,8 +67,8 @@ def test_catalog_builder_reproduces_every_shipped_entry(tmp_path, sources):
     """``build_catalog`` (typed end to end) writes each shipped entry as shipped, field for
     field and in the same key order; only ``tracks verify --update-catalog``'s results
     (``verified``, ``drive``, and the recorded maps it moved to ``left_out``) are not its."""
+    from roboracer_arena.foundation.paths import tracks_dir
     from roboracer_arena.library.index import build_catalog
-    from roboracer_arena.paths import tracks_dir
 
     for part in ("circuits", "generated"):
         (tmp_path / part).symlink_to(tracks_dir() / part)
@@ -85,7 +85,7 @@ def test_catalog_builder_reproduces_every_shipped_entry(tmp_path, sources):
 def test_shipped_catalog_names_no_absolute_path():
     """Entries name maps relative to the sources folder: a builder's own paths (its sources
     or output folder) must not leak into the shipped catalog (they did into left_out reasons)."""
-    from roboracer_arena.paths import tracks_dir
+    from roboracer_arena.foundation.paths import tracks_dir
 
     text = (tracks_dir() / "catalog.json").read_text()
     leaks = re.findall(r"(?<![\w:/.])/(?:[\w.+-]+/)+[\w.+-]+\.(?:yaml|pgm|png|json|csv)", text)

@@ -1,38 +1,27 @@
-"""The catalog reading moved from ``roboracer_arena.library`` to ``roboracer_arena.catalog``
-(issue #24): the package's names still resolve through ``library``, and the old module
-paths still import, with a DeprecationWarning naming the new home."""
+"""The catalog reading lives in ``roboracer_arena.catalog`` alone (issue #24 moved it; issue
+#37 removed the deprecated aliases): the old ``roboracer_arena.library`` module paths are
+gone and ``library`` no longer re-exports the catalog's names (a 0.x package owes no
+deprecation period)."""
 
 from __future__ import annotations
 
 import importlib
-import sys
 
 import pytest
 
 import roboracer_arena.catalog as catalog
 import roboracer_arena.library as library
 
-MOVED = {
-    "catalog": "catalog_file",
-    "entry": "entry",
-    "entry_text": "entry_text",
-    "directions": "directions",
-    "tracks": "tracks",
-}
+OLD_PATHS = ["catalog", "entry", "entry_text", "directions", "tracks"]
 
 
-def test_library_reexports_the_catalog_names() -> None:
+@pytest.mark.parametrize("old", OLD_PATHS)
+def test_old_module_path_is_gone(old: str) -> None:
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module(f"roboracer_arena.library.{old}")
+
+
+def test_catalog_names_live_in_catalog_alone() -> None:
+    assert catalog.__all__
     for name in catalog.__all__:
-        assert getattr(library, name) is getattr(catalog, name)
-
-
-@pytest.mark.parametrize(("old", "new"), sorted(MOVED.items()))
-def test_old_module_path_warns_and_reexports(old: str, new: str) -> None:
-    sys.modules.pop(f"roboracer_arena.library.{old}", None)
-    with pytest.warns(DeprecationWarning, match=f"roboracer_arena.catalog.{new}"):
-        shim = importlib.import_module(f"roboracer_arena.library.{old}")
-    target = importlib.import_module(f"roboracer_arena.catalog.{new}")
-    public = [n for n in vars(target) if not n.startswith("_")]
-    assert public
-    for name in public:
-        assert getattr(shim, name) is getattr(target, name)
+        assert not hasattr(library, name)

@@ -11,7 +11,7 @@ from roboracer_arena import _core
 from roboracer_arena.catalog.entry_text import entry_lines, format_value
 from roboracer_arena.cli import main
 from roboracer_arena.library.sheet import CORRIDOR, FLOOR, SHADE, WALLS, sheet_legend, thumbnail
-from roboracer_arena.maps import OccupancyMap
+from roboracer_arena.maps.occupancy import OccupancyMap
 from roboracer_arena.render.frame import draw_legend
 
 

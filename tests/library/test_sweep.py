@@ -9,10 +9,10 @@ from pathlib import Path
 
 import pytest
 
+from roboracer_arena.catalog import load_catalog
 from roboracer_arena.cli import main
 from roboracer_arena.distributed import LocalExecutor
 from roboracer_arena.errors import SpecError
-from roboracer_arena.library import load_catalog
 from roboracer_arena.library.sweep import GridSweep, SweepFile, SweepRequest, load_sweep
 from roboracer_arena.library.sweep_run import generate_library
 
@@ -168,8 +168,8 @@ def test_packaged_example_sweep_is_the_examples_file():
 
 
 def test_packaged_sweep_summary_loads_typed_and_round_trips():
+    from roboracer_arena.foundation.paths import tracks_dir
     from roboracer_arena.library.sweep_report import GeneratedSweepSummary
-    from roboracer_arena.paths import tracks_dir
 
     text = (tracks_dir() / "generated" / "sweep.json").read_text(encoding="utf-8")
     s = GeneratedSweepSummary.model_validate_json(text)
@@ -181,8 +181,8 @@ def test_packaged_generated_library_is_what_the_sweep_builds(tmp_path):
     """``build_generated`` (``tracks catalog --generate``) on two processes rebuilds the
     packaged ``tracks/generated``: the same 60 tracks, byte for byte (bar the generator's
     wall-clock timings), and the same records."""
+    from roboracer_arena.foundation.paths import tracks_dir
     from roboracer_arena.library.generated import build_generated
-    from roboracer_arena.paths import tracks_dir
 
     shipped = tracks_dir() / "generated"
     s = build_generated(tmp_path, count=60, jobs=2)

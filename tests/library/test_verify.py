@@ -6,8 +6,8 @@ import json
 
 import pytest
 
+from roboracer_arena.catalog import load_catalog
 from roboracer_arena.cli import main
-from roboracer_arena.library import load_catalog
 from roboracer_arena.library.verify import verify
 from roboracer_arena.physx import available as physx_available
 

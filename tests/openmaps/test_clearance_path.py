@@ -8,9 +8,9 @@ from __future__ import annotations
 import numpy as np
 from PIL import Image
 
-from roboracer_arena.clearance_path import clearance_path
-from roboracer_arena.corridor import extract_corridor
-from roboracer_arena.track import Track
+from roboracer_arena.maps.clearance_path import clearance_path
+from roboracer_arena.maps.corridor import extract_corridor
+from roboracer_arena.track.drivable import Track
 
 
 def _ring(tmp_path):

@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from roboracer_arena.corridor import extract_corridor
 from roboracer_arena.errors import CorridorError, InvalidArgumentError
-from roboracer_arena.gaps import close_gaps
-from roboracer_arena.maps import load_map
+from roboracer_arena.maps.corridor import extract_corridor
+from roboracer_arena.maps.gaps import close_gaps
+from roboracer_arena.maps.occupancy import load_map
 
 
 def _leaking_ring(tmp_path):

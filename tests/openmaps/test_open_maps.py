@@ -10,9 +10,9 @@ import pytest
 from PIL import Image
 
 import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
-from roboracer_arena.corridor import extract_corridor, extract_open
 from roboracer_arena.errors import CorridorError, InvalidArgumentError
-from roboracer_arena.track import Track, track_from_map_path
+from roboracer_arena.maps.corridor import extract_corridor, extract_open
+from roboracer_arena.track.drivable import Track, track_from_map_path
 
 
 def _room(tmp_path, door: bool = True):

@@ -75,7 +75,7 @@ def test_physx_car_is_derived_from_the_config_with_no_tuned_factor():
     angle at max_steer, the lateral stiffness is our cornering stiffness x static load."""
     import math
 
-    from roboracer_arena.sim_config import VehicleConfig
+    from roboracer_arena.config.sim import VehicleConfig
     from roboracer_arena.usd import vehicle
 
     assert not hasattr(vehicle, "LATERAL_STIFFNESS_GAIN")
@@ -106,8 +106,8 @@ def test_physx_drive_loop_is_our_servo_and_speed_loop():
     speed loop saturating at the current window, the torque of that current."""
     import math
 
+    from roboracer_arena.config.sim import SimConfig
     from roboracer_arena.physx.drive import Actuators
-    from roboracer_arena.sim_config import SimConfig
 
     sim = SimConfig()
     v = sim.vehicle
@@ -136,8 +136,8 @@ def test_step_steer_and_stop_agree_in_both_engines(tmp_path):
     import warnings
 
     from benchmarks.engines import _Ours, _Physx, brake, step_steer
+    from roboracer_arena.config.sim import SimConfig
     from roboracer_arena.physx.drive import write_flat_stage
-    from roboracer_arena.sim_config import SimConfig
 
     warnings.simplefilter("ignore")
     sim = SimConfig()
@@ -170,8 +170,8 @@ def test_brush_car_understeers_alike_at_low_friction(tmp_path):
     import warnings
 
     from benchmarks.engines import _Ours, _Physx, config, cornering, with_tyre
+    from roboracer_arena.config.sim import VehicleConfig
     from roboracer_arena.physx.drive import write_flat_stage
-    from roboracer_arena.sim_config import VehicleConfig
 
     warnings.simplefilter("ignore")
     sim = config(0.4, 1.0, with_tyre(VehicleConfig(), "brush"))
@@ -196,8 +196,8 @@ def test_the_car_authors_no_deprecated_controller_attribute(tmp_path):
 
     if not physx_schemas.available():
         pytest.skip("the 'physx' extra (physx-usd-schemas) is not installed; CI installs it")
+    from roboracer_arena.config.sim import SimConfig
     from roboracer_arena.physx.drive import write_flat_stage
-    from roboracer_arena.sim_config import SimConfig
 
     stage = Usd.Stage.Open(str(write_flat_stage(tmp_path / "flat.usda", SimConfig(), half_size=10.0)))
     car = stage.GetPrimAtPath("/World/Car")

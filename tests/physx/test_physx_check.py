@@ -138,9 +138,9 @@ def test_open_map_holds_in_physx(levine_stage, tmp_path):
     assert report.containment.contained == report.containment.bodies == 4 * 8 * 3, report.summary()
     assert report.ok and "free region" in report.summary()
     # every station lies in the building, beside its walls, not on the empty margin by the map edge
+    from roboracer_arena.config.sim import SimConfig
     from roboracer_arena.physx.check import probe_plan
     from roboracer_arena.physx.open_probes import FreeRegion
-    from roboracer_arena.sim_config import SimConfig
 
     free = FreeRegion.of_geometry(track.source, (0.0, 0.0))
     xy = np.array(sorted({(x, y) for _, x, y, *_ in probe_plan(track, SimConfig(), 4, free)}))

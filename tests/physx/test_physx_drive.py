@@ -19,9 +19,9 @@ needs_physx = pytest.mark.skipif(
 @needs_physx
 def test_drive_physx_runs_any_controller_with_a_scan(tmp_path):
     from roboracer_arena import _core
+    from roboracer_arena.config.sim import SimConfig
     from roboracer_arena.physx.drive import drive_physx, write_flat_stage
-    from roboracer_arena.sim_config import SimConfig
-    from roboracer_arena.track import Track
+    from roboracer_arena.track.drivable import Track
 
     warnings.simplefilter("ignore")
     walls, centre = _core.stadium_track(6.0, 3.0, 2.0)
@@ -53,10 +53,10 @@ def test_drive_physx_runs_any_controller_with_a_scan(tmp_path):
 def test_replace_car_reauthors_the_stage_for_another_config(tmp_path):
     from pxr import Usd
 
+    from roboracer_arena.config.sim import SimConfig, VehicleConfig
+    from roboracer_arena.config.vehicle_presets import forzaeth_preset
     from roboracer_arena.physx.drive import write_flat_stage
-    from roboracer_arena.sim_config import SimConfig, VehicleConfig
     from roboracer_arena.usd.vehicle import physx_params, replace_car
-    from roboracer_arena.vehicle_presets import forzaeth_preset
 
     stage = write_flat_stage(tmp_path / "flat.usdc", SimConfig(), half_size=10.0)
     nuc6 = forzaeth_preset("NUC6")
@@ -74,8 +74,8 @@ def test_forzaeth_presets_map_the_identified_cars():
     """NUC6: m 3.75 kg, I_z 0.056, l_f 0.176, l_r 0.149, mu 0.95; our cornering stiffness per
     unit load is the Pacejka fit's slope at zero slip (B C D); its single-track model gives
     about 0.49 rad/s at 5 m/s and 0.05 rad (DESIGN.md, "Two engines, one car")."""
+    from roboracer_arena.config.vehicle_presets import FORZAETH_MODELS, forzaeth_preset, pacejka, single_track_yaw_rate
     from roboracer_arena.errors import ConfigError
-    from roboracer_arena.vehicle_presets import FORZAETH_MODELS, forzaeth_preset, pacejka, single_track_yaw_rate
 
     v = forzaeth_preset("nuc6")
     assert (v.mass, v.yaw_inertia, v.com_to_front, v.com_to_rear) == (3.75, 0.056, 0.176, 0.149)
@@ -91,7 +91,7 @@ def test_forzaeth_presets_map_the_identified_cars():
 
 def test_forzaeth_presets_match_the_shared_model_files(sources):
     """The presets' numbers are the published files' (read from ../shared/vehicle-data)."""
-    from roboracer_arena.vehicle_presets import FORZAETH_MODELS, read_forzaeth_model
+    from roboracer_arena.config.vehicle_presets import FORZAETH_MODELS, read_forzaeth_model
 
     folder = sources.parent / "vehicle-data" / "forzaeth-on-track-sysid"
     if not folder.is_dir():

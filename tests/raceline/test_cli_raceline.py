@@ -45,7 +45,7 @@ def test_raceline_bad_input_exits_2(tmp_path, capsys):
 
 
 def test_catalog_job_never_writes_into_an_installed_package(monkeypatch, capsys, tmp_path):
-    from roboracer_arena import paths
+    from roboracer_arena.foundation import paths
 
     monkeypatch.delenv(paths.TRACKS_ENV, raising=False)
     monkeypatch.setattr(paths, "checkout_dir", lambda: None)  # as an installed wheel

@@ -14,7 +14,7 @@ from roboracer_arena.render.drive_view import HUD_PX, DriveView, HudState, drive
 from roboracer_arena.render.frame import PAD
 from roboracer_arena.render.race_marks import ARROW, CAR
 from roboracer_arena.render.topdown import font
-from roboracer_arena.track import track_from_map_path
+from roboracer_arena.track.drivable import track_from_map_path
 
 
 def near(img: np.ndarray, colour, tol: int = 40) -> np.ndarray:

@@ -8,7 +8,7 @@ import pytest
 from PIL import Image
 
 from roboracer_arena.cli import EXIT_BAD_INPUT, main
-from roboracer_arena.paths import tracks_dir
+from roboracer_arena.foundation.paths import tracks_dir
 
 SMALL = "gen-l040-w12-h2c1s1-clo-s0"
 

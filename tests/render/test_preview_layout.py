@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from roboracer_arena.direction import direction_of, read_centreline_file
 from roboracer_arena.envs.single import RoboRacerEnv
-from roboracer_arena.paths import tracks_dir
+from roboracer_arena.foundation.paths import tracks_dir
+from roboracer_arena.maps.direction import direction_of, read_centreline_file
 from roboracer_arena.render.frame import scale_length
 from roboracer_arena.render.preview import preview_map
 from roboracer_arena.render.topdown import TopDown, boxes_overlap
@@ -52,8 +52,8 @@ def test_labels_stay_inside_and_apart_and_the_frame_is_off_the_map(generated):
 def test_the_legend_never_covers_the_track(generated):
     """Every wall vertex of the track, mapped into the picture the way the preview maps it,
     lies on the map and none under the legend (or title, scale bar, axes)."""
-    from roboracer_arena.corridor import extract_corridor
-    from roboracer_arena.maps import load_map
+    from roboracer_arena.maps.corridor import extract_corridor
+    from roboracer_arena.maps.occupancy import load_map
 
     yaml, _, s = generated
     occ = load_map(yaml)

@@ -70,7 +70,7 @@ def _progress(points: np.ndarray, xy: np.ndarray) -> float:
 
 
 def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, ros_node, bridge_process):
-    from roboracer_arena.maps import load_map
+    from roboracer_arena.maps.occupancy import load_map
 
     _subscribe_all(ros_node)
     proc = bridge_process([str(ellipse_map), "--domain-id", str(domain_id)])
@@ -116,7 +116,7 @@ def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, 
     assert np.isfinite([lx, ly]).all()
     # The car starts at the env's grid start (start_grid.py), the laser 0.12 m ahead of it.
     from roboracer_arena.envs.tracks import resolve_tracks
-    from roboracer_arena.start_grid import grid_start_s
+    from roboracer_arena.track.start_grid import grid_start_s
 
     s_grid = grid_start_s(resolve_tracks(str(ellipse_map))[0], 1, 1.0)
     lap = _progress(line, line[-2])

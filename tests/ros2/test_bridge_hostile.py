@@ -121,7 +121,7 @@ def test_an_open_map_pose_must_be_in_its_free_space():
     import numpy as np
 
     from roboracer_arena.ros2.bridge import Bridge
-    from roboracer_arena.track import Track
+    from roboracer_arena.track.drivable import Track
 
     def box(x0, y0, x1, y1):
         return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], float)

@@ -114,8 +114,8 @@ def test_library_bridge_on_an_env_and_on_a_simulator(ellipse_map, domain_id):
     import gymnasium as gym
 
     from roboracer_arena import _core
+    from roboracer_arena.config.sim import SimConfig
     from roboracer_arena.ros2 import Bridge
-    from roboracer_arena.sim_config import SimConfig
 
     env = gym.make("RoboRacerArena-v0", track=str(ellipse_map))
     env.reset(seed=0)

@@ -205,7 +205,7 @@ def _check_latched(fast: FastNode, ref) -> None:
 
 
 def _check_drive_and_initialpose(fast: FastNode, line: np.ndarray) -> None:
-    from roboracer_arena.sim_config import SimConfig
+    from roboracer_arena.config.sim import SimConfig
 
     def after(t0: float, dt: float):
         return lambda r: r["sec"] + r["nanosec"] * 1e-9 > t0 + dt

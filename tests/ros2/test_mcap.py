@@ -35,7 +35,7 @@ def read_mcap(path) -> tuple[dict[str, list], dict[str, str]]:
 
 
 def test_bridge_records_what_it_publishes(ellipse_map, tmp_path):
-    from roboracer_arena.maps import load_map
+    from roboracer_arena.maps.occupancy import load_map
     from roboracer_arena.ros2 import Bridge
 
     path = tmp_path / "bridge.mcap"

@@ -188,7 +188,7 @@ def test_every_byte_the_bridge_sends_is_rosbags_serialisation(tmp_path, typestor
 
     from roboracer_arena import _core
     from roboracer_arena.ros2 import Bridge
-    from roboracer_arena.track import Track
+    from roboracer_arena.track.drivable import Track
 
     walls, centre = _core.stadium_track()
     bridge = Bridge(

@@ -11,9 +11,9 @@ import pytest
 from pxr import Usd, UsdPhysics
 
 from builder.synthetic import load_physics, ring_meshes
-from roboracer_arena.build_config import BuildConfig
+from roboracer_arena.config.build import BuildConfig
+from roboracer_arena.config.sim import SimConfig
 from roboracer_arena.errors import ConfigError
-from roboracer_arena.sim_config import SimConfig
 from roboracer_arena.usd import physx_schemas, validate_stage, write_stage
 
 META = {"source_map": "/maps/ring.yaml", "resolution": 0.05, "origin": [-5.0, -5.0, 0.0], "build_config": "{}"}
@@ -54,7 +54,7 @@ sys.modules["physx_usd_schemas"] = None  # as if the extra were not installed
 sys.path.insert(0, sys.argv[2])
 from pxr import Usd, UsdPhysics
 from builder.synthetic import load_physics, ring_meshes
-from roboracer_arena.build_config import BuildConfig
+from roboracer_arena.config.build import BuildConfig
 from roboracer_arena.usd import physx_schemas, validate_stage, write_stage
 assert not physx_schemas.available()
 meta = {"source_map": "/maps/ring.yaml", "resolution": 0.05, "origin": [-5.0, -5.0, 0.0], "build_config": "{}"}

@@ -10,7 +10,7 @@ import pytest
 from pxr import Usd, UsdGeom, UsdPhysics, UsdShade
 
 from builder.synthetic import load_physics, ring_meshes
-from roboracer_arena.build_config import BuildConfig
+from roboracer_arena.config.build import BuildConfig
 from roboracer_arena.errors import ConfigError, MapIOError
 from roboracer_arena.usd import METADATA_KEY, read_meshes, stage_metadata, validate_stage, write_stage
 

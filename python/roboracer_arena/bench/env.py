@@ -42,8 +42,8 @@ from ..drivers import PurePursuitDriver
 from ..envs.env_config import EnvConfig
 from ..envs.single import RoboRacerEnv
 from ..envs.tracks import resolve_tracks
-from ..paths import sources_dir
-from ..start_grid import centreline_pose, grid_start_s
+from ..foundation.paths import sources_dir
+from ..track.start_grid import centreline_pose, grid_start_s
 from .output import BenchModel, add_bench_parser, write_json
 
 #: Targets (issue 14): single env µs per step; vector env env-steps/s per workload.

@@ -8,8 +8,8 @@ import json
 from pathlib import Path
 from typing import Any
 
-from ..fileio import atomic_write_text
-from ..frozen_model import FrozenModel
+from ..foundation.fileio import atomic_write_text
+from ..foundation.frozen_model import FrozenModel
 
 
 class BenchModel(FrozenModel):

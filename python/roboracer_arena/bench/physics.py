@@ -20,8 +20,8 @@ import time
 import numpy as np
 
 from .. import _core
+from ..config.sim import PhysicsConfig, SimConfig
 from ..drivers import PurePursuitDriver, PurePursuitParams
-from ..sim_config import PhysicsConfig, SimConfig
 from .output import BenchModel, add_bench_parser, write_json
 
 TARGETS = {1: 50_000.0, 256: 200_000.0, 2048: 200_000.0}

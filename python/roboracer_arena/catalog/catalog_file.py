@@ -20,9 +20,9 @@ from typing import Any, TypeVar
 from pydantic import BaseModel, ConfigDict, ValidationError
 
 from ..errors import InvalidArgumentError, MapIOError
-from ..fileio import atomic_write_text, file_lock, read_json, validate_model
-from ..paths import PACKAGE_DIR, sources_dir, tracks_dir
-from ..spec import format_validation_error
+from ..foundation.fileio import atomic_write_text, file_lock, read_json, validate_model
+from ..foundation.paths import PACKAGE_DIR, sources_dir, tracks_dir
+from ..foundation.strict import format_validation_error
 from .entry import CatalogMeta, Kind, LeftOut, OpenMap, TrackEntry
 
 M = TypeVar("M", bound=BaseModel)
@@ -208,7 +208,7 @@ def writable_catalog(path: str | Path | None, flag: str = "--catalog") -> Path:
 
 def update_catalog(path: str | Path, change: Callable[[Catalog], T]) -> T:
     """Read the catalog at ``path`` afresh, apply ``change`` to it and write it back
-    atomically, all under :func:`~roboracer_arena.fileio.file_lock`: concurrent writers
+    atomically, all under :func:`~roboracer_arena.foundation.fileio.file_lock`: concurrent writers
     (two ``tracks verify --update-catalog`` runs on one library) take turns, and each
     merges its change into what the other wrote, so no change is lost. Returns what
     ``change`` returns."""

@@ -1,4 +1,4 @@
-"""The racing direction of every catalog entry (see :mod:`roboracer_arena.direction`):
+"""The racing direction of every catalog entry (see :mod:`roboracer_arena.maps.direction`):
 ``direction``, ``direction_source`` (what decided it) and ``start`` (the start point in
 the map frame, or None), derived from the source data beside each map."""
 
@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..direction import TrackDirection, direction_for_map
+from ..maps.direction import TrackDirection, direction_for_map
 from .catalog_file import Catalog
 from .entry import TrackEntry
 

@@ -14,7 +14,7 @@ from typing import Any, Literal
 
 from pydantic import ConfigDict, Field, field_validator, model_validator
 
-from ..frozen_model import FrozenModel
+from ..foundation.frozen_model import FrozenModel
 
 Kind = Literal["recorded", "circuit", "generated"]
 Status = Literal["pass", "FAIL", "not run"]

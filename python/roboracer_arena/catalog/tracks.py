@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..paths import sources_dir
-from ..track import Track, track_from_map_path
+from ..foundation.paths import sources_dir
+from ..track.drivable import Track, track_from_map_path
 from .catalog_file import Catalog, load_catalog
 from .directions import entry_direction
 from .entry import TrackEntry

@@ -17,11 +17,11 @@ from pathlib import Path
 import numpy as np
 
 from .. import _core
-from ..direction import direction_of
 from ..errors import CorridorError
-from ..fileio import atomic_update_dir, atomic_write_text, check_output
-from ..maps import OccupancyMap
-from ..pool import Progress, pool_map
+from ..foundation.fileio import atomic_update_dir, atomic_write_text, check_output
+from ..foundation.worker_pool import Progress, pool_map
+from ..maps.direction import direction_of
+from ..maps.occupancy import OccupancyMap
 from .geometry import MIN_RADIUS_SPAN_M, reduce_widths, smooth_resample
 from .report import CircuitBuildSummary, CircuitFailure, CircuitRaster, CircuitReport, RasterMeasurement
 from .sources import CircuitInput, circuit_inputs

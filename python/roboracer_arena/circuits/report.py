@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..frozen_model import FrozenModel
+from ..foundation.frozen_model import FrozenModel
 
 
 class CircuitRaster(FrozenModel):

@@ -17,8 +17,8 @@ import numpy as np
 
 from .. import _core
 from ..errors import MapFormatError, MapIOError
-from ..fileio import read_json
-from ..paths import sources_dir
+from ..foundation.fileio import read_json
+from ..foundation.paths import sources_dir
 from .projection import geodesic_length, project_local
 
 TUM_DIR = "tumftm-racetrack-database"

@@ -16,7 +16,7 @@ import threading
 from collections.abc import Sequence
 from importlib import import_module
 
-from .. import __version__
+from .._core import __version__
 from ..errors import ArenaError, InternalError
 from ._common import check_numeric_flags, check_outputs, raise_interrupt_on_sigterm
 

@@ -7,7 +7,7 @@ import sys
 from typing import Any
 
 from ..errors import InvalidArgumentError
-from ..fileio import check_output
+from ..foundation.fileio import check_output
 
 
 def add_json_flag(parser) -> None:
@@ -74,7 +74,7 @@ OUTPUT_DIR_DESTS = ("maps",)
 
 def check_outputs(args: Any) -> None:
     """The one output guard of the CLI, run in ``main`` before any command starts: every
-    output flag is checked with :func:`~roboracer_arena.fileio.check_output` against every
+    output flag is checked with :func:`~roboracer_arena.foundation.fileio.check_output` against every
     other path argument (and the files those name, e.g. a map YAML's image), so an output
     that would overwrite an input, or that cannot be written (a directory, a file as its
     parent, an unwritable place), fails at once with exit 2 and nothing written."""

@@ -13,8 +13,8 @@ from pathlib import Path
 from ..circuits import CircuitConfig, build_all
 from ..circuits.report import CircuitFailure
 from ..errors import InvalidArgumentError
-from ..paths import writable_tracks_dir
-from ..pool import tqdm_progress
+from ..foundation.paths import writable_tracks_dir
+from ..foundation.worker_pool import tqdm_progress
 from . import EXIT_BAD_INPUT, EXIT_OK
 from ._common import add_json_flag, print_json
 

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..drivers import PurePursuitParams, drive_laps
 from ..errors import InvalidArgumentError
-from ..fileio import check_output
+from ..foundation.fileio import check_output
 from . import EXIT_LAP_FAILED, EXIT_OK
 from ._common import add_json_flag, print_json
 

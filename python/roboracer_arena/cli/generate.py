@@ -160,7 +160,7 @@ def _write_folder(acc, args: argparse.Namespace) -> dict[str, str]:
 def _build_stage(map_yaml: Path, tmp: Path, final: Path, args: argparse.Namespace) -> None:
     try:
         from ..builder import build_environment
-        from ..maps import load_map
+        from ..maps.occupancy import load_map
     except ImportError as e:
         raise InvalidArgumentError(f"--build needs the USD builder, which this installation lacks ({e})") from e
     # The stage records where its source map lives: the final folder, not the temporary one

@@ -22,8 +22,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import ArenaError, InvalidArgumentError
-from ..fileio import check_output, read_text
-from ..maps import image_named_by
+from ..foundation.fileio import check_output, image_named_by, read_text
 from ._common import add_json_flag, print_json
 
 if TYPE_CHECKING:  # the renderers import heavy optional packages: load them only when used

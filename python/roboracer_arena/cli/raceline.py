@@ -17,9 +17,9 @@ import argparse
 from pathlib import Path
 
 from ..errors import InvalidArgumentError
-from ..fileio import check_output
+from ..foundation.fileio import check_output
+from ..foundation.paths import writable_tracks_dir
 from ..library.raceline_index import index_path
-from ..paths import writable_tracks_dir
 from ._common import add_json_flag, print_json
 
 #: Accepted range of each numeric flag (inclusive).

@@ -17,10 +17,10 @@ import sys
 import time
 from pathlib import Path
 
+from ..config.sim import MIN_RATE_HZ
 from ..errors import InvalidArgumentError
 from ..ros2.clock import BridgeConfig
 from ..ros2.dds import check_domain_id, profile
-from ..sim_config import MIN_RATE_HZ
 from ._common import add_json_flag, print_json
 
 

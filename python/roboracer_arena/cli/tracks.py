@@ -25,11 +25,11 @@ from ..catalog.entry import TrackEntry
 from ..catalog.entry_text import entry_lines
 from ..distributed.executor import make_executor
 from ..errors import InvalidArgumentError
+from ..foundation.paths import sources_dir, writable_tracks_dir
+from ..foundation.worker_pool import Progress, tqdm_progress
 from ..library.raceline_index import load_index, record_lines
 from ..library.sweep import load_sweep
 from ..library.verify_report import CHECKS
-from ..paths import sources_dir, writable_tracks_dir
-from ..pool import Progress, tqdm_progress
 from . import EXIT_BAD_INPUT, EXIT_GENERATION_FAILURE, EXIT_OK
 from ._common import add_json_flag, print_json
 

@@ -7,7 +7,7 @@ import argparse
 from pathlib import Path
 
 from ..generate import validate_map
-from ..maps import load_map
+from ..maps.occupancy import load_map
 from ..spec import TrackSpec
 from . import EXIT_GENERATION_FAILURE, EXIT_OK
 from ._common import add_json_flag, print_json

@@ -1,5 +1,5 @@
 """One code path, two executors: run ``fn(item)`` for many items on a local process pool
-(:class:`~roboracer_arena.pool.LocalExecutor`, the package's one pool) or as Ray tasks
+(:class:`~roboracer_arena.foundation.worker_pool.LocalExecutor`, the package's one pool) or as Ray tasks
 across a cluster (:class:`~roboracer_arena.distributed.ray_executor.RayExecutor`).
 
 Both yield ``(index, result)`` pairs as tasks finish and retry a task whose worker
@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator, Sequence
 from typing import Protocol, TypeVar
 
-from ..pool import DEFAULT_RETRIES, LocalExecutor, Progress, WorkerLostError, map_ordered
+from ..foundation.worker_pool import DEFAULT_RETRIES, LocalExecutor, Progress, WorkerLostError, map_ordered
 from .ray_executor import RayExecutor
 
 T = TypeVar("T")

@@ -8,7 +8,7 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Any, TypeVar
 
 from ..errors import InvalidArgumentError
-from ..pool import DEFAULT_RETRIES, WorkerLostError, raise_named
+from ..foundation.worker_pool import DEFAULT_RETRIES, WorkerLostError, raise_named
 from .ray_cluster import cluster_cpus, connect, import_ray
 
 T = TypeVar("T")

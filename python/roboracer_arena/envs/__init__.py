@@ -7,24 +7,8 @@ gymnasium ``RoboRacerArena-v0`` env / vector env built on ``_core.Simulator``.
 work; ``gymnasium.make("roboracer_arena:RoboRacerArena-v0", ...)`` works without it.
 """
 
-from ..sim_config import LidarConfig, PhysicsConfig, SimConfig, VehicleConfig
-from .episode_limit import REGISTERED_MAX_EPISODE_STEPS
-
-ENV_ID = "RoboRacerArena-v0"
-
-
-def register_envs() -> None:
-    """Register ``RoboRacerArena-v0`` (single and vector entry points) with gymnasium; idempotent."""
-    from gymnasium.envs.registration import register, registry
-
-    if ENV_ID not in registry:
-        register(
-            id=ENV_ID,
-            entry_point="roboracer_arena.envs.single:RoboRacerEnv",
-            vector_entry_point="roboracer_arena.envs.vector:RoboRacerVectorEnv",
-            max_episode_steps=REGISTERED_MAX_EPISODE_STEPS,
-            disable_env_checker=False,
-        )
+from ..config.sim import LidarConfig, PhysicsConfig, SimConfig, VehicleConfig
+from ..registration import ENV_ID, register_envs
 
 
 def __getattr__(name: str):
@@ -36,8 +20,8 @@ def __getattr__(name: str):
         "RoboRacerVectorEnv": "vector",
         "resolve_tracks": "tracks",
     }
-    if name == "Track":  # defined in the neutral roboracer_arena.track
-        from ..track import Track
+    if name == "Track":  # defined in the neutral roboracer_arena.track.drivable
+        from ..track.drivable import Track
 
         return Track
     if name in lazy:

@@ -34,8 +34,8 @@ from .._core import (
     check_sim_size,
 )
 from ..errors import ConfigError, InvalidArgumentError
-from ..start_grid import SIDE_MARGIN, start_spec
-from ..track import Track
+from ..track.drivable import Track
+from ..track.start_grid import SIDE_MARGIN, start_spec
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
 

@@ -2,7 +2,7 @@
 
 :class:`EnvConfig` holds everything about the task (control rate, observation, action,
 reward, episode ends, reset poses, vehicles per env) and the native simulator's
-:class:`~roboracer_arena.sim_config.SimConfig` (vehicle, lidar, physics). Every field
+:class:`~roboracer_arena.config.sim.SimConfig` (vehicle, lidar, physics). Every field
 can also be passed as a keyword to ``gymnasium.make``/``make_vec``; unknown keys fail.
 """
 
@@ -12,10 +12,10 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
+from ..config.sim import MIN_RATE_HZ, SimConfig
 from ..errors import ConfigError
-from ..sim_config import MIN_RATE_HZ, SimConfig
-from ..start_grid import GRID_OFFSET, GRID_SPACING
-from ..strict import NumbersAreNumbers
+from ..foundation.strict import NumbersAreNumbers
+from ..track.start_grid import GRID_OFFSET, GRID_SPACING
 
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
@@ -249,7 +249,7 @@ class EnvConfig(NumbersAreNumbers):
     reverse: bool = Field(
         False,
         description="Drive every track against its racing direction (the centreline reversed; "
-        "see roboracer_arena.direction). The grid starts at the same start line, facing the other way.",
+        "see roboracer_arena.maps.direction). The grid starts at the same start line, facing the other way.",
     )
     vehicles_per_env: int = Field(1, ge=1, le=64, description="Vehicles sharing one track (one world) per env.")
     sim: SimConfig = Field(default_factory=SimConfig)

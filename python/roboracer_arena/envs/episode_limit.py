@@ -22,10 +22,8 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..errors import ConfigError
+from ..registration import REGISTERED_MAX_EPISODE_STEPS
 from .env_config import EnvConfig
-
-#: Steps the registry gives ``RoboRacerArena-v0``: the default time limit at the default rate.
-REGISTERED_MAX_EPISODE_STEPS: int = EnvConfig().max_episode_steps or 0
 
 
 def time_limit_given(kwargs: Mapping[str, Any]) -> bool:

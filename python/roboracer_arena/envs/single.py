@@ -28,7 +28,7 @@ Two semantics, stated per step in ``info["open_map"]``:
   (``Track.start_pose``); ``env.tracks[i].open_reason`` says why a map is open.
   ``open=None`` (default) picks per map; ``open=False`` refuses open maps.
   ``close_gaps=W`` (m) closes the openings of a map's walls up to ``W`` wide first
-  (doorways, sensor leaks; :mod:`roboracer_arena.gaps`), so that a leaking loop becomes a
+  (doorways, sensor leaks; :mod:`roboracer_arena.maps.gaps`), so that a leaking loop becomes a
   track with laps; the track's ``source.closed_gaps`` lists every gap closed.
 
 ``reset(options=...)``: ``"track_id"`` (or ``"track_ids"``) picks a track of the list,

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..catalog.catalog_file import load_catalog
 from ..errors import ConfigError
-from ..track import MAP_SUFFIXES, Track
+from ..track.drivable import MAP_SUFFIXES, Track
 from .tracks import resolve_catalog, resolve_tracks
 
 #: Track used when ``track=`` is not given: a 40 m generated catalog track (1.2 m wide).

@@ -3,14 +3,14 @@
 ``track`` may be one item or a list of items, each of which is
 
 * a ROS map YAML path (``str`` / ``os.PathLike``): the corridor is extracted with
-  :func:`roboracer_arena.corridor.extract_corridor` and cached per (path, mtime, size);
+  :func:`roboracer_arena.maps.corridor.extract_corridor` and cached per (path, mtime, size);
 * an ``OccupancyMap`` (anything with ``data``, ``resolution`` and ``origin``): extracted;
 * a ``CorridorGeometry`` (anything with ``walls`` and ``centreline``): used as is;
 * a :class:`Track` (e.g. :meth:`Track.from_polylines` for synthetic tracks);
 * a catalog id or selection (a string that is not an existing file), resolved by the
   track catalog (``roboracer_arena.catalog``) through :func:`resolve_catalog`.
 
-Every track is driven in its racing direction (see :mod:`roboracer_arena.direction`): a
+Every track is driven in its racing direction (see :mod:`roboracer_arena.maps.direction`): a
 map path takes it from the centreline file beside the map, a catalog id from the catalog,
 an object from its ``direction`` attribute (a string) when it has one; otherwise the
 documented default (counter-clockwise). ``reverse=True`` drives every track the other way.
@@ -23,11 +23,11 @@ from pathlib import Path
 from typing import Any
 
 from .. import catalog
-from ..corridor import extract_corridor
-from ..direction import DEFAULT_DIRECTION, TrackDirection, check_direction, direction_for_map
 from ..errors import ConfigError
-from ..maps import OccupancyMap
-from ..track import MAP_SUFFIXES, Track, track_from_corridor, track_from_map_path
+from ..maps.corridor import extract_corridor
+from ..maps.direction import DEFAULT_DIRECTION, TrackDirection, check_direction, direction_for_map
+from ..maps.occupancy import OccupancyMap
+from ..track.drivable import MAP_SUFFIXES, Track, track_from_corridor, track_from_map_path
 
 __all__ = ["Track", "resolve_catalog", "resolve_tracks", "track_from_map_path"]
 
@@ -48,7 +48,7 @@ def resolve_tracks(
     open map (walls only, no laps; ``Track.open_reason`` says why); ``open=True`` reads
     every map as an open map, ``open=False`` refuses maps without a closed corridor.
     ``close_gaps`` (m): close the openings of a map's walls up to this width first
-    (:mod:`roboracer_arena.gaps`), so that a leaking loop is a track."""
+    (:mod:`roboracer_arena.maps.gaps`), so that a leaking loop is a track."""
     if track is None:
         raise ConfigError("track= is required: a map YAML path, an OccupancyMap, a CorridorGeometry or a catalog id")
     items = list(track) if isinstance(track, (list, tuple)) else [track]

@@ -19,7 +19,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict
 
 from .. import _core
-from ..constructor_config import ConstructorConfig
+from ..config.constructor import ConstructorConfig
 from ..errors import InternalError
 from ..spec import TrackSpec
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..maps import OccupancyMap
+from ..maps.occupancy import OccupancyMap
 from ..spec import TrackSpec
 from .nearest import NearestSpecs
 from .report import ScreenResult, ValidationReport

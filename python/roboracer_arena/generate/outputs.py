@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ArenaError, InvalidArgumentError
-from ..fileio import atomic_dir, atomic_write_text, read_json
+from ..foundation.fileio import atomic_dir, atomic_write_text, read_json
 from .outcomes import Acceptance
 
 REPORT_NAME = "report.json"

@@ -11,9 +11,9 @@ from typing import Literal
 import numpy as np
 
 from .. import _core
-from ..constructor_config import ConstructorConfig
+from ..config.constructor import ConstructorConfig
 from ..errors import InternalError, InvalidArgumentError
-from ..maps import OccupancyMap
+from ..maps.occupancy import OccupancyMap
 from ..spec import TrackSpec
 from .nearest import DEFAULT_SUGGEST_TIMEOUT_S, nearest_specs
 from .outcomes import Acceptance, GenerationFailure, Outcome, Rejection

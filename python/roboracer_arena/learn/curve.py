@@ -8,7 +8,7 @@ from pathlib import Path
 
 from PIL import Image, ImageDraw, ImageFont
 
-from ..fileio import atomic_write_bytes
+from ..foundation.fileio import atomic_write_bytes
 
 
 def plot_curve(

@@ -29,7 +29,7 @@ from typing import Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from ..strict import NumbersAreNumbers
+from ..foundation.strict import NumbersAreNumbers
 
 #: Layer shapes of the network, in file order: w0 (inputs, hidden), b0, w1 (hidden, 2), b1.
 LAYERS = ("w0", "b0", "w1", "b1")

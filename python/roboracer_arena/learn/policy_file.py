@@ -28,7 +28,7 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..errors import MapIOError, PolicyFileError
-from ..fileio import atomic_write_bytes, parse_json, read_regular_bytes
+from ..foundation.fileio import atomic_write_bytes, parse_json, read_regular_bytes
 from .policy import LAYERS, PolicySpec, act, pack, unpack
 
 FORMAT = "roboracer-arena-policy"

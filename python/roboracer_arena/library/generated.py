@@ -22,11 +22,11 @@ import numpy as np
 
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
-from ..fileio import atomic_update_dir, atomic_write_dir, atomic_write_text, check_output
+from ..foundation.fileio import atomic_update_dir, atomic_write_dir, atomic_write_text, check_output
+from ..foundation.worker_pool import Progress, local_unless, map_ordered
 from ..generate import generate_track, write_outputs
 from ..generate.outcomes import Acceptance, Rejection
 from ..generate.outputs import centreline_csv
-from ..pool import Progress, local_unless, map_ordered
 from ..spec import TrackSpec
 from .sweep import GridSweep, SweepRequest
 from .sweep_report import GeneratedSweepSummary, SweepRecord, count_outcome
@@ -128,7 +128,7 @@ def build_generated(
 @contextmanager
 def staged_generated(outdir: str | Path, also: Callable[[], object] | None = None) -> Iterator[Path]:
     """A stage for the generated folder ``outdir``, swapped in with ``also`` when the block
-    succeeds (:func:`~roboracer_arena.fileio.atomic_update_dir`): what ``outdir`` has that
+    succeeds (:func:`~roboracer_arena.foundation.fileio.atomic_update_dir`): what ``outdir`` has that
     is not this sweep's (other folders and files) is kept; this sweep's tracks are all
     written afresh, so one it no longer keeps (or no longer tries) is gone."""
     check_output(outdir, directory=True)

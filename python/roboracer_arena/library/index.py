@@ -10,15 +10,15 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from .. import __version__
+from .._core import __version__
 from ..catalog.catalog_file import SCHEMA, Catalog, count_kinds, provenance, sha256_file
 from ..catalog.directions import annotate_directions
 from ..catalog.entry import CatalogMeta, LeftOut, Raster, Source, TrackEntry
 from ..circuits.report import CircuitReport
 from ..errors import MapFormatError
-from ..fileio import StagedFile, atomic_write_text, file_lock, read_json
-from ..maps import load_map
-from ..pool import Progress
+from ..foundation.fileio import StagedFile, atomic_write_text, file_lock, read_json
+from ..foundation.worker_pool import Progress
+from ..maps.occupancy import load_map
 from .generated import generate_into, staged_generated
 from .open_maps import open_maps
 from .recorded import assess_all, recorded_entry

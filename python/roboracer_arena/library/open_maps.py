@@ -1,5 +1,5 @@
 """Which left-out recorded maps the catalog offers as *open maps* (walls only, no lap;
-see :func:`roboracer_arena.corridor.extract_open`), and how every source map is
+see :func:`roboracer_arena.maps.corridor.extract_open`), and how every source map is
 accounted for (:func:`map_kinds`: track, open map, duplicate or broken).
 
 A left-out map is an open map unless it is a duplicate of another map or does not load:
@@ -20,12 +20,12 @@ from .. import _core
 from ..catalog.catalog_file import Catalog
 from ..catalog.directions import annotate_directions
 from ..catalog.entry import LeftOut, OpenMap, Raster
-from ..corridor import extract_corridor, extract_open
+from ..config.sim import SimConfig
 from ..errors import ArenaError
-from ..maps import load_map
-from ..pool import Progress, pool_map
-from ..sim_config import SimConfig
-from ..track import track_from_corridor
+from ..foundation.worker_pool import Progress, pool_map
+from ..maps.corridor import extract_corridor, extract_open
+from ..maps.occupancy import load_map
+from ..track.drivable import track_from_corridor
 from .recorded import assess_all, assess_map, find_map_yamls, recorded_entry
 from .verify import verify_entry
 

@@ -6,8 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..catalog.catalog_file import default_tracks_dir
-from ..fileio import read_json
-from ..frozen_model import FrozenModel
+from ..foundation.fileio import read_json
+from ..foundation.frozen_model import FrozenModel
 
 INDEX_NAME = "racelines.json"
 

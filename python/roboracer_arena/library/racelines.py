@@ -23,7 +23,7 @@ from pathlib import Path
 
 from ..catalog.catalog_file import load_catalog
 from ..errors import ArenaError
-from ..fileio import atomic_write_text, signals_held
+from ..foundation.fileio import atomic_write_text, signals_held
 from ..raceline.driver import (
     DRIVER_LATERAL,
     DRIVER_LONGITUDINAL,

@@ -3,7 +3,7 @@ load it, decide whether it holds one closed racing corridor, and measure it. The
 are referenced by their path relative to the sources directory and never copied.
 
 A map is *usable* when its free space holds a ring-shaped corridor, as the builder's
-corridor rule (``roboracer_arena.corridor.extract_corridor``, the one rule) decides. The
+corridor rule (``roboracer_arena.maps.corridor.extract_corridor``, the one rule) decides. The
 statistics come from the raster measurement shared with the circuits (``_core.measure_map``).
 """
 
@@ -19,11 +19,11 @@ from ..catalog.catalog_file import provenance, sha256_file
 from ..catalog.entry import Raster, Source, TrackEntry
 from ..circuits.geometry import MIN_RADIUS_SPAN_M
 from ..circuits.sources import slug
-from ..corridor import extract_corridor
 from ..errors import ArenaError
-from ..frozen_model import FrozenModel
-from ..maps import load_map
-from ..pool import Progress, pool_map
+from ..foundation.frozen_model import FrozenModel
+from ..foundation.worker_pool import Progress, pool_map
+from ..maps.corridor import extract_corridor
+from ..maps.occupancy import load_map
 
 #: Source folders in order of preference (an identical map later on is a duplicate).
 SOURCE_DIRS = {

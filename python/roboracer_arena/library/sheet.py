@@ -11,7 +11,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from ..catalog.catalog_file import Catalog
 from ..catalog.entry import TrackEntry
-from ..maps import load_map
+from ..maps.occupancy import load_map
 from ..render.formats import image_format
 from ..render.frame import LegendEntry, draw_legend, scale_length, wrap_items
 from ..render.topdown import font, save_image

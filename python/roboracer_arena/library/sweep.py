@@ -42,8 +42,9 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import SpecError
-from ..fileio import read_json
-from ..spec import TrackSpec, format_validation_error
+from ..foundation.fileio import read_json
+from ..foundation.strict import format_validation_error
+from ..spec import TrackSpec
 
 
 class SweepRequest(NamedTuple):

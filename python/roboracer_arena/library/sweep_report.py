@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any, Literal
 
-from ..frozen_model import FrozenModel
+from ..foundation.frozen_model import FrozenModel
 
 Outcome = Literal["accepted", "rejected", "failed"]
 

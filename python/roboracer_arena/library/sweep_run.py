@@ -5,7 +5,7 @@ Requests run in waves of consecutive ``k`` (:mod:`.sweep`); the library is the f
 ``count`` acceptances in ``k`` order, so it does not depend on the number of workers or
 the wave sizes. Workers return files; only this process writes. The whole library is
 staged in a hidden sibling of ``outdir`` and swapped in by rename when it is complete
-(:func:`~roboracer_arena.fileio.atomic_dir`): an interrupt (SIGINT, SIGTERM) or an error
+(:func:`~roboracer_arena.foundation.fileio.atomic_dir`): an interrupt (SIGINT, SIGTERM) or an error
 at any moment leaves the previous ``outdir`` exactly as it was (or no ``outdir``) and no
 staging folder. What ``outdir`` held besides this sweep's tracks, ``sweep.json`` and
 ``catalog.json`` (other sweeps' tracks, other files) is carried over by hard links.
@@ -24,14 +24,14 @@ import re
 import time
 from pathlib import Path
 
-from .. import __version__
+from .._core import __version__
 from ..catalog.catalog_file import SCHEMA, Catalog, count_kinds
 from ..catalog.directions import annotate_directions
 from ..catalog.entry import CatalogMeta, SweepCounts
 from ..distributed.executor import Executor
 from ..errors import InvalidArgumentError
-from ..fileio import atomic_dir, atomic_write_dir, atomic_write_text, check_output, link_tree
-from ..pool import Progress, map_ordered
+from ..foundation.fileio import atomic_dir, atomic_write_dir, atomic_write_text, check_output, link_tree
+from ..foundation.worker_pool import Progress, map_ordered
 from .generated import generate_files
 from .index import _generated_entries
 from .sweep import SweepFile

@@ -23,17 +23,17 @@ from ..builder import build_environment
 from ..catalog.catalog_file import Catalog, sha256_file, update_catalog
 from ..catalog.entry import LeftOut, OpenMap, TrackEntry
 from ..catalog.tracks import entry_track
-from ..clearance_path import clearance_path
-from ..corridor import extract_corridor
+from ..config.sim import SimConfig
 from ..distributed.executor import Executor
 from ..drivers import PurePursuitParams, drive_laps
 from ..errors import ArenaError
-from ..maps import OccupancyMap, load_map
-from ..paths import sources_dir
+from ..foundation.paths import sources_dir
+from ..foundation.worker_pool import Progress, local_unless, map_ordered
+from ..maps.clearance_path import clearance_path
+from ..maps.corridor import extract_corridor
+from ..maps.occupancy import OccupancyMap, load_map
 from ..physx import available
 from ..physx.check import check_stage
-from ..pool import Progress, local_unless, map_ordered
-from ..sim_config import SimConfig
 from ..usd.validate import validation_errors
 from .recorded import corridor_grid
 from .verify_report import FAIL, NOT_RUN, PASS, Check, TrackResult, VerifySummary
@@ -128,7 +128,7 @@ def check_drive(cat: Catalog, entry: TrackEntry, sources: Path | None = None, re
     a contact (default env: full vehicle model, 1081-beam lidar), in the racing direction
     the catalog records (against it with ``reverse``). After a collision it tries once
     more at cautious settings (:data:`CAUTIOUS`), then on the corridor's most-clearance path
-    with a speed cap from its clearance (:mod:`roboracer_arena.clearance_path`); a pass then
+    with a speed cap from its clearance (:mod:`roboracer_arena.maps.clearance_path`); a pass then
     says which."""
     try:
         target, follows = entry_track(cat, entry, sources)

@@ -5,7 +5,7 @@ and the run's :class:`VerifySummary`. Frozen, ``extra="forbid"``; their JSON
 from __future__ import annotations
 
 from ..catalog.entry import Kind, Status
-from ..frozen_model import FrozenModel
+from ..foundation.frozen_model import FrozenModel
 
 PASS: Status = "pass"
 FAIL: Status = "FAIL"

@@ -26,7 +26,7 @@ from ..errors import (
     ModelNotFoundError,
     SpecError,
 )
-from ..fileio import MAX_JSON_DEPTH, json_depth
+from ..foundation.fileio import MAX_JSON_DEPTH, json_depth
 from ..spec import TrackSpec
 from .result import DEFAULTS
 

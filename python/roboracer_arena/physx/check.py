@@ -32,16 +32,16 @@ from typing import Any
 import numpy as np
 from pydantic import Field
 
-from ..corridor import extract_corridor
-from ..direction import direction_for_map
+from ..config.sim import SimConfig
 from ..envs.env_config import EnvConfig
 from ..envs.single import RoboRacerEnv
 from ..errors import ConfigError
-from ..fileio import require_regular
-from ..frozen_model import FrozenModel
-from ..sim_config import SimConfig
-from ..start_grid import centreline_pose
-from ..track import Track, track_from_corridor
+from ..foundation.fileio import require_regular
+from ..foundation.frozen_model import FrozenModel
+from ..maps.corridor import extract_corridor
+from ..maps.direction import direction_for_map
+from ..track.drivable import Track, track_from_corridor
+from ..track.start_grid import centreline_pose
 from ..usd.metadata import checked_source, read_stage_metadata
 from .open_probes import FreeRegion, WallSegments, open_stations
 from .runtime import PhysxScene, native_stdout_to_stderr, require
@@ -131,7 +131,7 @@ class PhysxCheckReport(FrozenModel):
 
 
 def track_of_stage(stage_path: str | Path) -> Any:
-    """The :class:`~roboracer_arena.track.Track` of a built stage (source map and build
+    """The :class:`~roboracer_arena.track.drivable.Track` of a built stage (source map and build
     configuration from its metadata), in the map's racing direction. An open map's stage
     (``map_kind`` "open") gives the open map the build made: the same start pose and
     ``unknown_cells``; its ``source`` is the corridor geometry (raster and free mask)."""

@@ -31,13 +31,13 @@ from typing import Any
 import numpy as np
 
 from .. import _core
-from ..build_config import BuildConfig
+from ..config.build import BuildConfig
+from ..config.sim import SimConfig
 from ..drivers import PurePursuitDriver
 from ..envs.env_config import EnvConfig
 from ..envs.single import RoboRacerEnv
 from ..errors import ConfigError
-from ..frozen_model import FrozenModel
-from ..sim_config import SimConfig
+from ..foundation.frozen_model import FrozenModel
 from ..usd.stage import StageMesh, author_stage
 from ..usd.vehicle import AIR_DENSITY, CAR, ROLL_FADE, ackermann_command, author_car, physx_params
 from .check import physx_scan, track_of_stage

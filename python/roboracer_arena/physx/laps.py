@@ -22,7 +22,7 @@ from ..builder import build_environment
 from ..catalog.catalog_file import load_catalog
 from ..catalog.tracks import entry_track
 from ..envs.tracks import resolve_tracks
-from ..frozen_model import FrozenModel
+from ..foundation.frozen_model import FrozenModel
 from .drive import drive_physx
 
 #: A footprint point closer than this to a wall counts as a contact (m).
@@ -85,7 +85,7 @@ def physx_lap(
 ) -> PhysxLap:
     """Drive one lap of ``map_arg`` on the PhysX car (see the module docstring).
     ``controller_for(track) -> controller(scan, odometry)``; ``sim``: the car's and lidar's
-    config (a :class:`~roboracer_arena.sim_config.SimConfig`)."""
+    config (a :class:`~roboracer_arena.config.sim.SimConfig`)."""
     yaml_path, track = map_and_track(map_arg)
     limit = max_seconds if max_seconds is not None else track.length / 0.5 + 30.0
     with tempfile.TemporaryDirectory(prefix="roboracer-physx-") as tmp:

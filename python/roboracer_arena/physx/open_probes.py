@@ -1,6 +1,6 @@
 """Probe stations and the free region of an *open map* for the PhysX containment check.
 
-An open map (:meth:`~roboracer_arena.track.Track.open_map`) has no centreline to place
+An open map (:meth:`~roboracer_arena.track.drivable.Track.open_map`) has no centreline to place
 probes along, and its free region may reach the map border (the edge is then a wall),
 so the even–odd test over wall loops that suits a closed corridor does not apply. Here
 the drivable region is the open map's own raster: the free cells (``corridor_mask``)

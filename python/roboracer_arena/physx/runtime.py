@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ConfigError, MapIOError
-from ..fileio import require_regular
+from ..foundation.fileio import require_regular
 
 EXTRA_HINT = "pip install 'roboracer-arena[physx]' (ovphysx + physx-usd-schemas, CPU PhysX, ~1.3 GB)"
 _REGISTERED: dict[str, bool] = {}

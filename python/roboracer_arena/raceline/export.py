@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ..fileio import atomic_paths
+from ..foundation.fileio import atomic_paths
 from .bounds import lateral_bounds
 from .clearance import WallDistance
 from .forza_json import forza_text

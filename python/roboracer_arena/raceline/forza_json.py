@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from ..fileio import atomic_write_text, parse_json, read_text
+from ..foundation.fileio import atomic_write_text, parse_json, read_text
 from .format_error import RacelineFormatError
 
 WPNT_FIELDS = ("id", "s_m", "d_m", "x_m", "y_m", "d_right", "d_left", "psi_rad", "kappa_radpm", "vx_mps", "ax_mps2")

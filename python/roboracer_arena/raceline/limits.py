@@ -22,8 +22,8 @@ import numpy as np
 from pydantic import Field, ValidationError, field_validator
 
 from ..errors import ConfigError
-from ..fileio import parse_json, read_text
-from ..frozen_model import FrozenModel
+from ..foundation.fileio import parse_json, read_text
+from ..foundation.frozen_model import FrozenModel
 
 #: Names of the shipped presets (``raceline/presets/<name>.json``).
 PRESETS: tuple[str, ...] = ("car", "f1tenth-racetracks", "forzaeth")

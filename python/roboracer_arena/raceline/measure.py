@@ -12,7 +12,7 @@ within 100 m), as a test driver would measure a real one:
 
 :func:`measure_limits` returns :class:`~.limits.VehicleLimits` (``roboracer-arena
 raceline --measure-limits FILE`` writes them; the ``car`` preset is that file for the
-default :class:`~roboracer_arena.sim_config.SimConfig`).
+default :class:`~roboracer_arena.config.sim.SimConfig`).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ..envs.single import RoboRacerEnv
-from ..track import Track
+from ..track.drivable import Track
 from .limits import VehicleLimits
 
 #: Speeds (m/s) at which the lateral limit is measured.

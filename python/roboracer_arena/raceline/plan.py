@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
+from ..config.sim import VehicleConfig
 from ..errors import InvalidArgumentError
-from ..sim_config import VehicleConfig
 from .bounds import Clearance, lateral_bounds
 from .clearance import WallDistance
 from .geometry import ArcSampled, ClosedPath
@@ -89,7 +89,7 @@ def plan_raceline(
     step: float = 0.2,
     iterations: int = 5,
 ) -> Raceline:
-    """The raceline of ``track`` (a :class:`~roboracer_arena.track.Track`, driven in its
+    """The raceline of ``track`` (a :class:`~roboracer_arena.track.drivable.Track`, driven in its
     racing direction) for ``limits``: within the walls less ``vehicle_width / 2 + margin``
     (default width: the simulator's car), sampled every ``step`` m. ``mode``:
     ``"mincurv"`` (TUM's iterated minimum curvature) or ``"mintime"`` (the same QP with the

@@ -8,7 +8,7 @@ from pathlib import Path
 from ..catalog.catalog_file import load_catalog
 from ..catalog.tracks import entry_track
 from ..errors import InvalidArgumentError
-from ..track import MAP_SUFFIXES, Track, track_from_map_path
+from ..track.drivable import MAP_SUFFIXES, Track, track_from_map_path
 
 
 def resolve_track(source: str | Path) -> tuple[Track, Path]:

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..fileio import atomic_write_text, read_text
+from ..foundation.fileio import atomic_write_text, read_text
 from .format_error import RacelineFormatError
 
 COLUMNS = ("s_m", "x_m", "y_m", "psi_rad", "kappa_radpm", "vx_mps", "ax_mps2")

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 from PIL import Image, ImageDraw
 
-from ..sim_config import SimConfig
+from ..config.sim import SimConfig
 from .frame import PAD, LegendEntry, framed
 from .preview import WALL, map_canvas, map_title
 from .race_marks import CAR, car_size, draw_car, draw_race_marks
@@ -62,7 +62,7 @@ def drive_subtitle(laps: int) -> str:
 
 
 class DriveView:
-    """Draws the frames of a drive of ``track`` (the :class:`~roboracer_arena.track.Track`
+    """Draws the frames of a drive of ``track`` (the :class:`~roboracer_arena.track.drivable.Track`
     as driven, so the arrows show the driven direction)."""
 
     def __init__(self, track: Any, sim: Any = None, subtitle: str = "", map_px: int = DEFAULT_MAP_PX) -> None:

@@ -19,11 +19,11 @@ from typing import Any
 import numpy as np
 
 from ..builder import parse_start, resolve_config
-from ..corridor import extract_corridor
-from ..direction import direction_for_map
 from ..errors import ArenaError, MapFormatError
-from ..maps import load_map
-from ..track import Track, track_from_map_path
+from ..maps.corridor import extract_corridor
+from ..maps.direction import direction_for_map
+from ..maps.occupancy import load_map
+from ..track.drivable import Track, track_from_map_path
 from ..usd import open_stage, read_meshes
 from ..usd.metadata import checked_source, stage_metadata_of
 from .formats import image_format

@@ -1,9 +1,9 @@
 """Race markings on a top-down picture: the racing direction as arrows along the
 centreline, the start line and the grid where the env really puts the cars.
 
-The track is the env's own :class:`~roboracer_arena.track.Track` (in its racing
+The track is the env's own :class:`~roboracer_arena.track.drivable.Track` (in its racing
 direction), and the grid comes from the env's grid-start code
-(:func:`~roboracer_arena.start_grid.grid_poses`) with the env's default grid spacing and
+(:func:`~roboracer_arena.track.start_grid.grid_poses`) with the env's default grid spacing and
 offset, so the picture shows what ``reset_poses="grid"`` does."""
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from ..sim_config import VehicleConfig
-from ..start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
+from ..config.sim import VehicleConfig
+from ..track.start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
 from .frame import LegendEntry, direction_chevron
 from .topdown import TopDown
 

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 from PIL import Image, ImageDraw
 
-from ..sim_config import SimConfig
+from ..config.sim import SimConfig
 from .topdown import font
 
 BACKGROUND = (246, 246, 242)
@@ -107,7 +107,7 @@ def lidar_rays(
 ) -> tuple[tuple[float, float], np.ndarray]:
     """The lidar's origin and the end points (N, 2) of at most about ``max_rays`` of its
     rays (every k-th beam) for a car at ``pose`` (x, y, yaw) with the given ``ranges``;
-    ``lidar`` is the :class:`~roboracer_arena.sim_config.LidarConfig`."""
+    ``lidar`` is the :class:`~roboracer_arena.config.sim.LidarConfig`."""
     x, y, yaw = (float(v) for v in pose)
     r = np.asarray(ranges, dtype=np.float64)
     step = max(1, len(r) // max(1, int(max_rays)))

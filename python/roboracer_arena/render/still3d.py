@@ -18,11 +18,11 @@ from typing import Any
 import numpy as np
 from PIL import Image, ImageDraw
 
-from ..build_config import BuildConfig
+from ..config.build import BuildConfig
+from ..config.sim import SimConfig
 from ..errors import ArenaError, ConfigError, MapFormatError
-from ..sim_config import SimConfig
-from ..start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
-from ..track import track_from_map_path
+from ..track.drivable import track_from_map_path
+from ..track.start_grid import GRID_OFFSET, GRID_SPACING, grid_poses
 from ..usd import open_stage, read_meshes
 from ..usd.metadata import StageMetadata, checked_source, stage_metadata_of
 from .formats import image_format

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from ..fileio import atomic_write_bytes
+from ..foundation.fileio import atomic_write_bytes
 from .formats import image_format
 
 RGB = tuple[int, int, int]

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ConfigError
-from ..fileio import atomic_path
+from ..foundation.fileio import atomic_path
 from .formats import video_format
 
 

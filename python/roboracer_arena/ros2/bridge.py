@@ -36,7 +36,7 @@ import numpy as np
 
 from .._core import EVENT_WALL
 from ..errors import InvalidArgumentError
-from ..fileio import check_output
+from ..foundation.fileio import check_output
 from . import state_msgs as sm
 from .cdr import LaserScanPacker, OdometryPacker, TfPacker, pack_clock
 from .clock import BridgeConfig, Pacer, Schedule

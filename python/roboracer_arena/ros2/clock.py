@@ -16,11 +16,10 @@ from pathlib import Path
 
 from pydantic import ConfigDict, Field, ValidationError
 
+from ..config.sim import MIN_RATE_HZ, SimConfig
 from ..errors import ArenaError, ConfigError
-from ..fileio import read_json
-from ..sim_config import MIN_RATE_HZ, SimConfig
-from ..spec import format_validation_error
-from ..strict import NumbersAreNumbers
+from ..foundation.fileio import read_json
+from ..foundation.strict import NumbersAreNumbers, format_validation_error
 from .start import StartConfig
 
 _EPS = 1e-9

@@ -5,7 +5,7 @@ The payload of each message is exactly the XCDR1 serialisation the bridge sends 
 wire (:func:`~roboracer_arena.ros2.msgs.serialize`); each channel carries the ROS 2
 QoS it was offered with (``offered_qos_profiles``) so ``ros2 bag play`` republishes the
 latched topics as transient local. The target is checked before anything runs
-(:func:`~roboracer_arena.fileio.check_output`); the file is written beside it and renamed
+(:func:`~roboracer_arena.foundation.fileio.check_output`); the file is written beside it and renamed
 into place, with the umask's permissions, on :meth:`McapRecorder.close` (never
 half-written). SIGINT and SIGTERM are held back while a message or the footer is being
 written, so an interrupt lands between messages and the file can always be finished.
@@ -19,7 +19,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from ..fileio import StagedFile, signals_held
+from ..foundation.fileio import StagedFile, signals_held
 from . import msgs
 from ._deps import require
 from .qos import DEPTH, LATCHED

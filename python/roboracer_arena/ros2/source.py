@@ -17,14 +17,14 @@ from typing import Any
 import numpy as np
 
 from .. import _core
-from ..corridor import extract_corridor
+from ..config.sim import SimConfig
 from ..envs.tracks import resolve_tracks
 from ..errors import ArenaError, ConfigError
-from ..maps import load_map
+from ..maps.corridor import extract_corridor
+from ..maps.occupancy import load_map
 from ..raceline.limits import preset
 from ..raceline.plan import plan_raceline
-from ..sim_config import SimConfig
-from ..start_grid import start_spec
+from ..track.start_grid import start_spec
 from .start import StartConfig, bridge_start_spec
 
 _log = logging.getLogger(__name__)
@@ -82,7 +82,7 @@ def raceline_xy(track: Any) -> np.ndarray | None:
 def check_open_map_starts(src: SimSource, poses: np.ndarray | None) -> None:
     """On an open map, refuse (exit 2, naming the map and its free space) a fixed start
     pose where the car's whole footprint does not fit, as ``build --start`` does
-    (:func:`roboracer_arena.car_fit.check_start` through the open-map extraction)."""
+    (:func:`roboracer_arena.maps.car_fit.check_start` through the open-map extraction)."""
     if poses is None or not src.open_map or src.occupancy_map is None:
         return
     for x, y, yaw in np.asarray(poses, dtype=np.float64).reshape(-1, 3):

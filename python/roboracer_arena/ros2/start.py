@@ -1,7 +1,7 @@
 """Where the bridge starts its cars: the env's start, through the same code.
 
 ``gym.make("RoboRacerArena-v0", track=T, reset_poses="grid")`` and ``roboracer-arena ros2
-T`` put the cars at the same poses: both hand :func:`~roboracer_arena.start_grid.start_spec`
+T`` put the cars at the same poses: both hand :func:`~roboracer_arena.track.start_grid.start_spec`
 to the simulator (``set_start_spec``) and reset with its ``reset_drawn``. The options
 mirror the env's: :class:`StartConfig` holds the env config's start fields (the
 ``"start"`` section of the bridge's ``--config``), and fixed ``poses`` / ``speeds`` are
@@ -18,9 +18,9 @@ from pydantic import ConfigDict, Field
 
 from .._core import StartSpec
 from ..errors import InvalidArgumentError
-from ..start_grid import GRID_OFFSET, GRID_SPACING, SIDE_MARGIN, start_spec
-from ..strict import NumbersAreNumbers
-from ..track import Track
+from ..foundation.strict import NumbersAreNumbers
+from ..track.drivable import Track
+from ..track.start_grid import GRID_OFFSET, GRID_SPACING, SIDE_MARGIN, start_spec
 
 
 class StartConfig(NumbersAreNumbers):

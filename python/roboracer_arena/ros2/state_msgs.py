@@ -93,7 +93,7 @@ def clock(t: float) -> Any:
 
 
 def occupancy_grid(occ_map: Any, t: float = 0.0) -> Any:
-    """``nav_msgs/OccupancyGrid`` of an :class:`~roboracer_arena.maps.OccupancyMap`:
+    """``nav_msgs/OccupancyGrid`` of an :class:`~roboracer_arena.maps.occupancy.OccupancyMap`:
     free 0, occupied 100, unknown -1; row 0 of the grid is the bottom row (ROS order)."""
     data = np.asarray(occ_map.data)
     grid = np.full(data.shape, -1, np.int8)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pxr import Gf, Sdf, Usd, UsdPhysics, UsdShade
 
-from ..build_config import StagePhysicsConfig
+from ..config.build import StagePhysicsConfig
 from .textures import SHADE_MEAN
 
 LOOKS = "/World/Looks"

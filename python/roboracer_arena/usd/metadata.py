@@ -23,11 +23,10 @@ from typing import Any, Literal
 from pxr import Usd
 from pydantic import ConfigDict, Field, field_validator
 
-from ..build_config import BuildConfig
+from ..config.build import BuildConfig
 from ..errors import ConfigError, MapFormatError, MapIOError
-from ..fileio import parse_json, read_regular_bytes, require_regular, validate_model
-from ..maps import image_named_by
-from ..strict import NumbersAreNumbers
+from ..foundation.fileio import image_named_by, parse_json, read_regular_bytes, require_regular, validate_model
+from ..foundation.strict import NumbersAreNumbers
 from .readback import open_stage
 from .stage import METADATA_KEY
 

@@ -7,7 +7,7 @@ opened. ``roboracer_arena.usd`` calls it when it is first imported (the package'
 ``import roboracer_arena`` does not import pxr). Without the extra the stage carries the
 UsdPhysics schemas only and still loads, validates and parses in usd-core.
 
-Authored (see :class:`~roboracer_arena.build_config.StagePhysicsConfig`):
+Authored (see :class:`~roboracer_arena.config.build.StagePhysicsConfig`):
 
 * ``/World/PhysicsScene``: ``PhysxSceneAPI`` with the TGS solver (the paper's), the
   simulator's steps per second, CCD enabled, CPU dynamics;
@@ -21,7 +21,7 @@ from typing import Any
 
 from pxr import Usd
 
-from ..build_config import StagePhysicsConfig
+from ..config.build import StagePhysicsConfig
 
 _STATE: dict[str, bool] = {}
 

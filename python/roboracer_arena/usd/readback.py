@@ -11,7 +11,7 @@ import numpy as np
 from pxr import Usd, UsdGeom
 
 from ..errors import MapFormatError, MapIOError
-from ..fileio import require_regular
+from ..foundation.fileio import require_regular
 from .stage import METADATA_KEY
 
 

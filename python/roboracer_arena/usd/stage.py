@@ -25,10 +25,10 @@ from typing import Any
 import numpy as np
 from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics, Vt
 
-from ..build_config import BuildConfig
+from ..config.build import BuildConfig
+from ..config.sim import SimConfig
 from ..errors import ConfigError, MapIOError
-from ..fileio import atomic_paths, write_failure
-from ..sim_config import SimConfig
+from ..foundation.fileio import atomic_paths, write_failure
 from . import materials as looks
 from . import physx_schemas
 from .textures import Texture, duct_texture, floor_texture

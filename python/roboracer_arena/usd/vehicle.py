@@ -2,7 +2,7 @@
 
 A four-wheel PhysX vehicle (``PhysxVehicle*`` APIs, drive "basic": one torque shared by the
 four driven wheels through a multi-wheel differential with equal ratios, as our open
-differentials) built from one :class:`~roboracer_arena.sim_config.VehicleConfig`. No
+differentials) built from one :class:`~roboracer_arena.config.sim.VehicleConfig`. No
 number in it was chosen to match a lap time: each is derived below from the config, and
 :func:`physx_params` returns them. ovphysx drives it on the CPU (``SimObjectType.VEHICLE``:
 ``accelerator``, ``brake0``, ``steer``), with :mod:`roboracer_arena.physx.drive` running
@@ -84,12 +84,12 @@ from typing import Any
 
 from pxr import Gf, Sdf, Usd, UsdGeom, UsdPhysics
 
-from ..direction import direction_for_map
+from ..config.sim import SimConfig, VehicleConfig
 from ..errors import ConfigError
-from ..fileio import atomic_paths
-from ..sim_config import SimConfig, VehicleConfig
-from ..start_grid import centreline_pose, grid_start_s
-from ..track import Track
+from ..foundation.fileio import atomic_paths
+from ..maps.direction import direction_for_map
+from ..track.drivable import Track
+from ..track.start_grid import centreline_pose, grid_start_s
 from . import physx_schemas
 from .materials import PHYSICS_MATERIAL
 

@@ -116,3 +116,24 @@ def validation_line(e: ValidationError, top: str = "(whole document)") -> str:
     if len(errors) > 5:
         parts.append(f"and {len(errors) - 5} more")
     return "; ".join(parts)
+
+
+def format_validation_error(e: ValidationError, top: str = "(spec)") -> str:
+    """One line for all problems: ``field: message (got value)``, joined by ``; ``; a
+    problem with the whole object is named ``top``."""
+    parts = []
+    for err in e.errors()[:8]:
+        loc = ".".join(_short(str(x), 40) for x in err["loc"]) or top
+        value = err.get("input")
+        if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 100:
+            shown = f" (got an integer of about {int(value.bit_length() * 0.30103) + 1} digits)"
+        else:
+            shown = "" if isinstance(value, dict) else f" (got {_short(repr(value), 80)})"
+        msg = str(err["msg"]).removeprefix("Value error, ")
+        parts.append(f"{loc}: {_short(msg, 200)}{shown}")
+    return "; ".join(parts)
+
+
+def _short(text: str, n: int) -> str:
+    """``text`` cut to ``n`` characters (a hostile key or value never floods a message)."""
+    return text if len(text) <= n else text[: n - 1] + "…"

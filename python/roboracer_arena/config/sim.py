@@ -15,7 +15,7 @@ from typing import Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from .strict import NumbersAreNumbers
+from ..foundation.strict import NumbersAreNumbers
 
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 

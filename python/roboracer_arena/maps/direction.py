@@ -33,9 +33,9 @@ from typing import Any
 
 import numpy as np
 
-from . import _core
-from .errors import InvalidArgumentError, MapFormatError
-from .fileio import read_text
+from .. import _core
+from ..errors import InvalidArgumentError, MapFormatError
+from ..foundation.fileio import read_text
 
 CLOCKWISE = "clockwise"
 COUNTERCLOCKWISE = "counterclockwise"

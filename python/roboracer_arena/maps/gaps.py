@@ -20,9 +20,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
-from . import _core
-from .errors import InvalidArgumentError
-from .maps import OccupancyMap
+from .. import _core
+from ..errors import InvalidArgumentError
+from .occupancy import OccupancyMap
 
 OCCUPIED = 0
 

@@ -14,6 +14,7 @@ import errno
 import fcntl
 import json
 import os
+import re
 import shutil
 import signal
 import stat
@@ -26,8 +27,7 @@ from typing import Any, TypeVar
 
 from pydantic import BaseModel, ValidationError
 
-from .errors import InvalidArgumentError, MapFormatError, MapIOError
-from .maps import image_named_by
+from ..errors import InvalidArgumentError, MapFormatError, MapIOError
 from .strict import validation_line
 
 M = TypeVar("M", bound=BaseModel)
@@ -67,6 +67,13 @@ def _same_file(a: Path, b: Path) -> bool:
         return os.path.samefile(a, b)
     except OSError:
         return a.resolve() == b.resolve()
+
+
+def image_named_by(yaml_text: str) -> str | None:
+    """The ``image:`` file name a map YAML's text gives (without parsing the YAML, so a
+    caller can guard that file before the loader runs), or None."""
+    m = re.search(r"^\s*image:\s*['\"]?([^'\"\n]+?)['\"]?\s*$", yaml_text, re.M)
+    return m.group(1).strip() if m else None
 
 
 def referenced_inputs(path: str | Path) -> list[Path]:

@@ -2,7 +2,7 @@
 
 A track concept, not an env one: the envs, the renderers, the ROS 2 bridge, the PhysX
 check and the library all place cars with it. The numbers come from the core
-(``arena_core::sim::start_grid``, through :attr:`Track.start_grid <roboracer_arena.track.Track.start_grid>`);
+(``arena_core::sim::start_grid``, through :attr:`Track.start_grid <roboracer_arena.track.drivable.Track.start_grid>`);
 this module is its typed view, with the env's defaults.
 
 The grid start is chosen from the track's geometry, not from wherever the extracted
@@ -23,10 +23,10 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 import numpy.typing as npt
 
-from . import _core
+from .. import _core
 
 if TYPE_CHECKING:
-    from .track import Track
+    from .drivable import Track
 
 #: Metres kept between the car's side and a wall when start noise moves it sideways (the
 #: simulator's reset draws cap the lateral start noise with it, see ``envs.batch``).

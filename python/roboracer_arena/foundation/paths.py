@@ -15,11 +15,12 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from .errors import InvalidArgumentError, MapIOError
+from ..errors import InvalidArgumentError, MapIOError
 
 SOURCES_ENV = "ROBORACER_ARENA_SOURCES"
 TRACKS_ENV = "ROBORACER_ARENA_TRACKS"
-PACKAGE_DIR = Path(__file__).resolve().parent
+#: The ``roboracer_arena`` package folder (this module sits one below it).
+PACKAGE_DIR = Path(__file__).resolve().parents[1]
 
 
 def checkout_dir() -> Path | None:

@@ -25,7 +25,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, NoReturn, TypeVar
 
-from .errors import ArenaError
+from ..errors import ArenaError
 
 T = TypeVar("T")
 R = TypeVar("R")

@@ -16,11 +16,11 @@ from typing import Any
 
 import numpy as np
 
-from . import _core
-from .corridor import DEFAULT_PARAMS, extract_corridor
-from .direction import TrackDirection, direction_for_map, direction_of, orient_to
-from .direction import reverse as reverse_line
-from .errors import ConfigError, MapIOError
+from .. import _core
+from ..errors import ConfigError, MapIOError
+from ..maps.corridor import DEFAULT_PARAMS, extract_corridor
+from ..maps.direction import TrackDirection, direction_for_map, direction_of, orient_to
+from ..maps.direction import reverse as reverse_line
 
 MAP_SUFFIXES = (".yaml", ".yml")
 #: The build geometry's default wall height (the core's ``DEFAULT_WALL_HEIGHT_M``).
@@ -154,7 +154,7 @@ class Track:
     @property
     def start_grid(self) -> _core.StartGrid:
         """This track's start geometry in the core (wall clearance, free run ahead, the grid
-        start and its poses; :mod:`~roboracer_arena.start_grid` is its typed view), built on
+        start and its poses; :mod:`~roboracer_arena.track.start_grid` is its typed view), built on
         first use."""
         grid = _START_GRIDS.get(self)
         if grid is None:
@@ -206,14 +206,14 @@ def track_from_map_path(
     close_gaps_m: float | None = None,
 ) -> Track:
     """The track of a ROS map YAML in its racing direction: ``direction`` if given, else
-    the one :func:`~roboracer_arena.direction.direction_for_map` finds beside the map.
+    the one :func:`~roboracer_arena.maps.direction.direction_for_map` finds beside the map.
     The corridor is extracted once per file version and parameters.
 
     ``open``: ``False`` a closed corridor or a ``CorridorError``; ``True`` the map as an
     open map (:meth:`Track.open_map`, walls only); ``None`` a track when the map has a
     closed corridor, else an open map (``Track.open_reason`` says why). ``unknown``: how
     an open map reads unknown cells (``"occupied"`` or ``"free"``). ``close_gaps_m``: close
-    the openings of the walls up to this width first (:mod:`roboracer_arena.gaps`; the
+    the openings of the walls up to this width first (:mod:`roboracer_arena.maps.gaps`; the
     track's ``source`` geometry lists them in ``closed_gaps``)."""
     p = Path(path).expanduser().resolve()
     try:

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 from scipy import ndimage
 
-from . import _core
+from .. import _core
 
 #: Elastic-band iterations, step up the distance field (cells) and smoothing weight.
 ITERATIONS = 400

@@ -4,7 +4,7 @@ loadable from TOML or JSON.
 Three groups:
 
 * ``geometry`` mirrors the Rust ``BuildParams`` field for field (names and defaults), and is
-  passed unchanged to :func:`roboracer_arena.corridor.extract_corridor`;
+  passed unchanged to :func:`roboracer_arena.maps.corridor.extract_corridor`;
 * ``materials`` — colours and procedural textures of the USD stage;
 * ``physics`` — the physics material (friction, restitution) and the physics scene gravity.
 
@@ -20,10 +20,9 @@ from typing import Any, Literal
 
 from pydantic import ConfigDict, Field, ValidationError, model_validator
 
-from .errors import ArenaError, ConfigError
-from .fileio import parse_json, read_text
-from .spec import format_validation_error
-from .strict import NumbersAreNumbers
+from ..errors import ArenaError, ConfigError
+from ..foundation.fileio import parse_json, read_text
+from ..foundation.strict import NumbersAreNumbers, format_validation_error
 
 Colour = tuple[float, float, float]
 

@@ -16,7 +16,6 @@ percentages become unknown).
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
@@ -24,8 +23,8 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from . import _core
-from .errors import InvalidArgumentError
+from .. import _core
+from ..errors import InvalidArgumentError
 
 #: The image encodings ``save_map`` writes (the core also takes them in upper case).
 ImageFormat = Literal["png", "pgm"]
@@ -85,13 +84,6 @@ class OccupancyMap:
         return Path(yaml_path)
 
 
-def image_named_by(yaml_text: str) -> str | None:
-    """The ``image:`` file name a map YAML's text gives (without parsing the YAML, so a
-    caller can guard that file before the loader runs), or None."""
-    m = re.search(r"^\s*image:\s*['\"]?([^'\"\n]+?)['\"]?\s*$", yaml_text, re.M)
-    return m.group(1).strip() if m else None
-
-
 def load_map(path: str | Path) -> OccupancyMap:
     """Load a ROS map YAML and its image.
 
@@ -123,4 +115,4 @@ def save_map(
     return Path(_core.save_map(arr, float(resolution), o, Path(yaml_path), image_format))
 
 
-__all__ = ["FREE", "ImageFormat", "OCCUPIED", "UNKNOWN", "OccupancyMap", "image_named_by", "load_map", "save_map"]
+__all__ = ["FREE", "ImageFormat", "OCCUPIED", "UNKNOWN", "OccupancyMap", "load_map", "save_map"]

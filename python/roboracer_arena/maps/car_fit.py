@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core
-from .errors import CorridorError
-from .sim_config import SimConfig
+from .. import _core
+from ..config.sim import SimConfig
+from ..errors import CorridorError
 
 #: Free space (m) the start needs beyond the car's box on every side: the walls are
 #: smoothed within about half a cell of the raster, and the car must not start touching one.

@@ -22,8 +22,8 @@ import math
 from pathlib import Path
 from typing import Any
 
-from .errors import ConfigError
-from .sim_config import VehicleConfig
+from ..errors import ConfigError
+from .sim import VehicleConfig
 
 #: Per car: m (kg), I_z (kg m^2), l_f, l_r, h_cg (m), mu (None: not in the model), and the
 #: Pacejka [B, C, D, E] of the front and rear axles, from ForzaETH On-Track-SysID commit

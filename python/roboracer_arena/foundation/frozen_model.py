@@ -1,7 +1,7 @@
 """The base of the package's typed reports and records (catalog entries, verify results,
 circuit reports): a frozen pydantic model that refuses unknown keys and writes JSON with
 only the fields it was given, so a report written, read back and written again is the
-same text. Numbers are numbers here too (:class:`~roboracer_arena.strict.NumbersAreNumbers`):
+same text. Numbers are numbers here too (:class:`~roboracer_arena.foundation.strict.NumbersAreNumbers`):
 a catalog entry or report read back with ``"40"`` for a length is refused, not read as 40."""
 
 from __future__ import annotations

@@ -27,7 +27,7 @@ Parameters (all optional; see :data:`DEFAULT_PARAMS`): ``wall_height_m``,
 ``smoothing_iterations``, ``centreline_spacing_m``, ``floor_margin_m``. Unknown names
 raise :class:`~roboracer_arena.errors.InvalidArgumentError`.
 
->>> from roboracer_arena.corridor import extract_corridor
+>>> from roboracer_arena.maps.corridor import extract_corridor
 >>> geo = extract_corridor("maps/berlin.yaml")          # doctest: +SKIP
 >>> geo.iou, len(geo.walls), geo.centreline.shape      # doctest: +SKIP
 (0.9987, 2, (709, 2))
@@ -44,10 +44,10 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from . import _core
+from .. import _core
+from ..errors import CorridorError, InvalidArgumentError
 from .car_fit import NoRoomForCarError, check_start, clearance_cells, place_car
-from .errors import CorridorError, InvalidArgumentError
-from .maps import OccupancyMap, load_map
+from .occupancy import OccupancyMap, load_map
 
 Mesh = tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
 
@@ -83,7 +83,7 @@ class CorridorGeometry:
     start_pose: tuple[float, float, float] | None = None
     #: Why a map asked for as a track is open: the corridor error (``open=None``).
     open_reason: str | None = None
-    #: The openings closed with ``close_gaps_m`` (see :mod:`roboracer_arena.gaps`).
+    #: The openings closed with ``close_gaps_m`` (see :mod:`roboracer_arena.maps.gaps`).
     closed_gaps: tuple[Any, ...] = ()
 
     @property
@@ -128,7 +128,7 @@ def extract_corridor(
             error) — never silently: ``kind`` says which one was built.
         unknown: how an open map reads unknown cells (see :func:`extract_open`).
         close_gaps_m: close every opening in the walls up to this width (m) first
-            (:func:`roboracer_arena.gaps.close_gaps`): a hallway loop with doorways
+            (:func:`roboracer_arena.maps.gaps.close_gaps`): a hallway loop with doorways
             becomes a closed corridor. ``closed_gaps`` lists each gap closed.
 
     Raises:
@@ -229,8 +229,8 @@ def _default_start(geo: CorridorGeometry, farthest: Any, where: str = "") -> tup
     car was) when that is a drivable cell at least :data:`ORIGIN_START_CLEARANCE_M` from
     the walls and the map edge and the car's whole footprint fits there; else the drivable
     cell farthest from the walls (the core's choice), else the best-clearance place where
-    the footprint fits (:func:`roboracer_arena.car_fit.place_car`); a map with none is a
-    :class:`~roboracer_arena.car_fit.NoRoomForCarError` naming the map and its free space."""
+    the footprint fits (:func:`roboracer_arena.maps.car_fit.place_car`); a map with none is a
+    :class:`~roboracer_arena.maps.car_fit.NoRoomForCarError` naming the map and its free space."""
     m = geo.map
     mask = np.asarray(geo.corridor_mask, bool)
     origin = (float(m.origin[0]), float(m.origin[1]), float(m.origin[2]))

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from pydantic import ConfigDict, Field
 
-from .strict import NumbersAreNumbers
+from ..foundation.strict import NumbersAreNumbers
 
 
 class ConstructorConfig(NumbersAreNumbers):
