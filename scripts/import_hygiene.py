@@ -12,8 +12,9 @@ Two rules, read from the AST of every module under ``python/roboracer_arena``:
   its reason.
 * **private-access**: a private name (one leading underscore, not a dunder) reached from
   another subpackage: ``from ..track import _from_corridor`` in ``envs/``, or an attribute
-  ``obj._name`` where ``obj`` is not ``self`` / ``cls`` and the module defines no
-  ``_name`` of its own (``env.unwrapped._batch``). A subpackage is the first path
+  ``obj._name`` (or ``getattr(obj, "_name")``, ``hasattr(obj, "_name")``) where ``obj`` is
+  not ``self`` / ``cls`` and the module defines no ``_name`` of its own
+  (``env.unwrapped._batch``). A subpackage is the first path
   component below the package (``envs``, ``library``; a top-level module is its own). The
   compiled binding ``_core`` is the one door to the core and is public in all but name.
 
@@ -219,6 +220,18 @@ def check_file(path: Path, root: Path) -> list[Finding]:
             and not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"))
         ):
             out.append(Finding(rel.as_posix(), node.lineno, "private-access", node.attr))
+        elif (
+            isinstance(node, ast.Call)
+            and isinstance(node.func, ast.Name)
+            and node.func.id in ("getattr", "hasattr")
+            and len(node.args) >= 2
+            and isinstance(node.args[1], ast.Constant)
+            and isinstance(node.args[1].value, str)
+            and _is_private(node.args[1].value)
+            and node.args[1].value not in own
+            and not (isinstance(node.args[0], ast.Name) and node.args[0].id in ("self", "cls"))
+        ):
+            out.append(Finding(rel.as_posix(), node.lineno, "private-access", node.args[1].value))
     return out
 
 

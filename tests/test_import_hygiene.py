@@ -114,3 +114,17 @@ def test_the_package_passes_and_a_new_local_import_fails(tmp_path: Path) -> None
     out = subprocess.run([sys.executable, str(SCRIPT), str(copy)], capture_output=True, text=True)
     assert out.returncode == 1
     assert "envs/track_pool.py" in out.stdout and "local-import: ..maps" in out.stdout
+
+
+def test_private_reads_through_getattr_are_found(tmp_path: Path) -> None:
+    root = package(
+        tmp_path,
+        {
+            "ros2/__init__.py": "",
+            "ros2/source.py": (
+                "def f(env):\n    return getattr(env, '_batch', None), hasattr(env, '_sim'), getattr(env, 'sim')\n"
+            ),
+            "drivers.py": "class D:\n    def g(self):\n        return getattr(self, '_slots')\n",
+        },
+    )
+    assert found(root) == {("ros2/source.py", "private-access", "_batch"), ("ros2/source.py", "private-access", "_sim")}

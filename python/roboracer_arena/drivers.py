@@ -173,8 +173,8 @@ class EnvPurePursuit:
                 f"pure pursuit needs the odometry fields x, y, yaw in the observation (missing {missing})"
             )
         self._cols = (f["x"], f["y"], f["yaw"], f.get("speed", f.get("vx")))
-        batch = getattr(self.env, "_batch", None)
-        if self._cols[3] is None and (batch is None or "vx" not in getattr(batch, "field_index", {})):
+        state_fields = self.env.simulator_state[1] if hasattr(self.env, "simulator_state") else {}
+        if self._cols[3] is None and "vx" not in state_fields:
             # Never guess: a speed of 0 plans for a standing car and steers into the wall.
             raise ConfigError(
                 "pure pursuit needs the car's speed: add 'vx' (or 'speed') to the observation's odometry "

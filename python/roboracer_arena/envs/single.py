@@ -64,7 +64,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .._core import EVENT_LAP, EVENT_VEHICLE, EVENT_WALL
+from .._core import EVENT_LAP, EVENT_VEHICLE, EVENT_WALL, Simulator
 from .batch import STATE_INFO, EnvHelpers, SimBatch
 from .env_config import EnvConfig
 from .episode_limit import check_make_kwargs
@@ -207,6 +207,14 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         """``[steer rad, speed m/s]`` commands ((V, 2) or (2,)) as an action of this env."""
         a = self._batch.from_ackermann(np.reshape(cmds, (self.vehicles_per_env, 2)))
         return a[0] if self._squeeze else a
+
+    @property
+    def simulator(self) -> Simulator:
+        """The native simulator (``_core.Simulator``) this env steps, for tools that read or
+        drive it beside the env (the ROS 2 bridge). A reseeding ``reset`` builds a new one, so
+        fetch it again after a reset; stepping it directly leaves the env's episode state behind.
+        """
+        return self._batch.sim
 
     @property
     def simulator_state(self) -> tuple[np.ndarray, dict[str, int]]:

@@ -45,6 +45,7 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from .._core import Simulator
 from .batch import EnvHelpers, SimBatch
 from .env_config import EnvConfig
 from .episode_limit import time_limit_given, vector_config
@@ -222,6 +223,14 @@ class RoboRacerVectorEnv(EnvHelpers, VectorEnv):
         current episode (pass them back as reset options to replay the same starts)."""
         b = self._batch
         return b.track_ids.copy(), b.start_pose.copy(), b.start_speed.copy()
+
+    @property
+    def simulator(self) -> Simulator:
+        """The native simulator (``_core.Simulator``) this env steps, for tools that read or
+        drive it beside the env (the ROS 2 bridge). A reseeding ``reset`` builds a new one, so
+        fetch it again after a reset; stepping it directly leaves the env's episode state behind.
+        """
+        return self._batch.sim
 
     @property
     def simulator_state(self) -> tuple[np.ndarray, dict[str, int]]:

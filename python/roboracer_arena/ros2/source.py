@@ -123,13 +123,12 @@ def sim_source(
             track_id=tid,
         )
     inner = getattr(env_or_sim, "unwrapped", None)
-    batch = getattr(inner, "_batch", None)
-    if inner is not None and batch is not None and hasattr(batch, "sim"):  # a RoboRacerArena-v0 env
-        tid = int(batch.track_ids[0])
+    if inner is not None and isinstance(getattr(inner, "simulator", None), _core.Simulator):  # a RoboRacerArena-v0 env
+        tid = int(np.ravel(inner.current_track_ids if hasattr(inner, "num_envs") else inner.current_track_id)[0])
         track = inner.tracks[tid]
         return SimSource(
-            batch.sim,
-            int(batch.vehicles),
+            inner.simulator,
+            int(inner.vehicles_per_env),
             inner.config.sim,
             np.asarray(track.centreline),
             occupancy_map=_load_map(track.source),
