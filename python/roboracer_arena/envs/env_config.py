@@ -221,7 +221,7 @@ class EnvConfig(NumbersAreNumbers):
     reset_poses: Literal["random", "grid", "centreline_start"] = Field(
         "random",
         description="'random': a uniformly random point of the centreline; 'grid': the grid start "
-        "(start_grid.py: on the line, clear of walls, facing the longest free run ahead); 'centreline_start': "
+        "(track/start_grid.py: on the line, clear of walls, facing the longest free run ahead); 'centreline_start': "
         "s = 0 of the centreline as extracted. Further vehicles line up behind the first in a staggered grid.",
     )
     start_lateral_noise: float = Field(
