@@ -52,7 +52,7 @@ from roboracer_arena.generate import (
     screen,
     write_outputs,
 )
-from roboracer_arena.library.sweep import GridSweep
+from roboracer_arena.library.spec_sweep import GridSweep
 from roboracer_arena.spec import TrackSpec
 
 from . import bench_data

@@ -34,7 +34,7 @@ import numpy as np
 from roboracer_arena import envs
 from roboracer_arena.bench.env import default_map, env_kwargs, grid_start_pose, load_average
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
-from roboracer_arena.envs.tracks import resolve_tracks
+from roboracer_arena.envs.track_argument import resolve_tracks
 from roboracer_arena.errors import ArenaError, InvalidArgumentError
 
 DRIVER = Path(__file__).with_name("f1tenth_gym_driver.py")

@@ -2,7 +2,7 @@
 with a local Ray cluster (``ray.init(num_cpus=2)``), and a projection to more nodes.
 
 * **Track generation**: the first ``--requests`` requests of the example sweep
-  (:data:`~roboracer_arena.library.sweep.EXAMPLE_SWEEP`) in this process, on the local
+  (:data:`~roboracer_arena.library.spec_sweep.EXAMPLE_SWEEP`) in this process, on the local
   pool (2 processes) and as Ray tasks (1 and 2 workers); wall time (median of
   ``--repeats``), requests/s, overhead per request, and whether every executor returned
   the same tracks. A no-op task rate gives the driver/scheduler ceiling.
@@ -212,7 +212,7 @@ def _noop_rate(n: int = 400) -> float:
 
 
 def bench_generation(requests: int, repeats: int) -> Generation:
-    from roboracer_arena.library.sweep import EXAMPLE_SWEEP, SweepFile
+    from roboracer_arena.library.spec_sweep import EXAMPLE_SWEEP, SweepFile
 
     tasks = SweepFile.model_validate(EXAMPLE_SWEEP).requests(0, requests)
     runs = {
@@ -399,7 +399,7 @@ def run(
     """Measure, print the tables (and the projection when both halves ran); returns the results."""
     from roboracer_arena.bench.env import default_map
     from roboracer_arena.distributed.ray_cluster import import_ray
-    from roboracer_arena.envs.tracks import resolve_tracks
+    from roboracer_arena.envs.track_argument import resolve_tracks
 
     ray = import_ray()
     load0 = os.getloadavg()[0]

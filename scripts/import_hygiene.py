@@ -84,7 +84,7 @@ ALLOWED_LOCAL: dict[tuple[str, str], str] = {
     ("cli/tracks.py", "..library.open_maps"): _CLI + " (open maps are verified: pxr, the env stack)",
     ("cli/tracks.py", "..library.sheet"): _CLI + " (the contact sheet: PIL)",
     ("cli/tracks.py", "..library.index"): _CLI + " (building the catalog verifies open maps)",
-    ("cli/tracks.py", "..library.sweep_run"): _CLI + " (the sweep builds and verifies tracks)",
+    ("cli/tracks.py", "..library.spec_sweep_run"): _CLI + " (the sweep builds and verifies tracks)",
     ("builder.py", ".usd"): "usd loads pxr (~0.5 s); builder is imported by the CLI at start-up",
     ("builder.py", ".usd.stage"): "usd loads pxr (~0.5 s); builder is imported by the CLI at start-up",
     ("builder.py", ".usd.vehicle"): "usd loads pxr (~0.5 s); builder is imported by the CLI at start-up",

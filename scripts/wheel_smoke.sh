@@ -92,7 +92,7 @@ step "build"
 step "drive (the generated track runs clockwise, as requested)"
 "$BIN/roboracer-arena" drive gen/map.yaml
 "$BIN/python" -c "
-from roboracer_arena.envs.tracks import track_from_map_path
+from roboracer_arena.envs.track_argument import track_from_map_path
 d = track_from_map_path('gen/map.yaml').direction
 assert d == 'clockwise', d
 print('   gen/map.yaml runs', d)"

@@ -22,7 +22,7 @@ import roboracer_arena  # noqa: F401  (registers RoboRacerArena-v0)
 from roboracer_arena.cli import main
 from roboracer_arena.distributed import LocalExecutor, RayExecutor, RayVectorEnv, map_ordered
 from roboracer_arena.library.generated import generate_files
-from roboracer_arena.library.sweep import SweepFile
+from roboracer_arena.library.spec_sweep import SweepFile
 from synthetic_tracks import stadium
 
 SWEEP = {

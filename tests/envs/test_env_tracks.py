@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from roboracer_arena.envs.tracks import resolve_tracks
+from roboracer_arena.envs.track_argument import resolve_tracks
 from roboracer_arena.errors import ConfigError
 from roboracer_arena.track.drivable import Track
 from synthetic_tracks import stadium

@@ -65,7 +65,7 @@ BASE = {"name": "s", "fixed": {"corridor_width_m": 1.5, "hall_x_m": 15, "hall_y_
     ],
 )
 def test_a_sweep_range_that_can_draw_a_bad_spec_fails_at_load(tmp_path, ranges, msg):
-    from roboracer_arena.library.sweep import load_sweep
+    from roboracer_arena.library.spec_sweep import load_sweep
 
     p = tmp_path / "s.json"
     p.write_text(json.dumps({**BASE, "ranges": ranges}, allow_nan=True).replace("Infinity", "1e999"))
@@ -74,7 +74,7 @@ def test_a_sweep_range_that_can_draw_a_bad_spec_fails_at_load(tmp_path, ranges, 
 
 
 def test_a_fixed_feature_order_that_some_draws_contradict_fails_at_load(tmp_path):
-    from roboracer_arena.library.sweep import load_sweep
+    from roboracer_arena.library.spec_sweep import load_sweep
 
     p = tmp_path / "s.json"
     doc = {**BASE, "ranges": {"hairpins": [1, 2]}, "fixed": {**BASE["fixed"], "feature_order": ["hairpin"]}}
@@ -84,6 +84,6 @@ def test_a_fixed_feature_order_that_some_draws_contradict_fails_at_load(tmp_path
 
 
 def test_the_example_sweep_still_loads():
-    from roboracer_arena.library.sweep import EXAMPLE_SWEEP, SweepFile
+    from roboracer_arena.library.spec_sweep import EXAMPLE_SWEEP, SweepFile
 
     SweepFile.model_validate(EXAMPLE_SWEEP)

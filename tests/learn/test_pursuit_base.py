@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from roboracer_arena.drivers import PurePursuitDriver, PurePursuitParams
-from roboracer_arena.envs.tracks import resolve_tracks
+from roboracer_arena.envs.track_argument import resolve_tracks
 from roboracer_arena.learn.pursuit_base import PursuitBase
 
 

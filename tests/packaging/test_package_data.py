@@ -12,10 +12,10 @@ from pathlib import Path
 import pytest
 
 import roboracer_arena
-from roboracer_arena.foundation import paths
 from roboracer_arena.catalog import load_catalog
 from roboracer_arena.cli import EXIT_BAD_INPUT, main
 from roboracer_arena.errors import MapIOError
+from roboracer_arena.foundation import paths
 
 REPO = Path(__file__).resolve().parents[2]
 

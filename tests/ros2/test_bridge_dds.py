@@ -115,7 +115,7 @@ def test_topics_scan_clock_tf_map_drive_and_initialpose(ellipse_map, domain_id, 
     ly = tf.transform.translation.y + math.sin(yaw) * static.transform.translation.x
     assert np.isfinite([lx, ly]).all()
     # The car starts at the env's grid start (start_grid.py), the laser 0.12 m ahead of it.
-    from roboracer_arena.envs.tracks import resolve_tracks
+    from roboracer_arena.envs.track_argument import resolve_tracks
     from roboracer_arena.track.start_grid import grid_start_s
 
     s_grid = grid_start_s(resolve_tracks(str(ellipse_map))[0], 1, 1.0)

@@ -41,7 +41,7 @@ from .._core import EVENT_VEHICLE, EVENT_WALL, Simulator
 from ..drivers import PurePursuitDriver
 from ..envs.env_config import EnvConfig
 from ..envs.single import RoboRacerEnv
-from ..envs.tracks import resolve_tracks
+from ..envs.track_argument import resolve_tracks
 from ..foundation.paths import sources_dir
 from ..track.start_grid import centreline_pose, grid_start_s
 from .output import BenchModel, add_bench_parser, write_json

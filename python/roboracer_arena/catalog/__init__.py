@@ -9,6 +9,6 @@ tracks. The jobs that build, verify and sweep the catalog live a floor above, in
 """
 
 from .catalog_file import KINDS, SELECTIONS, Catalog, default_tracks_dir, load_catalog, resolve
-from .tracks import resolve_tracks
+from .entry_tracks import resolve_tracks
 
 __all__ = ["KINDS", "SELECTIONS", "Catalog", "default_tracks_dir", "load_catalog", "resolve", "resolve_tracks"]

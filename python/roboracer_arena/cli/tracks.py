@@ -28,7 +28,7 @@ from ..errors import InvalidArgumentError
 from ..foundation.paths import sources_dir, writable_tracks_dir
 from ..foundation.worker_pool import Progress, tqdm_progress
 from ..library.raceline_index import load_index, record_lines
-from ..library.sweep import load_sweep
+from ..library.spec_sweep import load_sweep
 from ..library.verify_report import CHECKS
 from . import EXIT_BAD_INPUT, EXIT_GENERATION_FAILURE, EXIT_OK
 from ._common import add_json_flag, print_json
@@ -163,7 +163,7 @@ DIR/sweep.json (every request up to the last kept one) and DIR/catalog.json (rea
 'tracks verify --catalog'; each map.yaml is a track= for the env). The result depends only on the sweep file
 and --count, never on the number of workers.
 
-Sweep file (JSON; example: examples/sweep.json; full text: roboracer_arena.library.sweep):
+Sweep file (JSON; example: examples/sweep.json; full text: roboracer_arena.library.spec_sweep):
   {"name": "hall-sweep", "base_seed": 0, "decimals": 1,
    "ranges": {"lap_length_m": [40, 120], "hairpins": [0, 2],
               "direction": {"choice": ["clockwise", "counterclockwise"]}},
@@ -436,7 +436,7 @@ def _rejudge(args: argparse.Namespace, sources: Path, jobs: int) -> int:
 
 
 def run_generate(args) -> int:
-    from ..library.sweep_run import generate_library
+    from ..library.spec_sweep_run import generate_library
 
     sweep = load_sweep(args.sweep)
     with _executor(args) as ex:

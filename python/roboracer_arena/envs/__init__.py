@@ -18,7 +18,7 @@ def __getattr__(name: str):
         "RewardConfig": "env_config",
         "RoboRacerEnv": "single",
         "RoboRacerVectorEnv": "vector",
-        "resolve_tracks": "tracks",
+        "resolve_tracks": "track_argument",
     }
     if name == "Track":  # defined in the neutral roboracer_arena.track.drivable
         from ..track.drivable import Track

@@ -1,6 +1,6 @@
 """A pool of tracks drawn per reset: ``track=`` as catalog patterns and weights.
 
-Besides everything :func:`~roboracer_arena.envs.tracks.resolve_tracks` accepts, ``track``
+Besides everything :func:`~roboracer_arena.envs.track_argument.resolve_tracks` accepts, ``track``
 may hold
 
 * catalog patterns: ``"generated:*"`` (kind, colon, shell pattern on the catalog id),
@@ -26,7 +26,7 @@ import numpy as np
 from ..catalog.catalog_file import load_catalog
 from ..errors import ConfigError
 from ..track.drivable import MAP_SUFFIXES, Track
-from .tracks import resolve_catalog, resolve_tracks
+from .track_argument import resolve_catalog, resolve_tracks
 
 #: Track used when ``track=`` is not given: a 40 m generated catalog track (1.2 m wide).
 DEFAULT_TRACK = "gen-l040-w12-h2c1s1-clo-s0"

@@ -28,8 +28,8 @@ from ..generate import generate_track, write_outputs
 from ..generate.outcomes import Acceptance, Rejection
 from ..generate.outputs import centreline_csv
 from ..spec import TrackSpec
-from .sweep import GridSweep, SweepRequest
-from .sweep_report import GeneratedSweepSummary, SweepRecord, count_outcome
+from .spec_sweep import GridSweep, SweepRequest
+from .spec_sweep_report import GeneratedSweepSummary, SweepRecord, count_outcome
 
 #: (lap length m, corridor width m, hall x m, hall y m): small to large venues.
 VENUES = [

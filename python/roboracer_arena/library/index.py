@@ -22,7 +22,7 @@ from ..maps.occupancy import load_map
 from .generated import generate_into, staged_generated
 from .open_maps import open_maps
 from .recorded import assess_all, recorded_entry
-from .sweep_report import GeneratedSweepSummary
+from .spec_sweep_report import GeneratedSweepSummary
 
 PROJECT = {"repository": "roboracer-arena (this project)", "licence": "MIT"}
 

@@ -22,7 +22,7 @@ from .. import _core
 from ..builder import build_environment
 from ..catalog.catalog_file import Catalog, sha256_file, update_catalog
 from ..catalog.entry import LeftOut, OpenMap, TrackEntry
-from ..catalog.tracks import entry_track
+from ..catalog.entry_tracks import entry_track
 from ..config.sim import SimConfig
 from ..distributed.executor import Executor
 from ..drivers import PurePursuitParams, drive_laps

@@ -20,8 +20,8 @@ import numpy as np
 
 from ..builder import build_environment
 from ..catalog.catalog_file import load_catalog
-from ..catalog.tracks import entry_track
-from ..envs.tracks import resolve_tracks
+from ..catalog.entry_tracks import entry_track
+from ..envs.track_argument import resolve_tracks
 from ..foundation.frozen_model import FrozenModel
 from .drive import drive_physx
 

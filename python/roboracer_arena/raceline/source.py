@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..catalog.catalog_file import load_catalog
-from ..catalog.tracks import entry_track
+from ..catalog.entry_tracks import entry_track
 from ..errors import InvalidArgumentError
 from ..track.drivable import MAP_SUFFIXES, Track, track_from_map_path
 

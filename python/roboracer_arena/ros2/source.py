@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import _core
 from ..config.sim import SimConfig
-from ..envs.tracks import resolve_tracks
+from ..envs.track_argument import resolve_tracks
 from ..errors import ArenaError, ConfigError
 from ..maps.corridor import extract_corridor
 from ..maps.occupancy import load_map

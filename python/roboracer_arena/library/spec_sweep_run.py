@@ -34,8 +34,8 @@ from ..foundation.fileio import atomic_dir, atomic_write_dir, atomic_write_text,
 from ..foundation.worker_pool import Progress, map_ordered
 from .generated import generate_files
 from .index import _generated_entries
-from .sweep import SweepFile
-from .sweep_report import LibrarySummary, SweepRecord, count_outcome
+from .spec_sweep import SweepFile
+from .spec_sweep_report import LibrarySummary, SweepRecord, count_outcome
 
 #: Most requests held in memory at once (their files wait until the wave is complete).
 MAX_WAVE = 256

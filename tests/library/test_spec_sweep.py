@@ -13,8 +13,8 @@ from roboracer_arena.catalog import load_catalog
 from roboracer_arena.cli import main
 from roboracer_arena.distributed import LocalExecutor
 from roboracer_arena.errors import SpecError
-from roboracer_arena.library.sweep import GridSweep, SweepFile, SweepRequest, load_sweep
-from roboracer_arena.library.sweep_run import generate_library
+from roboracer_arena.library.spec_sweep import GridSweep, SweepFile, SweepRequest, load_sweep
+from roboracer_arena.library.spec_sweep_run import generate_library
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "sweep.json"
 SMALL = {
@@ -162,14 +162,14 @@ def test_budget_exhausted_exits_4(tmp_path, capsys):
 
 
 def test_packaged_example_sweep_is_the_examples_file():
-    from roboracer_arena.library.sweep import EXAMPLE_SWEEP
+    from roboracer_arena.library.spec_sweep import EXAMPLE_SWEEP
 
     assert json.loads(EXAMPLE.read_text()) == EXAMPLE_SWEEP
 
 
 def test_packaged_sweep_summary_loads_typed_and_round_trips():
     from roboracer_arena.foundation.paths import tracks_dir
-    from roboracer_arena.library.sweep_report import GeneratedSweepSummary
+    from roboracer_arena.library.spec_sweep_report import GeneratedSweepSummary
 
     text = (tracks_dir() / "generated" / "sweep.json").read_text(encoding="utf-8")
     s = GeneratedSweepSummary.model_validate_json(text)
