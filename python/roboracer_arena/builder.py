@@ -162,7 +162,6 @@ def build_environment(
     map, no closed corridor, leaking walls, bad config); nothing is written then.
     """
     from .usd import write_stage
-    from .usd.metadata import source_fingerprint
     from .usd.stage import resolve_format
 
     cfg = resolve_config(config)
@@ -189,7 +188,41 @@ def build_environment(
             f"centreline); this map builds only as an open map (walls only, no centreline): "
             f"{geo.open_reason or 'built as an open map'}"
         )
-    # the source by absolute path and checksums: a later check reads this map or none
+    gaps = [g.to_json_dict() for g in geo.closed_gaps]
+    metadata = _stage_metadata(
+        occ, geo, cfg, source, record_source_as, pose, unknown, gaps if close_gaps_m is not None else None
+    )
+    car_pose = None
+    if car:
+        from .usd.vehicle import grid_start_pose
+
+        car_pose = grid_start_pose(geo, cfg, source)
+        metadata["car_pose"] = list(car_pose)
+    written = write_stage(out, meshes, cfg, metadata, car_pose)
+
+    timings = {"load": t1 - t0, "geometry": t2 - t1}
+    timings.update({f"geometry.{k}": float(v) for k, v in dict(getattr(geo, "timings", {}) or {}).items()})
+    timings["usd_author"] = (t3 - t2) + written.seconds_author  # mesh records + stage in memory
+    timings["usd_write"] = written.seconds_write
+    timings["total"] = timings["load"] + timings["geometry"] + timings["usd_author"] + timings["usd_write"]
+    return _build_report(source, out, occ, geo, written, timings, gaps)
+
+
+def _stage_metadata(
+    occ: Any,
+    geo: Any,
+    cfg: BuildConfig,
+    source: str,
+    record_source_as: str | Path | None,
+    pose: tuple[float, ...] | None,
+    unknown: str,
+    closed_gaps: list[dict[str, Any]] | None,
+) -> dict[str, Any]:
+    """The stage's metadata: the generator, the source map (by absolute path and checksums,
+    so a later check reads this map or none), the raster, the configs and the geometry's
+    quality; the start, the map kind and (when asked to close gaps) the gaps closed."""
+    from .usd.metadata import source_fingerprint
+
     recorded = source_fingerprint(source, record_source_as) if source else {"source_map": ""}
     metadata = {
         "generator": f"roboracer-arena {__version__}",
@@ -206,28 +239,21 @@ def build_environment(
     if pose is not None:
         metadata["start"] = list(pose)
     metadata["map_kind"] = geo.kind
-    gaps = [g.to_json_dict() for g in geo.closed_gaps]
-    if close_gaps_m is not None:
-        metadata["closed_gaps"] = json.dumps(gaps)
+    if closed_gaps is not None:
+        metadata["closed_gaps"] = json.dumps(closed_gaps)
     if geo.kind == "open" and geo.start_pose is not None:
         metadata["start"] = list(geo.start_pose)
         metadata["unknown_cells"] = unknown
         if geo.open_reason:
             metadata["open_reason"] = geo.open_reason
-    car_pose = None
-    if car:
-        from .usd.vehicle import grid_start_pose
+    return metadata
 
-        car_pose = grid_start_pose(geo, cfg, source)
-        metadata["car_pose"] = list(car_pose)
-    written = write_stage(out, meshes, cfg, metadata, car_pose)
 
+def _build_report(
+    source: str, out: Path, occ: Any, geo: Any, written: Any, timings: dict[str, float], gaps: list[dict[str, Any]]
+) -> BuildReport:
+    """The report of a build that wrote ``out``."""
     h, w = occ.data.shape
-    timings = {"load": t1 - t0, "geometry": t2 - t1}
-    timings.update({f"geometry.{k}": float(v) for k, v in dict(getattr(geo, "timings", {}) or {}).items()})
-    timings["usd_author"] = (t3 - t2) + written.seconds_author  # mesh records + stage in memory
-    timings["usd_write"] = written.seconds_write
-    timings["total"] = timings["load"] + timings["geometry"] + timings["usd_author"] + timings["usd_write"]
     return BuildReport(
         source=source,
         output=str(out),

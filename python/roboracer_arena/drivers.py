@@ -16,7 +16,8 @@ own track). :func:`drive_laps` drives whole laps and reports lap times and conta
 from __future__ import annotations
 
 import copy
-from dataclasses import dataclass
+import time
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -319,99 +320,139 @@ def _drive(
     render_size: int,
     progress: bool,
 ) -> DriveResult:
-    import time
-
-    every = max(1, round(env.config.control_rate_hz / video_fps))
-    frames: list[np.ndarray] = []
-    view = None
-    if video:
-        from .render.drive_view import DriveView, drive_subtitle
-
-        view = DriveView(base_env.tracks[0], base_env.config.sim, subtitle=drive_subtitle(laps), map_px=render_size)
-    lap_times: list[float] = []
-    steps = 0
-
-    def speed_now() -> float:
-        state, f = base_env.simulator_state
-        row = state[0]
-        return float(row[f["speed"]]) if "speed" in f else float(np.hypot(row[f["vx"]], row[f["vy"]]))
-
-    def add_frame() -> None:
-        from .render.drive_view import HudState
-
-        assert view is not None
-        state, f = base_env.simulator_state
-        last = lap_times[-1] - (lap_times[-2] if len(lap_times) > 1 else 0.0) if lap_times else None
-        hud = HudState(steps * dt, speed_now(), len(lap_times), laps, last)
-        frames.append(view.frame(state, f, base_env.simulator_scans, hud))
-
-    bar = None
-    if progress:
-        from tqdm import tqdm
-
-        # Distance as the bar; simulated time and the car's speed (m/s) beside it. No
-        # tqdm rate: it would be metres per wall-clock second, not the car's speed.
-        bar = tqdm(
-            total=round(laps * length, 1),
-            desc=f"driving {env.tracks[0].name}",
-            leave=False,
-            bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} m{postfix}",  # postfix: ", sim ..."
-        )
+    """Step ``env`` with ``driver`` until ``laps`` laps, the end of the episode or ``limit``
+    simulated seconds; film it into ``video`` and show a bar when asked."""
+    log = _DriveLog(laps, length, dt)
+    film = _Film(env, base_env, laps, video_fps, render_size) if video else None
+    bar = _progress_bar(env, laps, length) if progress else None
     t0 = time.perf_counter()
     obs, info = env.reset(seed=0, options={"track_id": 0})
-    if video:
-        add_frame()
-    contacts, vmax, collided = 0, 0.0, False
-    contact_at: list[float] | None = None
-    width_at_contact: float | None = None
+    if film is not None:
+        film.add(log)
     state_speed = env.odometry_index.get("speed", env.odometry_index.get("vx"))
-    while steps * dt < limit:
+    while log.steps * dt < limit:
         obs, _, terminated, truncated, info = env.step(driver.act(obs))
-        steps += 1
-        progressed = float(np.min(info["progress"]))
-        while len(lap_times) < laps and progressed >= (len(lap_times) + 1) * length:
-            lap_times.append(round(steps * dt, 3))
-        contact = bool(np.any(info["contact_wall"]) or np.any(info["contact_vehicle"]))
-        contacts += contact
-        if contact and not collided:
-            state, f = env.simulator_state
-            x, y = float(state[0, f["x"]]), float(state[0, f["y"]])
-            contact_at = [round(x, 3), round(y, 3)]
-            width_at_contact = round(env.tracks[0].corridor_width_near(x, y), 3)
-        collided = collided or contact
-        if state_speed is not None:
-            vmax = max(vmax, float(np.max(np.abs(env.odometry_raw(obs)[:, state_speed]))))
+        log.record(env, obs, info, state_speed)
         if bar is not None:
-            bar.set_postfix_str(f"sim {steps * dt:.1f} s, {speed_now():.2f} m/s", refresh=False)
-            bar.update(round(min(progressed, laps * length), 1) - bar.n)
-        if video and steps % every == 0:
-            add_frame()
-        if terminated or truncated or len(lap_times) >= laps:
+            bar.set_postfix_str(f"sim {log.steps * dt:.1f} s, {_speed_now(base_env):.2f} m/s", refresh=False)
+            bar.update(round(min(log.progressed, laps * length), 1) - bar.n)
+        if film is not None and log.steps % film.every == 0:
+            film.add(log)
+        if terminated or truncated or len(log.lap_times) >= laps:
             break
     if bar is not None:
         bar.refresh()  # a fast drive can end within tqdm's refresh interval: show the final state
         bar.close()
     out = None
-    if video:
+    if film is not None:
+        film.add(log)
+        out = film.write(video)
+    env.close()
+    return log.result(env, info, round(time.perf_counter() - t0, 3), out)
+
+
+def _speed_now(base_env: Any) -> float:
+    """The first car's speed (m/s) from the env's simulator state."""
+    state, f = base_env.simulator_state
+    row = state[0]
+    return float(row[f["speed"]]) if "speed" in f else float(np.hypot(row[f["vx"]], row[f["vy"]]))
+
+
+def _progress_bar(env: Any, laps: int, length: float) -> Any:
+    """A tqdm bar of the distance driven, with the simulated time and the car's speed (m/s)
+    beside it. No tqdm rate: it would be metres per wall-clock second, not the car's speed."""
+    from tqdm import tqdm
+
+    return tqdm(
+        total=round(laps * length, 1),
+        desc=f"driving {env.tracks[0].name}",
+        leave=False,
+        bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.1f} m{postfix}",  # postfix: ", sim ..."
+    )
+
+
+@dataclass
+class _DriveLog:
+    """What a drive has seen so far: its steps, lap times, contacts and top speed."""
+
+    laps: int
+    length: float
+    dt: float
+    steps: int = 0
+    progressed: float = 0.0
+    lap_times: list[float] = field(default_factory=list)
+    contacts: int = 0
+    vmax: float = 0.0
+    collided: bool = False
+    contact_at: list[float] | None = None
+    width_at_contact: float | None = None
+
+    def record(self, env: Any, obs: Any, info: dict[str, Any], state_speed: int | None) -> None:
+        """Take in one step's observation and info."""
+        self.steps += 1
+        self.progressed = float(np.min(info["progress"]))
+        while len(self.lap_times) < self.laps and self.progressed >= (len(self.lap_times) + 1) * self.length:
+            self.lap_times.append(round(self.steps * self.dt, 3))
+        contact = bool(np.any(info["contact_wall"]) or np.any(info["contact_vehicle"]))
+        self.contacts += contact
+        if contact and not self.collided:
+            state, f = env.simulator_state
+            x, y = float(state[0, f["x"]]), float(state[0, f["y"]])
+            self.contact_at = [round(x, 3), round(y, 3)]
+            self.width_at_contact = round(env.tracks[0].corridor_width_near(x, y), 3)
+        self.collided = self.collided or contact
+        if state_speed is not None:
+            self.vmax = max(self.vmax, float(np.max(np.abs(env.odometry_raw(obs)[:, state_speed]))))
+
+    def last_lap(self) -> float | None:
+        """The time of the last completed lap (s), or None before the first."""
+        t = self.lap_times
+        return t[-1] - (t[-2] if len(t) > 1 else 0.0) if t else None
+
+    def result(self, env: Any, info: dict[str, Any], wall_time: float, video: str | None) -> DriveResult:
+        """The drive's result, ``info`` being the last step's."""
+        return DriveResult(
+            track=env.tracks[0].name,
+            track_length=round(self.length, 3),
+            laps_requested=self.laps,
+            laps_completed=len(self.lap_times),
+            lap_times=[round(b - a, 3) for a, b in zip([0.0, *self.lap_times[:-1]], self.lap_times)],
+            collided=self.collided,
+            contact_steps=self.contacts,
+            sim_time=round(self.steps * self.dt, 3),
+            distance=round(float(np.min(info["progress"])), 3),
+            max_speed=round(self.vmax, 3),
+            wall_time=wall_time,
+            video=video,
+            contact_at=self.contact_at,
+            corridor_width_at_contact=self.width_at_contact,
+            vehicle_width=env.config.sim.vehicle.chassis_width,
+        )
+
+
+class _Film:
+    """The drive's video: a frame every ``every`` steps, framed as a preview with a HUD."""
+
+    def __init__(self, env: Any, base_env: Any, laps: int, video_fps: float, render_size: int) -> None:
+        from .render.drive_view import DriveView, drive_subtitle
+
+        self.env, self.base_env, self.laps = env, base_env, laps
+        self.every = max(1, round(env.config.control_rate_hz / video_fps))
+        self.view = DriveView(
+            base_env.tracks[0], base_env.config.sim, subtitle=drive_subtitle(laps), map_px=render_size
+        )
+        self.frames: list[np.ndarray] = []
+
+    def add(self, log: _DriveLog) -> None:
+        """One frame of the car's state now, with the drive's HUD."""
+        from .render.drive_view import HudState
+
+        state, f = self.base_env.simulator_state
+        hud = HudState(log.steps * log.dt, _speed_now(self.base_env), len(log.lap_times), self.laps, log.last_lap())
+        self.frames.append(self.view.frame(state, f, self.base_env.simulator_scans, hud))
+
+    def write(self, video: Any) -> str:
+        """Write the frames to ``video``; returns its path."""
         from .render.video import write_video
 
-        add_frame()
-        out = str(write_video(frames, video, fps=env.config.control_rate_hz / every))
-    env.close()
-    return DriveResult(
-        track=env.tracks[0].name,
-        track_length=round(length, 3),
-        laps_requested=laps,
-        laps_completed=len(lap_times),
-        lap_times=[round(b - a, 3) for a, b in zip([0.0, *lap_times[:-1]], lap_times)],
-        collided=collided,
-        contact_steps=contacts,
-        sim_time=round(steps * dt, 3),
-        distance=round(float(np.min(info["progress"])), 3),
-        max_speed=round(vmax, 3),
-        wall_time=round(time.perf_counter() - t0, 3),
-        video=out,
-        contact_at=contact_at,
-        corridor_width_at_contact=width_at_contact,
-        vehicle_width=env.config.sim.vehicle.chassis_width,
-    )
+        return str(write_video(self.frames, video, fps=self.env.config.control_rate_hz / self.every))

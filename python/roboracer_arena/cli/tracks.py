@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import Any
 
 from ..builder import build_environment
 from ..catalog import Catalog, default_tracks_dir, load_catalog
@@ -75,6 +76,21 @@ def register(sub) -> None:
     a.add_argument("-o", "--out", type=Path, required=True, metavar="OUT.usdc", help="output USD file")
     _common(a)
     a.set_defaults(func=run_build)
+    _add_verify(t)
+    _add_generate(t)
+    a = t.add_parser("sheet", help="contact sheet of every track")
+    a.add_argument(
+        "-o", "--out", type=Path, required=True, metavar="sheet.png", help="picture to write (.png, .jpg or .jpeg)"
+    )
+    a.add_argument("--columns", type=int, default=12, help="thumbnails per row (default 12)")
+    _common(a)
+    _subset(a)
+    a.set_defaults(func=run_sheet)
+    _add_catalog(t)
+
+
+def _add_verify(t: Any) -> None:
+    """``tracks verify``: laps, USD, PhysX and raceline checks of catalog tracks."""
     a = t.add_parser("verify", help="verify tracks end to end; prints a table and a summary")
     _common(a)
     _subset(a)
@@ -98,6 +114,10 @@ def register(sub) -> None:
     )
     _ray_flag(a)
     a.set_defaults(func=run_verify)
+
+
+def _add_generate(t: Any) -> None:
+    """``tracks generate``: a library of tracks from a spec sweep file."""
     a = t.add_parser(
         "generate",
         help="generate a library of tracks from a sweep file (locally or on Ray)",
@@ -116,14 +136,10 @@ def register(sub) -> None:
     _ray_flag(a)
     add_json_flag(a)
     a.set_defaults(func=run_generate, output_dirs=("out",))
-    a = t.add_parser("sheet", help="contact sheet of every track")
-    a.add_argument(
-        "-o", "--out", type=Path, required=True, metavar="sheet.png", help="picture to write (.png, .jpg or .jpeg)"
-    )
-    a.add_argument("--columns", type=int, default=12, help="thumbnails per row (default 12)")
-    _common(a)
-    _subset(a)
-    a.set_defaults(func=run_sheet)
+
+
+def _add_catalog(t: Any) -> None:
+    """``tracks catalog``: rebuild (or rejudge) ``tracks/catalog.json``."""
     a = t.add_parser("catalog", help="rebuild tracks/catalog.json from tracks/ and the sources")
     _common(a)
     a.add_argument(

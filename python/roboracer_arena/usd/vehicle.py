@@ -197,6 +197,18 @@ def physx_params(v: VehicleConfig, gravity: float = GRAVITY) -> PhysxCarParams:
     )
 
 
+@dataclass(frozen=True)
+class _CarParts:
+    """The shared parts every wheel of the car points at (prims under ``PARTS``)."""
+
+    chassis_group: Any
+    query_group: Any
+    wheel: Any
+    tyres: dict[str, Any]
+    suspension: Any
+    drive: Any
+
+
 def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float]) -> str:
     """Author the car at ``pose`` (x, y, yaw on the floor); returns the car's prim path.
     Raises :class:`ConfigError` without the ``physx`` extra (the vehicle schemas)."""
@@ -208,12 +220,25 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
 
     v = sim.vehicle
     par = physx_params(v, float(sim.physics.gravity))
+    _vehicle_context(stage, P)
+    parts = _car_parts(stage, P, v, par)
+    _car_body(stage, P, v, par, pose, parts)
+    _chassis(stage, v, parts)
+    _wheels(stage, P, v, par, parts)
+    return CAR
+
+
+def _vehicle_context(stage: Usd.Stage, P: Any) -> None:
+    """The physics scene's vehicle context: velocity-change updates, z up, x forward."""
     scene = stage.GetPrimAtPath("/World/PhysicsScene")
     ctx: Any = P.PhysxVehicleContextAPI.Apply(scene)
     ctx.CreateUpdateModeAttr("velocityChange")
     ctx.CreateVerticalAxisAttr("posZ")
     ctx.CreateLongitudinalAxisAttr("posX")
 
+
+def _car_parts(stage: Usd.Stage, P: Any, v: VehicleConfig, par: PhysxCarParams) -> _CarParts:
+    """Collision groups, tyre friction, wheel, tyres, suspension and drive, under ``PARTS``."""
     UsdGeom.Scope.Define(stage, PARTS)
     # Suspension raycasts must not see the car's own chassis.
     chassis_group = UsdPhysics.CollisionGroup.Define(stage, f"{PARTS}/ChassisGroup")
@@ -253,7 +278,13 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
 
     drive: Any = P.PhysxVehicleDriveBasicAPI.Apply(UsdGeom.Scope.Define(stage, f"{PARTS}/Drive").GetPrim())
     drive.CreatePeakTorqueAttr(float(par.peak_torque))
+    return _CarParts(chassis_group, query_group, wheel, tyres, susp, drive)
 
+
+def _car_body(
+    stage: Usd.Stage, P: Any, v: VehicleConfig, par: PhysxCarParams, pose: tuple[float, float, float], parts: _CarParts
+) -> None:
+    """The car's rigid body at ``pose`` with its vehicle, controller, brakes, steering and differential."""
     # The body frame at the centre of mass, `com_height` above the floor.
     x, y, yaw = pose
     car = UsdGeom.Xform.Define(stage, CAR)
@@ -276,7 +307,7 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
 
     veh: Any = P.PhysxVehicleAPI.Apply(prim)
     veh.CreateVehicleEnabledAttr(True)
-    veh.CreateDriveRel().AddTarget(drive.GetPrim().GetPath())
+    veh.CreateDriveRel().AddTarget(parts.drive.GetPrim().GetPath())
     veh.CreateSuspensionLineQueryTypeAttr("raycast")
     veh.CreateSubStepThresholdLongitudinalSpeedAttr(2.0)
     veh.CreateLowForwardSpeedSubStepCountAttr(VEHICLE_SUBSTEPS)
@@ -303,14 +334,20 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
     diff.CreateTorqueRatiosAttr([0.25, 0.25, 0.25, 0.25])
     diff.CreateAverageWheelSpeedRatiosAttr([0.25, 0.25, 0.25, 0.25])
 
+
+def _chassis(stage: Usd.Stage, v: VehicleConfig, parts: _CarParts) -> None:
+    """The chassis box, a collider the wheels' suspension raycasts do not see."""
     box = UsdGeom.Cube.Define(stage, f"{CAR}/Chassis")
     box.CreateSizeAttr(1.0)
     bx = UsdGeom.Xformable(box)
     bx.AddTranslateOp().Set(Gf.Vec3d(0.0, 0.0, v.chassis_clearance + v.chassis_height / 2.0 - v.com_height))
     bx.AddScaleOp().Set(Gf.Vec3f(v.chassis_length, v.chassis_width, v.chassis_height))
     UsdPhysics.CollisionAPI.Apply(box.GetPrim())
-    chassis_group.GetCollidersCollectionAPI().CreateIncludesRel().AddTarget(box.GetPath())
+    parts.chassis_group.GetCollidersCollectionAPI().CreateIncludesRel().AddTarget(box.GetPath())
 
+
+def _wheels(stage: Usd.Stage, P: Any, v: VehicleConfig, par: PhysxCarParams, parts: _CarParts) -> None:
+    """The four wheel attachments, each at rest on the floor under its static sag."""
     # The suspension frame is the wheel centre at full compression; at rest the spring is
     # compressed by the static sag, so the wheel centre sits at its radius above the floor.
     half = v.track_width / 2.0
@@ -322,10 +359,10 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
         w = UsdGeom.Xform.Define(stage, f"{CAR}/{name}")
         att: Any = P.PhysxVehicleWheelAttachmentAPI.Apply(w.GetPrim())
         att.CreateIndexAttr(k)
-        att.CreateWheelRel().AddTarget(wheel.GetPrim().GetPath())
-        att.CreateTireRel().AddTarget(tyres["FrontTire" if k < 2 else "RearTire"])
-        att.CreateSuspensionRel().AddTarget(susp.GetPrim().GetPath())
-        att.CreateCollisionGroupRel().AddTarget(query_group.GetPath())
+        att.CreateWheelRel().AddTarget(parts.wheel.GetPrim().GetPath())
+        att.CreateTireRel().AddTarget(parts.tyres["FrontTire" if k < 2 else "RearTire"])
+        att.CreateSuspensionRel().AddTarget(parts.suspension.GetPrim().GetPath())
+        att.CreateCollisionGroupRel().AddTarget(parts.query_group.GetPath())
         att.CreateSuspensionTravelDirectionAttr(Gf.Vec3f(0.0, 0.0, -1.0))
         att.CreateSuspensionFramePositionAttr(Gf.Vec3f(wx, wy, frame_z))
         att.CreateSuspensionFrameOrientationAttr(Gf.Quatf(1.0, 0.0, 0.0, 0.0))
@@ -335,7 +372,6 @@ def author_car(stage: Usd.Stage, sim: SimConfig, pose: tuple[float, float, float
         comp.CreateSuspensionForceAppPointAttr([patch])
         comp.CreateTireForceAppPointAttr([patch])
         w.AddTranslateOp().Set(Gf.Vec3d(wx, wy, frame_z - (v.suspension_travel - sag)))
-    return CAR
 
 
 def replace_car(stage_path: str | Path, sim: SimConfig) -> None:
