@@ -7,7 +7,7 @@ An edge ``a -> b`` is a path in ``a``'s non-test code that names ``b``: every ``
 renames, ``pub use`` re-exports) and every path in a body (``crate::x::f()``,
 ``super::y::Z``, or ``m::f()`` through a ``use``-imported module ``m``). A name that a
 module re-exports (``pub use child::Name``, ``pub use child::*``) resolves to the module
-that defines it, so importing ``crate::sim::Track`` depends on ``sim::track``, not on
+that defines it, so importing ``crate::sim::Track`` depends on ``sim::shared_track``, not on
 ``sim``. Test code (``#[cfg(test)]`` items, modules declared under it, ``*tests.rs``
 files) is left out: tests may reach across layers. Comments and string literals are
 blanked first, so a path in a doc comment or a message is not an edge.

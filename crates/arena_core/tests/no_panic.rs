@@ -211,7 +211,7 @@ fn geometry_building_blocks_never_panic() {
         if arena_core::geometry::polyline_length(&pts, true) / s < 1e6 {
             no_panic(("resample", &pts, s), || smooth::resample_closed(&pts, s));
             no_panic(("tube", &pts, s), || {
-                tube::sweep_closed_tube(&pts, s, 0.0, 3 + b % 10)
+                tube::closed_tube_mesh(&pts, s, 0.0, 3 + b % 10)
             });
         }
         no_panic(("polyline", &pts, a), || {

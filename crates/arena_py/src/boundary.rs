@@ -1,6 +1,6 @@
 //! The one door between Python and the core. Every `_core` entry point runs its core call
-//! through [`call`] (or [`call_budgeted`] for the generator's time-bounded work, run on a
-//! worker thread): the GIL is released, an unwinding panic is caught and becomes a typed
+//! through [`call`] (or [`call_with_deadline`] for the generator's time-bounded work, run
+//! on a worker thread): the GIL is released, an unwinding panic is caught and becomes a typed
 //! `InternalError` (an `ArenaError` subclass) with a one-line message, and every core error
 //! maps to its `roboracer_arena.errors` class. A `PanicException` reaching Python is a bug.
 
@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, Once};
 use std::time::Duration;
 
-use arena_core::generate::budget::Budget;
+use arena_core::generate::deadline::Deadline;
 use pyo3::prelude::*;
 
 use crate::errors::{to_py, InternalError};
@@ -94,22 +94,22 @@ where
     call(py, what, move || Ok(f()))
 }
 
-/// How often the waiting thread looks for Ctrl-C in [`call_budgeted`] (Python signal
-/// handlers only run on the main thread, so the core runs on a worker while it polls).
+/// How often the waiting thread looks for Ctrl-C in [`call_with_deadline`] (Python
+/// signal handlers only run on the main thread, so the core runs on a worker while it polls).
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
-/// Grace (s) past the deadline before [`call_budgeted`] stops waiting for a worker that is
-/// inside one long step (rasterising or validating a very large map).
+/// Grace (s) past the deadline before [`call_with_deadline`] stops waiting for a worker
+/// that is inside one long step (rasterising or validating a very large map).
 const DEADLINE_GRACE_S: f64 = 1.0;
 
 /// [`call`] for time-bounded generator work: `work` runs on a worker thread with a
-/// [`Budget`] of `timeout` seconds (checked by the core; `None` = unbounded) while this
-/// thread polls Python signals. On KeyboardInterrupt the budget's cancellation flag is set
-/// and the signal's exception raised at once; once the deadline (plus a short grace) has
+/// [`Deadline`] of `timeout` seconds (checked by the core; `None` = unbounded) while this
+/// thread polls Python signals. On KeyboardInterrupt the deadline's cancellation flag is
+/// set and the signal's exception raised at once; once the deadline (plus a short grace) has
 /// passed, `Ok(None)` is returned at once. Either way the worker is left to stop at its
-/// next budget check, its result discarded, so one long step cannot hold the caller.
+/// next deadline check, its result discarded, so one long step cannot hold the caller.
 /// Errors and panics map as in [`call`].
-pub fn call_budgeted<T, F>(
+pub fn call_with_deadline<T, F>(
     py: Python<'_>,
     what: &'static str,
     timeout: Option<f64>,
@@ -117,20 +117,20 @@ pub fn call_budgeted<T, F>(
 ) -> PyResult<Option<T>>
 where
     T: Send + 'static,
-    F: FnOnce(&Budget) -> arena_core::Result<T> + Send + 'static,
+    F: FnOnce(&Deadline) -> arena_core::Result<T> + Send + 'static,
 {
     let flag = Arc::new(AtomicBool::new(false));
     let cancel = flag.clone();
-    let budget = call(py, what, move || {
-        Budget::with_timeout(timeout, Some(cancel))
+    let deadline = call(py, what, move || {
+        Deadline::with_timeout(timeout, Some(cancel))
     })?;
-    let hard_stop = Budget::new(timeout.map(|t| t + DEADLINE_GRACE_S), None);
+    let hard_stop = Deadline::new(timeout.map(|t| t + DEADLINE_GRACE_S), None);
     // The worker's result slot: None while running.
     type Slot<T> = (Mutex<Option<Caught<T>>>, Condvar);
     let slot: Arc<Slot<T>> = Arc::new((Mutex::new(None), Condvar::new()));
     let worker_slot = slot.clone();
     std::thread::spawn(move || {
-        let out = caught(what, || work(&budget));
+        let out = caught(what, || work(&deadline));
         let (lock, cv) = &*worker_slot;
         *lock.lock().unwrap_or_else(|e| e.into_inner()) = Some(out);
         cv.notify_all();
@@ -160,8 +160,8 @@ where
     }
 }
 
-/// Panics inside [`call`] (or, with `budgeted`, on [`call_budgeted`]'s worker thread) on
-/// purpose, so a test can prove that a core panic reaches Python as `InternalError`
+/// Panics inside [`call`] (or, with `budgeted`, on [`call_with_deadline`]'s worker thread)
+/// on purpose, so a test can prove that a core panic reaches Python as `InternalError`
 /// (never `PanicException`) and leaves the process running.
 #[pyfunction]
 #[pyo3(signature = (budgeted=false))]
@@ -170,7 +170,7 @@ fn _boundary_self_test(py: Python<'_>, budgeted: bool) -> PyResult<()> {
         panic!("deliberate panic for the boundary self-test")
     }
     if budgeted {
-        call_budgeted(py, "_boundary_self_test", Some(60.0), |_| boom()).map(|_| ())
+        call_with_deadline(py, "_boundary_self_test", Some(60.0), |_| boom()).map(|_| ())
     } else {
         call(py, "_boundary_self_test", boom)
     }

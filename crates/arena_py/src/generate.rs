@@ -1,8 +1,8 @@
 //! Bindings for `arena_core::generate` (requirements → track): the screen, the derived
-//! geometry and the lattice/ring/polygon constructors with their time budget. The
+//! geometry and the lattice/ring/polygon constructors with their deadline. The
 //! rasteriser is in `grid.rs`, the raster validator in `track.rs`. The constructors run
-//! through `boundary::call_budgeted` (worker thread, Ctrl-C, deadline), the rest through
-//! `boundary::call`.
+//! through `boundary::call_with_deadline` (worker thread, Ctrl-C, deadline), the rest
+//! through `boundary::call`.
 
 use numpy::PyArray2;
 use pyo3::prelude::*;
@@ -10,8 +10,8 @@ use pyo3::types::PyDict;
 
 use crate::boundary;
 use crate::convert::{from_py, grid_to_py, line_to_py, to_dict, to_py, MapTuple};
-use arena_core::generate::budget::Failure;
 use arena_core::generate::construct::{self, Outcome};
+use arena_core::generate::deadline::Failure;
 use arena_core::generate::nearest::{self, NearestReport};
 use arena_core::generate::spec::{ConstructorConfig, Spec};
 use arena_core::ArenaError;
@@ -83,7 +83,7 @@ fn generate_lattice<'py>(
     Option<Bound<'py, PyArray2<f64>>>,
 )> {
     let (spec, cfg) = parse(py, spec, config)?;
-    let Some(out) = boundary::call_budgeted(py, "generate_lattice", timeout, move |b| {
+    let Some(out) = boundary::call_with_deadline(py, "generate_lattice", timeout, move |b| {
         construct::generate(&spec, &cfg, seed, b)
     })?
     else {
@@ -140,7 +140,7 @@ fn construct_lattice<'py>(
     timeout: Option<f64>,
 ) -> PyResult<(Bound<'py, PyDict>, Option<Line<'py>>)> {
     let (spec, cfg) = parse(py, spec, config)?;
-    let Some(out) = boundary::call_budgeted(py, "construct_lattice", timeout, move |b| {
+    let Some(out) = boundary::call_with_deadline(py, "construct_lattice", timeout, move |b| {
         Ok(construct::first_candidate(&spec, &cfg, seed, b))
     })?
     else {
@@ -175,7 +175,7 @@ fn nearest_specs<'py>(
     timeout: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (spec, cfg) = parse(py, spec, config)?;
-    let out = boundary::call_budgeted(py, "nearest_specs", Some(timeout), move |b| {
+    let out = boundary::call_with_deadline(py, "nearest_specs", Some(timeout), move |b| {
         Ok(nearest::nearest_specs(&spec, &cfg, seed, b))
     })?;
     to_dict(py, &out.unwrap_or_else(NearestReport::abandoned))

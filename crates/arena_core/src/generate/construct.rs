@@ -7,13 +7,14 @@
 //! from the polygon constructor (`polygon`, short laps) when the lap can fit a convex
 //! loop in the hall, the rest from the lattice:
 //! small halls, where the lattice's one-pitch loop cannot fit, get the rounded rectangle
-//! of free side lengths early, and large ones keep half the budget for the lattice (two
+//! of free side lengths early, and large ones keep half the candidates for the lattice (two
 //! thirds when the lap is too long for the polygon).
-//! The loop stops early when its [`Budget`] (deadline, cancellation flag) runs out.
+//! The loop stops early when its [`Deadline`] passes or its cancellation flag is set.
 
-use super::budget::{check_limits, Budget, Stop};
+use super::deadline::{Deadline, Stop};
 use super::lattice::{grow, Target};
 use super::polygon::polygon_candidate;
+use super::raster_budget::check_raster_budget;
 use super::ring::ring_candidate;
 use super::rounding::{pitch_for_length, rounded_centreline};
 use super::screen::{screen, ScreenResult};
@@ -54,7 +55,7 @@ pub enum Outcome {
     Failed {
         tried: u32,
         reasons: BTreeMap<String, u32>,
-        /// Set when the budget stopped the loop before the candidate cap.
+        /// Set when the deadline stopped the loop before the candidate cap.
         stopped: Option<Stop>,
     },
 }
@@ -149,7 +150,7 @@ pub fn construct(
     cfg: &ConstructorConfig,
     seed: u64,
     k: u32,
-    budget: &Budget,
+    deadline: &Deadline,
 ) -> Result<Candidate, &'static str> {
     let d = derive(spec, cfg);
     // Without a requested order the ring and the polygon place the features in a drawn
@@ -173,7 +174,9 @@ pub fn construct(
             let order = ordered(&mut rng);
             polygon_candidate(spec, &d, &order, &mut rng)?
         }
-        Source::Lattice(j) => lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, budget)?,
+        Source::Lattice(j) => {
+            lattice_line(spec, cfg, &d, &mut candidate_rng(seed, j), j, deadline)?
+        }
     };
     finish(line, pitch, spec, cfg, &d)
 }
@@ -202,7 +205,7 @@ fn lattice_line(
     d: &Derived,
     rng: &mut ChaCha8Rng,
     k: u32,
-    budget: &Budget,
+    deadline: &Deadline,
 ) -> Result<(Vec<[f64; 2]>, f64), &'static str> {
     let options = perimeter_options(spec, d);
     if options.is_empty() {
@@ -249,8 +252,8 @@ fn lattice_line(
         max_run,
         order: boundary_order(spec),
     };
-    let (_, b) =
-        grow(cols, rows, &target, rng, budget).ok_or("lattice growth did not reach the target")?;
+    let (_, b) = grow(cols, rows, &target, rng, deadline)
+        .ok_or("lattice growth did not reach the target")?;
     // Pick the sweeper corners among the eligible ones.
     let mut slots = b.sweeper_slots.clone();
     let mut is_sweeper = vec![false; b.corners.len()];
@@ -347,18 +350,18 @@ pub fn first_candidate(
     spec: &Spec,
     cfg: &ConstructorConfig,
     seed: u64,
-    budget: &Budget,
+    deadline: &Deadline,
 ) -> Result<(Candidate, u32), (u32, BTreeMap<String, u32>)> {
     let mut reasons: BTreeMap<String, u32> = BTreeMap::new();
-    if let Err(e) = check_limits(spec, cfg) {
+    if let Err(e) = check_raster_budget(spec, cfg) {
         reasons.insert(e.to_string(), 1);
         return Err((0, reasons));
     }
     for k in 0..cfg.max_candidates {
-        if budget.stopped().is_some() {
+        if deadline.stopped().is_some() {
             return Err((k, reasons));
         }
-        match construct(spec, cfg, seed, k, budget) {
+        match construct(spec, cfg, seed, k, deadline) {
             Ok(c) => return Ok((c, k + 1)),
             Err(why) => *reasons.entry(why.to_string()).or_default() += 1,
         }
@@ -368,28 +371,28 @@ pub fn first_candidate(
 
 /// Algorithm 1: screen, then at most `max_candidates` candidates, each rasterised and
 /// judged by the raster validator alone. `Err` only for a spec beyond the generator's
-/// size limits ([`check_limits`]).
+/// size limits ([`check_raster_budget`]).
 pub fn generate(
     spec: &Spec,
     cfg: &ConstructorConfig,
     seed: u64,
-    budget: &Budget,
+    deadline: &Deadline,
 ) -> crate::Result<Outcome> {
-    check_limits(spec, cfg)?;
+    check_raster_budget(spec, cfg)?;
     let sr = screen(spec, cfg);
     if !sr.passed {
         return Ok(Outcome::Rejected(sr));
     }
     let mut reasons: BTreeMap<String, u32> = BTreeMap::new();
     for k in 0..cfg.max_candidates {
-        if let Some(stop) = budget.stopped() {
+        if let Some(stop) = deadline.stopped() {
             return Ok(Outcome::Failed {
                 tried: k,
                 reasons,
                 stopped: Some(stop),
             });
         }
-        let c = match construct(spec, cfg, seed, k, budget) {
+        let c = match construct(spec, cfg, seed, k, deadline) {
             Ok(c) => c,
             Err(why) => {
                 *reasons.entry(why.to_string()).or_default() += 1;
@@ -430,7 +433,8 @@ mod tests {
     use super::*;
 
     fn gen(s: &Spec, seed: u64) -> Outcome {
-        generate(s, &ConstructorConfig::default(), seed, &Budget::default()).expect("within limits")
+        generate(s, &ConstructorConfig::default(), seed, &Deadline::default())
+            .expect("within limits")
     }
 
     fn spec(l: f64, h: u32, c: u32, sw: u32) -> Spec {
@@ -487,7 +491,9 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        assert!(first_candidate(&s, &ConstructorConfig::default(), 0, &Budget::default()).is_err());
+        assert!(
+            first_candidate(&s, &ConstructorConfig::default(), 0, &Deadline::default()).is_err()
+        );
     }
 
     #[test]
@@ -498,8 +504,9 @@ mod tests {
             (crate::generate::spec::Direction::Clockwise, -1.0),
         ] {
             s.direction = dir;
-            let (c, _) = first_candidate(&s, &ConstructorConfig::default(), 3, &Budget::default())
-                .expect("a candidate");
+            let (c, _) =
+                first_candidate(&s, &ConstructorConfig::default(), 3, &Deadline::default())
+                    .expect("a candidate");
             assert_eq!(
                 crate::geometry::signed_area(&c.centreline).signum(),
                 sign,
@@ -543,7 +550,7 @@ mod tests {
         let mut ok = 0;
         let mut why = BTreeMap::new();
         for k in (1..300).step_by(3) {
-            let r = construct(&s, &cfg, 5, k, &Budget::default());
+            let r = construct(&s, &cfg, 5, k, &Deadline::default());
             if let Err(e) = &r {
                 *why.entry(*e).or_insert(0) += 1;
             }
@@ -614,14 +621,14 @@ mod tests {
         let cfg = ConstructorConfig::default();
         let s = small(1e12, 1.5, 1e12, 1e12, 0, 0, 0);
         assert!(matches!(
-            generate(&s, &cfg, 0, &Budget::default()),
+            generate(&s, &cfg, 0, &Deadline::default()),
             Err(crate::ArenaError::Spec(_))
         ));
         assert!(perimeter_options(&s, &derive(&s, &cfg)).len() <= MAX_PERIMETER_OPTIONS as usize);
         // A 2 km lap in a 100 m hall stops on its deadline.
         let s = small(2000.0, 1.5, 100.0, 100.0, 0, 0, 0);
         let t = std::time::Instant::now();
-        let out = generate(&s, &cfg, 0, &Budget::new(Some(0.5), None)).unwrap();
+        let out = generate(&s, &cfg, 0, &Deadline::new(Some(0.5), None)).unwrap();
         assert!(t.elapsed().as_secs_f64() < 5.0);
         if let Outcome::Failed { stopped, .. } = out {
             assert_eq!(stopped, Some(Stop::Timeout));

@@ -12,7 +12,7 @@
 //! * a lone corner followed one edge later by an opposite-sense lone corner is a chicane;
 //! * a lone corner with ≥ 2 edges on both sides may become a sweeper.
 
-use super::budget::Budget;
+use super::deadline::Deadline;
 use crate::track::features::FeatureKind;
 use rand_chacha::rand_core::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -316,7 +316,7 @@ pub fn grow(
     rows: i32,
     target: &Target,
     rng: &mut ChaCha8Rng,
-    budget: &Budget,
+    deadline: &Deadline,
 ) -> Option<(Polyomino, Boundary)> {
     let mut p = Polyomino::new(cols, rows);
     let (c, r) = (
@@ -326,7 +326,7 @@ pub fn grow(
     p.set(c, r, true);
     let max_steps = cols as usize * rows as usize;
     for _ in 0..max_steps {
-        if budget.stopped().is_some() {
+        if deadline.stopped().is_some() {
             return None;
         }
         let mut options: Vec<((i32, i32), u32)> = Vec::new();
@@ -439,7 +439,7 @@ mod tests {
         let run = |seed| {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             (0..50)
-                .find_map(|_| grow(7, 5, &t, &mut rng, &Budget::default()))
+                .find_map(|_| grow(7, 5, &t, &mut rng, &Deadline::default()))
                 .map(|(p, b)| (p.cells.clone(), b.perimeter))
         };
         let a = run(3).expect("some candidate matches");

@@ -2,11 +2,12 @@
 //! (Eqs. 1–2), the lattice constructor (growth, rounding) and the bounded generate loop
 //! (Algorithm 1).
 
-pub mod budget;
 pub mod construct;
+pub mod deadline;
 pub mod lattice;
 pub mod nearest;
 pub mod polygon;
+pub mod raster_budget;
 pub mod ring;
 pub mod rounding;
 pub mod screen;

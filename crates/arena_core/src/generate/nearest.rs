@@ -18,14 +18,15 @@
 //! sweep builds almost everything, so a long lap in a small hall gets a suggestion even
 //! when its nearer probes are slow to fail. Then the probes run, nearest first, and the
 //! nearest that builds replaces the anchor. Both phases run round-robin over the
-//! directions, so each gets its anchor and then its nearest probes whatever the budget. A probe tries [`PROBE_SEEDS`] seeds, each with a cap of
-//! [`PROBE_CANDIDATES`] candidates. Candidate `k` of a seed never depends on the cap or
-//! on earlier candidates, so a probe accepted at candidate `k` is accepted at `k` again
-//! by a full run with the same seed (800 candidates, any budget that lets it reach `k`).
+//! directions, so each gets its anchor and then its nearest probes whatever the deadline.
+//! A probe tries [`PROBE_SEEDS`] seeds, each with a cap of [`PROBE_CANDIDATES`]
+//! candidates. Candidate `k` of a seed never depends on the cap or on earlier candidates,
+//! so a probe accepted at candidate `k` is accepted at `k` again by a full run with the
+//! same seed (800 candidates, any deadline that lets it reach `k`).
 //! These are constructions found, not proofs: a nearer spec may build with another seed.
 
-use super::budget::Budget;
 use super::construct::{generate, Outcome};
+use super::deadline::Deadline;
 use super::screen::screen;
 use super::spec::{derive, ConstructorConfig, Spec};
 use crate::track::features::FeatureKind;
@@ -67,14 +68,14 @@ pub struct Suggestion {
 #[derive(Debug, Clone, Serialize)]
 pub struct NearestReport {
     pub suggestions: Vec<Suggestion>,
-    /// Probes run (changed specs tried) and whether the budget cut the search short.
+    /// Probes run (changed specs tried) and whether the deadline cut the search short.
     pub probes: u32,
     pub exhausted: bool,
 }
 
 impl NearestReport {
     /// The report when the deadline passed inside the first probe and the caller stopped
-    /// waiting: nothing found, the budget exhausted.
+    /// waiting: nothing found, the deadline passed.
     pub fn abandoned() -> NearestReport {
         NearestReport {
             suggestions: Vec::new(),
@@ -223,7 +224,12 @@ fn anchors(spec: &Spec, cfg: &ConstructorConfig) -> [Option<Spec>; 4] {
 }
 
 /// The first seed (of [`PROBE_SEEDS`] from `seed`) whose capped run accepts `spec`.
-fn builds(spec: &Spec, cfg: &ConstructorConfig, seed: u64, budget: &Budget) -> Option<(u64, u32)> {
+fn builds(
+    spec: &Spec,
+    cfg: &ConstructorConfig,
+    seed: u64,
+    deadline: &Deadline,
+) -> Option<(u64, u32)> {
     if !screen(spec, cfg).passed {
         return None;
     }
@@ -233,11 +239,11 @@ fn builds(spec: &Spec, cfg: &ConstructorConfig, seed: u64, budget: &Budget) -> O
     };
     for i in 0..PROBE_SEEDS {
         let s = seed.wrapping_add(i);
-        match generate(spec, &probe_cfg, s, budget) {
+        match generate(spec, &probe_cfg, s, deadline) {
             Ok(Outcome::Accepted {
                 candidate_index, ..
             }) => return Some((s, candidate_index)),
-            _ if budget.stopped().is_some() => return None,
+            _ if deadline.stopped().is_some() => return None,
             _ => {}
         }
     }
@@ -256,13 +262,13 @@ fn beyond_anchor(field: &str, spec: &Spec, p: &Spec, anchor: Option<&Spec>) -> b
     dist(p) >= dist(a)
 }
 
-/// Search the nearest specs that build (see the module doc). `budget` bounds the whole
+/// Search the nearest specs that build (see the module doc). `deadline` bounds the whole
 /// search; the probes and their order never depend on time, only how far it gets.
 pub fn nearest_specs(
     spec: &Spec,
     cfg: &ConstructorConfig,
     seed: u64,
-    budget: &Budget,
+    deadline: &Deadline,
 ) -> NearestReport {
     let directions: [(&'static str, Vec<Spec>); 4] = [
         ("lap_length_m", lap_probes(spec)),
@@ -278,7 +284,7 @@ pub fn nearest_specs(
     let mut attempt =
         |i: usize, rank: usize, p: &Spec, found: &mut [Option<(usize, Suggestion)>; 4]| {
             probes += 1;
-            if let Some((s, k)) = builds(p, cfg, seed, budget) {
+            if let Some((s, k)) = builds(p, cfg, seed, deadline) {
                 found[i] = Some((
                     rank,
                     Suggestion {
@@ -292,7 +298,7 @@ pub fn nearest_specs(
         };
     for (i, anchor) in anchors.iter().enumerate() {
         if let Some(p) = anchor {
-            if budget.stopped().is_some() {
+            if deadline.stopped().is_some() {
                 break;
             }
             attempt(i, usize::MAX, p, &mut found);
@@ -315,7 +321,7 @@ pub fn nearest_specs(
             if i == 0 && anchors[0].is_some() && p.lap_length_m > spec.lap_length_m {
                 continue;
             }
-            if budget.stopped().is_some() {
+            if deadline.stopped().is_some() {
                 break 'outer;
             }
             attempt(i, r, p, &mut found);
@@ -324,7 +330,7 @@ pub fn nearest_specs(
     NearestReport {
         suggestions: found.into_iter().flatten().map(|(_, g)| g).collect(),
         probes,
-        exhausted: budget.stopped().is_some(),
+        exhausted: deadline.stopped().is_some(),
     }
 }
 
@@ -414,10 +420,10 @@ mod tests {
         // 60 m at w = 0.8 m in 12 × 9 m (fill 0.87): a sweep miss.
         let s = spec(60.0, 0.8, 12.0, 9.0, 0, 0, 0);
         let cfg = ConstructorConfig::default();
-        let r = nearest_specs(&s, &cfg, 0, &Budget::new(Some(60.0), None));
+        let r = nearest_specs(&s, &cfg, 0, &Deadline::new(Some(60.0), None));
         assert!(!r.suggestions.is_empty(), "{r:?}");
         for g in &r.suggestions {
-            match generate(&g.spec, &cfg, g.seed, &Budget::default()).unwrap() {
+            match generate(&g.spec, &cfg, g.seed, &Deadline::default()).unwrap() {
                 Outcome::Accepted {
                     candidate_index, ..
                 } => assert_eq!(candidate_index, g.candidate_index),

@@ -138,8 +138,8 @@ pub fn side_notch_loop(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::budget::Budget;
     use crate::generate::construct::{generate, Outcome};
+    use crate::generate::deadline::Deadline;
     use crate::generate::spec::{centreline_box, derive, ConstructorConfig};
     use crate::geometry::{polyline_length, signed_area};
     use rand_chacha::rand_core::SeedableRng;
@@ -167,7 +167,7 @@ mod tests {
             }
         }
         assert!(built > 0);
-        match generate(&s, &cfg, 1, &Budget::default()).unwrap() {
+        match generate(&s, &cfg, 1, &Deadline::default()).unwrap() {
             Outcome::Accepted { report, .. } => assert!(report.valid),
             other => panic!("{other:?}"),
         }
@@ -179,7 +179,7 @@ mod tests {
         let mut s = spec(110.0, 20.0, 15.0);
         (s.hairpins, s.chicanes) = (1, 1);
         let cfg = ConstructorConfig::default();
-        match generate(&s, &cfg, 0, &Budget::default()).unwrap() {
+        match generate(&s, &cfg, 0, &Deadline::default()).unwrap() {
             Outcome::Accepted { report, .. } => assert!(report.valid),
             other => panic!("{other:?}"),
         }

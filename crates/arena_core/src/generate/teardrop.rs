@@ -221,8 +221,8 @@ mod tests {
         // The sweep's misses (16 × 12 m seed 1, 20 × 15 m seed 0, counter-clockwise), and
         // the clockwise direction: the polygon's loops all need > 20.6 m, so its slots
         // fall through to the teardrop.
-        use crate::generate::budget::Budget;
         use crate::generate::construct::{generate, Outcome};
+        use crate::generate::deadline::Deadline;
         use crate::generate::spec::Direction;
         let cfg = ConstructorConfig::default();
         for (hx, hy, seed, direction) in [
@@ -236,7 +236,7 @@ mod tests {
                 direction,
                 ..spec(1, 1, 0)
             };
-            match generate(&s, &cfg, seed, &Budget::default()).unwrap() {
+            match generate(&s, &cfg, seed, &Deadline::default()).unwrap() {
                 Outcome::Accepted {
                     report,
                     candidate_index,

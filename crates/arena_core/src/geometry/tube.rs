@@ -7,7 +7,7 @@ use super::{dist, Polyline};
 /// Sweep an n-gon cross-section of `radius` along a closed planar path, the tube axis
 /// at height `z`. Outward-facing triangles; `segments` vertices per cross-section.
 /// At corners the section is widened by 1/cos(half turn) so the tube keeps its radius.
-pub fn sweep_closed_tube(path: &[[f64; 2]], radius: f64, z: f64, segments: usize) -> TriMesh {
+pub fn closed_tube_mesh(path: &[[f64; 2]], radius: f64, z: f64, segments: usize) -> TriMesh {
     let n = path.len();
     let s = segments.max(3);
     let mut m = TriMesh::default();
@@ -32,7 +32,7 @@ pub fn sweep_closed_tube(path: &[[f64; 2]], radius: f64, z: f64, segments: usize
     m
 }
 
-/// Texture coordinates of [`sweep_closed_tube`]'s triangles, face-varying: `(st, indices)`
+/// Texture coordinates of [`closed_tube_mesh`]'s triangles, face-varying: `(st, indices)`
 /// with one index per triangle corner, in the tube's triangle order. `u` is the arc
 /// length along the path in metres, `v` runs 0..1 around the tube. The grid of values has
 /// a seam row (the loop's closure at `u` = its length) and a seam column (`v` = 1), so
@@ -180,7 +180,7 @@ mod tests {
     fn tube_st_follows_the_triangle_corners() {
         let (n, s) = (12, 6);
         let path = circle(n, 2.0);
-        let m = sweep_closed_tube(&path, 0.1, 0.1, s);
+        let m = closed_tube_mesh(&path, 0.1, 0.1, s);
         let (st, idx) = closed_tube_st(&path, s);
         assert_eq!(idx.len(), 3 * m.triangles.len());
         let seg = dist(path[0], path[1]);
@@ -220,7 +220,7 @@ mod tests {
     #[test]
     fn torus_tube_is_closed_outward_and_has_the_right_volume() {
         let (big_r, r) = (5.0, 0.165);
-        let m = sweep_closed_tube(&circle(200, big_r), r, r, 16);
+        let m = closed_tube_mesh(&circle(200, big_r), r, r, 16);
         assert_eq!(m.vertices.len(), 200 * 16);
         assert_eq!(m.triangles.len(), 2 * 200 * 16);
         let exact = 2.0 * PI * big_r * PI * r * r;

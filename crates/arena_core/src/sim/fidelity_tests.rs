@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use super::params::{SimParams, MAX_INTERNAL_DT};
 use super::shapes::square_room;
-use super::track::Track;
+use super::shared_track::Track;
 use super::vehicle::VehicleModel;
 use super::world::{World, EVENT_WALL, STATE_SIZE};
 

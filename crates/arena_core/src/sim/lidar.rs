@@ -1,5 +1,5 @@
 //! Planar lidar by exact 2D ray casting: rays against the wall segments (by the angular
-//! sweep of [`super::sweep`] over the segments the scanner can see; the per-beam walk
+//! segment scan of [`super::segment_scan`] over the segments the scanner can see; the per-beam walk
 //! through a uniform grid with a DDA, [`SegmentGrid::cast`], gives the same bits) and
 //! against other vehicles' chassis rectangles. Exact up to f64 rounding:
 //! no rasterisation, so thin walls can never be slipped through (the weakness of ray
@@ -9,8 +9,8 @@ use rand_chacha::rand_core::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::params::LidarParams;
+use super::segment_scan::segment_scan;
 use super::segments::SegmentGrid;
-use super::sweep::sweep;
 
 /// A vehicle's chassis footprint as seen by other vehicles' lidars.
 #[derive(Debug, Clone, Copy)]
@@ -56,9 +56,9 @@ impl Footprint {
     }
 }
 
-/// Fewest beams for which [`Scanner::split`] sweeps the two halves on two rayon tasks.
+/// Fewest beams for which [`Scanner::split`] scans the two halves on two rayon tasks.
 /// The hand-off (the caller, outside the pool, parks while a worker is woken) costs more
-/// than a sweep: measured on Spielberg on the shared 2-core machine (issue 24), a split
+/// than a scan: measured on Spielberg on the shared 2-core machine (issue 24), a split
 /// scan took 39-54 µs against 19-28 µs whole at 1080 beams, and was still slower at
 /// 16384 beams (165 against 107-140 µs); the gym.make step ran 2.1-2.9x faster without
 /// it. So only fans far beyond a real lidar's are split.
@@ -74,7 +74,7 @@ pub struct Scanner {
     angle0: f64,
     inc: f64,
     params: LidarParams,
-    /// Sweep the two halves of the fan on two rayon tasks (set for a lone world, whose
+    /// Scan the two halves of the fan on two rayon tasks (set for a lone world, whose
     /// scan would otherwise leave the second core idle; a batch keeps one world per task),
     /// for fans of at least `SPLIT_MIN_BEAMS` beams.
     pub split: bool,
@@ -161,17 +161,17 @@ impl Scanner {
             ranges.clear();
             ranges.resize(n, f64::INFINITY);
             if self.split && n >= SPLIT_MIN_BEAMS {
-                // Beam k's range depends only on beam k, so the halves are the same sweep.
+                // Beam k's range depends only on beam k, so the halves are the same scan.
                 let h = n / 2;
                 let (ra, rb) = ranges.split_at_mut(h);
                 let (da, db) = dirs.split_at(h);
                 let theta_b = theta0 + h as f64 * self.inc;
                 rayon::join(
-                    || sweep(grid, ox, oy, theta0, self.inc, da, rmax, ra),
-                    || sweep(grid, ox, oy, theta_b, self.inc, db, rmax, rb),
+                    || segment_scan(grid, ox, oy, theta0, self.inc, da, rmax, ra),
+                    || segment_scan(grid, ox, oy, theta_b, self.inc, db, rmax, rb),
                 );
             } else {
-                sweep(grid, ox, oy, theta0, self.inc, dirs, rmax, ranges);
+                segment_scan(grid, ox, oy, theta0, self.inc, dirs, rmax, ranges);
             }
             if others.is_empty() {
                 for (o, &r) in out.iter_mut().zip(ranges.iter()) {
@@ -312,7 +312,7 @@ mod tests {
     }
 
     #[test]
-    fn split_scan_equals_the_single_sweep_bit_for_bit() {
+    fn split_scan_equals_the_single_scan_bit_for_bit() {
         // A wiggly room, so the two halves of the fan see very different walls.
         let poly: Vec<[f64; 2]> = (0..720)
             .map(|i| {

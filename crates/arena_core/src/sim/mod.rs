@@ -2,11 +2,11 @@
 //! lidar, contact events, odometry, progress and laps, stepped in parallel.
 //!
 //! * [`params`]: the JSON configuration (mirrors `roboracer_arena.envs.config`)
-//! * [`track`]: shared wall mesh, lidar grid and centreline of one track
+//! * [`shared_track`]: shared wall mesh, lidar grid and centreline of one track
 //! * [`vehicle`]: chassis, suspension, tyres, Ackermann steering, speed controller
-//! * [`segments`]: wall segments indexed for beam walks, clearance and sweep culling
+//! * [`segments`]: wall segments indexed for beam walks, clearance and segment-scan culling
 //! * [`lidar`]: exact ray casting against wall segments and other vehicles
-//! * [`sweep`]: the same scan by angular sweep over segments (chosen for small tracks)
+//! * [`segment_scan`]: the same scan segment by segment, in angular order (chosen for small tracks)
 //! * [`start_grid`]: the grid start of a track (clearance, free run ahead, grid poses)
 //! * [`starts`]: reset draws (track, start poses, speeds, lidar randomisation) per env
 //! * [`progress`]: arc length along the centreline and lap counting
@@ -21,12 +21,12 @@ pub mod episode;
 pub mod lidar;
 pub mod params;
 pub mod progress;
+pub mod segment_scan;
 pub mod segments;
 pub mod shapes;
+pub mod shared_track;
 pub mod start_grid;
 pub mod starts;
-pub mod sweep;
-pub mod track;
 pub mod vehicle;
 pub mod world;
 
@@ -41,7 +41,7 @@ pub use batch::{ResetGiven, ResetOut, Simulator, MAX_ABS_YAW, POSE_MARGIN};
 pub use budget::{check_size, MAX_SCAN_VALUES, MAX_VEHICLES};
 pub use episode::{EpisodeOut, EpisodeParams, Episodes, BACKWARDS_EPS};
 pub use params::{LateralTyre, LidarParams, PhysicsParams, SimParams, VehicleParams};
+pub use shared_track::{Centreline, Track};
 pub use start_grid::StartGrid;
 pub use starts::StartSpec;
-pub use track::{Centreline, Track};
 pub use world::{EVENT_FAULT, EVENT_LAP, EVENT_VEHICLE, EVENT_WALL, STATE_FIELDS, STATE_SIZE};

@@ -10,7 +10,7 @@
 //! only when `laps` exceeds its highest value so far: backing over the line and driving
 //! over it again does not complete a lap twice.
 
-use super::track::Centreline;
+use super::shared_track::Centreline;
 
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Progress {

@@ -1,7 +1,7 @@
 //! Wall segments indexed for queries: the uniform grid a beam walks with a DDA
 //! ([`SegmentGrid::cast`]), nearest-wall distance ([`SegmentGrid::clearance`]), and the coarse
-//! culling blocks of the angular sweep ([`BlockIndex`]). The lowest layer of the lidar:
-//! [`super::sweep`] and [`super::lidar`] both build on it, and it on neither.
+//! culling blocks of the segment scan ([`BlockIndex`]). The lowest layer of the lidar:
+//! [`super::segment_scan`] and [`super::lidar`] both build on it, and it on neither.
 
 /// Wall segments bucketed in a uniform grid.
 #[derive(Debug, Clone)]
@@ -12,7 +12,7 @@ pub struct SegmentGrid {
     joined: Vec<u64>,
     /// Length of the longest segment.
     max_len: f64,
-    /// Coarse blocks for the sweep's culling by range and occlusion.
+    /// Coarse blocks for the segment scan's culling by range and occlusion.
     blocks: BlockIndex,
     x0: f64,
     y0: f64,
@@ -119,7 +119,7 @@ impl SegmentGrid {
         )
     }
 
-    /// The coarse culling blocks of the sweep.
+    /// The coarse culling blocks of the segment scan.
     pub fn blocks(&self) -> &BlockIndex {
         &self.blocks
     }

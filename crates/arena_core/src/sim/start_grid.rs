@@ -19,7 +19,7 @@
 
 use std::sync::Mutex;
 
-use super::track::pose_on_ring;
+use super::shared_track::pose_on_ring;
 use crate::error::{ArenaError, Result};
 use crate::geometry::polyline::cumulative_length;
 

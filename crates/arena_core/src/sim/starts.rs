@@ -10,7 +10,7 @@ use rand_chacha::rand_core::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::lidar::ScanNoise;
-use super::track::Track;
+use super::shared_track::Track;
 use crate::error::{ArenaError, Result};
 
 /// Largest start distance or noise the core accepts (m, rad, m/s).

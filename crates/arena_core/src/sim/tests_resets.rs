@@ -9,9 +9,9 @@ use rand_chacha::ChaCha8Rng;
 
 use super::lidar::{Footprint, ScanNoise, Scanner};
 use super::progress::Progress;
+use super::segment_scan::segment_scan;
 use super::segments::SegmentGrid;
 use super::shapes::stadium_track;
-use super::sweep::sweep;
 use super::*;
 
 const BEAMS: usize = 121;
@@ -302,7 +302,7 @@ fn bad_inputs_are_refused_with_their_name_and_nothing_changes() {
     );
 }
 
-/// Hostile numbers for the no-panic sweep.
+/// Hostile numbers for the no-panic tests.
 const HOSTILE: [f64; 8] = [
     f64::NAN,
     f64::INFINITY,
@@ -349,8 +349,8 @@ fn no_public_sim_function_panics_on_non_finite_input() {
         }
         let mut ranges = vec![f64::INFINITY; 8];
         let dirs = vec![[1.0, 0.0]; 8];
-        sweep(&grid, h, 0.0, h, 0.1, &dirs, 30.0, &mut ranges);
-        sweep(&grid, 0.0, -3.0, 0.0, h, &dirs, h, &mut ranges);
+        segment_scan(&grid, h, 0.0, h, 0.1, &dirs, 30.0, &mut ranges);
+        segment_scan(&grid, 0.0, -3.0, 0.0, h, &dirs, h, &mut ranges);
         let _ = grid.cast(h, 0.0, 1.0, 0.0, 30.0);
         let _ = grid.cast(0.0, -3.0, h, h, h);
         let _ = grid.clearance(h, h);

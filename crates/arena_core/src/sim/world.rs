@@ -10,7 +10,7 @@ use rapier3d::prelude::*;
 use super::lidar::{Footprint, ScanNoise, Scanner};
 use super::params::{PhysicsParams, MAX_INTERNAL_DT};
 use super::progress::Progress;
-use super::track::Track;
+use super::shared_track::Track;
 use super::vehicle::{Actuators, CarParams, VehicleModel};
 
 /// Columns of the state array, in order.

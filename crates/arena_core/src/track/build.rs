@@ -26,7 +26,7 @@ use crate::geometry::contour::marching_squares;
 use crate::geometry::fill::{fill_even_odd, iou};
 use crate::geometry::mesh::{extrude_walls, TriMesh};
 use crate::geometry::smooth::{resample_closed, simplify_closed, smooth_closed};
-use crate::geometry::tube::{bounds, closed_tube_st, floor_quad, rings_along, sweep_closed_tube};
+use crate::geometry::tube::{bounds, closed_tube_mesh, closed_tube_st, floor_quad, rings_along};
 use crate::geometry::{signed_area, Polyline};
 use crate::grid::edt::edt_within;
 use crate::grid::{bilinear, OccupancyGrid};
@@ -245,7 +245,7 @@ pub(super) fn build_around(
     let (mut duct_mesh, mut ring_mesh) = (TriMesh::default(), TriMesh::default());
     let mut duct_st: (Vec<[f32; 2]>, Vec<u32>) = Default::default();
     for d in &ducts {
-        duct_mesh.append(&sweep_closed_tube(d, radius, radius, p.tube_segments));
+        duct_mesh.append(&closed_tube_mesh(d, radius, radius, p.tube_segments));
         let (st, idx) = closed_tube_st(d, p.tube_segments);
         let base = duct_st.0.len() as u32;
         duct_st.1.extend(idx.into_iter().map(|i| i + base));

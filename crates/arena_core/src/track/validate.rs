@@ -284,8 +284,8 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::budget::Budget;
     use crate::generate::construct::{generate, Outcome};
+    use crate::generate::deadline::Deadline;
 
     fn spec() -> Spec {
         Spec {
@@ -298,7 +298,8 @@ mod tests {
     #[test]
     fn measurements_are_the_numbers_the_checks_judge() {
         let (s, cfg) = (spec(), ConstructorConfig::default());
-        let Ok(Outcome::Accepted { report, .. }) = generate(&s, &cfg, 0, &Budget::new(None, None))
+        let Ok(Outcome::Accepted { report, .. }) =
+            generate(&s, &cfg, 0, &Deadline::new(None, None))
         else {
             panic!("the 40 m spec should be accepted");
         };

@@ -1,10 +1,10 @@
-//! Tests of the angular sweep: bit-for-bit equality with the per-beam grid walk.
+//! Tests of the segment scan: bit-for-bit equality with the per-beam grid walk.
 
 use super::*;
 use crate::sim::shapes::stadium_track;
 use std::f64::consts::{PI, TAU};
 
-/// Sweep one scan of `n` beams over `fov` from `(ox, oy)` heading `yaw` and check
+/// Scan once with `n` beams over `fov` from `(ox, oy)` heading `yaw` and check
 /// every beam against the per-beam grid walk, bit for bit; returns the number of hits.
 fn check_against_walk(grid: &SegmentGrid, ox: f64, oy: f64, yaw: f64, fov: f64, n: usize) -> usize {
     let inc = fov / (n - 1) as f64;
@@ -16,7 +16,7 @@ fn check_against_walk(grid: &SegmentGrid, ox: f64, oy: f64, yaw: f64, fov: f64, 
         })
         .collect();
     let mut ranges = vec![f64::INFINITY; n];
-    sweep(grid, ox, oy, theta0, inc, &dirs, 30.0, &mut ranges);
+    segment_scan(grid, ox, oy, theta0, inc, &dirs, 30.0, &mut ranges);
     let mut hits = 0;
     for k in 0..n {
         let walk = grid.cast(ox, oy, dirs[k][0], dirs[k][1], 30.0);
@@ -36,7 +36,7 @@ fn check_against_walk(grid: &SegmentGrid, ox: f64, oy: f64, yaw: f64, fov: f64, 
 }
 
 #[test]
-fn sweep_equals_the_grid_walk_bit_for_bit() {
+fn segment_scan_equals_the_grid_walk_bit_for_bit() {
     let (mut walls, _) = stadium_track(18.0, 9.0, 2.0);
     walls.push(vec![[1.0, -9.5], [1.3, -9.2], [1.0, -8.9]]); // a small obstacle
     let grid = SegmentGrid::new(&walls);
@@ -50,7 +50,7 @@ fn sweep_equals_the_grid_walk_bit_for_bit() {
 }
 
 #[test]
-fn culled_sweep_equals_the_grid_walk_on_a_large_map() {
+fn culled_segment_scan_equals_the_grid_walk_on_a_large_map() {
     // A 200 m x 90 m stadium (blocks far beyond range and behind walls get culled)
     // with a field of small obstacles, scanned from poses around the lap.
     let (mut walls, centre) = stadium_track(120.0, 40.0, 3.0);
@@ -166,7 +166,7 @@ fn raster_circuit_is_map_like() {
 }
 
 #[test]
-fn sweep_equals_the_grid_walk_on_a_raster_circuit() {
+fn segment_scan_equals_the_grid_walk_on_a_raster_circuit() {
     // Poses all around the lap: on the centreline, near either wall (the sensor within
     // a few cm of it) and next to the obstacles, headings along, across and against the
     // lap; the fans of the env (270 degrees, 1080 and 1081 beams) and a full turn.
@@ -197,7 +197,7 @@ fn sweep_equals_the_grid_walk_on_a_raster_circuit() {
 }
 
 #[test]
-fn split_scan_equals_the_single_sweep_on_a_raster_circuit() {
+fn split_scan_equals_the_single_scan_on_a_raster_circuit() {
     use crate::sim::lidar::{ScanNoise, Scanner, SPLIT_MIN_BEAMS};
     use crate::sim::LidarParams;
     use rand_chacha::rand_core::SeedableRng;
@@ -226,9 +226,9 @@ fn split_scan_equals_the_single_sweep_on_a_raster_circuit() {
 }
 
 #[test]
-fn sweep_equals_the_grid_walk_next_to_wall_vertices() {
+fn segment_scan_equals_the_grid_walk_next_to_wall_vertices() {
     // The sensor 1 mm, 10 µm and 1 µm from wall vertices of the raster circuit (within
-    // 1e-6 of the longest segment the sweep widens its angular intervals), looking
+    // 1e-6 of the longest segment the scan widens its angular intervals), looking
     // along, across and into the wall.
     let (walls, _) = raster_circuit();
     let grid = SegmentGrid::new(&walls);

@@ -1,4 +1,4 @@
-//! Angular-sweep scan ("z-buffer" over beams): instead of walking each beam through the
+//! Segment scan, the lidar scan by angular order ("z-buffer" over beams): instead of walking each beam through the
 //! segment grid, walk each wall segment the scanner may see once and update only the beams
 //! whose directions it spans. A segment's beam range comes from a fast arctangent (error
 //! < 2e-5 rad, one per shared wall vertex) widened by 1e-4 rad (by a beam more when the
@@ -103,7 +103,7 @@ impl Beams {
 /// Lower `ranges[k]` to the nearest wall hit of beam k, for beams at world angles
 /// `theta0 + k inc` with unit directions `dirs[k]`, from `(ox, oy)`, within `rmax`.
 #[allow(clippy::too_many_arguments)]
-pub fn sweep(
+pub fn segment_scan(
     grid: &SegmentGrid,
     ox: f64,
     oy: f64,
@@ -160,7 +160,7 @@ pub fn sweep(
     }
 }
 
-/// The state of one sweep: the scan, and the angle of the end point of the segment
+/// The state of one segment scan: the scan, and the angle of the end point of the segment
 /// swept last (segment `after - 1`), which is the start point of segment `after` when
 /// that continues the same polyline: a wall's segments mostly come in index order, so
 /// most end points need one arctangent instead of two.
@@ -385,5 +385,5 @@ fn wrap_pi(x: f64) -> f64 {
 }
 
 #[cfg(test)]
-#[path = "sweep_tests.rs"]
+#[path = "segment_scan_tests.rs"]
 mod tests;
