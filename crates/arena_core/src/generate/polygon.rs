@@ -109,14 +109,37 @@ fn turns(order: &[FeatureKind], capped: bool, rng: &mut ChaCha8Rng) -> Option<Ve
     // with two plain corners is a trapezoid; at 180° it would be a rectangle whose other
     // end is a second hairpin).
     let narrow: Vec<f64> = (0..h).map(|_| HAIRPIN_NARROW * uniform(rng)).collect();
-    let budget = 2.0 * PI - h as f64 * PI + 2.0 * narrow.iter().sum::<f64>();
+    let corner_turn = 2.0 * PI - h as f64 * PI + 2.0 * narrow.iter().sum::<f64>();
+    let angles = corner_angles(corner_turn, s, capped, rng)?;
+    // Slots: the features in order, the plain corners spread between them at random.
+    let plain = angles.len() - s;
+    let mut items: Vec<Option<FeatureKind>> = order.iter().map(|&f| Some(f)).collect();
+    for _ in 0..plain {
+        let at = (rng.next_u32() as usize) % (items.len() + 1);
+        items.insert(at, None);
+    }
+    let mut out = slot_turns(&items, angles, narrow, rng)?;
+    shorten_links_after_chicanes(&mut out, rng);
+    (out.len() >= 3).then_some(out)
+}
+
+/// The corners' angles (sweepers among them, at least `sweepers`): a count `k` whose
+/// equal share of `corner_turn` lies in the corner band is drawn, then half the time
+/// the angles are perturbed pairwise (sum kept) within the band. `None` if no count
+/// fits, or sweepers are asked for with nothing left to turn.
+fn corner_angles(
+    corner_turn: f64,
+    sweepers: usize,
+    capped: bool,
+    rng: &mut ChaCha8Rng,
+) -> Option<Vec<f64>> {
     let (lo, hi) = (CORNER_DEG.0.to_radians(), CORNER_DEG.1.to_radians());
-    // Corners k (sweepers among them) with budget / k inside the corner band.
-    let ks: Vec<usize> = (s.max(1)..=6)
-        .filter(|&k| budget / k as f64 >= lo && budget / k as f64 <= hi)
+    // Corners k (sweepers among them) with corner_turn / k inside the corner band.
+    let ks: Vec<usize> = (sweepers.max(1)..=6)
+        .filter(|&k| corner_turn / k as f64 >= lo && corner_turn / k as f64 <= hi)
         .collect();
-    let k = if budget <= 1e-9 {
-        if s > 0 {
+    let k = if corner_turn <= 1e-9 {
+        if sweepers > 0 {
             return None;
         }
         0
@@ -129,8 +152,7 @@ fn turns(order: &[FeatureKind], capped: bool, rng: &mut ChaCha8Rng) -> Option<Ve
         let pick = if capped { a.max(b) } else { a.min(b) };
         *ks.get(pick)?
     };
-    // Corner angles: equal shares, perturbed pairwise (sum kept) within the band.
-    let mut angles = vec![budget / k.max(1) as f64; k];
+    let mut angles = vec![corner_turn / k.max(1) as f64; k];
     // Half the time the corners keep equal angles: four 90° corners make a rectangle,
     // the shape that holds the most lap in a rectangular hall.
     let perturb = if rng.next_u32() % 2 == 0 { k } else { 0 };
@@ -142,17 +164,22 @@ fn turns(order: &[FeatureKind], capped: bool, rng: &mut ChaCha8Rng) -> Option<Ve
             angles[j] -= d;
         }
     }
-    // Slots: the features in order, the plain corners spread between them at random.
-    let plain = k - s;
-    let mut items: Vec<Option<FeatureKind>> = order.iter().map(|&f| Some(f)).collect();
-    for _ in 0..plain {
-        let at = (rng.next_u32() as usize) % (items.len() + 1);
-        items.insert(at, None);
-    }
+    Some(angles)
+}
+
+/// The turns of the slots in order: a hairpin is two turns of 90° − δ (its `narrow`
+/// δ), a chicane two opposite turns of a drawn angle, a sweeper or a plain corner one
+/// turn of the next corner angle.
+fn slot_turns(
+    items: &[Option<FeatureKind>],
+    angles: Vec<f64>,
+    narrow: Vec<f64>,
+    rng: &mut ChaCha8Rng,
+) -> Option<Vec<Turn>> {
     let mut out = Vec::new();
     let mut corner = angles.into_iter();
     let mut narrow = narrow.into_iter();
-    for it in items {
+    for &it in items {
         match it {
             Some(FeatureKind::Hairpin) => {
                 let d = narrow.next()?;
@@ -189,9 +216,13 @@ fn turns(order: &[FeatureKind], capped: bool, rng: &mut ChaCha8Rng) -> Option<Ve
             }),
         }
     }
-    // A chicane turn and the plain corner beyond it turn opposite ways: the link between
-    // them may be short too (the detector pairs the chicane's own turns first, so the
-    // count stays one), which is what lets a chicane into a 20 m lap.
+    Some(out)
+}
+
+/// A chicane turn and the plain corner beyond it turn opposite ways: the link between
+/// them may be short too (the detector pairs the chicane's own turns first, so the
+/// count stays one), which is what lets a chicane into a 20 m lap. Drawn for 3 in 4.
+fn shorten_links_after_chicanes(out: &mut [Turn], rng: &mut ChaCha8Rng) {
     let n = out.len();
     for i in 0..n {
         let j = (i + 1) % n;
@@ -202,7 +233,6 @@ fn turns(order: &[FeatureKind], capped: bool, rng: &mut ChaCha8Rng) -> Option<Ve
             out[i].short_next = Some(CHICANE_LINK);
         }
     }
-    (n >= 3).then_some(out)
 }
 
 /// Share of the spare length per long segment that closes the loop: weights `λ ≥ 0`,

@@ -202,6 +202,64 @@ fn side_need(inserts: &[Insert], e: f64, g_min: f64, ends: [f64; 2]) -> f64 {
     (inserts.len() as f64 + 1.0) * g_min + ends[0] + ends[1] + inserts_uv(inserts, e).0
 }
 
+/// The lengths one ring candidate draws up front, and the layout arithmetic built on
+/// them (the loop's length and each side's floor, for any layout and sides A, B).
+struct RingSizes {
+    /// Feature edge (m): a hairpin's width, a chicane's step.
+    e: f64,
+    /// Least run between inserts and next to the corners (m).
+    g_min: f64,
+    /// Length one ordinary corner and one sweeper corner save by rounding (`savings`).
+    saving: (f64, f64),
+    /// Room a sweeper corner's chamfer takes from each adjacent side.
+    sweeper_room: f64,
+}
+
+impl RingSizes {
+    /// Extra room at the start and at the end of side `i` (a sweeper chamfer's legs).
+    fn ends(&self, i: usize, l: &Layout) -> [f64; 2] {
+        [
+            if l.sweeper[(i + 3) % 4] {
+                self.sweeper_room
+            } else {
+                0.0
+            },
+            if l.sweeper[i] { self.sweeper_room } else { 0.0 },
+        ]
+    }
+
+    /// Length of the rounded loop for sides A (0, 2) and B (1, 3): U0 = A, U1 = B;
+    /// closure gives U2 = A − V1 + V3 and U3 = B + V0 − V2; length = ΣU + inserts −
+    /// savings.
+    fn length(&self, l: &Layout, a: f64, b: f64) -> f64 {
+        let (o, sw) = self.saving;
+        let mut turns = 4usize;
+        let mut extra = 0.0;
+        for s in &l.sides {
+            let (x, n) = inserts_extra(s, self.e);
+            extra += x;
+            turns += n;
+        }
+        let v: Vec<f64> = l.sides.iter().map(|s| inserts_uv(s, self.e).1).collect();
+        let n_sw = l.sweeper.iter().filter(|&&b| b).count();
+        let saved = (turns - n_sw) as f64 * o + n_sw as f64 * sw;
+        2.0 * a + 2.0 * b + (v[3] - v[1]) + (v[0] - v[2]) + extra - saved
+    }
+
+    /// Side-length floors (A, B): what each side's inserts need, through the closure
+    /// relations.
+    fn floors(&self, l: &Layout) -> (f64, f64) {
+        let v: Vec<f64> = l.sides.iter().map(|s| inserts_uv(s, self.e).1).collect();
+        let need: Vec<f64> = (0..4)
+            .map(|i| side_need(&l.sides[i], self.e, self.g_min, self.ends(i, l)))
+            .collect();
+        (
+            need[0].max(need[2] + v[1] - v[3]),
+            need[1].max(need[3] - v[0] + v[2]),
+        )
+    }
+}
+
 /// Candidate `k` of the ring constructor: a closed, rounded, counter-clockwise centreline
 /// of length `spec.lap_length_m`, and its feature edge. Hall fit, direction and the
 /// analytic checks are the caller's (shared with the lattice).
@@ -215,148 +273,162 @@ pub fn ring_candidate(
     let rc = d.corner_radius;
     let e = d.s_min * EDGE_FACTORS[(rng.next_u32() as usize) % EDGE_FACTORS.len()];
     let depth = e * if rng.next_u32() % 3 == 0 { 1.5 } else { 1.0 };
-    let mut lay =
+    let lay =
         layout(order, rng, 75, e, depth).ok_or("ring: features do not fit the ring's slots")?;
     let [bx, by] = centreline_box(spec, cfg);
     let (ux, uy) = (bx.max(by), bx.min(by));
     let g_min = GAP_EDGES[(rng.next_u32() as usize) % GAP_EDGES.len()] * e;
-    let (o, sw) = savings(rc);
-    // Room a sweeper corner's chamfer takes from each adjacent side.
-    let sweeper_room = 1.6 * rc;
-    let ends = |i: usize, l: &Layout| {
-        [
-            if l.sweeper[(i + 3) % 4] {
-                sweeper_room
-            } else {
-                0.0
-            },
-            if l.sweeper[i] { sweeper_room } else { 0.0 },
-        ]
+    let sizes = RingSizes {
+        e,
+        g_min,
+        saving: savings(rc),
+        sweeper_room: 1.6 * rc,
     };
-    // Length of the rounded loop for sides A (0, 2) and B (1, 3): U0 = A, U1 = B; closure
-    // gives U2 = A − V1 + V3 and U3 = B + V0 − V2; length = ΣU + inserts − savings.
-    let length_for = |l: &Layout, a: f64, b: f64| {
-        let mut turns = 4usize;
-        let mut extra = 0.0;
-        for s in &l.sides {
-            let (x, n) = inserts_extra(s, e);
-            extra += x;
-            turns += n;
-        }
-        let v: Vec<f64> = l.sides.iter().map(|s| inserts_uv(s, e).1).collect();
-        let n_sw = l.sweeper.iter().filter(|&&b| b).count();
-        let saved = (turns - n_sw) as f64 * o + n_sw as f64 * sw;
-        2.0 * a + 2.0 * b + (v[3] - v[1]) + (v[0] - v[2]) + extra - saved
-    };
-    // Side-length floors: what each side's inserts need, through the closure relations.
-    let floors = |l: &Layout| {
-        let v: Vec<f64> = l.sides.iter().map(|s| inserts_uv(s, e).1).collect();
-        let need: Vec<f64> = (0..4)
-            .map(|i| side_need(&l.sides[i], e, g_min, ends(i, l)))
-            .collect();
-        (
-            need[0].max(need[2] + v[1] - v[3]),
-            need[1].max(need[3] - v[0] + v[2]),
-        )
-    };
-    let (a_lo, b_lo) = floors(&lay);
-    // A + B for the plain ring (`length_for` is linear in A + B with slope 2).
-    let mut k_ab = (spec.lap_length_m - length_for(&lay, 0.0, 0.0)) / 2.0;
+    let floors = sizes.floors(&lay);
+    // A + B for the plain ring (`length` is linear in A + B with slope 2).
+    let mut k_ab = (spec.lap_length_m - sizes.length(&lay, 0.0, 0.0)) / 2.0;
     // A lap just too long for the hall's rectangle takes the whole rectangle when that
     // is within LAP_SLACK of L (the validator allows 3 %).
-    let k_short = (spec.lap_length_m * (1.0 - LAP_SLACK) - length_for(&lay, 0.0, 0.0)) / 2.0;
+    let k_short = (spec.lap_length_m * (1.0 - LAP_SLACK) - sizes.length(&lay, 0.0, 0.0)) / 2.0;
     if k_ab > ux + uy && k_short <= ux + uy {
         k_ab = ux + uy;
     }
     let t = (rng.next_u32() % 1000) as f64 / 999.0;
-    let (a, b) = if k_ab - uy.min(ux) <= ux {
-        // The rounded rectangle holds the lap: draw B, biased towards the full height.
-        let b_hi = uy.min(k_ab - a_lo);
-        let b_lo = b_lo.max(k_ab - ux);
-        if k_ab < a_lo + b_lo {
-            return Err("ring: lap too short for the features' spacing");
-        }
-        if b_hi < b_lo {
-            return Err("ring: hall too small for the lap");
-        }
-        let b = b_hi - (b_hi - b_lo) * t * t;
-        (k_ab - b, b)
+    let (lay, a, b) = if k_ab - uy.min(ux) <= ux {
+        let (a, b) = rectangle_sides(k_ab, floors, ux, uy, t)?;
+        (lay, a, b)
     } else {
-        // Too long for the hall's rectangle: deepen the inward notches (inward hairpins,
-        // and `n` plain notches pushed into the long side A), all to one depth that
-        // keeps the pitch from the opposite side. For each `n` the depth, or B, follows
-        // from L; one `n` that fits is drawn.
-        let width = PLAIN_WIDTHS[(rng.next_u32() as usize) % PLAIN_WIDTHS.len()] * e;
-        let mut fits: Vec<(Layout, f64, f64)> = Vec::new();
-        for n in 0..=MAX_PLAIN_NOTCHES {
-            let mut l = lay.clone();
-            for _ in 0..n {
-                let side = &mut l.sides[0];
-                let at = (rng.next_u32() as usize) % (side.len() + 1);
-                side.insert(
-                    at,
-                    Insert::Notch {
-                        inward: true,
-                        width,
-                        depth: 0.0,
-                    },
-                );
-            }
-            let mut deep = 0usize;
-            for ins in l.sides.iter_mut().flatten() {
-                if let Insert::Notch {
-                    inward: true,
-                    depth,
-                    ..
-                } = ins
-                {
-                    *depth = 0.0;
-                    deep += 1;
-                }
-            }
-            if deep == 0 {
-                continue;
-            }
-            let (a_lo, b_lo) = floors(&l);
-            if a_lo > ux || uy < b_lo {
-                break; // more notches only need more room
-            }
-            // L = len(0, 0) + 2A + 2B + 2·deep·depth. With A near the hall's length: at
-            // full height B the depth makes up the rest; if that is too shallow, the
-            // notches take their least depth and B shrinks instead.
-            let du_lo = if n > 0 { PLAIN_WIDTHS[0] * e } else { e };
-            let nf = deep as f64;
-            let a = ux - (ux - a_lo) * 0.15 * t;
-            let rest = spec.lap_length_m - length_for(&l, a, 0.0);
-            let (mut b, mut du) = (uy, (rest - 2.0 * uy) / (2.0 * nf));
-            if du < du_lo {
-                du = du_lo;
-                b = (rest - 2.0 * nf * du) / 2.0;
-            }
-            if a < a_lo || b < b_lo || b > uy + 1e-9 || du > a.min(b) - d.pitch {
-                continue;
-            }
-            for ins in l.sides.iter_mut().flatten() {
-                if let Insert::Notch {
-                    inward: true,
-                    depth,
-                    ..
-                } = ins
-                {
-                    *depth = du;
-                }
-            }
-            fits.push((l, a, b));
+        match deepened_layout(spec, d, &sizes, &lay, ux, uy, t, rng) {
+            Some(fit) => fit,
+            // The side-notch shape may still hold it (featureless, or one chicane with
+            // at most two hairpins and one sweeper).
+            None => return super::side_notch::side_notch_loop(spec, d, ux, uy, rng),
         }
-        if fits.is_empty() {
-            // The side-notch shape may still hold it (featureless, or one chicane with at
-            // most two hairpins and one sweeper).
-            return super::side_notch::side_notch_loop(spec, d, ux, uy, rng);
-        }
-        let (l, a, b) = fits.swap_remove((rng.next_u32() as usize) % fits.len());
-        lay = l;
-        (a, b)
     };
+    let (verts, is_sweeper) = ring_polygon(&sizes, &lay, a, b, rng)?;
+    let ext = extent(&verts);
+    if !((ext[0] <= ux + 1e-9 && ext[1] <= uy + 1e-9)
+        || (ext[1] <= ux + 1e-9 && ext[0] <= uy + 1e-9))
+    {
+        return Err("ring: hall fit");
+    }
+    let line = round_polygon(&verts, &is_sweeper, rc, 0.02).ok_or("fillets overlap")?;
+    Ok((line, e))
+}
+
+/// Sides (A, B) of a rounded rectangle that holds the lap (A + B = `k_ab`) above the
+/// side floors `(a_lo, b_lo)`: B drawn by `t` ∈ [0, 1], biased towards the full height.
+fn rectangle_sides(
+    k_ab: f64,
+    (a_lo, b_lo): (f64, f64),
+    ux: f64,
+    uy: f64,
+    t: f64,
+) -> Result<(f64, f64), &'static str> {
+    let b_hi = uy.min(k_ab - a_lo);
+    let b_lo = b_lo.max(k_ab - ux);
+    if k_ab < a_lo + b_lo {
+        return Err("ring: lap too short for the features' spacing");
+    }
+    if b_hi < b_lo {
+        return Err("ring: hall too small for the lap");
+    }
+    let b = b_hi - (b_hi - b_lo) * t * t;
+    Ok((k_ab - b, b))
+}
+
+/// A lap too long for the hall's rectangle: deepen the inward notches (inward hairpins,
+/// and `n` plain notches pushed into the long side A), all to one depth that keeps the
+/// pitch from the opposite side. For each `n` the depth, or B, follows from L; one `n`
+/// that fits is drawn, with its layout and sides (A, B). `None` if no `n` fits.
+#[allow(clippy::too_many_arguments)]
+fn deepened_layout(
+    spec: &Spec,
+    d: &Derived,
+    sizes: &RingSizes,
+    lay: &Layout,
+    ux: f64,
+    uy: f64,
+    t: f64,
+    rng: &mut ChaCha8Rng,
+) -> Option<(Layout, f64, f64)> {
+    let e = sizes.e;
+    let width = PLAIN_WIDTHS[(rng.next_u32() as usize) % PLAIN_WIDTHS.len()] * e;
+    let mut fits: Vec<(Layout, f64, f64)> = Vec::new();
+    for n in 0..=MAX_PLAIN_NOTCHES {
+        let mut l = lay.clone();
+        for _ in 0..n {
+            let side = &mut l.sides[0];
+            let at = (rng.next_u32() as usize) % (side.len() + 1);
+            side.insert(
+                at,
+                Insert::Notch {
+                    inward: true,
+                    width,
+                    depth: 0.0,
+                },
+            );
+        }
+        let deep = set_inward_depth(&mut l, 0.0);
+        if deep == 0 {
+            continue;
+        }
+        let (a_lo, b_lo) = sizes.floors(&l);
+        if a_lo > ux || uy < b_lo {
+            break; // more notches only need more room
+        }
+        // L = len(0, 0) + 2A + 2B + 2·deep·depth. With A near the hall's length: at
+        // full height B the depth makes up the rest; if that is too shallow, the
+        // notches take their least depth and B shrinks instead.
+        let du_lo = if n > 0 { PLAIN_WIDTHS[0] * e } else { e };
+        let nf = deep as f64;
+        let a = ux - (ux - a_lo) * 0.15 * t;
+        let rest = spec.lap_length_m - sizes.length(&l, a, 0.0);
+        let (mut b, mut du) = (uy, (rest - 2.0 * uy) / (2.0 * nf));
+        if du < du_lo {
+            du = du_lo;
+            b = (rest - 2.0 * nf * du) / 2.0;
+        }
+        if a < a_lo || b < b_lo || b > uy + 1e-9 || du > a.min(b) - d.pitch {
+            continue;
+        }
+        set_inward_depth(&mut l, du);
+        fits.push((l, a, b));
+    }
+    if fits.is_empty() {
+        return None;
+    }
+    Some(fits.swap_remove((rng.next_u32() as usize) % fits.len()))
+}
+
+/// Set every inward notch of `l` (hairpin or plain) to `depth`; returns their number.
+fn set_inward_depth(l: &mut Layout, depth: f64) -> usize {
+    let mut count = 0usize;
+    for ins in l.sides.iter_mut().flatten() {
+        if let Insert::Notch {
+            inward: true,
+            depth: d,
+            ..
+        } = ins
+        {
+            *d = depth;
+            count += 1;
+        }
+    }
+    count
+}
+
+/// The ring's polygon for sides A, B: each side's gaps drawn and its inserts laid out
+/// as turtle moves, then the moves walked into vertices; returns the vertices and each
+/// one's sweeper flag.
+fn ring_polygon(
+    sizes: &RingSizes,
+    lay: &Layout,
+    a: f64,
+    b: f64,
+    rng: &mut ChaCha8Rng,
+) -> Result<(Vec<[f64; 2]>, Vec<bool>), &'static str> {
+    let e = sizes.e;
     let v: Vec<f64> = lay.sides.iter().map(|s| inserts_uv(s, e).1).collect();
     let u = [a, b, a - v[1] + v[3], b + v[0] - v[2]];
     let mut moves: Vec<(f64, i8)> = Vec::new();
@@ -364,15 +436,24 @@ pub fn ring_candidate(
     for i in 0..4 {
         let ins = &lay.sides[i];
         let straight = u[i] - inserts_uv(ins, e).0;
-        let gaps = split_gaps(straight, ins.len(), g_min, ends(i, &lay), rng)
+        let gaps = split_gaps(straight, ins.len(), sizes.g_min, sizes.ends(i, lay), rng)
             .ok_or("ring: side too short")?;
         side_moves(ins, &gaps, e, &mut moves);
         let last = moves.len() - 1;
         moves[last].1 = 1; // the rectangle's corner (left turn)
         side_ends[i] = last;
     }
-    // Turtle → polygon vertices (the point of every turn); sweeper flags on the
-    // rectangle's corners (the turn that ends each side).
+    walk_moves(&moves, &side_ends, &lay.sweeper)
+}
+
+/// Turtle moves `(run, turn)` → polygon vertices (the point of every turn), each with its
+/// sweeper flag: set on the rectangle's corners (the turns at `side_ends`) that are
+/// sweepers. `Err` unless the walk closes where it started, heading the same way.
+fn walk_moves(
+    moves: &[(f64, i8)],
+    side_ends: &[usize; 4],
+    sweeper: &[bool; 4],
+) -> Result<(Vec<[f64; 2]>, Vec<bool>), &'static str> {
     let (mut p, mut h) = ([0.0f64, 0.0], (1.0f64, 0.0f64));
     let mut verts: Vec<[f64; 2]> = Vec::new();
     let mut is_sweeper: Vec<bool> = Vec::new();
@@ -390,20 +471,13 @@ pub fn ring_candidate(
             side_ends
                 .iter()
                 .position(|&x| x == j)
-                .is_some_and(|c| lay.sweeper[c]),
+                .is_some_and(|c| sweeper[c]),
         );
     }
-    // The loop must close exactly (it does by construction; guard against rounding).
+    // The loop closes exactly by construction; guard against rounding.
     let gap = [p[0] + h.0 * run_acc, p[1] + h.1 * run_acc];
     if gap[0].hypot(gap[1]) > 1e-6 || h != (1.0, 0.0) {
         return Err("ring: loop does not close");
     }
-    let ext = extent(&verts);
-    if !((ext[0] <= ux + 1e-9 && ext[1] <= uy + 1e-9)
-        || (ext[1] <= ux + 1e-9 && ext[0] <= uy + 1e-9))
-    {
-        return Err("ring: hall fit");
-    }
-    let line = round_polygon(&verts, &is_sweeper, rc, 0.02).ok_or("fillets overlap")?;
-    Ok((line, e))
+    Ok((verts, is_sweeper))
 }

@@ -41,18 +41,57 @@ pub fn marching_squares(f: &[f32], width: usize, height: usize, level: f32) -> V
         width * height,
         "field size does not match width × height"
     );
-    let (w, h) = (width as i64, height as i64);
-    let nw = w + 2; // lattice nodes (i, j) with i in 0..=w+1, j in 0..=h+1 (padding ring)
-                    // Value at lattice node (i, j); None outside the grid (= not inside).
-    let at = |i: i64, j: i64| -> Option<f32> {
-        (i >= 1 && i <= w && j >= 1 && j <= h).then(|| f[((h - j) * w + (i - 1)) as usize])
+    let lat = Lattice {
+        f,
+        w: width as i64,
+        h: height as i64,
+        level,
     };
-    let key = |i: i64, j: i64, dir: i64| ((j * nw + i) * 2 + dir) as u64;
-    // Crossing point on the lattice edge from node (i, j) along dir (0 = +u, 1 = +v).
-    let crossing = |i: i64, j: i64, dir: i64| -> [f64; 2] {
+    // next[start edge] = (end edge, point on start edge); order = starts in raster order.
+    let mut links = Links::default();
+    // Inside flags of two lattice rows (padding included), reused row to row.
+    let (mut lo, mut hi) = (Vec::with_capacity(width + 2), Vec::with_capacity(width + 2));
+    lat.flags(0, &mut hi);
+    for j in 0..=lat.h {
+        std::mem::swap(&mut lo, &mut hi);
+        lat.flags(j + 1, &mut hi);
+        for i in 0..=lat.w {
+            let iu = i as usize;
+            let case = lo[iu] | lo[iu + 1] << 1 | hi[iu + 1] << 2 | hi[iu] << 3;
+            if case != 0 && case != 15 {
+                lat.link_square(i, j, case, &mut links);
+            }
+        }
+    }
+    links.loops()
+}
+
+/// The field on the lattice of cell centres: node (i, j), i in 0..=w+1, j in 0..=h+1,
+/// the outer ring being padding (v up, so node row j is grid row h − j).
+struct Lattice<'a> {
+    f: &'a [f32],
+    w: i64,
+    h: i64,
+    level: f32,
+}
+
+impl Lattice<'_> {
+    /// Value at lattice node (i, j); `None` outside the grid (= not inside).
+    fn at(&self, i: i64, j: i64) -> Option<f32> {
+        let (w, h) = (self.w, self.h);
+        (i >= 1 && i <= w && j >= 1 && j <= h).then(|| self.f[((h - j) * w + (i - 1)) as usize])
+    }
+
+    /// Key of the lattice edge from node (i, j) along `dir` (0 = +u, 1 = +v).
+    fn key(&self, i: i64, j: i64, dir: i64) -> u64 {
+        ((j * (self.w + 2) + i) * 2 + dir) as u64
+    }
+
+    /// Crossing point on the lattice edge from node (i, j) along `dir`.
+    fn crossing(&self, i: i64, j: i64, dir: i64) -> [f64; 2] {
         let (i2, j2) = if dir == 0 { (i + 1, j) } else { (i, j + 1) };
-        let t = match (at(i, j), at(i2, j2)) {
-            (Some(a), Some(b)) if a != b => ((level - a) / (b - a)).clamp(0.0, 1.0) as f64,
+        let t = match (self.at(i, j), self.at(i2, j2)) {
+            (Some(a), Some(b)) if a != b => ((self.level - a) / (b - a)).clamp(0.0, 1.0) as f64,
             _ => 0.5, // one end in the padding: the crossing is the grid edge
         };
         let (u, v) = (i as f64 - 0.5, j as f64 - 0.5);
@@ -61,85 +100,97 @@ pub fn marching_squares(f: &[f32], width: usize, height: usize, level: f32) -> V
         } else {
             [u, v + t]
         }
-    };
+    }
 
-    // next[start edge] = (end edge, point on start edge); order = starts in raster order.
-    let mut next: KeyMap<(u64, [f64; 2])> = KeyMap::default();
-    let mut order: Vec<u64> = Vec::new();
-    // Inside flags of one lattice row (padding included), reused row to row.
-    let flags = |j: i64, out: &mut Vec<u8>| {
+    /// Inside flags (`f < level`) of lattice row `j` into `out`, padding included.
+    fn flags(&self, j: i64, out: &mut Vec<u8>) {
+        let (w, h) = (self.w, self.h);
         out.clear();
         out.push(0);
         if j >= 1 && j <= h {
-            let row = &f[((h - j) * w) as usize..((h - j + 1) * w) as usize];
-            out.extend(row.iter().map(|&x| (x < level) as u8));
+            let row = &self.f[((h - j) * w) as usize..((h - j + 1) * w) as usize];
+            out.extend(row.iter().map(|&x| (x < self.level) as u8));
         } else {
-            out.extend(std::iter::repeat_n(0u8, width));
+            out.extend(std::iter::repeat_n(0u8, w as usize));
         }
         out.push(0);
-    };
-    let (mut lo, mut hi) = (Vec::with_capacity(width + 2), Vec::with_capacity(width + 2));
-    flags(0, &mut hi);
-    for j in 0..=h {
-        std::mem::swap(&mut lo, &mut hi);
-        flags(j + 1, &mut hi);
-        for i in 0..=w {
-            let iu = i as usize;
-            let case = lo[iu] | lo[iu + 1] << 1 | hi[iu + 1] << 2 | hi[iu] << 3;
-            if case == 0 || case == 15 {
-                continue;
+    }
+
+    /// Link each out-edge of the square with lower-left node (i, j) and corner case
+    /// `case` (bit k: corner k inside, counter-clockwise from lower left) to its in-edge.
+    fn link_square(&self, i: i64, j: i64, case: u8, links: &mut Links) {
+        let level = self.level;
+        let v = [
+            self.at(i, j),
+            self.at(i + 1, j),
+            self.at(i + 1, j + 1),
+            self.at(i, j + 1),
+        ];
+        let b = [case & 1 != 0, case & 2 != 0, case & 4 != 0, case & 8 != 0];
+        // Square edge k runs from corner k to corner k+1 (counter-clockwise).
+        let edges = [(i, j, 0), (i + 1, j, 1), (i, j + 1, 0), (i, j, 1)];
+        let saddle = case == 5 || case == 10;
+        let centre_inside =
+            saddle && v.iter().map(|x| x.unwrap_or(level) as f64).sum::<f64>() / 4.0 < level as f64;
+        for k in 0..4 {
+            if !b[k] || b[(k + 1) % 4] {
+                continue; // not an out-edge (inside → outside walking counter-clockwise)
             }
-            let v = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
-            let b = [case & 1 != 0, case & 2 != 0, case & 4 != 0, case & 8 != 0];
-            // Square edge k runs from corner k to corner k+1 (counter-clockwise).
-            let edges = [(i, j, 0), (i + 1, j, 1), (i, j + 1, 0), (i, j, 1)];
-            let saddle = case == 5 || case == 10;
-            let centre_inside = saddle
-                && v.iter().map(|x| x.unwrap_or(level) as f64).sum::<f64>() / 4.0 < level as f64;
-            for k in 0..4 {
-                if !b[k] || b[(k + 1) % 4] {
-                    continue; // not an out-edge (inside → outside walking counter-clockwise)
-                }
-                let end = if saddle {
-                    if centre_inside {
-                        (k + 1) % 4
-                    } else {
-                        (k + 3) % 4
-                    }
+            let end = if saddle {
+                if centre_inside {
+                    (k + 1) % 4
                 } else {
-                    (0..4)
-                        .find(|&m| !b[m] && b[(m + 1) % 4])
-                        .expect("one in-edge")
-                };
-                let (si, sj, sd) = edges[k];
-                let (ei, ej, ed) = edges[end];
-                let s = key(si, sj, sd);
-                next.insert(s, (key(ei, ej, ed), crossing(si, sj, sd)));
-                order.push(s);
-            }
-        }
-    }
-    let mut loops = Vec::new();
-    for s in order {
-        let Some(&(mut nxt, p)) = next.get(&s) else {
-            continue;
-        };
-        next.remove(&s);
-        let mut pts = vec![p];
-        while nxt != s {
-            match next.remove(&nxt) {
-                Some((n2, q)) => {
-                    pts.push(q);
-                    nxt = n2;
+                    (k + 3) % 4
                 }
-                None => break, // cannot happen for a consistent table; drop the open chain
-            }
-        }
-        if nxt == s && pts.len() >= 3 {
-            loops.push(pts);
+            } else {
+                (0..4)
+                    .find(|&m| !b[m] && b[(m + 1) % 4])
+                    .expect("one in-edge")
+            };
+            let (si, sj, sd) = edges[k];
+            let (ei, ej, ed) = edges[end];
+            let s = self.key(si, sj, sd);
+            links
+                .next
+                .insert(s, (self.key(ei, ej, ed), self.crossing(si, sj, sd)));
+            links.order.push(s);
         }
     }
-    loops
+}
+
+/// The line pieces of all squares: `next[start edge] = (end edge, point on start edge)`,
+/// and the start edges in raster order.
+#[derive(Default)]
+struct Links {
+    next: KeyMap<(u64, [f64; 2])>,
+    order: Vec<u64>,
+}
+
+impl Links {
+    /// Chain the pieces into closed loops, each from its first start edge in raster order.
+    fn loops(mut self) -> Vec<Vec<[f64; 2]>> {
+        let mut loops = Vec::new();
+        for s in self.order {
+            let Some(&(mut nxt, p)) = self.next.get(&s) else {
+                continue;
+            };
+            self.next.remove(&s);
+            let mut pts = vec![p];
+            while nxt != s {
+                match self.next.remove(&nxt) {
+                    Some((n2, q)) => {
+                        pts.push(q);
+                        nxt = n2;
+                    }
+                    None => break, // cannot happen for a consistent table; drop the open chain
+                }
+            }
+            if nxt == s && pts.len() >= 3 {
+                loops.push(pts);
+            }
+        }
+        loops
+    }
 }
 
 #[cfg(test)]

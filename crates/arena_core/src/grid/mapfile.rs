@@ -86,112 +86,148 @@ fn parse_yaml(path: &Path, text: &str) -> Result<YamlFields> {
     let map = doc.as_mapping().ok_or_else(|| {
         bad("expected a YAML mapping of map_server keys (image, resolution, origin, ...)".into())
     })?;
-    let get = |k: &str| map.get(Value::String(k.into()));
+    let yaml = YamlKeys { path, map };
+    let image = yaml.image()?;
+    let resolution = yaml.resolution()?;
+    let origin = yaml.origin()?;
     let mut defaulted = Vec::new();
-
-    let image = match get("image") {
-        None => {
-            return Err(bad(
-                "missing required key 'image' (the map image file)".into()
-            ))
-        }
-        Some(Value::String(s)) if !s.trim().is_empty() => s.trim().to_string(),
-        Some(v) => return Err(bad(format!("'image' must be a file name, got {}", show(v)))),
-    };
-    let resolution = match get("resolution") {
-        None => {
-            return Err(bad(
-                "missing required key 'resolution' (metres per pixel)".into()
-            ))
-        }
-        Some(v) => number(v)
-            .ok_or_else(|| bad(format!("'resolution' must be a number, got {}", show(v))))?,
-    };
-    limits::check_resolution(resolution).map_err(|e| bad(e.to_string()))?;
-    let origin = match get("origin") {
-        None => {
-            return Err(bad(
-                "missing required key 'origin' ([x, y, yaw] of the lower-left pixel)".into(),
-            ))
-        }
-        Some(Value::Sequence(s)) if s.len() == 2 || s.len() == 3 => {
-            let mut o = [0.0; 3];
-            for (k, v) in s.iter().enumerate() {
-                o[k] = number(v).filter(|x| x.is_finite()).ok_or_else(|| {
-                    bad(format!(
-                        "'origin' must hold finite numbers, got {}",
-                        show(v)
-                    ))
-                })?;
-            }
-            limits::check_origin(o).map_err(|e| bad(e.to_string()))?;
-            o
-        }
-        Some(v) => {
-            return Err(bad(format!(
-                "'origin' must be a list [x, y] or [x, y, yaw], got {}",
-                show(v)
-            )))
-        }
-    };
-    let mut thresh = |k: &str, default: f64| -> Result<f64> {
-        match get(k) {
-            None => {
-                defaulted.push(k.to_string());
-                Ok(default)
-            }
-            Some(v) => match number(v) {
-                Some(x) if (0.0..=1.0).contains(&x) => Ok(x),
-                _ => Err(bad(format!(
-                    "'{k}' must be a number in [0, 1], got {}",
-                    show(v)
-                ))),
-            },
-        }
-    };
-    let occupied_thresh = thresh("occupied_thresh", 0.65)?;
-    let free_thresh = thresh("free_thresh", 0.196)?;
-    let negate = match get("negate") {
-        None => {
-            defaulted.push("negate".into());
-            false
-        }
-        Some(Value::Bool(b)) => *b,
-        Some(v) => match number(v) {
-            Some(x) if x == 0.0 || x == 1.0 => x == 1.0,
-            _ => {
-                return Err(bad(format!(
-                    "'negate' must be 0, 1, true or false, got {}",
-                    show(v)
-                )))
-            }
-        },
-    };
-    let mode = match get("mode") {
-        None => {
-            defaulted.push("mode".into());
-            MapMode::Trinary
-        }
-        Some(Value::String(s)) => MapMode::parse(s.trim())
-            .ok_or_else(|| bad(format!("'mode' must be trinary, scale or raw, got {s:?}")))?,
-        Some(v) => {
-            return Err(bad(format!(
-                "'mode' must be trinary, scale or raw, got {}",
-                show(v)
-            )))
-        }
-    };
+    let thresholds = yaml.thresholds(&mut defaulted)?;
     Ok(YamlFields {
         image,
         resolution,
         origin,
-        thresholds: Thresholds {
+        thresholds,
+        defaulted,
+    })
+}
+
+/// The keys of one map YAML, each read and checked on its own; errors name the file.
+struct YamlKeys<'a> {
+    path: &'a Path,
+    map: &'a serde_yaml::Mapping,
+}
+
+impl YamlKeys<'_> {
+    fn get(&self, k: &str) -> Option<&Value> {
+        self.map.get(Value::String(k.into()))
+    }
+
+    fn bad(&self, m: String) -> ArenaError {
+        ArenaError::map_format(self.path, m)
+    }
+
+    /// `image`: the map image file, required.
+    fn image(&self) -> Result<String> {
+        match self.get("image") {
+            None => Err(self.bad("missing required key 'image' (the map image file)".into())),
+            Some(Value::String(s)) if !s.trim().is_empty() => Ok(s.trim().to_string()),
+            Some(v) => Err(self.bad(format!("'image' must be a file name, got {}", show(v)))),
+        }
+    }
+
+    /// `resolution`: metres per pixel, required, within the allowed range.
+    fn resolution(&self) -> Result<f64> {
+        let resolution = match self.get("resolution") {
+            None => {
+                return Err(self.bad("missing required key 'resolution' (metres per pixel)".into()))
+            }
+            Some(v) => number(v).ok_or_else(|| {
+                self.bad(format!("'resolution' must be a number, got {}", show(v)))
+            })?,
+        };
+        limits::check_resolution(resolution).map_err(|e| self.bad(e.to_string()))?;
+        Ok(resolution)
+    }
+
+    /// `origin`: `[x, y]` or `[x, y, yaw]` of the lower-left pixel, required, in range.
+    fn origin(&self) -> Result<[f64; 3]> {
+        match self.get("origin") {
+            None => Err(self
+                .bad("missing required key 'origin' ([x, y, yaw] of the lower-left pixel)".into())),
+            Some(Value::Sequence(s)) if s.len() == 2 || s.len() == 3 => {
+                let mut o = [0.0; 3];
+                for (k, v) in s.iter().enumerate() {
+                    o[k] = number(v).filter(|x| x.is_finite()).ok_or_else(|| {
+                        self.bad(format!(
+                            "'origin' must hold finite numbers, got {}",
+                            show(v)
+                        ))
+                    })?;
+                }
+                limits::check_origin(o).map_err(|e| self.bad(e.to_string()))?;
+                Ok(o)
+            }
+            Some(v) => Err(self.bad(format!(
+                "'origin' must be a list [x, y] or [x, y, yaw], got {}",
+                show(v)
+            ))),
+        }
+    }
+
+    /// The optional keys that turn pixels into cells (`occupied_thresh`, `free_thresh`,
+    /// `negate`, `mode`); each one absent gets its map_server default and is named in
+    /// `defaulted`.
+    fn thresholds(&self, defaulted: &mut Vec<String>) -> Result<Thresholds> {
+        let occupied_thresh = self.unit("occupied_thresh")?;
+        let occupied_thresh = or_default(occupied_thresh, 0.65, "occupied_thresh", defaulted);
+        let free_thresh = self.unit("free_thresh")?;
+        let free_thresh = or_default(free_thresh, 0.196, "free_thresh", defaulted);
+        let negate = or_default(self.negate()?, false, "negate", defaulted);
+        let mode = or_default(self.mode()?, MapMode::Trinary, "mode", defaulted);
+        Ok(Thresholds {
             mode,
             negate,
             occupied_thresh,
             free_thresh,
-        },
-        defaulted,
+        })
+    }
+
+    /// An optional number in [0, 1].
+    fn unit(&self, k: &str) -> Result<Option<f64>> {
+        match self.get(k) {
+            None => Ok(None),
+            Some(v) => match number(v) {
+                Some(x) if (0.0..=1.0).contains(&x) => Ok(Some(x)),
+                _ => Err(self.bad(format!("'{k}' must be a number in [0, 1], got {}", show(v)))),
+            },
+        }
+    }
+
+    /// `negate`: optional, a boolean or 0/1.
+    fn negate(&self) -> Result<Option<bool>> {
+        match self.get("negate") {
+            None => Ok(None),
+            Some(Value::Bool(b)) => Ok(Some(*b)),
+            Some(v) => match number(v) {
+                Some(x) if x == 0.0 || x == 1.0 => Ok(Some(x == 1.0)),
+                _ => Err(self.bad(format!(
+                    "'negate' must be 0, 1, true or false, got {}",
+                    show(v)
+                ))),
+            },
+        }
+    }
+
+    /// `mode`: optional, trinary, scale or raw.
+    fn mode(&self) -> Result<Option<MapMode>> {
+        match self.get("mode") {
+            None => Ok(None),
+            Some(Value::String(s)) => MapMode::parse(s.trim()).map(Some).ok_or_else(|| {
+                self.bad(format!("'mode' must be trinary, scale or raw, got {s:?}"))
+            }),
+            Some(v) => Err(self.bad(format!(
+                "'mode' must be trinary, scale or raw, got {}",
+                show(v)
+            ))),
+        }
+    }
+}
+
+/// `value`, or `default` with `key` named in `defaulted` when the key is absent.
+fn or_default<T>(value: Option<T>, default: T, key: &str, defaulted: &mut Vec<String>) -> T {
+    value.unwrap_or_else(|| {
+        defaulted.push(key.to_string());
+        default
     })
 }
 

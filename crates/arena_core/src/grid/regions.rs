@@ -87,6 +87,37 @@ pub fn region_tree(
         width * height,
         "data size does not match width × height"
     );
+    let (runs, row_start) = row_runs(data, width, height, is_free);
+    let (mut uf, edges) = connect_runs(&runs, &row_start, width, height);
+    let (run_region, free, root) = compact_regions(&mut uf, &runs);
+    let n = free.len();
+    let (size, border_contact) = region_sizes(&runs, &run_region, n, width, height);
+    let adj = region_adjacency(edges, &run_region, root, n);
+    let (parent, children, subtree) = nest(&adj, root, &size);
+    RegionTree {
+        width,
+        height,
+        runs,
+        row_start,
+        run_region,
+        free,
+        size,
+        parent,
+        children,
+        subtree,
+        border_contact,
+        root,
+    }
+}
+
+/// The maximal runs of each row, row by row, and the index of each row's first run
+/// (`height + 1` entries, the last one `runs.len()`).
+fn row_runs(
+    data: &[u8],
+    width: usize,
+    height: usize,
+    is_free: impl Fn(u8) -> bool,
+) -> (Vec<Run>, Vec<usize>) {
     let mut runs = Vec::new();
     let mut row_start = Vec::with_capacity(height + 1);
     for r in 0..height {
@@ -108,6 +139,17 @@ pub fn region_tree(
         }
     }
     row_start.push(runs.len());
+    (runs, row_start)
+}
+
+/// Union-find over the runs plus one virtual padding element (index `runs.len()`):
+/// runs of one region joined, and the edges between runs of different kinds that touch.
+fn connect_runs(
+    runs: &[Run],
+    row_start: &[usize],
+    width: usize,
+    height: usize,
+) -> (UnionFind, Vec<(u32, u32)>) {
     let nr = runs.len();
     let pad = nr as u32; // virtual padding element
     let mut uf = UnionFind((0..=nr as u32).collect());
@@ -128,36 +170,56 @@ pub fn region_tree(
         for i in row_start[r] + 1..row_start[r + 1] {
             edges.push(((i - 1) as u32, i as u32));
         }
-        if r == 0 {
-            continue;
-        }
-        let (prev, cur) = (
-            row_start[r - 1]..row_start[r],
-            row_start[r]..row_start[r + 1],
-        );
-        let mut p0 = prev.start;
-        for j in cur {
-            let b = runs[j];
-            while p0 < prev.end && runs[p0].end < b.start {
-                p0 += 1; // cannot touch b or any later run, even diagonally
-            }
-            let mut p = p0;
-            while p < prev.end && runs[p].start <= b.end {
-                let a = runs[p];
-                let shares_column = a.start < b.end && b.start < a.end;
-                if a.free == b.free {
-                    // free: 4-connected (share a column); non-free: 8-connected (touch)
-                    if shares_column || !a.free {
-                        uf.union(p as u32, j as u32);
-                    }
-                } else if shares_column {
-                    edges.push((p as u32, j as u32));
-                }
-                p += 1;
-            }
+        if r > 0 {
+            connect_rows(
+                runs,
+                row_start[r - 1]..row_start[r],
+                row_start[r]..row_start[r + 1],
+                &mut uf,
+                &mut edges,
+            );
         }
     }
-    // Compact region ids.
+    (uf, edges)
+}
+
+/// Join or link the runs of two consecutive rows (`prev` above `cur`, index ranges into
+/// `runs`): same kind joins (free runs when they share a column, non-free ones when they
+/// touch, diagonally too), different kinds sharing a column are an edge.
+fn connect_rows(
+    runs: &[Run],
+    prev: std::ops::Range<usize>,
+    cur: std::ops::Range<usize>,
+    uf: &mut UnionFind,
+    edges: &mut Vec<(u32, u32)>,
+) {
+    let mut p0 = prev.start;
+    for j in cur {
+        let b = runs[j];
+        while p0 < prev.end && runs[p0].end < b.start {
+            p0 += 1; // cannot touch b or any later run, even diagonally
+        }
+        let mut p = p0;
+        while p < prev.end && runs[p].start <= b.end {
+            let a = runs[p];
+            let shares_column = a.start < b.end && b.start < a.end;
+            if a.free == b.free {
+                // free: 4-connected (share a column); non-free: 8-connected (touch)
+                if shares_column || !a.free {
+                    uf.union(p as u32, j as u32);
+                }
+            } else if shares_column {
+                edges.push((p as u32, j as u32));
+            }
+            p += 1;
+        }
+    }
+}
+
+/// Compact region ids, in order of each region's first run: the region of each run,
+/// whether each region is free, and the root (the padding's region).
+fn compact_regions(uf: &mut UnionFind, runs: &[Run]) -> (Vec<u32>, Vec<bool>, u32) {
+    let nr = runs.len();
     let mut id = vec![NONE; nr + 1];
     let mut free = Vec::new();
     let mut run_region = Vec::with_capacity(nr);
@@ -171,18 +233,22 @@ pub fn region_tree(
             run_region.push(id[root]);
         }
     }
-    let root = id[uf.find(pad) as usize];
-    let n = free.len();
-    let region = |e: u32| {
-        if (e as usize) < nr {
-            run_region[e as usize]
-        } else {
-            root
-        }
-    };
+    let root = id[uf.find(nr as u32) as usize];
+    (run_region, free, root)
+}
+
+/// Per region of `n`: its cells, and its cells on the grid border.
+fn region_sizes(
+    runs: &[Run],
+    run_region: &[u32],
+    n: usize,
+    width: usize,
+    height: usize,
+) -> (Vec<usize>, Vec<usize>) {
+    let (w, h) = (width as u32, height as u32);
     let mut size = vec![0usize; n];
     let mut border_contact = vec![0usize; n];
-    for (run, &reg) in runs.iter().zip(&run_region) {
+    for (run, &reg) in runs.iter().zip(run_region) {
         size[reg as usize] += run.len();
         border_contact[reg as usize] += if run.row == 0 || run.row + 1 == h {
             run.len()
@@ -190,6 +256,25 @@ pub fn region_tree(
             (run.start == 0) as usize + (run.end == w && !(run.start == 0 && w == 1)) as usize
         };
     }
+    (size, border_contact)
+}
+
+/// The regions' adjacency lists from the run edges (the padding element is `root`'s),
+/// each neighbour once, in ascending pair order.
+fn region_adjacency(
+    edges: Vec<(u32, u32)>,
+    run_region: &[u32],
+    root: u32,
+    n: usize,
+) -> Vec<Vec<u32>> {
+    let nr = run_region.len();
+    let region = |e: u32| {
+        if (e as usize) < nr {
+            run_region[e as usize]
+        } else {
+            root
+        }
+    };
     let mut pairs: Vec<(u32, u32)> = edges
         .into_iter()
         .map(|(a, b)| {
@@ -208,6 +293,13 @@ pub fn region_tree(
         adj[a as usize].push(b);
         adj[b as usize].push(a);
     }
+    adj
+}
+
+/// The adjacency tree hung from `root` (breadth first): each region's parent, its
+/// children, and the cells of its subtree.
+fn nest(adj: &[Vec<u32>], root: u32, size: &[usize]) -> (Vec<u32>, Vec<Vec<u32>>, Vec<usize>) {
+    let n = adj.len();
     let mut parent = vec![NONE; n];
     let mut children: Vec<Vec<u32>> = vec![Vec::new(); n];
     let mut seen = vec![false; n];
@@ -226,26 +318,13 @@ pub fn region_tree(
             }
         }
     }
-    let mut subtree = size.clone();
+    let mut subtree = size.to_vec();
     for &u in order.iter().rev() {
         if parent[u as usize] != NONE {
             subtree[parent[u as usize] as usize] += subtree[u as usize];
         }
     }
-    RegionTree {
-        width,
-        height,
-        runs,
-        row_start,
-        run_region,
-        free,
-        size,
-        parent,
-        children,
-        subtree,
-        border_contact,
-        root,
-    }
+    (parent, children, subtree)
 }
 
 impl RegionTree {

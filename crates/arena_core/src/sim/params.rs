@@ -229,9 +229,24 @@ impl SimParams {
     }
 
     /// Reject values the model cannot run with (the pydantic models check the same).
+    /// The first failing rule is reported, in this order.
     pub fn validate(&self) -> Result<()> {
+        for (name, x) in self.positive_fields() {
+            check(
+                pos(x),
+                &format!("{name} must be a positive finite number, got {x}"),
+            )?;
+        }
+        self.vehicle.check_ranges()?;
+        self.lidar.check_ranges()?;
+        self.check_rates()?;
+        self.physics.check_ranges()
+    }
+
+    /// Every field that must be a positive finite number, by its config name.
+    fn positive_fields(&self) -> [(&'static str, f64); 36] {
         let v = &self.vehicle;
-        for (name, x) in [
+        [
             ("vehicle.wheelbase", v.wheelbase),
             ("vehicle.track_width", v.track_width),
             ("vehicle.mass", v.mass),
@@ -277,12 +292,34 @@ impl SimParams {
             ("lidar.rate_hz", self.lidar.rate_hz),
             ("physics.dt", self.physics.dt),
             ("physics.gravity", self.physics.gravity),
-        ] {
-            check(
-                pos(x),
-                &format!("{name} must be a positive finite number, got {x}"),
-            )?;
-        }
+        ]
+    }
+
+    /// The physics step and the lidar rate within the simulator's bounds.
+    fn check_rates(&self) -> Result<()> {
+        let (p, l) = (&self.physics, &self.lidar);
+        check(
+            p.dt <= MAX_DT,
+            &format!("physics.dt must be at most {MAX_DT} s, got {}", p.dt),
+        )?;
+        check(
+            p.dt >= MIN_DT,
+            &format!("physics.dt must be at least {MIN_DT} s, got {}", p.dt),
+        )?;
+        check(
+            l.rate_hz >= MIN_RATE_HZ,
+            &format!(
+                "lidar.rate_hz must be at least {MIN_RATE_HZ} Hz, got {}",
+                l.rate_hz
+            ),
+        )
+    }
+}
+
+impl VehicleParams {
+    /// The vehicle's rules beyond positivity: steering limit, axle split, signs, duty.
+    fn check_ranges(&self) -> Result<()> {
+        let v = self;
         check(v.max_steer < 1.5, "vehicle.max_steer must be below 1.5 rad")?;
         check(
             (v.com_to_front + v.com_to_rear - v.wheelbase).abs() <= 1e-3,
@@ -309,8 +346,15 @@ impl SimParams {
                 &format!("{name} must be a finite number >= 0, got {x}"),
             )?;
         }
-        check(v.max_duty <= 1.0, "vehicle.max_duty must be at most 1")?;
-        let l = &self.lidar;
+        check(v.max_duty <= 1.0, "vehicle.max_duty must be at most 1")
+    }
+}
+
+impl LidarParams {
+    /// The lidar's rules beyond positivity: beam count, field of view, ranges, noise,
+    /// mount.
+    fn check_ranges(&self) -> Result<()> {
+        let l = self;
         check(
             l.num_beams >= 1 && l.num_beams <= 100_000,
             "lidar.num_beams must be in 1..=100000",
@@ -330,23 +374,14 @@ impl SimParams {
         check(
             l.mount_x.is_finite() && l.mount_z.is_finite(),
             "lidar mount offsets must be finite",
-        )?;
-        let p = &self.physics;
-        check(
-            p.dt <= MAX_DT,
-            &format!("physics.dt must be at most {MAX_DT} s, got {}", p.dt),
-        )?;
-        check(
-            p.dt >= MIN_DT,
-            &format!("physics.dt must be at least {MIN_DT} s, got {}", p.dt),
-        )?;
-        check(
-            l.rate_hz >= MIN_RATE_HZ,
-            &format!(
-                "lidar.rate_hz must be at least {MIN_RATE_HZ} Hz, got {}",
-                l.rate_hz
-            ),
-        )?;
+        )
+    }
+}
+
+impl PhysicsParams {
+    /// The solver's iteration count and the contact frictions.
+    fn check_ranges(&self) -> Result<()> {
+        let p = self;
         check(
             p.solver_iterations >= 1 && p.solver_iterations <= 16,
             "physics.solver_iterations must be in 1..=16",
@@ -358,8 +393,7 @@ impl SimParams {
         check(
             p.ground_friction.is_finite() && p.ground_friction >= 0.0,
             "physics.ground_friction must be >= 0",
-        )?;
-        Ok(())
+        )
     }
 }
 

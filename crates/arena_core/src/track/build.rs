@@ -137,73 +137,35 @@ pub(super) fn build_around(
     params: &BuildParams,
     region: impl FnOnce(&OccupancyGrid) -> Result<Corridor>,
 ) -> Result<Geometry> {
-    let t_start = Instant::now();
-    let mut timings: Vec<(&'static str, f64)> = Vec::new();
-    let mut t = Instant::now();
-    let mut lap = |name: &'static str, timings: &mut Vec<(&'static str, f64)>| {
-        timings.push((name, t.elapsed().as_secs_f64()));
-        t = Instant::now();
-    };
+    let mut clock = Stopwatch::new();
     params.validate()?;
     g.check()?;
     let p = params.effective(g.resolution);
     let res = g.resolution;
     let corridor = region(g)?;
     let ring = corridor.infield.contains(&true);
-    lap("corridor", &mut timings);
+    clock.lap("corridor");
 
     let radius = p.tube_diameter_m / 2.0;
-    let reach = p.wall_offset_m.max(0.0) + radius * p.ring_scale.max(1.0) + 2.0 * res;
-    let margin = (reach / res).ceil() as usize + 2;
-    let crop = Crop::new(g, corridor.bbox, margin);
-    let (cw, ch) = (crop.w, crop.h);
-    let corr = crop.take(&corridor.mask, g.width, g.height);
-    let infield = crop.take(&corridor.infield, g.width, g.height);
-    let outer: Vec<bool> = corr.iter().zip(&infield).map(|(&c, &i)| !c && !i).collect();
-    lap("crop", &mut timings);
+    let win = Window::new(g, &corridor, &p);
+    let (crop, cw, ch) = (&win.crop, win.crop.w, win.crop.h);
+    clock.lap("crop");
 
-    // Distances to the infield and to the outer side. Inside the corridor their minimum
-    // is the distance to the nearest non-corridor cell (φ inside), and the medial loop
-    // lies where they are equal, i.e. at most the widest inscribed radius r_max away.
-    // So both are needed only up to r_max + 2 (u8 column distances for corridors up to
-    // ~500 cells wide); a cheap upper bound of r_max sets the cap.
-    let cap = inscribed_radius_bound(&corr, cw, ch) + 2.0;
-    // φ outside is only read up to the duct level (+ a margin for interpolation).
     let level = (p.wall_offset_m / res) as f32;
     let duct_level = level + (radius / res) as f32;
-    let band = (duct_level.max(level) as f64).max(0.0) + 3.0;
-    // The three transforms are independent: run them side by side when threads allow.
-    let ((d_inf, d_out), d_corr) = rayon::join(
-        || {
-            rayon::join(
-                || edt_within(&infield, cw, ch, cap),
-                || edt_within(&outer, cw, ch, cap),
-            )
-        },
-        || edt_within(&corr, cw, ch, band),
-    );
-    let d_nc: Vec<f32> = d_inf.iter().zip(&d_out).map(|(a, b)| a.min(*b)).collect();
-    let phi: Vec<f32> = (0..cw * ch)
-        .map(|i| {
-            if corr[i] {
-                0.5 - d_nc[i]
-            } else {
-                d_corr[i] - 0.5
-            }
-        })
-        .collect();
-    drop((d_corr, d_nc));
-    lap("distance", &mut timings);
+    let dist = Distances::new(&win, level, duct_level);
+    let phi = &dist.phi;
+    clock.lap("distance");
 
     let tol = p.simplify_tolerance_m / res;
-    let walls_uv: Vec<Polyline> = marching_squares(&phi, cw, ch, level)
+    let walls_uv: Vec<Polyline> = marching_squares(phi, cw, ch, level)
         .iter()
         .map(|l| simplify_closed(l, tol))
         .collect();
     let walls: Vec<Polyline> = walls_uv.iter().map(|l| crop.to_world(g, l)).collect();
-    lap("walls", &mut timings);
+    clock.lap("walls");
 
-    let ducts: Vec<Polyline> = marching_squares(&phi, cw, ch, duct_level)
+    let ducts: Vec<Polyline> = marching_squares(phi, cw, ch, duct_level)
         .iter()
         .map(|l| {
             crop.to_world(
@@ -212,14 +174,14 @@ pub(super) fn build_around(
             )
         })
         .collect();
-    lap("ducts", &mut timings);
+    clock.lap("ducts");
 
     let centreline = if ring {
-        centreline_of(g, &crop, &d_inf, &d_out, &p)?
+        centreline_of(g, crop, &dist.d_inf, &dist.d_out, &p)?
     } else {
         Vec::new()
     };
-    lap("centreline", &mut timings);
+    clock.lap("centreline");
 
     if walls.is_empty() {
         return Err(ArenaError::Corridor(format!(
@@ -228,67 +190,196 @@ pub(super) fn build_around(
             p.wall_offset_m
         )));
     }
-    if p.ring_spacing_m > 0.0 {
-        let duct_length: f64 = ducts
-            .iter()
-            .map(|d| crate::geometry::polyline_length(d, true))
-            .sum();
-        // Each ring is a band of 2 × tube_segments vertices: bound the mesh, not the rings.
-        crate::limits::derived_count_each(
-            "geometry.ring_spacing_m",
-            duct_length,
-            p.ring_spacing_m,
-            2 * p.tube_segments,
-        )?;
-    }
-    let wall_mesh = extrude_walls(&walls, 0.0, p.wall_height_m);
-    let (mut duct_mesh, mut ring_mesh) = (TriMesh::default(), TriMesh::default());
-    let mut duct_st: (Vec<[f32; 2]>, Vec<u32>) = Default::default();
-    for d in &ducts {
-        duct_mesh.append(&closed_tube_mesh(d, radius, radius, p.tube_segments));
-        let (st, idx) = closed_tube_st(d, p.tube_segments);
-        let base = duct_st.0.len() as u32;
-        duct_st.1.extend(idx.into_iter().map(|i| i + base));
-        duct_st.0.extend(st);
-        ring_mesh.append(&rings_along(
-            d,
-            p.ring_spacing_m,
-            p.ring_width_m,
-            radius * p.ring_scale,
-            radius,
-            p.tube_segments,
-        ));
-    }
-    let pad = radius * p.ring_scale + p.floor_margin_m;
-    let b = bounds(&ducts)
-        .or_else(|| bounds(&walls))
-        .expect("a corridor has walls");
-    let floor = floor_quad(b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad);
-    lap("meshes", &mut timings);
+    let meshes = Meshes::new(&walls, &ducts, &p)?;
+    clock.lap("meshes");
 
     let filled = fill_even_odd(&walls_uv, cw, ch);
-    let iou = iou(&filled, &corr);
+    let iou = iou(&filled, &win.corr);
     let max_wall_deviation_cells = walls_uv
         .iter()
-        .map(|l| max_deviation(l, &phi, cw, ch, level))
+        .map(|l| max_deviation(l, phi, cw, ch, level))
         .fold(0.0, f64::max);
-    lap("roundtrip", &mut timings);
-    timings.push(("total", t_start.elapsed().as_secs_f64()));
+    clock.lap("roundtrip");
     Ok(Geometry {
         walls,
         ducts,
         centreline,
-        floor,
-        wall_mesh,
-        duct_mesh,
-        duct_st,
-        ring_mesh,
+        floor: meshes.floor,
+        wall_mesh: meshes.wall_mesh,
+        duct_mesh: meshes.duct_mesh,
+        duct_st: meshes.duct_st,
+        ring_mesh: meshes.ring_mesh,
         iou,
         max_wall_deviation_cells,
         corridor,
-        timings,
+        timings: clock.total(),
         params: p,
     })
+}
+
+/// Seconds per pipeline stage, in order, ending with "total".
+struct Stopwatch {
+    start: Instant,
+    lap_start: Instant,
+    timings: Vec<(&'static str, f64)>,
+}
+
+impl Stopwatch {
+    fn new() -> Self {
+        Stopwatch {
+            start: Instant::now(),
+            lap_start: Instant::now(),
+            timings: Vec::new(),
+        }
+    }
+
+    /// Record the stage `name` as the time since the last lap.
+    fn lap(&mut self, name: &'static str) {
+        self.timings
+            .push((name, self.lap_start.elapsed().as_secs_f64()));
+        self.lap_start = Instant::now();
+    }
+
+    fn total(mut self) -> Vec<(&'static str, f64)> {
+        self.timings
+            .push(("total", self.start.elapsed().as_secs_f64()));
+        self.timings
+    }
+}
+
+/// The crop stage: the window around the corridor, with the corridor, infield and
+/// outer masks cut to it.
+struct Window {
+    crop: Crop,
+    corr: Vec<bool>,
+    infield: Vec<bool>,
+    outer: Vec<bool>,
+}
+
+impl Window {
+    /// The window keeps the margin the walls, ducts and rings reach beyond the corridor.
+    fn new(g: &OccupancyGrid, corridor: &Corridor, p: &BuildParams) -> Self {
+        let res = g.resolution;
+        let radius = p.tube_diameter_m / 2.0;
+        let reach = p.wall_offset_m.max(0.0) + radius * p.ring_scale.max(1.0) + 2.0 * res;
+        let margin = (reach / res).ceil() as usize + 2;
+        let crop = Crop::new(g, corridor.bbox, margin);
+        let corr = crop.take(&corridor.mask, g.width, g.height);
+        let infield = crop.take(&corridor.infield, g.width, g.height);
+        let outer: Vec<bool> = corr.iter().zip(&infield).map(|(&c, &i)| !c && !i).collect();
+        Window {
+            crop,
+            corr,
+            infield,
+            outer,
+        }
+    }
+}
+
+/// The distance stage: distances (cells) to the infield and to the outer side, and the
+/// signed free-space distance `phi` (< 0 in the corridor).
+struct Distances {
+    d_inf: Vec<f32>,
+    d_out: Vec<f32>,
+    phi: Vec<f32>,
+}
+
+impl Distances {
+    /// Each transform capped where larger values are never read, for the wall level and
+    /// the duct level (cells).
+    fn new(win: &Window, level: f32, duct_level: f32) -> Self {
+        let (cw, ch) = (win.crop.w, win.crop.h);
+        // Distances to the infield and to the outer side. Inside the corridor their
+        // minimum is the distance to the nearest non-corridor cell (φ inside), and the
+        // medial loop lies where they are equal, i.e. at most the widest inscribed radius
+        // r_max away. So both are needed only up to r_max + 2 (u8 column distances for
+        // corridors up to ~500 cells wide); a cheap upper bound of r_max sets the cap.
+        let cap = inscribed_radius_bound(&win.corr, cw, ch) + 2.0;
+        // φ outside is only read up to the duct level (+ a margin for interpolation).
+        let band = (duct_level.max(level) as f64).max(0.0) + 3.0;
+        // The three transforms are independent: run them side by side when threads allow.
+        let ((d_inf, d_out), d_corr) = rayon::join(
+            || {
+                rayon::join(
+                    || edt_within(&win.infield, cw, ch, cap),
+                    || edt_within(&win.outer, cw, ch, cap),
+                )
+            },
+            || edt_within(&win.corr, cw, ch, band),
+        );
+        let d_nc: Vec<f32> = d_inf.iter().zip(&d_out).map(|(a, b)| a.min(*b)).collect();
+        let phi: Vec<f32> = (0..cw * ch)
+            .map(|i| {
+                if win.corr[i] {
+                    0.5 - d_nc[i]
+                } else {
+                    d_corr[i] - 0.5
+                }
+            })
+            .collect();
+        Distances { d_inf, d_out, phi }
+    }
+}
+
+/// The meshes stage: extruded walls, duct tubes (with texture coordinates), rings and
+/// the floor.
+struct Meshes {
+    wall_mesh: TriMesh,
+    duct_mesh: TriMesh,
+    duct_st: (Vec<[f32; 2]>, Vec<u32>),
+    ring_mesh: TriMesh,
+    floor: TriMesh,
+}
+
+impl Meshes {
+    /// Refuses a ring spacing whose rings would exceed the derived-count limit.
+    fn new(walls: &[Polyline], ducts: &[Polyline], p: &BuildParams) -> Result<Self> {
+        let radius = p.tube_diameter_m / 2.0;
+        if p.ring_spacing_m > 0.0 {
+            let duct_length: f64 = ducts
+                .iter()
+                .map(|d| crate::geometry::polyline_length(d, true))
+                .sum();
+            // Each ring is a band of 2 × tube_segments vertices: bound the mesh, not the
+            // rings.
+            crate::limits::derived_count_each(
+                "geometry.ring_spacing_m",
+                duct_length,
+                p.ring_spacing_m,
+                2 * p.tube_segments,
+            )?;
+        }
+        let wall_mesh = extrude_walls(walls, 0.0, p.wall_height_m);
+        let (mut duct_mesh, mut ring_mesh) = (TriMesh::default(), TriMesh::default());
+        let mut duct_st: (Vec<[f32; 2]>, Vec<u32>) = Default::default();
+        for d in ducts {
+            duct_mesh.append(&closed_tube_mesh(d, radius, radius, p.tube_segments));
+            let (st, idx) = closed_tube_st(d, p.tube_segments);
+            let base = duct_st.0.len() as u32;
+            duct_st.1.extend(idx.into_iter().map(|i| i + base));
+            duct_st.0.extend(st);
+            ring_mesh.append(&rings_along(
+                d,
+                p.ring_spacing_m,
+                p.ring_width_m,
+                radius * p.ring_scale,
+                radius,
+                p.tube_segments,
+            ));
+        }
+        let pad = radius * p.ring_scale + p.floor_margin_m;
+        let b = bounds(ducts)
+            .or_else(|| bounds(walls))
+            .expect("a corridor has walls");
+        let floor = floor_quad(b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad);
+        Ok(Meshes {
+            wall_mesh,
+            duct_mesh,
+            duct_st,
+            ring_mesh,
+            floor,
+        })
+    }
 }
 
 /// The medial loop between infield and outer side, smoothed, counter-clockwise, resampled.

@@ -183,6 +183,9 @@ pub fn check_curve_args(points: &[[f64; 2]], corner_radius: f64, exclude_m: f64)
     Ok(())
 }
 
+/// A turn in samples counted from the scan's start: (first, last, angle, peak |κ|).
+type SampleTurn = (usize, usize, f64, f64);
+
 /// Analyse a closed curve whose point order is the driving direction.
 pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAnalysis {
     let length = crate::geometry::polyline_length(points, true);
@@ -191,7 +194,6 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
     let ds = length / n as f64;
     let kappa = curvature_profile(&pts, ds, SMOOTHING * corner_radius);
     let rc = corner_radius;
-    let (k_on, k_off) = (1.0 / (3.0 * rc), 1.0 / (8.0 * rc));
     let max_k = kappa.iter().fold(0.0f64, |m, k| m.max(k.abs()));
     let total_turn: f64 = kappa.iter().sum::<f64>() * ds;
 
@@ -205,9 +207,52 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
         })
         .unwrap_or(0);
     let at = |k: usize| kappa[(start + k) % n];
+    let (raw, longest_straight) = scan_turns(at, n, ds, rc);
+    let gap_max = 0.8 * rc;
+    let turns = merge_turns(raw, ds, gap_max);
+    // The scan started mid-straight, so the first and last turn are never split halves.
+    let to_m = |k: usize| ((start + k) % n) as f64 * ds;
+    let features = classify_turns(&turns, n, ds, rc, gap_max)
+        .into_iter()
+        .map(|(kind, k)| {
+            let p = pts[(start + k) % n];
+            Feature {
+                kind,
+                at_m: to_m(k),
+                x: p[0],
+                y: p[1],
+            }
+        })
+        .collect();
+    let turns = turns
+        .iter()
+        .map(|t| Turn {
+            start_m: to_m(t.0),
+            end_m: to_m(t.1),
+            angle_rad: t.2,
+            peak_radius_m: 1.0 / t.3,
+        })
+        .collect();
+    CurveAnalysis {
+        length_m: length,
+        min_radius_m: if max_k > 0.0 {
+            1.0 / max_k
+        } else {
+            f64::INFINITY
+        },
+        turns,
+        features,
+        longest_straight_m: longest_straight,
+        total_turn_rad: total_turn,
+    }
+}
 
-    // Raw turns (hysteresis) and straights.
-    let mut raw: Vec<(usize, usize, f64, f64)> = Vec::new(); // (first, last, angle, peak |κ|)
+/// Raw turns of the curvature `at(k)` over `n` samples `ds` apart, by hysteresis (a turn
+/// runs while |κ| ≥ 1/(8 r_c) with one sign and counts when it peaks at ≥ 1/(3 r_c)),
+/// and the longest straight (m) between them.
+fn scan_turns(at: impl Fn(usize) -> f64, n: usize, ds: f64, rc: f64) -> (Vec<SampleTurn>, f64) {
+    let (k_on, k_off) = (1.0 / (3.0 * rc), 1.0 / (8.0 * rc));
+    let mut raw: Vec<SampleTurn> = Vec::new();
     let mut longest_straight = 0.0f64;
     let mut k = 0;
     while k < n {
@@ -231,9 +276,12 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
             raw.push((s0, k - 1, ang, peak));
         }
     }
-    // Merge same-sense turns across short gaps.
-    let gap_max = 0.8 * rc;
-    let mut turns: Vec<(usize, usize, f64, f64)> = Vec::new();
+    (raw, longest_straight)
+}
+
+/// Merge same-sense turns across gaps shorter than `gap_max` (m).
+fn merge_turns(raw: Vec<SampleTurn>, ds: f64, gap_max: f64) -> Vec<SampleTurn> {
+    let mut turns: Vec<SampleTurn> = Vec::new();
     for t in raw {
         if let Some(last) = turns.last_mut() {
             let gap = (t.0 - last.1) as f64 * ds;
@@ -244,11 +292,21 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
         }
         turns.push(t);
     }
-    // The scan started mid-straight, so the first and last turn are never split halves.
-    let to_m = |k: usize| ((start + k) % n) as f64 * ds;
-    let pos = |k: usize| pts[(start + k) % n];
-    let mut features = Vec::new();
+    turns
+}
+
+/// The features among merged turns, each with its first sample: a hairpin turns ≥ 135°;
+/// a 45–135° turn followed within `gap_max` by one of the other sense is a chicane (both
+/// used), else a sweeper if its peak radius is ≥ 1.5 r_c.
+fn classify_turns(
+    turns: &[SampleTurn],
+    n: usize,
+    ds: f64,
+    rc: f64,
+    gap_max: f64,
+) -> Vec<(FeatureKind, usize)> {
     let deg = |a: f64| a.abs().to_degrees();
+    let mut features = Vec::new();
     let mut used = vec![false; turns.len()];
     for i in 0..turns.len() {
         if used[i] {
@@ -281,36 +339,10 @@ pub fn analyse_closed_curve(points: &[[f64; 2]], corner_radius: f64) -> CurveAna
         };
         used[i] = true;
         if let Some(kind) = kind {
-            let p = pos(t.0);
-            features.push(Feature {
-                kind,
-                at_m: to_m(t.0),
-                x: p[0],
-                y: p[1],
-            });
+            features.push((kind, t.0));
         }
     }
-    let turns = turns
-        .iter()
-        .map(|t| Turn {
-            start_m: to_m(t.0),
-            end_m: to_m(t.1),
-            angle_rad: t.2,
-            peak_radius_m: 1.0 / t.3,
-        })
-        .collect();
-    CurveAnalysis {
-        length_m: length,
-        min_radius_m: if max_k > 0.0 {
-            1.0 / max_k
-        } else {
-            f64::INFINITY
-        },
-        turns,
-        features,
-        longest_straight_m: longest_straight,
-        total_turn_rad: total_turn,
-    }
+    features
 }
 
 /// Sampling step (m) of the self-clearance in [`analyse_curve`].

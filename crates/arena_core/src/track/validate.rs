@@ -2,9 +2,11 @@
 //! grid (never on the analytic curve). Each check reports its measured value, its bound
 //! and pass/fail, so a report explains itself.
 
-use super::features::{analyse_closed_curve, is_cyclic_order, self_clearance, FeatureKind};
-use super::metrics::measure_raster;
-use crate::generate::spec::{derive, ConstructorConfig, Spec};
+use super::features::{
+    analyse_closed_curve, is_cyclic_order, self_clearance, CurveAnalysis, FeatureKind,
+};
+use super::metrics::{measure_raster, RasterTrack};
+use crate::generate::spec::{derive, ConstructorConfig, Derived, Spec};
 use crate::grid::OccupancyGrid;
 use crate::limits::VALIDATOR_RESOLUTION_RANGE_M;
 use serde::Serialize;
@@ -112,75 +114,135 @@ pub fn check_frame(resolution: f64, origin: [f64; 3]) -> crate::Result<()> {
 pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> ValidationReport {
     let d = derive(spec, cfg);
     let res = g.resolution;
-    let mut checks = Vec::new();
     let t = match measure_raster(g) {
         Ok(t) => t,
-        Err(e) => {
-            checks.push(check(
-                "corridor",
-                format!("{e}"),
-                "one closed corridor".into(),
-                false,
-            ));
-            return ValidationReport {
-                valid: false,
-                checks,
-                measurements: None,
-                features: vec![],
-                centreline: vec![],
-            };
-        }
+        Err(e) => return ValidationReport::no_corridor(format!("{e}")),
     };
-    checks.push(check(
-        "corridor",
-        format!("{} free component(s)", t.corridor_components),
-        "exactly 1".into(),
-        t.corridor_components == 1,
-    ));
-    checks.push(check(
-        "infield",
-        format!("{} enclosed region(s)", t.infields),
-        "exactly 1".into(),
-        t.infields == 1,
-    ));
-
     let mut line = t.centreline.clone();
     if spec.clockwise() {
         line.reverse();
     }
     let a = analyse_closed_curve(&line, d.corner_radius);
-    let l = spec.lap_length_m;
-    checks.push(check(
-        "lap_length",
-        format!("{:.2} m", a.length_m),
-        format!(
-            "{:.2} m ± 3 % [{:.2}, {:.2}]",
-            l,
-            l * (1.0 - LAP_TOLERANCE),
-            l * (1.0 + LAP_TOLERANCE)
-        ),
-        (a.length_m - l).abs() <= LAP_TOLERANCE * l,
-    ));
-    let w = spec.corridor_width_m;
     let min_local = t.widths.iter().cloned().fold(f64::INFINITY, f64::min);
-    checks.push(check(
-        "width",
-        format!(
-            "{:.3} m mean (local min {:.3} m)",
-            t.mean_width_m, min_local
+    // Non-local passes must keep the pitch p apart (centreline to centreline); arcs closer
+    // than π p / 2 along the lap are local (a hairpin of radius p/2 is still legal).
+    let clearance = self_clearance(&line, PI * d.pitch / 2.0, 0.1);
+    let mut checks = topology_checks(&t);
+    checks.extend(size_checks(spec, &d, &a, t.mean_width_m, min_local, res));
+    checks.extend(feature_checks(spec, &a));
+    checks.push(clearance_check(clearance, &d, res));
+    checks.push(hall_fit_check(spec, cfg, t.extent_m, res));
+    let valid = checks.iter().all(|c| c.passed);
+    let measurements = Measurements {
+        corridor_components: t.corridor_components,
+        infields: t.infields,
+        lap_length_m: a.length_m,
+        width_mean_m: t.mean_width_m,
+        width_min_m: min_local,
+        min_radius_m: a.min_radius_m,
+        hairpins: a.count(FeatureKind::Hairpin),
+        chicanes: a.count(FeatureKind::Chicane),
+        sweepers: a.count(FeatureKind::Sweeper),
+        longest_straight_m: a.longest_straight_m,
+        self_clearance_m: clearance.is_finite().then_some(clearance),
+        extent_m: t.extent_m,
+    };
+    let features = a
+        .features
+        .iter()
+        .map(|f| FeatureAt {
+            kind: f.kind,
+            at_m: f.at_m,
+            x: f.x,
+            y: f.y,
+        })
+        .collect();
+    ValidationReport {
+        valid,
+        checks,
+        measurements: Some(measurements),
+        features,
+        centreline: line,
+    }
+}
+
+impl ValidationReport {
+    /// The report on a map without a measurable corridor: one failed `corridor` check
+    /// saying why.
+    fn no_corridor(why: String) -> ValidationReport {
+        ValidationReport {
+            valid: false,
+            checks: vec![check("corridor", why, "one closed corridor".into(), false)],
+            measurements: None,
+            features: vec![],
+            centreline: vec![],
+        }
+    }
+}
+
+/// One free corridor around exactly one infield.
+fn topology_checks(t: &RasterTrack) -> Vec<Check> {
+    vec![
+        check(
+            "corridor",
+            format!("{} free component(s)", t.corridor_components),
+            "exactly 1".into(),
+            t.corridor_components == 1,
         ),
-        format!("{w:.3} m ± 5 %"),
-        (t.mean_width_m - w).abs() <= WIDTH_TOLERANCE * w,
-    ));
+        check(
+            "infield",
+            format!("{} enclosed region(s)", t.infields),
+            "exactly 1".into(),
+            t.infields == 1,
+        ),
+    ]
+}
+
+/// Lap length, corridor width (mean, and the local minimum for the report) and the
+/// tightest radius, each with the paper's tolerance.
+fn size_checks(
+    spec: &Spec,
+    d: &Derived,
+    a: &CurveAnalysis,
+    mean_width: f64,
+    min_local: f64,
+    res: f64,
+) -> Vec<Check> {
+    let l = spec.lap_length_m;
+    let w = spec.corridor_width_m;
     // Raster tolerance on radius: curvature from a staircase centreline is good to ~5 %
     // plus a cell.
     let r_bound = d.r_min * 0.95 - res;
-    checks.push(check(
-        "min_radius",
-        format!("{:.2} m", a.min_radius_m),
-        format!("≥ {:.2} m (r_min {:.2} m − 5 % − Δ)", r_bound, d.r_min),
-        a.min_radius_m >= r_bound,
-    ));
+    vec![
+        check(
+            "lap_length",
+            format!("{:.2} m", a.length_m),
+            format!(
+                "{:.2} m ± 3 % [{:.2}, {:.2}]",
+                l,
+                l * (1.0 - LAP_TOLERANCE),
+                l * (1.0 + LAP_TOLERANCE)
+            ),
+            (a.length_m - l).abs() <= LAP_TOLERANCE * l,
+        ),
+        check(
+            "width",
+            format!("{mean_width:.3} m mean (local min {min_local:.3} m)"),
+            format!("{w:.3} m ± 5 %"),
+            (mean_width - w).abs() <= WIDTH_TOLERANCE * w,
+        ),
+        check(
+            "min_radius",
+            format!("{:.2} m", a.min_radius_m),
+            format!("≥ {:.2} m (r_min {:.2} m − 5 % − Δ)", r_bound, d.r_min),
+            a.min_radius_m >= r_bound,
+        ),
+    ]
+}
+
+/// Feature counts, then (when the spec asks) their cyclic order and the straights.
+fn feature_checks(spec: &Spec, a: &CurveAnalysis) -> Vec<Check> {
+    let mut checks = Vec::new();
     for kind in [
         FeatureKind::Hairpin,
         FeatureKind::Chicane,
@@ -221,11 +283,13 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
             a.longest_straight_m <= cap,
         ));
     }
-    // Non-local passes must keep the pitch p apart (centreline to centreline); arcs closer
-    // than π p / 2 along the lap are local (a hairpin of radius p/2 is still legal).
-    let clearance = self_clearance(&line, PI * d.pitch / 2.0, 0.1);
+    checks
+}
+
+/// Non-local passes at least the pitch apart (`clearance` is infinite without any).
+fn clearance_check(clearance: f64, d: &Derived, res: f64) -> Check {
     let c_bound = d.pitch * 0.97 - res;
-    checks.push(check(
+    check(
         "self_clearance",
         if clearance.is_finite() {
             format!("{clearance:.2} m")
@@ -234,51 +298,22 @@ pub fn validate_map(g: &OccupancyGrid, spec: &Spec, cfg: &ConstructorConfig) -> 
         },
         format!("≥ {c_bound:.2} m (p = {:.2} m − 3 % − Δ)", d.pitch),
         clearance >= c_bound,
-    ));
+    )
+}
+
+/// The track's extent within the hall less its margins, in either orientation.
+fn hall_fit_check(spec: &Spec, cfg: &ConstructorConfig, [ex, ey]: [f64; 2], res: f64) -> Check {
     let (ux, uy) = (
         spec.hall_x_m - 2.0 * cfg.hall_margin_m,
         spec.hall_y_m - 2.0 * cfg.hall_margin_m,
     );
-    let [ex, ey] = t.extent_m;
     let fits = (ex <= ux + res && ey <= uy + res) || (ey <= ux + res && ex <= uy + res);
-    checks.push(check(
+    check(
         "hall_fit",
         format!("{ex:.2} × {ey:.2} m"),
         format!("within {ux:.2} × {uy:.2} m in either orientation (hall − 2 m_h)"),
         fits,
-    ));
-    let valid = checks.iter().all(|c| c.passed);
-    let measurements = Measurements {
-        corridor_components: t.corridor_components,
-        infields: t.infields,
-        lap_length_m: a.length_m,
-        width_mean_m: t.mean_width_m,
-        width_min_m: min_local,
-        min_radius_m: a.min_radius_m,
-        hairpins: a.count(FeatureKind::Hairpin),
-        chicanes: a.count(FeatureKind::Chicane),
-        sweepers: a.count(FeatureKind::Sweeper),
-        longest_straight_m: a.longest_straight_m,
-        self_clearance_m: clearance.is_finite().then_some(clearance),
-        extent_m: t.extent_m,
-    };
-    let features = a
-        .features
-        .iter()
-        .map(|f| FeatureAt {
-            kind: f.kind,
-            at_m: f.at_m,
-            x: f.x,
-            y: f.y,
-        })
-        .collect();
-    ValidationReport {
-        valid,
-        checks,
-        measurements: Some(measurements),
-        features,
-        centreline: line,
-    }
+    )
 }
 
 #[cfg(test)]
