@@ -102,6 +102,12 @@ struct Wheel {
     sum_fy: f64,
 }
 
+/// Each wheel's suspension load (N, 0 off the ground) and ground contact point.
+struct Contacts {
+    loads: [f64; 4],
+    points: [Vector; 4],
+}
+
 /// Fraction of the way a first-order lag of time constant `tau` moves in `dt` (exact).
 fn lag_step(tau: f64, dt: f64) -> f64 {
     if tau > 0.0 {
@@ -315,21 +321,34 @@ impl VehicleModel {
         let max_d = p.max_steer_rate * dt;
         act.steer += ((cmd.0 - act.steer) * lag_step(car.steer_lag, dt)).clamp(-max_d, max_d);
 
+        let contacts = self.suspension(body);
+        let m_wheel = 0.5 * car.mass / 4.0;
+        let mut wheels = self.tyre_demands(body, act.steer, car, &contacts, dt, m_wheel);
+
+        // Pass 3: the drivetrain (speed loop, motor current, wheel spin) is faster than
+        // the chassis, so it runs in sub-steps of at most DRIVE_DT against the chassis
+        // velocities of this step; the chassis gets the mean tyre forces.
+        let subs = (dt / DRIVE_DT - 1e-9).ceil().max(1.0) as usize;
+        let h = dt / subs as f64;
+        for _ in 0..subs {
+            self.drive_substep(act, car, cmd.1, &mut wheels, h, dt, m_wheel);
+        }
+
+        let (force, torque) = self.chassis_load(body, &wheels, &contacts.points, subs);
+        let dtf = dt as f32;
+        body.apply_impulse(force * dtf, true);
+        body.apply_torque_impulse(torque * dtf, true);
+    }
+
+    /// Pass 1: each wheel's suspension load (N) and ground contact point; no load for a
+    /// wheel in the air, nor for any when the car lies on its side.
+    fn suspension(&self, body: &RigidBody) -> Contacts {
+        let p = &self.p;
         let pose = *body.position();
         let com = pose.translation;
-        let rot = pose.rotation;
         let v = body.linvel();
         let w = body.angvel();
-        let up = rot * Vector::Z;
-
-        // Ackermann angles of the left and right front wheels.
-        let (l, t) = (p.com_to_front + p.com_to_rear, p.track_width / 2.0);
-        let tan = act.steer.tan();
-        let left = (l * tan / (l - t * tan)).atan();
-        let right = (l * tan / (l + t * tan)).atan();
-        let angles = [left, right, 0.0, 0.0];
-
-        // Pass 1: suspension loads.
+        let up = pose.rotation * Vector::Z;
         let mut loads = [0.0f64; 4];
         let mut contact = [Vector::ZERO; 4];
         let upz = up.z as f64;
@@ -353,20 +372,47 @@ impl VehicleModel {
             loads[k] = n.max(0.0);
             contact[k] = h - up * dist as f32;
         }
+        Contacts {
+            loads,
+            points: contact,
+        }
+    }
 
-        // Pass 2: each wheel's heading, contact velocity and lateral force demand.
-        let m_wheel = 0.5 * car.mass / 4.0;
+    /// Pass 2: each wheel's heading (Ackermann angles on the front axle), its contact
+    /// velocity along the heading and the lateral force its tyre demands, capped at what
+    /// stops its share of the mass `m_wheel` sideways within `dt`.
+    fn tyre_demands(
+        &self,
+        body: &RigidBody,
+        steer: f64,
+        car: &CarParams,
+        contacts: &Contacts,
+        dt: f64,
+        m_wheel: f64,
+    ) -> [Wheel; 4] {
+        let p = &self.p;
+        let pose = *body.position();
+        let com = pose.translation;
+        let rot = pose.rotation;
+        let v = body.linvel();
+        let w = body.angvel();
+        // Ackermann angles of the left and right front wheels.
+        let (l, t) = (p.com_to_front + p.com_to_rear, p.track_width / 2.0);
+        let tan = steer.tan();
+        let left = (l * tan / (l - t * tan)).atan();
+        let right = (l * tan / (l + t * tan)).atan();
+        let angles = [left, right, 0.0, 0.0];
         let per_wheel = car.mass * self.gravity / (2.0 * l);
         let n0_axle = [per_wheel * p.com_to_rear, per_wheel * p.com_to_front];
         let mut wheels = [Wheel::default(); 4];
         for (k, wh) in wheels.iter_mut().enumerate() {
-            let n = loads[k];
+            let n = contacts.loads[k];
             let (ca, sa) = (angles[k].cos() as f32, angles[k].sin() as f32);
             let mut fw = rot * Vector::new(ca, sa, 0.0);
             fw.z = 0.0;
             wh.fw = fw.normalize_or_zero();
             wh.lw = Vector::new(-wh.fw.y, wh.fw.x, 0.0);
-            let vc = v + w.cross(contact[k] - com);
+            let vc = v + w.cross(contacts.points[k] - com);
             let (vl, vt) = (vc.dot(wh.fw) as f64, vc.dot(wh.lw) as f64);
             let cap = m_wheel * vt.abs() / dt;
             let vref = vl.abs().max(V0);
@@ -384,17 +430,22 @@ impl VehicleModel {
             wh.vl = vl;
             wh.n = n;
         }
+        wheels
+    }
 
-        // Pass 3: the drivetrain (speed loop, motor current, wheel spin) is faster than
-        // the chassis, so it runs in sub-steps of at most DRIVE_DT against the chassis
-        // velocities of this step; the chassis gets the mean tyre forces.
-        let subs = (dt / DRIVE_DT - 1e-9).ceil().max(1.0) as usize;
-        let h = dt / subs as f64;
-        for _ in 0..subs {
-            self.drive_substep(act, car, cmd.1, &mut wheels, h, dt, m_wheel);
-        }
-
-        // Aerodynamic drag on the horizontal velocity, at the CoM.
+    /// The step's force and torque on the chassis (about the CoM): aerodynamic drag on
+    /// the horizontal velocity, and at each loaded wheel's contact its load along the
+    /// ground normal plus its tyre forces averaged over the `subs` drivetrain sub-steps.
+    fn chassis_load(
+        &self,
+        body: &RigidBody,
+        wheels: &[Wheel; 4],
+        contact: &[Vector; 4],
+        subs: usize,
+    ) -> (Vector, Vector) {
+        let p = &self.p;
+        let com = body.position().translation;
+        let v = body.linvel();
         let vh = Vector::new(v.x, v.y, 0.0);
         let mut force = vh * (-(0.5 * AIR_DENSITY * p.drag_area * vh.length() as f64) as f32);
         let mut torque = Vector::ZERO;
@@ -410,9 +461,7 @@ impl VehicleModel {
             force += ft;
             torque += (contact[k] - com).cross(ft);
         }
-        let dtf = dt as f32;
-        body.apply_impulse(force * dtf, true);
-        body.apply_torque_impulse(torque * dtf, true);
+        (force, torque)
     }
 
     /// One drivetrain sub-step of length `h` (the chassis step is `dt`): the PI loop on
