@@ -60,15 +60,17 @@ FIGURES ?=
 docs-figures: release
 	$(BIN)/python scripts/docs_figures.py --build release $(FIGURES)
 
-# Every gate: clippy and rustfmt on the crates, no module cycle in the Rust core; ruff (lint
-# and format), mypy (pydantic plugin) on the package; stubtest checks _core.pyi against the
-# built extension; import-linter holds the package's floors and finds no cycle (.importlinter);
-# import_hygiene refuses function-local own imports and private cross-package access.
+# Every gate: clippy and rustfmt on the crates, no module cycle in the Rust core, no function
+# over 100 lines in the crates or the package; ruff (lint and format), mypy (pydantic plugin)
+# on the package; stubtest checks _core.pyi against the built extension; import-linter holds
+# the package's floors and finds no cycle (.importlinter); import_hygiene refuses
+# function-local own imports and private cross-package access.
 lint: develop
 	$(BIN)/pip install -q "ruff>=0.8" "mypy>=1.13" "import-linter>=2.17"
 	cargo clippy -p arena_core -p arena_py --quiet -- -D warnings
 	cargo fmt --all -- --check
 	$(BIN)/python scripts/rust_module_cycles.py crates/arena_core/src
+	$(BIN)/python scripts/long_functions.py --max 100
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/python scripts/import_hygiene.py python/roboracer_arena
 	$(BIN)/ruff check --no-cache python tests examples benchmarks
