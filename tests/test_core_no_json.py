@@ -23,9 +23,9 @@ TEXT_PARAMS = {
     ("load_map", "path"),
     ("save_map", "yaml_path"),
 }
-#: Results holding ``str`` as text (how many of their values): an image path, an outcome
-#: kind (the rest of ``generate_lattice``'s tuple must not be text), field names.
-TEXT_RESULTS = {"save_map": 1, "generate_lattice": 1, "Simulator.state_fields": 1}
+#: Results holding ``str`` as text (how many of their values): an image path and the state
+#: field names.
+TEXT_RESULTS = {"save_map": 1, "Simulator.state_fields": 1}
 
 
 def _defs() -> list[tuple[str, ast.FunctionDef]]:

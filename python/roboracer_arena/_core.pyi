@@ -25,6 +25,7 @@ __all__ = [
     "screen",
     "derived_geometry",
     "generate_lattice",
+    "LatticeOutcome",
     "construct_lattice",
     "nearest_specs",
     "validate_map",
@@ -119,19 +120,44 @@ def nearest_specs(spec: _Doc, config: _Doc | None, seed: int, timeout: float) ->
     """Nearest specs that build after a failure: {suggestions: [{field, spec, seed,
     candidate_index}], probes, exhausted}; ``timeout`` seconds bound the search."""
 
-def generate_lattice(
-    spec: _Doc, config: _Doc | None, seed: int, timeout: float | None = None
-) -> tuple[
-    str,
-    _Result,
-    tuple[npt.NDArray[np.uint8], tuple[float, float, float]] | None,
-    npt.NDArray[np.float64] | None,
-]:
-    """Algorithm 1 (lattice + ring): (kind "accepted"|"rejected"|"failed", info, map | None, centreline | None).
+def generate_lattice(spec: _Doc, config: _Doc | None, seed: int, timeout: float | None = None) -> LatticeOutcome:
+    """Algorithm 1 (screen once, then lattice + ring candidates, each rasterised and
+    validated). ``timeout`` seconds (None = unbounded) bounds the loop (``stopped ==
+    "timeout"``); Ctrl-C stops it between candidates and raises KeyboardInterrupt."""
 
-    info: accepted {report, candidate_index, tried, pitch_m}; rejected the screen's result;
-    failed {tried, reasons, stopped}. ``timeout`` seconds (None = unbounded) bounds the loop
-    (info ``stopped: "timeout"``); Ctrl-C stops it between candidates and raises KeyboardInterrupt."""
+@final
+class LatticeOutcome:
+    """What :func:`generate_lattice` found (read-only): ``kind`` "accepted" (``map``,
+    ``centreline``, ``report``, ``candidate_index``, ``pitch_m``), "rejected" by the
+    screen (``screen``) or "failed" (``reasons``, ``stopped``); the others are None (empty
+    ``reasons``). ``tried``: candidates tried (0 when rejected)."""
+
+    @property
+    def kind(self) -> Literal["accepted", "rejected", "failed"]: ...
+    @property
+    def tried(self) -> int: ...
+    @property
+    def map(self) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]] | None:
+        """The accepted map: (data (H, W) uint8, origin (x, y, yaw))."""
+    @property
+    def centreline(self) -> npt.NDArray[np.float64] | None:
+        """The accepted closed centreline (N, 2)."""
+    @property
+    def report(self) -> _Result | None:
+        """The accepted map's raster validation (``ValidationReport``)."""
+    @property
+    def candidate_index(self) -> int | None: ...
+    @property
+    def pitch_m(self) -> float | None: ...
+    @property
+    def screen(self) -> _Result | None:
+        """The screen that rejected the spec (``ScreenResult``)."""
+    @property
+    def reasons(self) -> dict[str, int]:
+        """Why candidates failed, each reason counted."""
+    @property
+    def stopped(self) -> Literal["timeout", "cancelled"] | None:
+        """What stopped a failed search before its candidate cap."""
 
 def construct_lattice(
     spec: _Doc, config: _Doc | None, seed: int, timeout: float | None = None

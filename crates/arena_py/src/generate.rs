@@ -9,8 +9,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::boundary;
-use crate::convert::{from_py, grid_to_py, line_to_py, to_dict, to_py, MapTuple};
-use arena_core::generate::construct::{self, Outcome};
+use crate::convert::{from_py, line_to_py, to_dict, to_py};
+use crate::outcome::LatticeOutcome;
+use arena_core::generate::construct;
 use arena_core::generate::deadline::Failure;
 use arena_core::generate::nearest::{self, NearestReport};
 use arena_core::generate::spec::{ConstructorConfig, Spec};
@@ -62,68 +63,26 @@ fn derived_geometry<'py>(
     to_dict(py, &out)
 }
 
-/// Algorithm 1 (lattice and ring constructors). Returns ``(kind, info, map,
-/// centreline)`` with kind ``"accepted" | "rejected" | "failed"`` and info a dict; the
-/// last two are None unless accepted. ``timeout`` (seconds, None = unbounded) bounds the
-/// loop; a failure it cut short has ``"stopped": "timeout"`` in its info. Ctrl-C stops
-/// the loop between candidates and raises KeyboardInterrupt.
+/// Algorithm 1 (lattice and ring constructors), screen included (once, in the core):
+/// a [`LatticeOutcome`] ("accepted", "rejected" or "failed"). ``timeout`` (seconds, None
+/// = unbounded) bounds the loop; a failure it cut short has ``stopped == "timeout"``.
+/// Ctrl-C stops the loop between candidates and raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (spec, config, seed, timeout=None))]
-#[allow(clippy::type_complexity)]
-fn generate_lattice<'py>(
-    py: Python<'py>,
-    spec: &Bound<'py, PyAny>,
-    config: Option<&Bound<'py, PyAny>>,
+fn generate_lattice(
+    py: Python<'_>,
+    spec: &Bound<'_, PyAny>,
+    config: Option<&Bound<'_, PyAny>>,
     seed: u64,
     timeout: Option<f64>,
-) -> PyResult<(
-    &'static str,
-    Bound<'py, PyDict>,
-    Option<MapTuple<'py>>,
-    Option<Bound<'py, PyArray2<f64>>>,
-)> {
+) -> PyResult<LatticeOutcome> {
     let (spec, cfg) = parse(py, spec, config)?;
-    let Some(out) = boundary::call_with_deadline(py, "generate_lattice", timeout, move |b| {
+    match boundary::call_with_deadline(py, "generate_lattice", timeout, move |b| {
         construct::generate(&spec, &cfg, seed, b)
-    })?
-    else {
-        return Ok(("failed", to_dict(py, &Failure::abandoned())?, None, None));
-    };
-    Ok(match out {
-        Outcome::Accepted {
-            grid,
-            candidate,
-            report,
-            candidate_index,
-            tried,
-        } => {
-            let info = PyDict::new(py);
-            info.set_item("report", to_py(py, &report)?)?;
-            info.set_item("candidate_index", candidate_index)?;
-            info.set_item("tried", tried)?;
-            info.set_item("pitch_m", candidate.pitch_m)?;
-            let line = line_to_py(py, &candidate.centreline);
-            ("accepted", info, Some(grid_to_py(py, grid)), Some(line))
-        }
-        Outcome::Rejected(sr) => ("rejected", to_dict(py, &sr)?, None, None),
-        Outcome::Failed {
-            tried,
-            reasons,
-            stopped,
-        } => (
-            "failed",
-            to_dict(
-                py,
-                &Failure {
-                    tried,
-                    reasons,
-                    stopped,
-                },
-            )?,
-            None,
-            None,
-        ),
-    })
+    })? {
+        Some(out) => LatticeOutcome::from_core(py, out),
+        None => Ok(LatticeOutcome::failed(Failure::abandoned())),
+    }
 }
 
 /// The constructor without the raster validator in its loop (the paper's
@@ -186,6 +145,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(screen, m)?)?;
     m.add_function(wrap_pyfunction!(derived_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;
+    m.add_class::<LatticeOutcome>()?;
     m.add_function(wrap_pyfunction!(construct_lattice, m)?)?;
     Ok(())
 }

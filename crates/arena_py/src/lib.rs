@@ -13,6 +13,7 @@ mod errors;
 mod generate;
 mod geometry;
 mod grid;
+mod outcome;
 mod sim;
 mod start_grid;
 mod track;

@@ -108,23 +108,23 @@ def generate_track(
     suggest_timeout = check_timeout(suggest_timeout, "suggest_timeout")
     config = config or ConstructorConfig()
     t0 = time.perf_counter()
-    sr = screen(spec, config)
-    if not sr.passed:
-        return Rejection(spec, list(sr.violations), sr, time.perf_counter() - t0)
     if constructor == "lattice":
-        kind, info, grid, line = _core.generate_lattice(spec, config, seed, timeout)
-        if kind == "accepted":
-            if grid is None or line is None:  # the core returns both with every acceptance
-                raise InternalError("generate_lattice accepted without a map and centreline")
-            data, origin = grid
+        out = _core.generate_lattice(spec, config, seed, timeout)  # screens once, first
+        if out.kind == "rejected":
+            sr = ScreenResult.model_validate(out.screen)
+            return Rejection(spec, list(sr.violations), sr, time.perf_counter() - t0)
+        if out.kind == "accepted":
+            if out.map is None or out.centreline is None or out.report is None:  # set with every acceptance
+                raise InternalError("generate_lattice accepted without a map, centreline and report")
+            data, origin = out.map
             return Acceptance(
                 spec,
                 OccupancyMap(data, config.resolution_m, origin),
-                line,
-                ValidationReport.model_validate(info["report"]),
+                out.centreline,
+                ValidationReport.model_validate(out.report),
                 constructor,
                 seed,
-                info["tried"],
+                out.tried,
                 time.perf_counter() - t0,
             )
         seconds = time.perf_counter() - t0
@@ -133,10 +133,10 @@ def generate_track(
             spec,
             constructor,
             seed,
-            info["tried"],
-            dict(info["reasons"]),
+            out.tried,
+            dict(out.reasons),
             seconds,
-            stopped=info.get("stopped"),
+            stopped=out.stopped,
             nearest=nearest,
         )
     raise AssertionError(f"unhandled constructor {constructor!r}")  # CONSTRUCTORS is checked above

@@ -378,11 +378,13 @@ pub fn generate(
     seed: u64,
     deadline: &Deadline,
 ) -> crate::Result<Outcome> {
-    check_raster_budget(spec, cfg)?;
+    // The one screen of a generation (the screen's proof of infeasibility comes before
+    // the size limit, as the Python pipeline's own screen did when it ran first).
     let sr = screen(spec, cfg);
     if !sr.passed {
         return Ok(Outcome::Rejected(sr));
     }
+    check_raster_budget(spec, cfg)?;
     let mut reasons: BTreeMap<String, u32> = BTreeMap::new();
     for k in 0..cfg.max_candidates {
         if let Some(stop) = deadline.stopped() {
@@ -521,6 +523,24 @@ mod tests {
             gen(&spec(200.0, 0, 0, 0), 0),
             Outcome::Rejected(_)
         ));
+    }
+
+    /// The one screen runs before the size limit: a spec both impossible and too large
+    /// for the raster is a proven rejection (as when the Python pipeline screened first).
+    #[test]
+    fn screen_rejection_comes_before_the_size_limit() {
+        let mut s = spec(10.0, 5, 0, 0);
+        (s.hall_x_m, s.hall_y_m) = (400.0, 400.0);
+        let cfg = ConstructorConfig::default();
+        assert!(check_raster_budget(&s, &cfg).is_err());
+        assert!(matches!(
+            generate(&s, &cfg, 0, &Deadline::default()),
+            Ok(Outcome::Rejected(_))
+        ));
+        s.lap_length_m = 2000.0;
+        s.hairpins = 0;
+        assert!(screen(&s, &cfg).passed);
+        assert!(generate(&s, &cfg, 0, &Deadline::default()).is_err());
     }
 
     fn small(l: f64, w: f64, bx: f64, by: f64, h: u32, c: u32, sw: u32) -> Spec {
