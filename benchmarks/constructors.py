@@ -145,12 +145,11 @@ def _build(spec: TrackSpec, seed: int, constructor: str, config: ConstructorConf
         reasons: dict[str, int] = getattr(out, "reasons", {}) or {out.kind: 1}
         return None, max(reasons, key=lambda k: reasons[k]), getattr(out, "candidates_tried", 0)
     if constructor == "lattice-raw":
-        info, line = _core.construct_lattice(spec, config, seed)
-        tried = info["tried"]
-        if line is None:
-            reasons = info["reasons"]
-            return None, max(reasons, key=lambda k: reasons[k]), tried
-        return rasterise(line, spec, config), "", tried
+        built = _core.construct_lattice(spec, config, seed)
+        if built.centreline is None:
+            reasons = built.reasons
+            return None, max(reasons, key=lambda k: reasons[k]), built.tried
+        return rasterise(built.centreline, spec, config), "", built.tried
     line = construct_baseline(spec, config, seed, constructor)
     if line is None:
         return None, "self-intersecting curve", 1

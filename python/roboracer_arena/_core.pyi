@@ -27,6 +27,7 @@ __all__ = [
     "generate_lattice",
     "LatticeOutcome",
     "construct_lattice",
+    "Construction",
     "nearest_specs",
     "validate_map",
     "analyse_curve",
@@ -159,11 +160,28 @@ class LatticeOutcome:
     def stopped(self) -> Literal["timeout", "cancelled"] | None:
         """What stopped a failed search before its candidate cap."""
 
-def construct_lattice(
-    spec: _Doc, config: _Doc | None, seed: int, timeout: float | None = None
-) -> tuple[_Result, npt.NDArray[np.float64] | None]:
-    """Lattice constructor without raster validation in the loop: (info {tried, pitch_m |
-    reasons}, centreline | None)."""
+def construct_lattice(spec: _Doc, config: _Doc | None, seed: int, timeout: float | None = None) -> Construction:
+    """Lattice constructor without raster validation in the loop (the paper's
+    constructor-comparison protocol)."""
+
+@final
+class Construction:
+    """What :func:`construct_lattice` found (read-only): the first candidate's
+    ``centreline`` and ``pitch_m``, or (both None) the ``reasons`` no candidate passed the
+    constructor's checks and what ``stopped`` the search early."""
+
+    @property
+    def tried(self) -> int: ...
+    @property
+    def centreline(self) -> npt.NDArray[np.float64] | None:
+        """The first passing candidate's closed centreline (N, 2)."""
+    @property
+    def pitch_m(self) -> float | None: ...
+    @property
+    def reasons(self) -> dict[str, int]:
+        """Why candidates failed, each reason counted (empty when one passed)."""
+    @property
+    def stopped(self) -> Literal["timeout", "cancelled"] | None: ...
 
 def validate_map(
     data: npt.NDArray[np.uint8],

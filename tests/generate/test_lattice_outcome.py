@@ -57,3 +57,14 @@ def test_a_failure_names_its_reasons_and_what_stopped_it():
     out = _core.generate_lattice(SMALL, None, 0, 1e-9)
     assert out.kind == "failed" and out.map is None and out.screen is None and out.report is None
     assert out.stopped == "timeout" and all(isinstance(n, int) for n in out.reasons.values())
+
+
+def test_the_constructor_alone_returns_a_typed_construction():
+    built = _core.construct_lattice(SMALL, ConstructorConfig(), 0)
+    assert built.tried >= 1 and built.centreline.shape[1] == 2 and built.pitch_m > 0
+    assert built.reasons == {} and built.stopped is None
+    with pytest.raises(AttributeError):
+        built.tried = 0  # type: ignore[misc]
+    none = _core.construct_lattice(SMALL, ConstructorConfig(max_candidates=1), 0, 1e-9)
+    assert none.centreline is None and none.pitch_m is None
+    assert none.stopped in (None, "timeout") and all(isinstance(n, int) for n in none.reasons.values())

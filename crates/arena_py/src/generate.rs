@@ -4,21 +4,17 @@
 //! through `boundary::call_with_deadline` (worker thread, Ctrl-C, deadline), the rest
 //! through `boundary::call`.
 
-use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::boundary;
-use crate::convert::{from_py, line_to_py, to_dict, to_py};
-use crate::outcome::LatticeOutcome;
+use crate::convert::{from_py, to_dict};
+use crate::outcome::{Construction, LatticeOutcome};
 use arena_core::generate::construct;
 use arena_core::generate::deadline::Failure;
 use arena_core::generate::nearest::{self, NearestReport};
 use arena_core::generate::spec::{ConstructorConfig, Spec};
 use arena_core::ArenaError;
-
-/// A centreline (N, 2) as returned to Python.
-type Line<'py> = Bound<'py, PyArray2<f64>>;
 
 /// The spec (``TrackSpec``, or its ``model_dump()``) and the constructor config
 /// (``ConstructorConfig`` or its dump; None = defaults) as the core's types, each checked
@@ -86,38 +82,22 @@ fn generate_lattice(
 }
 
 /// The constructor without the raster validator in its loop (the paper's
-/// constructor-comparison protocol). Returns ``(info, centreline | None)``; info (a dict)
-/// has ``tried`` and ``pitch_m``, or, when no candidate passed the constructor's checks,
-/// ``tried`` and ``reasons``.
+/// constructor-comparison protocol): a [`Construction`] with the first candidate that
+/// passed the constructor's checks, or why none did.
 #[pyfunction]
 #[pyo3(signature = (spec, config, seed, timeout=None))]
-fn construct_lattice<'py>(
-    py: Python<'py>,
-    spec: &Bound<'py, PyAny>,
-    config: Option<&Bound<'py, PyAny>>,
+fn construct_lattice(
+    py: Python<'_>,
+    spec: &Bound<'_, PyAny>,
+    config: Option<&Bound<'_, PyAny>>,
     seed: u64,
     timeout: Option<f64>,
-) -> PyResult<(Bound<'py, PyDict>, Option<Line<'py>>)> {
+) -> PyResult<Construction> {
     let (spec, cfg) = parse(py, spec, config)?;
-    let Some(out) = boundary::call_with_deadline(py, "construct_lattice", timeout, move |b| {
+    let out = boundary::call_with_deadline(py, "construct_lattice", timeout, move |b| {
         Ok(construct::first_candidate(&spec, &cfg, seed, b))
-    })?
-    else {
-        return Ok((to_dict(py, &Failure::abandoned())?, None));
-    };
-    let info = PyDict::new(py);
-    Ok(match out {
-        Ok((c, tried)) => {
-            info.set_item("tried", tried)?;
-            info.set_item("pitch_m", c.pitch_m)?;
-            (info, Some(line_to_py(py, &c.centreline)))
-        }
-        Err((tried, reasons)) => {
-            info.set_item("tried", tried)?;
-            info.set_item("reasons", to_py(py, &reasons)?)?;
-            (info, None)
-        }
-    })
+    })?;
+    Ok(Construction::from_core(py, out))
 }
 
 /// Nearest specs that build after a generation failure (`generate::nearest`), a dict
@@ -146,6 +126,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(derived_geometry, m)?)?;
     m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;
     m.add_class::<LatticeOutcome>()?;
+    m.add_class::<Construction>()?;
     m.add_function(wrap_pyfunction!(construct_lattice, m)?)?;
     Ok(())
 }

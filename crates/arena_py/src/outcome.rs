@@ -1,10 +1,11 @@
 //! The lattice generator's result as one typed, read-only object (`generate_lattice`):
 //! which of the three outcomes it is, and the fields each carries (None elsewhere).
 //! The core screens once, inside `construct::generate`; a rejection carries that screen.
+//! `construct_lattice`'s result, the constructor alone, is a [`Construction`].
 
 use std::collections::BTreeMap;
 
-use arena_core::generate::construct::Outcome;
+use arena_core::generate::construct::{Candidate, Outcome};
 use arena_core::generate::deadline::{Failure, Stop};
 use numpy::PyArray2;
 use pyo3::prelude::*;
@@ -39,6 +40,14 @@ impl LatticeOutcome {
     }
 }
 
+/// The name of what stopped a search early.
+fn stop_name(stop: Stop) -> &'static str {
+    match stop {
+        Stop::Timeout => "timeout",
+        Stop::Cancelled => "cancelled",
+    }
+}
+
 impl LatticeOutcome {
     fn empty(kind: &'static str, tried: u32) -> LatticeOutcome {
         LatticeOutcome {
@@ -59,10 +68,7 @@ impl LatticeOutcome {
     pub fn failed(f: Failure) -> LatticeOutcome {
         LatticeOutcome {
             reasons: f.reasons,
-            stopped: f.stopped.map(|s| match s {
-                Stop::Timeout => "timeout",
-                Stop::Cancelled => "cancelled",
-            }),
+            stopped: f.stopped.map(stop_name),
             ..Self::empty("failed", f.tried)
         }
     }
@@ -101,5 +107,60 @@ impl LatticeOutcome {
                 stopped,
             }),
         })
+    }
+}
+
+/// What ``construct_lattice`` found: the first candidate's ``centreline`` and
+/// ``pitch_m``, or (both None) the ``reasons`` no candidate passed the constructor's
+/// checks and what ``stopped`` the search early; ``tried`` candidates.
+#[pyclass(frozen, get_all, module = "roboracer_arena._core")]
+pub struct Construction {
+    tried: u32,
+    centreline: Option<Py<PyArray2<f64>>>,
+    pitch_m: Option<f64>,
+    reasons: BTreeMap<String, u32>,
+    stopped: Option<&'static str>,
+}
+
+#[pymethods]
+impl Construction {
+    fn __repr__(&self) -> String {
+        format!(
+            "Construction(tried={}, built={})",
+            self.tried,
+            self.centreline.is_some()
+        )
+    }
+}
+
+impl Construction {
+    /// `first_candidate`'s result (None: the deadline passed inside one candidate).
+    #[allow(clippy::type_complexity)]
+    pub fn from_core(
+        py: Python<'_>,
+        out: Option<Result<(Candidate, u32), (u32, BTreeMap<String, u32>)>>,
+    ) -> Construction {
+        let failed = |f: Failure| Construction {
+            tried: f.tried,
+            centreline: None,
+            pitch_m: None,
+            reasons: f.reasons,
+            stopped: f.stopped.map(stop_name),
+        };
+        match out {
+            None => failed(Failure::abandoned()),
+            Some(Ok((c, tried))) => Construction {
+                tried,
+                centreline: Some(line_to_py(py, &c.centreline).unbind()),
+                pitch_m: Some(c.pitch_m),
+                reasons: BTreeMap::new(),
+                stopped: None,
+            },
+            Some(Err((tried, reasons))) => failed(Failure {
+                tried,
+                reasons,
+                stopped: None,
+            }),
+        }
     }
 }
