@@ -422,6 +422,10 @@ class Simulator:
     ) -> None:
         """Per-episode vehicle parameters (E,) each for envs where ``env_mask`` is True: tyre friction,
         mass (kg), steering and throttle time constants (s). They hold until set again."""
+    def sanitise_actions(self, actions: npt.NDArray[np.float64]) -> None:
+        """The action rule, in place on (E, V, 2) float64 ``[steer, speed]``: NaN becomes 0,
+        every other value (±inf included) is clipped to ±max_steer and [min_speed,
+        max_speed]; ``step`` applies the same rule to what it is given."""
     def step(
         self,
         actions: npt.NDArray[np.float64],

@@ -452,6 +452,16 @@ impl Simulator {
         boundary::call(py, "set_episode", move || inner.set_episode(params))
     }
 
+    /// Apply the action rule in place to `actions` ((E, V, 2) float64, C-contiguous):
+    /// NaN becomes 0, every other value (±inf included) is clipped to ±max_steer and
+    /// [min_speed, max_speed], as `step` applies it to what it is given.
+    fn sanitise_actions(&self, actions: &Bound<'_, PyAny>) -> PyResult<()> {
+        let (e, v) = (self.inner.num_envs(), self.inner.vehicles_per_env());
+        let mut a = out_array!(actions, f64, PyArray3, "actions", [e, v, 2], "float64");
+        let a = a.as_slice_mut().map_err(|e| invalid(e.to_string()))?;
+        self.inner.sanitise_actions(a).map_err(to_py)
+    }
+
     #[pyo3(signature = (actions, substeps, scans, state, events, episode = None))]
     #[allow(clippy::too_many_arguments)]
     fn step(

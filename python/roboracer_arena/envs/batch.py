@@ -1,6 +1,7 @@
 """The batch engine behind both gymnasium envs: one native ``_core.Simulator`` holding
-``E`` environments of ``V`` vehicles, preallocated buffers, action sanitising and
-observation assembly. The single env is this with ``E = 1``; the vector env adds
+``E`` environments of ``V`` vehicles, preallocated buffers, the action mapping (the
+core sanitises: one action rule for the envs and the ROS 2 bridge) and observation
+assembly. The single env is this with ``E = 1``; the vector env adds
 autoreset on top.
 
 The episode step (progress since reset, the reward terms, wrong-way driving,
@@ -116,7 +117,6 @@ class SimBatch:
         #: (low, high) m/s of normalised speed actions -1 and +1, or None for the piecewise map.
         self._speed_range = None if frac is None else (frac[0] * veh.max_speed, frac[1] * veh.max_speed)
         self._scalar_actions = E * V == 1
-        self._bounds = (tuple(self._lo.tolist()), tuple(self._hi.tolist()))
         self._info_names = [f for f in STATE_INFO if f in self.field_index]
         self._info_cols = np.array([self.field_index[f] for f in self._info_names], dtype=np.intp)
         self._range_max = float(lid.range_max)
@@ -178,20 +178,19 @@ class SimBatch:
 
     # ------------------------------------------------------------------ actions
     def set_actions(self, actions: Any) -> None:
-        """Sanitise and store actions ((E, V, 2) after reshape): NaN -> 0 (straight, stop),
-        ±inf and out-of-range values clipped to the action bounds; then mapped to
-        [steer rad, speed m/s] for the simulator."""
+        """Store actions ((E, V, 2) after reshape) as [steer rad, speed m/s] commands (the
+        normalised mode maps [-1, 1] to them first), sanitised by the core's action rule
+        (``_core.Simulator.sanitise_actions``: NaN -> 0, straight and stop; ±inf and
+        out-of-range values clipped to the bounds), so they hold what the car is given."""
         out = self.actions
         if self._scalar_actions and self.config.action_mode == "ackermann":
             try:  # one vehicle: plain floats are several times faster than numpy calls
                 steer, speed = actions.tolist() if hasattr(actions, "tolist") else actions
-                steer, speed = float(steer), float(speed)
+                out[0, 0, 0], out[0, 0, 1] = float(steer), float(speed)
             except (TypeError, ValueError):
                 pass
-            else:  # NaN (x != x) becomes 0
-                (slo, vlo), (shi, vhi) = self._bounds
-                out[0, 0, 0] = (slo if steer < slo else shi if steer > shi else steer) if steer == steer else 0.0
-                out[0, 0, 1] = (vlo if speed < vlo else vhi if speed > vhi else speed) if speed == speed else 0.0
+            else:
+                self.sim.sanitise_actions(out)
                 return
         raw = np.asarray(actions)
         if raw.dtype.kind not in "biuf" or raw.size != self.num_envs * self.vehicles * 2:
@@ -201,8 +200,8 @@ class SimBatch:
             )
         a = raw.astype(np.float64, copy=False).reshape(self.num_envs, self.vehicles, 2)
         if self.config.action_mode == "ackermann":
-            np.clip(a, self._lo, self._hi, out=out)  # ±inf -> bounds; NaN stays NaN
-        else:
+            out[:] = a
+        else:  # the mapping's domain is [-1, 1] (±inf -> ±1); NaN maps to NaN
             n = np.clip(a, -1.0, 1.0)
             out[..., 0] = n[..., 0] * self._hi[0]
             sp = n[..., 1]
@@ -211,8 +210,7 @@ class SimBatch:
             else:
                 lo, hi = self._speed_range
                 out[..., 1] = lo + (hi - lo) * 0.5 * (sp + 1.0)
-        if np.isnan(out).any():
-            out[np.isnan(out)] = 0.0
+        self.sim.sanitise_actions(out)
 
     def from_ackermann(self, cmds: np.ndarray) -> np.ndarray:
         """Convert [steer rad, speed m/s] commands to this env's action mode (float32)."""

@@ -349,7 +349,9 @@ class Bridge:
 
     def drive(self, car: int, steer: float, speed: float) -> None:
         """Command car ``car`` from Python, as a ``/drive`` message would (recorded too; in
-        lockstep mode an ego command is queued and advances one control period)."""
+        lockstep mode an ego command is queued and advances one control period). The core
+        applies the env's action rule: NaN -> 0, ±inf and out-of-range values -> the
+        bounds (a ``/drive`` message with non-finite values is dropped and counted)."""
         if not 0 <= car < self.src.vehicles:
             raise IndexError(f"car {car} out of range (0..{self.src.vehicles - 1})")
         if self._recorder is not None:

@@ -5,8 +5,11 @@
 //! single-threaded inside a world. Hence results are bit-identical for the same seed
 //! whatever the number of environments or threads.
 //!
-//! Bad actions: NaN or ±inf become 0 (straight / stop); finite values are clipped to
-//! ±max_steer and [min_speed, max_speed]. Nothing an action can hold raises or panics.
+//! Bad actions: the one action rule ([`VehicleModel::sanitise`]): NaN becomes 0
+//! (straight / stop), every other value (±inf included) is clipped to ±max_steer and
+//! [min_speed, max_speed]. Nothing an action can hold raises or panics; callers that keep
+//! the applied actions (the envs' previous action) get the same rule from
+//! [`Simulator::sanitise_actions`].
 //!
 //! Every other input is checked at the door (before anything changes): lengths against
 //! the batch's shape, track ids in range, poses finite and within [`POSE_MARGIN`] of the
@@ -455,6 +458,17 @@ impl Simulator {
                     w.set_car_params(k, *p, &self.model);
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// Apply the action rule ([`VehicleModel::sanitise`]) in place to `actions`
+    /// (E × V × 2: steering, speed), as [`Self::step`] applies it to what it is given.
+    pub fn sanitise_actions(&self, actions: &mut [f64]) -> Result<()> {
+        let n = self.num_envs() * self.vehicles_per_env * 2;
+        self.check_len("actions", actions.len(), n)?;
+        for c in actions.chunks_exact_mut(2) {
+            (c[0], c[1]) = self.model.sanitise(c[0], c[1]);
         }
         Ok(())
     }

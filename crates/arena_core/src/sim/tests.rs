@@ -255,6 +255,39 @@ fn bit_identical_across_thread_counts_and_num_envs() {
 }
 
 #[test]
+fn sanitised_actions_drive_as_the_raw_ones() {
+    // One rule: what `sanitise_actions` stores is what `step` applies (NaN -> 0, ±inf -> the
+    // bound), so stepping either gives the same car, bit for bit.
+    let raw = [
+        f64::NAN,
+        f64::INFINITY,
+        f64::INFINITY,
+        2.0,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        0.1,
+        f64::NEG_INFINITY,
+    ];
+    let mut clean = raw;
+    let probe = stadium_sim(2, 2, SimParams::default(), 0);
+    probe.sanitise_actions(&mut clean).unwrap();
+    assert_eq!(clean, [0.0, 7.0, 0.524, 2.0, -0.524, 0.0, 0.1, -3.0]);
+    assert!(probe.sanitise_actions(&mut [0.0; 6]).is_err());
+    let run = |actions: &[f64]| {
+        let mut sim = stadium_sim(2, 2, SimParams::default(), 0);
+        reset_on_centreline(&mut sim);
+        let mut out = Out::new(&sim);
+        for _ in 0..20 {
+            sim.step(actions, 5, None, &mut out.state, &mut out.events)
+                .unwrap();
+        }
+        out.state
+    };
+    let (a, b) = (run(&raw), run(&clean));
+    assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
+}
+
+#[test]
 fn bad_actions_never_make_a_nan_state() {
     let mut sim = stadium_sim(2, 2, SimParams::default(), 0);
     reset_on_centreline(&mut sim);

@@ -291,20 +291,17 @@ impl VehicleModel {
             .build()
     }
 
-    /// Clip a raw action to the documented domain: NaN or ±inf become 0 (straight /
-    /// stop), finite values are clipped to ±max_steer and [min_speed, max_speed].
+    /// The one action rule, for every caller (the envs, the ROS 2 bridge, the core's own
+    /// step): NaN means no command and becomes 0 (straight / stop); every other value,
+    /// ±inf included, is clipped to ±max_steer and [min_speed, max_speed] (so +inf is
+    /// full throttle, as any value past the bound is). Idempotent: a sanitised action
+    /// passes unchanged.
     pub fn sanitise(&self, steer: f64, speed: f64) -> (f64, f64) {
-        let s = if steer.is_finite() {
-            steer.clamp(-self.p.max_steer, self.p.max_steer)
-        } else {
-            0.0
-        };
-        let v = if speed.is_finite() {
-            speed.clamp(self.p.min_speed, self.p.max_speed)
-        } else {
-            0.0
-        };
-        (s, v)
+        let clip = |x: f64, lo: f64, hi: f64| if x.is_nan() { 0.0 } else { x.clamp(lo, hi) };
+        (
+            clip(steer, -self.p.max_steer, self.p.max_steer),
+            clip(speed, self.p.min_speed, self.p.max_speed),
+        )
     }
 
     /// Advance the actuators and wheels by `dt` toward the (sanitised) command and apply
@@ -559,7 +556,12 @@ mod tests {
     #[test]
     fn sanitise_documented_domain() {
         let m = VehicleModel::new(&VehicleParams::default(), &PhysicsParams::default());
-        assert_eq!(m.sanitise(f64::NAN, f64::INFINITY), (0.0, 0.0));
+        assert_eq!(m.sanitise(f64::NAN, f64::NAN), (0.0, 0.0));
+        assert_eq!(m.sanitise(f64::INFINITY, f64::INFINITY), (0.524, 7.0));
+        assert_eq!(
+            m.sanitise(f64::NEG_INFINITY, f64::NEG_INFINITY),
+            (-0.524, -3.0)
+        );
         assert_eq!(m.sanitise(9.0, 99.0), (0.524, 7.0));
         assert_eq!(m.sanitise(-9.0, -99.0), (-0.524, -3.0));
         assert_eq!(m.sanitise(0.1, 2.0), (0.1, 2.0));
