@@ -36,7 +36,6 @@ from .._core import (
 )
 from ..errors import ConfigError, InvalidArgumentError
 from ..track.drivable import Track
-from ..track.start_grid import SIDE_MARGIN, start_spec
 from .env_config import EnvConfig
 from .observation import ObservationAssembler
 
@@ -242,16 +241,10 @@ class SimBatch:
         """The simulator's reset draws (``_core.Simulator.set_start_spec``)."""
         cfg = self.config
         rnd = cfg.randomisation
-        return start_spec(
+        return cfg.start_spec(
             tracks,
             self.vehicles,
-            reset_poses=cfg.reset_poses,
-            grid_spacing=cfg.grid_spacing,
-            grid_offset=cfg.grid_offset,
-            lateral_noise=cfg.start_lateral_noise,
-            heading_noise=cfg.start_heading_noise,
-            speed_noise=cfg.start_speed_noise,
-            side_clearance=cfg.sim.vehicle.chassis_width / 2 + SIDE_MARGIN,
+            cfg.sim.vehicle.chassis_width,
             track_weights=probs,
             noise_std=(float(rnd.lidar_noise_std[0]), float(rnd.lidar_noise_std[1])),
             dropout=float(rnd.lidar_dropout),

@@ -8,14 +8,19 @@ can also be passed as a keyword to ``gymnasium.make``/``make_vec``; unknown keys
 
 from __future__ import annotations
 
-from typing import Literal
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..config.sim import MIN_RATE_HZ, SimConfig
 from ..errors import ConfigError
 from ..foundation.strict import NumbersAreNumbers
-from ..track.start_grid import GRID_OFFSET, GRID_SPACING
+from ..track.start_grid import GRID_OFFSET, GRID_SPACING, SIDE_MARGIN, start_spec
+
+if TYPE_CHECKING:
+    from .._core import StartSpec
+    from ..track.drivable import Track
 
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
@@ -189,8 +194,67 @@ OBSERVATION_PRESETS = {
 }
 
 
-class EnvConfig(NumbersAreNumbers):
-    """Task configuration of ``RoboRacerArena-v0`` (single env and vector env)."""
+class StartOptions(NumbersAreNumbers):
+    """Where an episode's cars start: the start fields of :class:`EnvConfig`, which the ROS 2
+    bridge's start config (``ros2.start.StartConfig``) reuses, so both front ends state and
+    bound them once; :meth:`start_spec` turns them into the simulator's reset draws."""
+
+    model_config = _FROZEN
+
+    reset_poses: Literal["random", "grid", "centreline_start"] = Field(
+        "random",
+        description="'random': a uniformly random point of the centreline; 'grid': the grid start "
+        "(track/start_grid.py: on the line, clear of walls, facing the longest free run ahead); 'centreline_start': "
+        "s = 0 of the centreline as extracted. Further vehicles line up behind the first in a staggered grid.",
+    )
+    start_lateral_noise: float = Field(
+        0.0,
+        ge=0,
+        le=1e4,
+        description="Start pose: uniform lateral offset in +-this (m), capped to keep the car off the walls.",
+    )
+    start_heading_noise: float = Field(
+        0.0, ge=0, le=3.2, description="Start pose: uniform heading offset in +-this (rad)."
+    )
+    start_speed_noise: float = Field(
+        0.0, ge=0, le=1e4, description="Rolling start: forward speed drawn uniformly from [0, this] m/s (<= max_speed)."
+    )
+    grid_spacing: float = Field(GRID_SPACING, gt=0, le=1e4, description="Longitudinal gap between grid slots (m).")
+    grid_offset: float = Field(GRID_OFFSET, ge=0, le=1e4, description="Lateral offset of the staggered grid slots (m).")
+
+    def start_spec(
+        self,
+        tracks: Sequence[Track | None],
+        vehicles: int,
+        chassis_width: float,
+        *,
+        track_weights: Iterable[float] | None = None,
+        noise_std: tuple[float, float] = (0.0, 0.0),
+        dropout: float = 0.0,
+    ) -> StartSpec:
+        """The simulator's reset draws (``_core.Simulator.set_start_spec``) of ``vehicles``
+        cars of width ``chassis_width`` on ``tracks`` with these start fields (see
+        :func:`~roboracer_arena.track.start_grid.start_spec`; lateral noise keeps the car's side
+        :data:`~roboracer_arena.track.start_grid.SIDE_MARGIN` from the walls)."""
+        return start_spec(
+            tracks,
+            vehicles,
+            reset_poses=self.reset_poses,
+            grid_spacing=self.grid_spacing,
+            grid_offset=self.grid_offset,
+            lateral_noise=self.start_lateral_noise,
+            heading_noise=self.start_heading_noise,
+            speed_noise=self.start_speed_noise,
+            side_clearance=chassis_width / 2 + SIDE_MARGIN,
+            track_weights=track_weights,
+            noise_std=noise_std,
+            dropout=dropout,
+        )
+
+
+class EnvConfig(StartOptions):
+    """Task configuration of ``RoboRacerArena-v0`` (single env and vector env); its start
+    fields are those of :class:`StartOptions`."""
 
     model_config = _FROZEN
 
@@ -218,24 +282,6 @@ class EnvConfig(NumbersAreNumbers):
         description="Truncate after this much simulated time (None: never); see envs/episode_limit.py "
         "for how it agrees with gymnasium's max_episode_steps.",
     )
-    reset_poses: Literal["random", "grid", "centreline_start"] = Field(
-        "random",
-        description="'random': a uniformly random point of the centreline; 'grid': the grid start "
-        "(track/start_grid.py: on the line, clear of walls, facing the longest free run ahead); 'centreline_start': "
-        "s = 0 of the centreline as extracted. Further vehicles line up behind the first in a staggered grid.",
-    )
-    start_lateral_noise: float = Field(
-        0.0,
-        ge=0,
-        le=1e4,
-        description="Start pose: uniform lateral offset in +-this (m), capped to keep the car off the walls.",
-    )
-    start_heading_noise: float = Field(
-        0.0, ge=0, le=3.2, description="Start pose: uniform heading offset in +-this (rad)."
-    )
-    start_speed_noise: float = Field(
-        0.0, ge=0, le=1e4, description="Rolling start: forward speed drawn uniformly from [0, this] m/s (<= max_speed)."
-    )
     wrong_way_distance: float = Field(
         2.0,
         gt=0,
@@ -244,8 +290,6 @@ class EnvConfig(NumbersAreNumbers):
     )
     wrong_way_ends_episode: bool = Field(False, description="Driving the wrong way terminates the episode.")
     randomisation: RandomisationConfig = Field(default_factory=lambda: RandomisationConfig())
-    grid_spacing: float = Field(GRID_SPACING, gt=0, le=1e4, description="Longitudinal gap between grid slots (m).")
-    grid_offset: float = Field(GRID_OFFSET, ge=0, le=1e4, description="Lateral offset of the staggered grid slots (m).")
     reverse: bool = Field(
         False,
         description="Drive every track against its racing direction (the centreline reversed; "

@@ -25,7 +25,7 @@ from ..maps.occupancy import load_map
 from ..raceline.limits import preset
 from ..raceline.plan import plan_raceline
 from ..track.start_grid import start_spec
-from .start import StartConfig, bridge_start_spec
+from .start import StartConfig
 
 _log = logging.getLogger(__name__)
 
@@ -144,7 +144,7 @@ def sim_source(
         raise ConfigError(f"--cars must be in 1..64, got {cars}")
     cfg = config or SimConfig()
     sim = _core.Simulator([track.native()], 1, n, cfg, seed)
-    sim.set_start_spec(bridge_start_spec(track, n, start or StartConfig(), cfg.vehicle.chassis_width))
+    sim.set_start_spec((start or StartConfig()).start_spec([track], n, cfg.vehicle.chassis_width))
     src = track.source if track.source is not None else env_or_sim
     return SimSource(
         sim,
