@@ -55,6 +55,7 @@ __all__ = [
     "SIM_MAX_VEHICLES",
     "SIM_MAX_SCAN_VALUES",
     "STATE_FIELDS",
+    "ProgressTracker",
     "EpisodeConfig",
     "EpisodeBuffers",
     "EVENT_WALL",
@@ -468,6 +469,25 @@ class FreeSpace:
     def contains(self, x: float, y: float) -> bool:
         """True when (x, y) is in the free space: enclosed by the same closed walls as the
         centreline's start (not inside a wall, an infield or beyond the outer wall)."""
+
+@final
+class ProgressTracker:
+    """The simulator's progress and lap counting along a closed ``centreline`` (N, 2), fed
+    positions from outside (a car the simulator does not step: the PhysX drive loop)."""
+
+    def __new__(cls, centreline: npt.NDArray[np.float64], x: float, y: float) -> ProgressTracker: ...
+    def update(self, x: float, y: float, elapsed: float, max_move: float) -> bool:
+        """The car moved to (x, y) in ``elapsed`` s, at most ``max_move`` m; True when this
+        completed a lap (``InvalidArgumentError`` for non-finite or negative inputs)."""
+    @property
+    def travel(self) -> float:
+        """Metres travelled along the centreline since the start (negative backwards)."""
+    @property
+    def laps(self) -> int:
+        """Start line crossings forwards minus backwards."""
+    @property
+    def length(self) -> float:
+        """Lap length (m); 0 for an open map."""
 
 def stadium_track(
     straight: float = 6.0, radius: float = 3.0, width: float = 2.0

@@ -100,3 +100,34 @@ def test_forzaeth_presets_match_the_shared_model_files(sources):
         f = read_forzaeth_model(folder / f"{name}_pacejka.txt")
         for key in ("m", "I_z", "l_f", "l_r", "C_Pf", "C_Pr"):
             assert np.allclose(f[key], model[key]), (name, key)
+
+
+def test_the_drive_loops_lap_is_the_simulators():
+    """The PhysX drive loop's lap comes from the core's progress (``_core.ProgressTracker``):
+    on our car it ends at the very control step where the env's own lap event fires."""
+    from roboracer_arena import _core
+    from roboracer_arena.envs.env_config import EnvConfig
+    from roboracer_arena.envs.single import RoboRacerEnv
+    from roboracer_arena.physx.drive import drive_native, pure_pursuit
+    from roboracer_arena.track import Track
+
+    track = Track.from_polylines(*_core.stadium_track(6.0, 3.0, 2.0))
+    run = drive_native(track, pure_pursuit(track), max_seconds=30.0)
+    assert run.lap_time_s is not None
+
+    env = RoboRacerEnv(track=track, config=EnvConfig(time_limit_s=None))
+    controller = pure_pursuit(track)
+    env.reset(seed=0)
+    t, lap = 0.0, None
+    while lap is None and t < 30.0:
+        state, f = env.simulator_state
+        odo = {k: float(state[0, i]) for k, i in f.items()}
+        _, _, _, _, info = env.step(env.from_ackermann(np.array(controller(np.zeros(0), odo))))
+        t += env.config.control_dt
+        lap = t if info["lap_completed"] else None
+    assert lap is not None and run.lap_time_s == pytest.approx(lap, abs=1e-9)
+    # The tracker itself: one lap of travel along its centreline, then the event.
+    tracker = _core.ProgressTracker(np.asarray(track.centreline), *track.centreline[0])
+    assert tracker.length == pytest.approx(_core.polyline_length(np.asarray(track.centreline)))
+    with pytest.raises(_core.InvalidArgumentError):
+        tracker.update(float("nan"), 0.0, 0.05, 0.1)

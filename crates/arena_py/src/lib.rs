@@ -14,6 +14,7 @@ mod generate;
 mod geometry;
 mod grid;
 mod outcome;
+mod progress;
 mod sim;
 mod start_grid;
 mod track;
@@ -30,6 +31,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     track::register(m)?;
     config::register(m)?;
     sim::register(m)?;
+    progress::register(m)?;
     episode::register(m)?;
     start_grid::register(m)?;
     Ok(())

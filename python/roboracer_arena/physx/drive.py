@@ -304,33 +304,20 @@ class Trace(FrozenModel):
     """The car's pose (x, y, yaw) when the run began."""
 
 
-class _Progress:
-    """Arc length travelled along the driver's resampled centreline, unwrapped."""
-
-    def __init__(self, driver: Any, x: float, y: float) -> None:
-        self.driver, self.n = driver, len(driver.points)
-        self.last = driver.project(x, y)
-        self.s = 0.0
-
-    def update(self, x: float, y: float) -> float:
-        i = self.driver.project(x, y)
-        step = (i - self.last + self.n // 2) % self.n - self.n // 2
-        self.last = i
-        self.s += step * self.driver.ds
-        return self.s
-
-
 class _Recorder:
-    """Collects a :class:`Trace`'s columns and the lap (progress on the track's centreline)."""
+    """Collects a :class:`Trace`'s columns and the lap: the core's progress along the
+    track's centreline (``_core.ProgressTracker``, the simulator's own lap rule), fed the
+    car's position every control step."""
 
     def __init__(self, track: Any, x: float, y: float) -> None:
         self.ref = PurePursuitDriver(track.centreline)
-        self.prog = _Progress(self.ref, x, y)
+        self.prog = _core.ProgressTracker(np.asarray(track.centreline, dtype=np.float64), x, y)
         self.cols: dict[str, list[float]] = {
             k: []
             for k in ("t", "x", "y", "yaw", "speed", "yaw_rate", "steer", "steer_cmd", "speed_cmd", "lateral_error")
         }
         self.lap: float | None = None
+        self._t = 0.0
 
     def add(self, t: float, s: dict[str, float], cmd: tuple[float, float]) -> bool:
         """Record one control step; True once the lap is complete."""
@@ -340,7 +327,8 @@ class _Recorder:
             self.cols[k].append(float(val))
         for k in ("x", "y", "yaw", "speed", "yaw_rate", "steer"):
             self.cols[k].append(float(s[k]))
-        if self.lap is None and self.prog.update(s["x"], s["y"]) >= self.ref.length:
+        elapsed, self._t = t - self._t, t
+        if self.prog.update(s["x"], s["y"], elapsed, abs(s["speed"]) * elapsed) and self.lap is None:
             self.lap = t
         return self.lap is not None
 

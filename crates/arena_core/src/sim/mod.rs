@@ -41,6 +41,7 @@ pub use batch::{ResetGiven, ResetOut, Simulator, MAX_ABS_YAW, POSE_MARGIN};
 pub use budget::{check_size, MAX_SCAN_VALUES, MAX_VEHICLES};
 pub use episode::{EpisodeOut, EpisodeParams, Episodes, BACKWARDS_EPS};
 pub use params::{LateralTyre, LidarParams, PhysicsParams, SimParams, VehicleParams};
+pub use progress::ProgressTracker;
 pub use shared_track::{Centreline, Track};
 pub use start_grid::StartGrid;
 pub use starts::StartSpec;

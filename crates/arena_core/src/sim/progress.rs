@@ -11,6 +11,7 @@
 //! over it again does not complete a lap twice.
 
 use super::shared_track::Centreline;
+use crate::error::{ArenaError, Result};
 
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Progress {
@@ -76,6 +77,61 @@ impl Progress {
     }
 }
 
+/// Progress of a car the simulator does not step (the PhysX drive loop): the same
+/// [`Progress`] on its own centreline, fed positions from outside.
+#[derive(Debug, Clone)]
+pub struct ProgressTracker {
+    line: Centreline,
+    progress: Progress,
+}
+
+impl ProgressTracker {
+    /// Start at `xy` on the closed centreline `points` (an open map's two-point anchor
+    /// gives no progress and no laps).
+    pub fn new(points: &[[f64; 2]], xy: [f64; 2]) -> Result<Self> {
+        let line = Centreline::new(points)?;
+        check_finite(xy, 0.0, 0.0)?;
+        let progress = Progress::reset(&line, xy);
+        Ok(ProgressTracker { line, progress })
+    }
+
+    /// The car moved to `xy` in `elapsed` seconds, at most `max_move` metres (see
+    /// [`Progress::update`]); true when this completed a lap.
+    pub fn update(&mut self, xy: [f64; 2], elapsed: f64, max_move: f64) -> Result<bool> {
+        check_finite(xy, elapsed, max_move)?;
+        if elapsed < 0.0 || max_move < 0.0 {
+            return Err(ArenaError::invalid(format!(
+                "elapsed and max_move must be >= 0, got {elapsed} and {max_move}"
+            )));
+        }
+        Ok(self.progress.update(&self.line, xy, elapsed, max_move))
+    }
+
+    /// The progress so far (travel, laps, lap times).
+    pub fn progress(&self) -> &Progress {
+        &self.progress
+    }
+
+    /// Lap length (m); 0 for an open map's anchor.
+    pub fn length(&self) -> f64 {
+        self.line.length()
+    }
+}
+
+fn check_finite(xy: [f64; 2], elapsed: f64, max_move: f64) -> Result<()> {
+    if xy
+        .iter()
+        .chain([&elapsed, &max_move])
+        .all(|v| v.is_finite())
+    {
+        Ok(())
+    } else {
+        Err(ArenaError::invalid(format!(
+            "progress needs finite positions and times, got {xy:?}, {elapsed}, {max_move}"
+        )))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -101,6 +157,24 @@ mod tests {
             assert!(!p.update(&c, [pose[0], pose[1]], 0.1, 0.5));
         }
         assert!((p.travel - 50.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_tracker_counts_as_the_simulator_does() {
+        let sq = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
+        let c = Centreline::new(&sq).unwrap();
+        let mut t = ProgressTracker::new(&sq, [5.0, 0.1]).unwrap();
+        let mut p = Progress::reset(&c, [5.0, 0.1]);
+        for k in 1..=90 {
+            let pose = c.pose_at(5.0 + 0.5 * k as f64);
+            let done = t.update([pose[0], pose[1]], 0.1, 0.5).unwrap();
+            assert_eq!(done, p.update(&c, [pose[0], pose[1]], 0.1, 0.5));
+        }
+        assert_eq!(*t.progress(), p);
+        assert_eq!((t.progress().laps, t.length()), (1, 40.0));
+        assert!(t.update([f64::NAN, 0.0], 0.1, 0.5).is_err());
+        assert!(t.update([0.0, 0.0], -0.1, 0.5).is_err());
+        assert!(ProgressTracker::new(&sq, [f64::INFINITY, 0.0]).is_err());
     }
 
     #[test]
