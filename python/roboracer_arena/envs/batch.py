@@ -78,6 +78,7 @@ class SimBatch:
         self.vehicles = V = config.vehicles_per_env
         check_size_budget(E, config)
         self._natives = [t.native() for t in tracks]
+        self.track_names = [t.name for t in tracks]
         #: Per track: True for an open map (walls only: no lap, progress 0; see ``Track.open_map``).
         self.open_maps = np.array([t.is_open for t in tracks], dtype=bool)
         self.seed = int(seed)
@@ -117,6 +118,7 @@ class SimBatch:
         self._speed_range = None if frac is None else (frac[0] * veh.max_speed, frac[1] * veh.max_speed)
         self._scalar_actions = E * V == 1
         self._info_names = [f for f in STATE_INFO if f in self.field_index]
+        self._info_state = [(f, self.field_index[f]) for f in self._info_names]
         self._info_cols = np.array([self.field_index[f] for f in self._info_names], dtype=np.intp)
         self._range_max = float(lid.range_max)
         self.obs = ObservationAssembler(config, self.field_index, E, V, B)
@@ -365,6 +367,35 @@ class SimBatch:
         cols = self.state[envs][..., self._info_cols]  # one gather; the columns are views of it
         for j, name in enumerate(self._info_names):
             info[name] = cols[..., j]
+        return info
+
+    def single_observation(self) -> dict[str, np.ndarray]:
+        """Env 0's observation as the single env returns it: fresh arrays, without the
+        vehicle axis when the env has one vehicle."""
+        return self.obs.observation_one() if self.vehicles == 1 else self.obs.observation(0)
+
+    def single_info(self) -> dict[str, Any]:
+        """Env 0's :meth:`info` as the single env returns it, with its track's name under
+        ``"track"``: with one vehicle a flat dict of Python scalars, read with a few scalar
+        reads (this runs every step), else :meth:`info` of env 0."""
+        tid = self.track_ids.item(0)
+        if self.vehicles > 1:
+            info: dict[str, Any] = self.info(0)
+            info.update(track_id=tid, track=self.track_names[tid], open_map=self.open_maps.item(tid))
+            return info
+        ev, row = self.events.item(0), self.first_row.tolist()
+        info = {
+            "track_id": tid,
+            "track": self.track_names[tid],
+            "open_map": self.open_maps.item(tid),
+            "progress": self.progress.item(0),
+            "contact_wall": bool(ev & EVENT_WALL),
+            "contact_vehicle": bool(ev & EVENT_VEHICLE),
+            "lap_completed": bool(ev & EVENT_LAP),
+            "wrong_way": self.wrong_way.item(0),
+        }
+        for name, col in self._info_state:
+            info[name] = row[col]
         return info
 
     def rebuild(self, seed: int) -> None:

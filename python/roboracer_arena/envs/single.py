@@ -64,8 +64,8 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from .._core import EVENT_LAP, EVENT_VEHICLE, EVENT_WALL, Simulator
-from .batch import STATE_INFO, EnvHelpers, SimBatch
+from .._core import Simulator
+from .batch import EnvHelpers, SimBatch
 from .env_config import EnvConfig
 from .episode_limit import check_make_kwargs
 from .reset_options import reset_options
@@ -102,9 +102,6 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         self._render_size = render_size
         self._view: Any = None
         self._squeeze = self.config.vehicles_per_env == 1
-        self._state_info = [(f, self._batch.field_index[f]) for f in STATE_INFO if f in self._batch.field_index]
-        self._names = [t.name for t in self.tracks]
-        self._open = [t.is_open for t in self.tracks]
         self._spec: Any = None
         self._seeded = False
         self._one = np.ones(1, bool)
@@ -136,14 +133,15 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
             self._batch.rebuild(seed)
             self._seeded = True
         track_ids, poses, speeds = reset_options(options, 1, self.vehicles_per_env, len(self.tracks), single=True)
-        self._batch.reset(self._one, track_ids, poses, speeds)
-        return self._obs(), self._info()
+        b = self._batch
+        b.reset(self._one, track_ids, poses, speeds)
+        return b.single_observation(), b.single_info()
 
     def step(self, action: Any):
         b = self._batch
         b.set_actions(action)
         reward, terminated, truncated = b.step()
-        return self._obs(), reward.item(0), terminated.item(0), truncated.item(0), self._info()
+        return b.single_observation(), reward.item(0), terminated.item(0), truncated.item(0), b.single_info()
 
     def render(self) -> np.ndarray | None:
         if self.render_mode != "rgb_array":
@@ -164,33 +162,6 @@ class RoboRacerEnv(EnvHelpers, gym.Env):
         )
 
     # ------------------------------------------------------------ helpers (drivers, tools)
-    def _obs(self) -> dict[str, np.ndarray]:
-        if self._squeeze:
-            return self._batch.obs.observation_one()
-        return self._batch.observation(0)
-
-    def _info(self) -> dict[str, Any]:
-        b = self._batch
-        tid = b.track_ids.item(0)
-        if not self._squeeze:
-            info: dict[str, Any] = b.info(0)
-            info.update(track_id=tid, track=self.tracks[tid].name, open_map=self._open[tid])
-            return info
-        ev, row = b.events.item(0), b.first_row.tolist()
-        info = {
-            "track_id": tid,
-            "track": self._names[tid],
-            "open_map": self._open[tid],
-            "progress": b.progress.item(0),
-            "contact_wall": bool(ev & EVENT_WALL),
-            "contact_vehicle": bool(ev & EVENT_VEHICLE),
-            "lap_completed": bool(ev & EVENT_LAP),
-            "wrong_way": b.wrong_way.item(0),
-        }
-        for name, col in self._state_info:
-            info[name] = row[col]
-        return info
-
     @property
     def current_track_id(self) -> int:
         """Index (into :attr:`tracks`) of the track of the current episode."""
