@@ -109,7 +109,7 @@ def test_the_drive_loops_lap_is_the_simulators():
     from roboracer_arena.envs.env_config import EnvConfig
     from roboracer_arena.envs.single import RoboRacerEnv
     from roboracer_arena.physx.drive import drive_native, pure_pursuit
-    from roboracer_arena.track import Track
+    from roboracer_arena.track.drivable import Track
 
     track = Track.from_polylines(*_core.stadium_track(6.0, 3.0, 2.0))
     run = drive_native(track, pure_pursuit(track), max_seconds=30.0)
