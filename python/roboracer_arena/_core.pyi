@@ -29,6 +29,8 @@ __all__ = [
     "construct_lattice",
     "Construction",
     "nearest_specs",
+    "NearestFound",
+    "NearestSuggestion",
     "validate_map",
     "analyse_curve",
     "polyline_length",
@@ -118,9 +120,37 @@ def screen(spec: _Doc, config: _Doc | None = None) -> _Result:
 def derived_geometry(spec: _Doc, config: _Doc | None = None) -> _Result:
     """Derived geometry: r_min, pitch, l_max, s_min, corner_radius (``DerivedGeometry``)."""
 
-def nearest_specs(spec: _Doc, config: _Doc | None, seed: int, timeout: float) -> _Result:
-    """Nearest specs that build after a failure: {suggestions: [{field, spec, seed,
-    candidate_index}], probes, exhausted}; ``timeout`` seconds bound the search."""
+def nearest_specs(spec: _Doc, config: _Doc | None, seed: int, timeout: float) -> NearestFound:
+    """Nearest specs that build after a failure; ``timeout`` seconds bound the search."""
+
+@final
+class NearestSuggestion:
+    """One changed spec that builds (read-only)."""
+
+    @property
+    def field(self) -> Literal["lap_length_m", "hall", "corridor_width_m", "features"]:
+        """What was changed."""
+    @property
+    def spec(self) -> _Result:
+        """The changed spec (a ``TrackSpec`` document; every other field as requested)."""
+    @property
+    def seed(self) -> int: ...
+    @property
+    def candidate_index(self) -> int:
+        """The accepted candidate (a full run with ``seed`` accepts it again)."""
+
+@final
+class NearestFound:
+    """What :func:`nearest_specs` found (read-only)."""
+
+    @property
+    def suggestions(self) -> list[NearestSuggestion]: ...
+    @property
+    def probes(self) -> int:
+        """Changed specs tried."""
+    @property
+    def exhausted(self) -> bool:
+        """The deadline cut the search short."""
 
 def generate_lattice(spec: _Doc, config: _Doc | None, seed: int, timeout: float | None = None) -> LatticeOutcome:
     """Algorithm 1 (screen once, then lattice + ring candidates, each rasterised and

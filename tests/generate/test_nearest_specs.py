@@ -76,3 +76,16 @@ def test_sweep_failures_get_a_suggestion_that_builds():
     lacking = [m.spec for m in failed if not m.suggestions_built]
     assert not lacking, lacking
     assert result.misses_with_suggestion == len(failed)
+
+
+def test_the_core_result_is_typed_and_read_only():
+    from roboracer_arena import _core
+
+    found = _core.nearest_specs(LONG, None, 0, 20.0)
+    assert isinstance(found, _core.NearestFound) and found.probes >= 1 and isinstance(found.exhausted, bool)
+    assert found.suggestions and all(isinstance(s, _core.NearestSuggestion) for s in found.suggestions)
+    first = found.suggestions[0]
+    assert first.field in ("lap_length_m", "hall", "corridor_width_m", "features")
+    assert TrackSpec.model_validate(first.spec).lap_length_m > 0 and first.candidate_index >= 0
+    with pytest.raises(AttributeError):
+        found.probes = 0  # type: ignore[misc]

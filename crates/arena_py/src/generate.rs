@@ -9,6 +9,7 @@ use pyo3::types::PyDict;
 
 use crate::boundary;
 use crate::convert::{from_py, to_dict};
+use crate::nearest::NearestFound;
 use crate::outcome::{Construction, LatticeOutcome};
 use arena_core::generate::construct;
 use arena_core::generate::deadline::Failure;
@@ -100,8 +101,8 @@ fn construct_lattice(
     Ok(Construction::from_core(py, out))
 }
 
-/// Nearest specs that build after a generation failure (`generate::nearest`), a dict
-/// ``{"suggestions": [{field, spec, seed, candidate_index}], "probes", "exhausted"}``.
+/// Nearest specs that build after a generation failure (`generate::nearest`), a
+/// [`NearestFound`].
 /// ``timeout`` (seconds) bounds the search; when it passes inside one probe the search
 /// reports what it found so far. Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
@@ -112,12 +113,12 @@ fn nearest_specs<'py>(
     config: Option<&Bound<'py, PyAny>>,
     seed: u64,
     timeout: f64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<NearestFound> {
     let (spec, cfg) = parse(py, spec, config)?;
     let out = boundary::call_with_deadline(py, "nearest_specs", Some(timeout), move |b| {
         Ok(nearest::nearest_specs(&spec, &cfg, seed, b))
     })?;
-    to_dict(py, &out.unwrap_or_else(NearestReport::abandoned))
+    NearestFound::from_core(py, out.unwrap_or_else(NearestReport::abandoned))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -127,6 +128,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;
     m.add_class::<LatticeOutcome>()?;
     m.add_class::<Construction>()?;
+    m.add_class::<NearestFound>()?;
+    m.add_class::<crate::nearest::NearestSuggestion>()?;
     m.add_function(wrap_pyfunction!(construct_lattice, m)?)?;
     Ok(())
 }

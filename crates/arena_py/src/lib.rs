@@ -13,6 +13,7 @@ mod errors;
 mod generate;
 mod geometry;
 mod grid;
+mod nearest;
 mod outcome;
 mod progress;
 mod sim;

@@ -95,18 +95,16 @@ def nearest_specs(
     t0 = time.perf_counter()
     raw = _core.nearest_specs(spec, cfg, seed, timeout)
     found = []
-    for s in raw["suggestions"]:
-        new = TrackSpec.model_validate({**s["spec"], "name": spec.name})
-        field = s["field"]
+    for s in raw.suggestions:
+        new = TrackSpec.model_validate({**s.spec, "name": spec.name})
+        field = s.field
         if field not in _CHANGED:
             raise InternalError(f"nearest_specs: unknown field {field!r} from the core")
         changes = {k: getattr(new, k) for k in _CHANGED[field] if getattr(new, k) != getattr(spec, k)}
-        found.append(
-            Suggestion(field=field, spec=new, seed=s["seed"], candidate_index=s["candidate_index"], changes=changes)
-        )
+        found.append(Suggestion(field=field, spec=new, seed=s.seed, candidate_index=s.candidate_index, changes=changes))
     return NearestSpecs(
         suggestions=tuple(found),
-        probes=raw["probes"],
-        exhausted=raw["exhausted"],
+        probes=raw.probes,
+        exhausted=raw.exhausted,
         seconds=time.perf_counter() - t0,
     )
