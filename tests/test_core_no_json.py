@@ -83,7 +83,7 @@ def test_results_are_objects_at_runtime():
 
     spec = TrackSpec(lap_length_m=45, corridor_width_m=1.2, hairpins=1)
     assert isinstance(_core.screen(spec), dict)
-    assert isinstance(_core.derived_geometry(spec.model_dump()), dict)
+    assert isinstance(_core.derived_geometry(spec.model_dump()), _core.Derived)
     assert isinstance(_core.config_defaults("sim"), dict)
     assert isinstance(_core.check_config("spec", spec), dict)
     t = np.linspace(0, 2 * np.pi, 200, endpoint=False)

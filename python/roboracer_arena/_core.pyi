@@ -24,6 +24,7 @@ __all__ = [
     "rasterise_centreline",
     "screen",
     "derived_geometry",
+    "Derived",
     "generate_lattice",
     "LatticeOutcome",
     "construct_lattice",
@@ -117,8 +118,24 @@ def rasterise_centreline(
 def screen(spec: _Doc, config: _Doc | None = None) -> _Result:
     """Admissibility screen (Eqs. 1–2): passed, violations, r_min_m, pitch_m, l_max_m, … (``ScreenResult``)."""
 
-def derived_geometry(spec: _Doc, config: _Doc | None = None) -> _Result:
-    """Derived geometry: r_min, pitch, l_max, s_min, corner_radius (``DerivedGeometry``)."""
+def derived_geometry(spec: _Doc, config: _Doc | None = None) -> Derived:
+    """Derived geometry: r_min, pitch, l_max, s_min, corner_radius."""
+
+@final
+class Derived:
+    """Lengths derived from a spec (m), read-only: r_min and pitch p (Eq. 1), L_max, the
+    lattice pitch bound s_min = max(p, 2 r_min) and the corner radius r_c = s_min / 2."""
+
+    @property
+    def r_min(self) -> float: ...
+    @property
+    def pitch(self) -> float: ...
+    @property
+    def l_max(self) -> float: ...
+    @property
+    def s_min(self) -> float: ...
+    @property
+    def corner_radius(self) -> float: ...
 
 def nearest_specs(spec: _Doc, config: _Doc | None, seed: int, timeout: float) -> NearestFound:
     """Nearest specs that build after a failure; ``timeout`` seconds bound the search."""

@@ -68,3 +68,11 @@ def test_the_constructor_alone_returns_a_typed_construction():
     none = _core.construct_lattice(SMALL, ConstructorConfig(max_candidates=1), 0, 1e-9)
     assert none.centreline is None and none.pitch_m is None
     assert none.stopped in (None, "timeout") and all(isinstance(n, int) for n in none.reasons.values())
+
+
+def test_derived_geometry_is_typed_and_read_only():
+    d = _core.derived_geometry(SMALL)
+    assert isinstance(d, _core.Derived) and d.s_min == max(d.pitch, 2 * d.r_min) and d.corner_radius == d.s_min / 2
+    assert pipeline.derived_geometry(SMALL).l_max == d.l_max
+    with pytest.raises(AttributeError):
+        d.pitch = 0.0  # type: ignore[misc]

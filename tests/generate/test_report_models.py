@@ -24,7 +24,11 @@ SPEC = TrackSpec(lap_length_m=45, corridor_width_m=1.2, hairpins=1)
 
 
 def _raw(fn) -> dict:
-    return fn(SPEC, ConstructorConfig())
+    """The core's result as field -> value (a typed core object's public attributes)."""
+    out = fn(SPEC, ConstructorConfig())
+    if isinstance(out, dict):
+        return out
+    return {k: getattr(out, k) for k in dir(out) if not k.startswith("_")}
 
 
 @pytest.mark.parametrize(("fn", "model"), [(_core.screen, ScreenResult), (_core.derived_geometry, DerivedGeometry)])

@@ -45,19 +45,36 @@ fn screen<'py>(
     to_dict(py, &out)
 }
 
-/// Derived geometry (r_min, pitch, L_max, s_min, corner radius), a dict.
+/// Lengths derived from a spec (m), read-only: r_min and pitch p (Eq. 1), L_max, the
+/// lattice pitch bound s_min = max(p, 2 r_min) and the corner radius r_c = s_min / 2.
+#[pyclass(frozen, get_all, module = "roboracer_arena._core")]
+pub struct Derived {
+    r_min: f64,
+    pitch: f64,
+    l_max: f64,
+    s_min: f64,
+    corner_radius: f64,
+}
+
+/// Derived geometry (r_min, pitch, L_max, s_min, corner radius), a [`Derived`].
 #[pyfunction]
 #[pyo3(signature = (spec, config=None))]
-fn derived_geometry<'py>(
-    py: Python<'py>,
-    spec: &Bound<'py, PyAny>,
-    config: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyDict>> {
+fn derived_geometry(
+    py: Python<'_>,
+    spec: &Bound<'_, PyAny>,
+    config: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Derived> {
     let (spec, cfg) = parse(py, spec, config)?;
-    let out = boundary::call_ok(py, "derived_geometry", move || {
+    let d = boundary::call_ok(py, "derived_geometry", move || {
         arena_core::generate::spec::derive(&spec, &cfg)
     })?;
-    to_dict(py, &out)
+    Ok(Derived {
+        r_min: d.r_min,
+        pitch: d.pitch,
+        l_max: d.l_max,
+        s_min: d.s_min,
+        corner_radius: d.corner_radius,
+    })
 }
 
 /// Algorithm 1 (lattice and ring constructors), screen included (once, in the core):
@@ -128,6 +145,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;
     m.add_class::<LatticeOutcome>()?;
     m.add_class::<Construction>()?;
+    m.add_class::<Derived>()?;
     m.add_class::<NearestFound>()?;
     m.add_class::<crate::nearest::NearestSuggestion>()?;
     m.add_function(wrap_pyfunction!(construct_lattice, m)?)?;

@@ -43,7 +43,7 @@ def screen(spec: TrackSpec, config: ConstructorConfig | None = None) -> ScreenRe
 
 def derived_geometry(spec: TrackSpec, config: ConstructorConfig | None = None) -> DerivedGeometry:
     """r_min, pitch p, L_max, lattice pitch bound s_min and corner radius r_c for a spec."""
-    return DerivedGeometry.model_validate(_core.derived_geometry(spec, config))
+    return DerivedGeometry.model_validate(_core.derived_geometry(spec, config), from_attributes=True)
 
 
 def validate_map(
