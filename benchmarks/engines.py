@@ -50,7 +50,7 @@ from roboracer_arena import _core
 from roboracer_arena.bench.output import BenchModel, add_bench_parser, write_json
 from roboracer_arena.config.sim import SimConfig, VehicleConfig
 
-from .engines_laps import PairedLap
+from .engines_laps import PairedLap, with_tyre
 
 MUS = [0.4, 0.6, 0.83, 1.0]
 MASSES = [0.8, 1.0, 1.5]
@@ -77,11 +77,6 @@ def config(mu: float, mass_scale: float, base: VehicleConfig | None = None) -> S
             }
         )
     )
-
-
-def with_tyre(vehicle: VehicleConfig, lateral_tyre: str) -> VehicleConfig:
-    """``vehicle`` with the lateral tyre law ``lateral_tyre`` ('brush' or 'linear')."""
-    return VehicleConfig(**{**vehicle.model_dump(), "lateral_tyre": lateral_tyre})
 
 
 def crossing(t: np.ndarray, y: np.ndarray, level: float, below: bool = False) -> float | None:

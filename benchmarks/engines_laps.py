@@ -155,9 +155,13 @@ def _stages(sources: Path, work: Path) -> dict[str, Path]:
     }
 
 
-def _with_tyre(sim: SimConfig, lateral_tyre: str) -> SimConfig:
-    vehicle = VehicleConfig(**{**sim.vehicle.model_dump(), "lateral_tyre": lateral_tyre})
-    return SimConfig(**{**sim.model_dump(), "vehicle": vehicle.model_dump()})
+def with_tyre(vehicle: VehicleConfig, lateral_tyre: str) -> VehicleConfig:
+    """``vehicle`` with the lateral tyre law ``lateral_tyre`` ('brush' or 'linear')."""
+    return VehicleConfig(**{**vehicle.model_dump(), "lateral_tyre": lateral_tyre})
+
+
+def _sim_with_tyre(sim: SimConfig, lateral_tyre: str) -> SimConfig:
+    return SimConfig(**{**sim.model_dump(), "vehicle": with_tyre(sim.vehicle, lateral_tyre).model_dump()})
 
 
 def conditions(lateral_tyre: str = "brush") -> dict[str, SimConfig]:
@@ -175,7 +179,7 @@ def conditions(lateral_tyre: str = "brush") -> dict[str, SimConfig]:
         "mu 0.4": veh(tyre_friction=0.4),
         "mass x1.5": veh(mass=1.5 * base.mass),
         "mass x2": veh(mass=2.0 * base.mass),
-        "NUC6 preset": _with_tyre(SimConfig(vehicle=forzaeth_preset("NUC6")), lateral_tyre),
+        "NUC6 preset": _sim_with_tyre(SimConfig(vehicle=forzaeth_preset("NUC6")), lateral_tyre),
     }
 
 
@@ -192,7 +196,7 @@ def policy_lap(work: Path, lateral_tyre: str, max_seconds: float) -> PairedLap:
 
     policy = load_policy(POLICY_FILE)
     config = EnvConfig.build(policy_env_kwargs(policy))
-    sim, rate = _with_tyre(config.sim, lateral_tyre), config.control_rate_hz
+    sim, rate = _sim_with_tyre(config.sim, lateral_tyre), config.control_rate_hz
     map_yaml, track = map_and_track(POLICY_MAP)
     stage = work / "policy.usdc"
     build_environment(map_yaml, stage, car=True)
