@@ -6,9 +6,11 @@ inside ours (same constants, same order, same step): the steering servo (first-o
 then the rate limit) on the virtual centre wheel, turned into the Ackermann API's
 normalised steer; the VESC-style PI speed loop on the wheels' mean surface speed (read
 from PhysX's wheels), with anti-windup; the motor current lag and the current window the
-battery can drive against the back-EMF; the wheel torque that current gives, less the
-rolling resistance, as accelerator (torque along the wheels' rotation) or brake (against
-it); and aerodynamic drag as a force on the chassis. The car's PhysX parameters come from
+battery can drive against the back-EMF; the wheel torque that current gives, as
+accelerator (torque along the wheels' rotation) or brake (against it); and the losses as
+one wrench on the chassis: aerodynamic drag, and each wheel's rolling resistance from its
+own load at its own contact patch (PhysX's basic drive shares one torque equally, so a
+load-weighted resistance per wheel cannot go through it). The car's PhysX parameters come from
 the same ``VehicleConfig`` (:func:`roboracer_arena.usd.vehicle.physx_params`).
 
 A driver's commands ``[steer (rad), speed (m/s)]`` arrive at the env's control rate
@@ -45,6 +47,9 @@ from .runtime import PhysxScene
 
 #: Settling steps on the suspension before a run starts (not counted in its time).
 SETTLE_STEPS = 20
+#: What the drive reads of each wheel every step: spin (the speed loop, the rolling
+#: resistance's fade) and what places each wheel's rolling resistance.
+WHEEL_COLUMNS = ["rotationSpeed", "suspensionForce", "isOnGround", "tireLongitudinalDirection", "groundHitPosition"]
 
 Controller = Callable[[np.ndarray, dict[str, float]], tuple[float, float]]
 
@@ -87,7 +92,7 @@ class Actuators:
 
     def update(self, cmd: tuple[float, float], v_wheel: float, dt: float) -> tuple[float, float]:
         """Advance the servo and the speed loop by ``dt`` toward ``cmd`` (sanitised); returns
-        (centre-wheel steer angle, net wheel torque summed over the four wheels, N m)."""
+        (centre-wheel steer angle, motor torque at the wheels summed over the four, N m)."""
         v = self.v
         max_d = v.max_steer_rate * dt
         self.steer += min(max((cmd[0] - self.steer) * lag_step(v.steer_time_constant, dt), -max_d), max_d)
@@ -98,9 +103,7 @@ class Actuators:
             self.integral += err * dt
         self.current += (min(max(want, lo), hi) - self.current) * lag_step(v.throttle_time_constant, dt)
         self.current = min(max(self.current, lo), hi)
-        r = v.wheel_radius
-        roll = -v.rolling_resistance * v.mass * self.g * r * min(max(v_wheel / ROLL_FADE, -1.0), 1.0)
-        return self.steer, self.par.force_per_amp * self.current * r + roll
+        return self.steer, self.par.force_per_amp * self.current * v.wheel_radius
 
 
 class CarState(FrozenModel):
@@ -200,13 +203,10 @@ class PhysxCar:
                 self._write(self._vq, {"requestedGear": gear}, dtype=np.int32)
                 self._gear = gear
             accel, brake = min(abs(torque) / par.peak_torque, 1.0), 0.0
-        else:  # against it: motor braking and rolling resistance
+        else:  # against it: motor braking
             accel, brake = 0.0, min(abs(torque) / 4.0 / par.max_brake_torque, 1.0)
         self._write_controls(ackermann_command(delta, v), accel, brake)
-        vx, vy = self._vel[0], self._vel[1]
-        k = -0.5 * AIR_DENSITY * v.drag_area * math.hypot(vx, vy)
-        if k != 0.0:
-            self._write(self._bq, {"force": [k * vx, k * vy, 0.0]})
+        self._write(self._bq, {"wrench": self._losses()})
         t0 = time.perf_counter()
         self.scene.step(self.dt)
         if count:
@@ -214,6 +214,26 @@ class PhysxCar:
             self.steps += 1
         self.state = self._read()
         return self.state
+
+    def _losses(self) -> np.ndarray:
+        """The losses as one wrench on the chassis (force, torque about the CoM, the CoM):
+        aerodynamic drag on the horizontal velocity, and each wheel's rolling resistance,
+        ``C_rr N`` against its rolling at its contact patch, ``N`` its own suspension load and
+        faded in with its own surface speed, as ours (``drive_substep``). A load-weighted
+        resistance per wheel, not one share of the total in the drive torque: the inner,
+        lighter wheels resist less in a turn, which turns the car out of it (the measured
+        understeer gradient moves by about 10 % at 3 m/s)."""
+        v, w = self.sim.vehicle, self._wheels
+        vx, vy = self._vel
+        force = -0.5 * AIR_DENSITY * v.drag_area * math.hypot(vx, vy) * np.array([vx, vy, 0.0])
+        torque = np.zeros(3)
+        fade = np.clip(w["rotationSpeed"][:, 0] * v.wheel_radius / ROLL_FADE, -1.0, 1.0)
+        loads = np.maximum(w["suspensionForce"][:, 2], 0.0) * w["isOnGround"][:, 0]
+        for k in range(4):
+            f = -v.rolling_resistance * loads[k] * fade[k] * w["tireLongitudinalDirection"][k]
+            force += f
+            torque += np.cross(w["groundHitPosition"][k] - self._com, f)
+        return np.concatenate([force, torque, self._com])
 
     # ------------------------------------------------------------------ I/O
     def _write_controls(self, steer: float, accel: float, brake: float) -> None:
@@ -238,8 +258,10 @@ class PhysxCar:
 
     def _read(self) -> CarState:
         body = self._read_columns(self._bq, ["position", "orientation", "linearVelocity", "angularVelocity"])
-        wheels = self._read_columns(self._wq, ["rotationSpeed"])
+        wheels = self._read_columns(self._wq, WHEEL_COLUMNS)
         self.physx.wait_all()
+        self._wheels = {k: a.reshape(4, -1).astype(np.float64) for k, a in wheels.items()}  # (wheel, lane)
+        self._com = body["position"][0][:3].astype(np.float64)
         px, py = (float(c) for c in body["position"][0][:2])
         qx, qy, qz, qw = (float(c) for c in body["orientation"][0][:4])  # PhysX order: x, y, z, w
         yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
@@ -247,7 +269,7 @@ class PhysxCar:
         self._vel = (float(vel[0]), float(vel[1]))
         c, s = math.cos(yaw), math.sin(yaw)
         vx, vy = self._vel[0] * c + self._vel[1] * s, -self._vel[0] * s + self._vel[1] * c
-        omega = float(np.mean(wheels["rotationSpeed"]))
+        omega = float(np.mean(self._wheels["rotationSpeed"][:, 0]))
         return CarState(
             x=px,
             y=py,

@@ -59,11 +59,15 @@ Derivation, our model (``arena_core::sim::vehicle``) -> PhysX vehicle 2
 * **Drive and brakes.** The speed loop, motor current lag and current window (back-EMF) run
   in the drive loop; the wheel torque they ask goes to the basic drive, whose peak torque
   is the torque at ``max_motor_current`` (``force_per_amp * I * r``, ``force_per_amp = 60 /
-  (2 pi kv) * gear_ratio / r``), and a torque against the wheels' rotation (motor braking,
-  rolling resistance) to the brakes at up to the ``max_brake_current`` torque per wheel.
-  The wheels' own damping is 0: rolling resistance (``C_rr N r`` per wheel, faded in over
-  0.1 m/s as ours) is a torque in the same loop, and aerodynamic drag a force on the
-  chassis (``0.5 rho C_d A v^2``), so the losses match at every speed.
+  (2 pi kv) * gear_ratio / r``), and a torque against the wheels' rotation (motor braking)
+  to the brakes at up to the ``max_brake_current`` torque per wheel. The wheels' own
+  damping is 0. The losses are one wrench on the chassis each step: aerodynamic drag
+  (``0.5 rho C_d A v^2``) and each wheel's rolling resistance, ``C_rr N`` from that wheel's
+  own suspension load at its own contact patch, faded in over 0.1 m/s of its own surface
+  speed, as ours applies it per wheel. (The basic drive splits one torque equally; a
+  resistance taken out of that torque would be shared equally too, and in a turn the
+  lighter inner wheels would resist as much as the outer ones: that alone made PhysX's
+  understeer gradient 10 % lower than ours.)
 * **Integration.** :data:`VEHICLE_SUBSTEPS` vehicle sub-steps at every speed: two already
   give the result that more sub-steps or a halved step give; one does not (see the constant).
 * **Suspension.** Spring, damper and travel are the config's; tyre and suspension forces
@@ -150,7 +154,7 @@ class PhysxCarParams:
     peak_torque: float
     """Basic drive's total wheel torque at full accelerator (N m): ``max_motor_current``."""
     max_brake_torque: float
-    """Brake torque per wheel at full brake (N m): ``max_brake_current`` plus rolling resistance."""
+    """Brake torque per wheel at full brake (N m): the larger motor current's torque."""
     max_inner_steer: float
     """Ackermann ``maxSteerAngle``: the inner wheel at ``max_steer`` (rad)."""
     rest_load_front: float
@@ -180,11 +184,10 @@ def physx_params(v: VehicleConfig, gravity: float = GRAVITY) -> PhysxCarParams:
 
     a, b, c = v.chassis_length, v.chassis_width, v.chassis_height
     k = v.yaw_inertia / (a * a + b * b)
-    roll_resist = v.rolling_resistance * v.mass * gravity * v.wheel_radius / 4.0
     return PhysxCarParams(
         force_per_amp=fpa,
         peak_torque=fpa * v.max_motor_current * v.wheel_radius,
-        max_brake_torque=fpa * max(v.max_brake_current, v.max_motor_current) * v.wheel_radius / 4.0 + 2.0 * roll_resist,
+        max_brake_torque=fpa * max(v.max_brake_current, v.max_motor_current) * v.wheel_radius / 4.0,
         max_inner_steer=ackermann_inner(v.max_steer, v),
         rest_load_front=n_front,
         rest_load_rear=n_rear,
