@@ -53,7 +53,7 @@ Mesh = tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
 
 #: The builder's geometry defaults (one source of truth: the Rust ``BuildParams``;
 #: mirrored by ``BuildConfig.geometry``).
-DEFAULT_PARAMS: dict[str, Any] = _core.config_defaults("build")
+DEFAULT_PARAMS: _core.GeometryConfigDoc = _core.config_defaults("build")
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,7 +73,7 @@ class CorridorGeometry:
     corridor_mask: npt.NDArray[np.bool_]
     border_contact_cells: int
     timings: dict[str, float]
-    params: dict[str, Any]
+    params: _core.GeometryConfigDoc
     map: OccupancyMap
     #: ``"track"`` (a closed corridor: centreline, laps, progress) or ``"open"`` (an open
     #: map, see :func:`extract_open`: walls only, ``centreline`` empty).
@@ -276,7 +276,7 @@ def _geometry(out: _core.Geometry, m: OccupancyMap) -> CorridorGeometry:
         corridor_mask=out.corridor_mask,
         border_contact_cells=out.border_contact_cells,
         timings=dict(out.timings),
-        params=dict(out.params),
+        params=out.params.copy(),
         map=m,
     )
 
