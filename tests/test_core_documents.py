@@ -43,7 +43,9 @@ def _generator():  # type: ignore[no-untyped-def]
 STUB_TREE = ast.parse(STUB.read_text(encoding="utf-8"))
 #: The stub's TypedDicts: name -> field -> annotation.
 STUB_DOCS: dict[str, dict[str, ast.expr]] = {
-    c.name: {f.target.id: f.annotation for f in c.body if isinstance(f, ast.AnnAssign) and isinstance(f.target, ast.Name)}
+    c.name: {
+        f.target.id: f.annotation for f in c.body if isinstance(f, ast.AnnAssign) and isinstance(f.target, ast.Name)
+    }
     for c in STUB_TREE.body
     if isinstance(c, ast.ClassDef) and any(isinstance(b, ast.Name) and b.id == "TypedDict" for b in c.bases)
 }
