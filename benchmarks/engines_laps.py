@@ -220,13 +220,17 @@ def policy_lap(work: Path, lateral_tyre: str, max_seconds: float) -> PairedLap:
     return compare(track, f"{POLICY_MAP} (recorded, held out)", f"policy {POLICY_FILE.name}", ours, physx)
 
 
-def _racing_driver(track: Any) -> tuple[Any, tuple[float, float, float]]:
+def _racing_driver(track: Any, sim: SimConfig) -> tuple[Any, tuple[float, float, float]]:
     """The racing driver on ``track`` (the raceline it plans, its speed plan capping the
-    speed) as a controller factory, and its start: standing on the line's first point."""
+    speed) as a controller factory, and its start: standing on the line's first point. It
+    plans with the limits of the car it drives, measured in our engine
+    (:func:`~roboracer_arena.raceline.measure.measure_limits`; for the default car those are
+    the ``car`` preset), as a team plans with its own car's limits."""
     from roboracer_arena.drivers import PurePursuitDriver
     from roboracer_arena.raceline.driver import plan_for_driver, racing_params, speed_cap
+    from roboracer_arena.raceline.measure import measure_limits
 
-    line = plan_for_driver(track)
+    line = plan_for_driver(track, measure_limits({"sim": sim.model_dump()}))
     params, cap = racing_params(line), speed_cap(line)
 
     def make() -> Any:
@@ -276,7 +280,7 @@ def run_laps(
                 replace_car(stage, sim)
                 track = track_of_stage(stage)
                 if driver == "racing":
-                    make, start = _racing_driver(track)
+                    make, start = _racing_driver(track, sim)
                     ours = drive_native(track, make(), sim, max_seconds=max_seconds, start=start)
                 else:
                     make = lambda track=track: pure_pursuit(track)
