@@ -11,11 +11,60 @@ use pyo3::prelude::*;
 use crate::boundary;
 use crate::errors::to_py;
 
-/// Reward weights and episode ends of `Simulator.set_episode` (the core checks them).
-#[pyclass(module = "roboracer_arena._core", name = "EpisodeConfig", frozen, eq)]
-#[derive(PartialEq)]
+/// Reward weights and episode ends of `Simulator.set_episode` (the core checks them);
+/// its fields are read-only attributes (the core's `EpisodeParams`, field for field).
+#[pyclass(
+    module = "roboracer_arena._core",
+    name = "EpisodeConfig",
+    frozen,
+    eq,
+    get_all
+)]
+#[derive(Clone, Copy, PartialEq)]
 pub struct EpisodeConfig {
-    pub(crate) inner: EpisodeParams,
+    progress: f64,
+    collision_penalty: f64,
+    stall_penalty: f64,
+    stall_speed: f64,
+    time_penalty: f64,
+    wrong_way_penalty: f64,
+    wrong_way_distance: f64,
+    dt: f64,
+    collision_ends_episode: bool,
+    wrong_way_ends_episode: bool,
+    max_steps: Option<u64>,
+}
+
+impl EpisodeConfig {
+    /// The core's parameters (every field named: a field one side lacks does not compile).
+    pub(crate) fn params(&self) -> EpisodeParams {
+        let EpisodeConfig {
+            progress,
+            collision_penalty,
+            stall_penalty,
+            stall_speed,
+            time_penalty,
+            wrong_way_penalty,
+            wrong_way_distance,
+            dt,
+            collision_ends_episode,
+            wrong_way_ends_episode,
+            max_steps,
+        } = *self;
+        EpisodeParams {
+            progress,
+            collision_penalty,
+            stall_penalty,
+            stall_speed,
+            time_penalty,
+            wrong_way_penalty,
+            wrong_way_distance,
+            dt,
+            collision_ends_episode,
+            wrong_way_ends_episode,
+            max_steps,
+        }
+    }
 }
 
 #[pymethods]
@@ -39,7 +88,7 @@ impl EpisodeConfig {
         wrong_way_ends_episode: bool,
         max_steps: Option<u64>,
     ) -> PyResult<Self> {
-        let inner = EpisodeParams {
+        let config = EpisodeConfig {
             progress,
             collision_penalty,
             stall_penalty,
@@ -52,19 +101,13 @@ impl EpisodeConfig {
             wrong_way_ends_episode,
             max_steps,
         };
-        let inner = boundary::call(py, "EpisodeConfig", move || {
-            inner.validate().map(|()| inner)
-        })?;
-        Ok(EpisodeConfig { inner })
-    }
-
-    #[getter]
-    fn max_steps(&self) -> Option<u64> {
-        self.inner.max_steps
+        let params = config.params();
+        boundary::call(py, "EpisodeConfig", move || params.validate())?;
+        Ok(config)
     }
 
     fn __repr__(&self) -> String {
-        format!("EpisodeConfig({:?})", self.inner)
+        format!("EpisodeConfig({:?})", self.params())
     }
 }
 

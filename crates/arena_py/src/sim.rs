@@ -447,7 +447,7 @@ impl Simulator {
     /// every step from now on, and restart an env's episode with its reset; a later call
     /// changes the parameters and keeps the episodes.
     fn set_episode(&mut self, py: Python<'_>, config: PyRef<'_, EpisodeConfig>) -> PyResult<()> {
-        let params = config.inner;
+        let params = config.params();
         let inner = &mut self.inner;
         boundary::call(py, "set_episode", move || inner.set_episode(params))
     }

@@ -59,6 +59,18 @@ impl StartGrid {
         self.inner.length()
     }
 
+    /// Laid along an open map's start anchor (the constructor's ``open_map``).
+    #[getter]
+    fn open_map(&self) -> bool {
+        self.inner.is_open()
+    }
+
+    /// s = 0 is the source's own start line (the constructor's ``source_start``).
+    #[getter]
+    fn source_start(&self) -> bool {
+        self.inner.source_start()
+    }
+
     /// (x, y, heading) on the centreline at arc length ``s`` (wrapped at the lap); on an
     /// open map, ``s`` m along the start heading.
     fn pose_at(&self, s: f64) -> PyResult<(f64, f64, f64)> {

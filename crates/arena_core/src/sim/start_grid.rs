@@ -127,6 +127,16 @@ impl StartGrid {
         })
     }
 
+    /// An open map's start anchor (no closed centreline).
+    pub fn is_open(&self) -> bool {
+        matches!(self.line, Line::Anchor(_))
+    }
+
+    /// s = 0 is the source's own start line (kept whenever the grid is clear there).
+    pub fn source_start(&self) -> bool {
+        self.source_start
+    }
+
     /// Lap length (m); 0 for an open map.
     pub fn length(&self) -> f64 {
         match &self.line {
