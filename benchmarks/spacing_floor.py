@@ -112,10 +112,10 @@ def taper_reads(rc: float) -> list[str]:
             head = np.cumsum(k) * ds
             xy = np.cumsum(np.c_[np.cos(head), np.sin(head)], axis=0) * ds
             a = _core.analyse_curve(xy, rc, 0.0)
-            kinds = [f["kind"] for f in a["features"]] or ["none"]
+            kinds = [f.kind for f in a.features] or ["none"]
             out.append(
                 f"ramps {ramp:.1f} m, straight {gap_rc:.1f} r_c: turns "
-                f"{[round(math.degrees(t['angle_rad'])) for t in a['turns']]} → {', '.join(kinds)}"
+                f"{[round(math.degrees(t.angle_rad)) for t in a.turns]} → {', '.join(kinds)}"
             )
     return out
 

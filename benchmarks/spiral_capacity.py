@@ -154,8 +154,8 @@ def capacity(spec: TrackSpec, fold_rc: float, check: bool) -> float:
             continue
         if check:
             a = _core.analyse_curve(line, d.corner_radius, math.pi * d.pitch / 2)
-            clear = a.get("self_clearance_m")
-            if a["features"] or (clear is not None and clear < d.pitch - 1e-6):
+            clear = a.self_clearance_m
+            if a.features or (clear is not None and clear < d.pitch - 1e-6):
                 continue
         best = length
     return best

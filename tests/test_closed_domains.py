@@ -39,7 +39,7 @@ def test_image_formats_in_any_case(tmp_path, fmt):
     data = np.full((8, 8), 254, np.uint8)
     image = _core.save_map(data, 0.05, (0.0, 0.0, 0.0), tmp_path / "m.yaml", fmt)
     assert image.endswith("." + fmt.lower())
-    assert load_map(tmp_path / "m.yaml").meta["image_format"] == fmt.lower()
+    assert load_map(tmp_path / "m.yaml").meta.image_format == fmt.lower()
 
 
 @pytest.mark.parametrize("fmt", ["jpg", "", 1, None])

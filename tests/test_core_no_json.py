@@ -23,9 +23,17 @@ TEXT_PARAMS = {
     ("load_map", "path"),
     ("save_map", "yaml_path"),
 }
-#: Results holding ``str`` as text (how many of their values): an image path and the state
-#: field names.
-TEXT_RESULTS = {"save_map": 1, "Simulator.state_fields": 1}
+#: Results holding ``str`` as text (how many of their values): an image path, the state
+#: field names, a check's words for people and a map file's paths.
+TEXT_RESULTS = {
+    "save_map": 1,
+    "Simulator.state_fields": 1,
+    "Check.name": 1,
+    "Check.measured": 1,
+    "Check.bound": 1,
+    "MapMeta.yaml_path": 1,
+    "MapMeta.image_path": 1,
+}
 
 
 def _defs() -> list[tuple[str, ast.FunctionDef]]:
@@ -78,16 +86,16 @@ def test_no_core_entry_point_takes_or_returns_json_text():
 
 def test_results_are_objects_at_runtime():
     """The stub is checked by stubtest for names and parameters, not for what a call
-    returns: the results are dicts here, not strings."""
+    returns: the results are typed objects (or dicts) here, not strings."""
     from roboracer_arena import TrackSpec
 
     spec = TrackSpec(lap_length_m=45, corridor_width_m=1.2, hairpins=1)
-    assert isinstance(_core.screen(spec), dict)
+    assert isinstance(_core.screen(spec), _core.ScreenResult)
     assert isinstance(_core.derived_geometry(spec.model_dump()), _core.Derived)
     assert isinstance(_core.config_defaults("sim"), dict)
     assert isinstance(_core.check_config("spec", spec), dict)
     t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
-    assert isinstance(_core.analyse_curve(np.c_[5 * np.cos(t), 5 * np.sin(t)], 1.0, 2.0), dict)
+    assert isinstance(_core.analyse_curve(np.c_[5 * np.cos(t), 5 * np.sin(t)], 1.0, 2.0), _core.CurveAnalysis)
     sim = _core.Simulator([_core.stadium_track()], 1, 1)
     assert isinstance(sim.config, dict) and sim.config["lidar"]["num_beams"] > 0
 

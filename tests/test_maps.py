@@ -37,8 +37,8 @@ def test_png_layouts_without_alpha(tmp_path: Path, mode: str) -> None:
     m = load_map(write_yaml(tmp_path / "m.yaml", "m.png"))
     np.testing.assert_array_equal(m.data, TRINARY)
     assert (m.resolution, m.origin) == (0.1, (1.0, -2.0, 0.5))
-    assert m.meta["image_format"] == "png"
-    assert m.meta["image_bit_depth"] == (16 if mode == "I;16" else 8)
+    assert m.meta.image_format == "png"
+    assert m.meta.image_bit_depth == (16 if mode == "I;16" else 8)
 
 
 @pytest.mark.parametrize("mode", ["LA", "RGBA"])
@@ -60,8 +60,8 @@ def test_pgm_ascii_and_16_bit_binary(tmp_path: Path) -> None:
     for name in ("a.pgm", "b.pgm"):
         m = load_map(write_yaml(tmp_path / f"{name}.yaml", name))
         np.testing.assert_array_equal(m.data, TRINARY)
-        assert m.meta["image_format"] == "pgm"
-        assert set(m.meta["defaulted"]) == {"mode", "negate", "occupied_thresh", "free_thresh"}
+        assert m.meta.image_format == "pgm"
+        assert set(m.meta.defaulted) == {"mode", "negate", "occupied_thresh", "free_thresh"}
 
 
 def test_negate_thresholds_and_raw(tmp_path: Path) -> None:
@@ -87,7 +87,7 @@ def test_one_by_one_map_and_round_trip(tmp_path: Path) -> None:
         back = load_map(y)
         np.testing.assert_array_equal(back.data, data)
         assert (back.resolution, back.origin) == (0.05, (-1.25, 3.5, -0.25))
-        assert back.meta["image_format"] == fmt
+        assert back.meta.image_format == fmt
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [
         "rt_pgm.pgm",
         "rt_pgm.yaml",
@@ -120,7 +120,7 @@ def test_shared_maps_load(sources: Path) -> None:
     berlin = load_map(sources / "f1tenth-gym/maps/berlin.yaml")
     assert berlin.shape == (600, 600) and berlin.resolution == 0.05
     corner = load_map(sources / "bdevan5-f1tenth-benchmarks/maps/CornerHall.yaml")
-    assert corner.meta["mode"] == "trinary" and corner.meta["image_channels"] == 4
+    assert corner.meta.mode == "trinary" and corner.meta.image_channels == 4
     spa = load_map(sources / "f1tenth-racetracks/Spa/Spa_map.yaml")
     assert spa.shape == (2000, 2000) and (spa.data == FREE).mean() > 0.9  # thin-line map
     assert load_map(sources / "f1tenth-gym/maps/berlin.yaml").data.shape == (600, 600)
@@ -129,3 +129,31 @@ def test_shared_maps_load(sources: Path) -> None:
 def test_porto_yaml_names_a_missing_image_and_the_error_suggests_the_right_one(sources: Path) -> None:
     with pytest.raises(MapFormatError, match=r"map\.pgm.*does not exist.*image: porto\.pgm"):
         load_map(sources / "f1tenth-simulator/maps/porto.yaml")
+
+
+def test_the_meta_is_a_typed_read_only_object_that_pickles(tmp_path: Path) -> None:
+    """Issue 37: the meta crosses as ``_core.MapMeta`` (closed domains as their names),
+    not a dict; a loaded map still pickles (it rides along to worker processes)."""
+    import pickle
+
+    from roboracer_arena import _core
+
+    Image.fromarray(GREYS, "L").save(tmp_path / "m.png")
+    m = load_map(write_yaml(tmp_path / "m.yaml", "m.png", "mode: scale\n"))
+    meta = m.meta
+    assert isinstance(meta, _core.MapMeta)
+    assert (meta.image_format, meta.mode, meta.image_channels, meta.negate) == ("png", "scale", 1, False)
+    assert meta.yaml_path == str(tmp_path / "m.yaml") and m.image_path == tmp_path / "m.png"
+    assert "mode" not in meta.defaulted and "negate" in meta.defaulted
+    with pytest.raises(AttributeError):
+        meta.mode = "raw"  # type: ignore[misc]
+    assert repr(meta).startswith(f"MapMeta(yaml_path={str(tmp_path / 'm.yaml')!r}, image_path=")
+    back = pickle.loads(pickle.dumps(m))
+    assert repr(back.meta) == repr(meta) and np.array_equal(back.data, m.data)
+
+
+def test_a_map_made_in_memory_has_no_meta_and_no_image() -> None:
+    m = OccupancyMap(TRINARY, 0.1, (0.0, 0.0, 0.0))
+    assert m.meta is None
+    with pytest.raises(InvalidArgumentError, match="no image file"):
+        _ = m.image_path

@@ -23,6 +23,7 @@ __all__ = [
     "distance_transform",
     "rasterise_centreline",
     "screen",
+    "ScreenResult",
     "derived_geometry",
     "Derived",
     "generate_lattice",
@@ -33,7 +34,13 @@ __all__ = [
     "NearestFound",
     "NearestSuggestion",
     "validate_map",
+    "ValidationReport",
+    "Check",
+    "Measurements",
+    "FeatureAt",
     "analyse_curve",
+    "CurveAnalysis",
+    "Turn",
     "polyline_length",
     "cumulative_length",
     "signed_area",
@@ -43,6 +50,7 @@ __all__ = [
     "min_radius",
     "self_intersections",
     "load_map",
+    "MapMeta",
     "save_map",
     "build_geometry",
     "build_open_geometry",
@@ -75,8 +83,9 @@ __version__: str
 # (``model.model_dump()``) or the pydantic model itself (the binding dumps it); the core
 # reads it into its serde type and checks the schema's ranges (``SpecError`` /
 # ``ConfigError`` naming the field). Results cross as dicts and lists of plain values
-# (the core's serde structs, via pythonize); ``roboracer_arena.generate.report`` holds the
-# typed models built from them (``extra="forbid"``: a field the core adds or drops fails).
+# (the core's serde structs, via pythonize) or as typed, read-only objects (frozen
+# classes mirroring the core's structs field for field; ``roboracer_arena.generate.report``
+# builds its pydantic models from their attributes).
 class _Dumps(Protocol):
     def model_dump(self) -> Mapping[str, object]: ...
 
@@ -87,6 +96,8 @@ _Result: TypeAlias = dict[str, Any]
 # naming the allowed values for any other value); save_map also takes them in any case.
 _ConfigKind: TypeAlias = Literal["sim", "build", "constructor", "spec"]
 _ImageFormat: TypeAlias = Literal["png", "pgm"]
+_FeatureKind: TypeAlias = Literal["hairpin", "chicane", "sweeper"]
+_MapMode: TypeAlias = Literal["trinary", "scale", "raw"]
 
 # The config documents the core returns (config_defaults, check_config, Simulator.config,
 # Geometry.params, NearestSuggestion.spec): plain dicts at runtime, the same documents the
@@ -246,8 +257,32 @@ def rasterise_centreline(
 ) -> tuple[npt.NDArray[np.uint8], tuple[float, float, float]]:
     """Eq. 3 with per-vertex full widths; returns (data (H, W) uint8, origin (x, y, yaw))."""
 
-def screen(spec: _Doc, config: _Doc | None = None) -> _Result:
-    """Admissibility screen (Eqs. 1–2): passed, violations, r_min_m, pitch_m, l_max_m, … (``ScreenResult``)."""
+def screen(spec: _Doc, config: _Doc | None = None) -> ScreenResult:
+    """Admissibility screen (Eqs. 1–2): passed, violations, r_min_m, pitch_m, l_max_m, …"""
+
+# The reports below are read-only mirrors of the core's structs (AttributeError on set),
+# with a repr naming every field; they pickle.
+@final
+class ScreenResult:
+    """The admissibility screen (Eqs. 1–2): ``passed`` or the ``violations`` stated with
+    numbers, and every quantity the bounds use (m)."""
+
+    @property
+    def passed(self) -> bool: ...
+    @property
+    def violations(self) -> list[str]: ...
+    @property
+    def r_min_m(self) -> float: ...
+    @property
+    def pitch_m(self) -> float: ...
+    @property
+    def l_max_m(self) -> float: ...
+    @property
+    def l_min_m(self) -> float: ...
+    @property
+    def feature_length_m(self) -> float: ...
+    @property
+    def feature_budget_m(self) -> float: ...
 
 def derived_geometry(spec: _Doc, config: _Doc | None = None) -> Derived:
     """Derived geometry: r_min, pitch, l_max, s_min, corner_radius."""
@@ -323,15 +358,15 @@ class LatticeOutcome:
     def centreline(self) -> npt.NDArray[np.float64] | None:
         """The accepted closed centreline (N, 2)."""
     @property
-    def report(self) -> _Result | None:
-        """The accepted map's raster validation (``ValidationReport``)."""
+    def report(self) -> ValidationReport | None:
+        """The accepted map's raster validation."""
     @property
     def candidate_index(self) -> int | None: ...
     @property
     def pitch_m(self) -> float | None: ...
     @property
-    def screen(self) -> _Result | None:
-        """The screen that rejected the spec (``ScreenResult``)."""
+    def screen(self) -> ScreenResult | None:
+        """The screen that rejected the spec."""
     @property
     def reasons(self) -> dict[str, int]:
         """Why candidates failed, each reason counted."""
@@ -368,8 +403,78 @@ def validate_map(
     origin: tuple[float, float, float],
     spec: _Doc,
     config: _Doc | None = None,
-) -> tuple[_Result, npt.NDArray[np.float64]]:
-    """Raster validator: (report (``ValidationReport``), measured centreline (N, 2) in the driving direction)."""
+) -> tuple[ValidationReport, npt.NDArray[np.float64]]:
+    """Raster validator: (report, measured centreline (N, 2) in the driving direction)."""
+
+@final
+class ValidationReport:
+    """The raster validator's verdict on one map: ``measurements`` is None when the map
+    has no measurable corridor (the ``corridor`` check says why)."""
+
+    @property
+    def valid(self) -> bool: ...
+    @property
+    def checks(self) -> list[Check]: ...
+    @property
+    def measurements(self) -> Measurements | None: ...
+    @property
+    def features(self) -> list[FeatureAt]: ...
+
+@final
+class Check:
+    """One acceptance test: ``measured`` and ``bound`` are for people, ``passed`` decides."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def measured(self) -> str: ...
+    @property
+    def bound(self) -> str: ...
+    @property
+    def passed(self) -> bool: ...
+
+@final
+class Measurements:
+    """What the validator measured, in SI units; ``self_clearance_m`` is None when the
+    lap has no non-local passes."""
+
+    @property
+    def corridor_components(self) -> int: ...
+    @property
+    def infields(self) -> int: ...
+    @property
+    def lap_length_m(self) -> float: ...
+    @property
+    def width_mean_m(self) -> float: ...
+    @property
+    def width_min_m(self) -> float: ...
+    @property
+    def min_radius_m(self) -> float: ...
+    @property
+    def hairpins(self) -> int: ...
+    @property
+    def chicanes(self) -> int: ...
+    @property
+    def sweepers(self) -> int: ...
+    @property
+    def longest_straight_m(self) -> float: ...
+    @property
+    def self_clearance_m(self) -> float | None: ...
+    @property
+    def extent_m(self) -> tuple[float, float]: ...
+
+@final
+class FeatureAt:
+    """A detected feature, ``at_m`` metres along the lap in the driving direction, at (``x``, ``y``)."""
+
+    @property
+    def kind(self) -> _FeatureKind: ...
+    @property
+    def at_m(self) -> float: ...
+    @property
+    def x(self) -> float: ...
+    @property
+    def y(self) -> float: ...
 
 _ConfigDoc: TypeAlias = SimConfigDoc | GeometryConfigDoc | ConstructorConfigDoc
 
@@ -397,16 +502,80 @@ def check_config(kind: _ConfigKind, config: _Doc) -> _ConfigDoc | TrackSpecDoc:
     """Read and validate a document as the core does (``kind`` "sim", "build", "constructor"
     or "spec"; raises ConfigError, SpecError for a spec); returns it normalised."""
 
-def analyse_curve(xy: npt.NDArray[np.float64], corner_radius: float, exclude_m: float) -> _Result:
-    """Curvature analysis of a closed curve (``CurveAnalysis``: turns, features, min radius, self_clearance_m).
+def analyse_curve(xy: npt.NDArray[np.float64], corner_radius: float, exclude_m: float) -> CurveAnalysis:
+    """Curvature analysis of a closed curve (turns, features, min radius, self_clearance_m).
     InvalidArgumentError unless ≥ 3 finite points span a length in (0, 5000] m and
     ``corner_radius`` / ``exclude_m`` are finite and in range."""
 
+@final
+class CurveAnalysis:
+    """The curvature analysis of a closed curve in its driving direction: turns, detected
+    features, minimum radius, longest straight, total turn (rad), and the
+    self-clearance outside the excluded arc (None when no other pass comes near)."""
+
+    @property
+    def length_m(self) -> float: ...
+    @property
+    def min_radius_m(self) -> float: ...
+    @property
+    def turns(self) -> list[Turn]: ...
+    @property
+    def features(self) -> list[FeatureAt]: ...
+    @property
+    def longest_straight_m(self) -> float: ...
+    @property
+    def total_turn_rad(self) -> float: ...
+    @property
+    def self_clearance_m(self) -> float | None: ...
+
+@final
+class Turn:
+    """One turn of a closed curve: where it runs (m along the lap), by how much (rad,
+    + = left) and its tightest radius (m)."""
+
+    @property
+    def start_m(self) -> float: ...
+    @property
+    def end_m(self) -> float: ...
+    @property
+    def angle_rad(self) -> float: ...
+    @property
+    def peak_radius_m(self) -> float: ...
+
 # --- grid (grid.rs): ROS map YAML + PGM/PNG, nav2 rules, distance transform ---------
-def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], _Result]:
+def load_map(path: str | os.PathLike[str]) -> tuple[npt.NDArray[np.uint8], float, tuple[float, float, float], MapMeta]:
     """Load a ROS map: ``(data (H, W) uint8 254/0/205, resolution, origin (x, y, yaw), meta)``.
     The YAML and image must be regular files; the image size is checked against the pixel
     budget from its header, resolution and origin against ``arena_core::limits``."""
+
+@final
+class MapMeta:
+    """What a map file said besides the grid: the files, the image's encoding, channels
+    and bit depth, the nav2 ``mode``, ``negate``, the thresholds and the optional keys
+    that were absent and took their default (``defaulted``)."""
+
+    @property
+    def yaml_path(self) -> str: ...
+    @property
+    def image_path(self) -> str: ...
+    @property
+    def image_format(self) -> _ImageFormat:
+        """Found from the image's bytes, not its name."""
+    @property
+    def image_channels(self) -> int:
+        """1 grey, 2 grey + alpha, 3 RGB, 4 RGBA."""
+    @property
+    def image_bit_depth(self) -> int: ...
+    @property
+    def mode(self) -> _MapMode: ...
+    @property
+    def negate(self) -> bool: ...
+    @property
+    def occupied_thresh(self) -> float: ...
+    @property
+    def free_thresh(self) -> float: ...
+    @property
+    def defaulted(self) -> list[str]: ...
 
 def save_map(
     data: npt.NDArray[np.uint8],

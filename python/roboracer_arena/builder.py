@@ -173,7 +173,7 @@ def build_environment(
 
     t0 = time.perf_counter()
     occ = load_map(map_or_path) if isinstance(map_or_path, (str, Path)) else map_or_path
-    check_output(out, inputs=[(occ.meta or {}).get("image_path")])
+    check_output(out, inputs=[getattr(occ.meta, "image_path", None)])  # None: a map made in memory
     t1 = time.perf_counter()
     geo = extract_corridor(
         occ, params=cfg.geometry_params(), start=pose, open=open, unknown=unknown, close_gaps_m=close_gaps_m

@@ -44,13 +44,20 @@ def test_the_outcome_is_typed_and_read_only():
     assert acc.kind == "accepted" and acc.tried >= 1 and acc.candidate_index is not None
     data, origin = acc.map
     assert data.dtype == np.uint8 and len(origin) == 3 and acc.centreline.shape[1] == 2
-    assert acc.report["valid"] and acc.pitch_m > 0 and acc.screen is None and acc.reasons == {}
+    assert (
+        isinstance(acc.report, _core.ValidationReport)
+        and acc.report.valid
+        and acc.pitch_m > 0
+        and acc.screen is None
+        and acc.reasons == {}
+    )
     with pytest.raises(AttributeError):
         acc.kind = "rejected"  # type: ignore[misc]
 
     rej = _core.generate_lattice(IMPOSSIBLE, None, 0)
     assert rej.kind == "rejected" and rej.map is None and rej.report is None and rej.tried == 0
-    assert not ScreenResult.model_validate(rej.screen).passed
+    assert isinstance(rej.screen, _core.ScreenResult)
+    assert not ScreenResult.model_validate(rej.screen, from_attributes=True).passed
 
 
 def test_a_failure_names_its_reasons_and_what_stopped_it():

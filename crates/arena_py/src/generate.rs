@@ -5,12 +5,13 @@
 //! through `boundary::call`.
 
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 use crate::boundary;
-use crate::convert::{from_py, to_dict};
+use crate::convert::from_py;
+use crate::mirror::FromCore;
 use crate::nearest::NearestFound;
 use crate::outcome::{Construction, LatticeOutcome};
+use crate::reports::ScreenResult;
 use arena_core::generate::construct;
 use arena_core::generate::deadline::Failure;
 use arena_core::generate::nearest::{self, NearestReport};
@@ -30,19 +31,20 @@ pub(crate) fn parse(
     boundary::call(py, "spec/config", move || Ok((spec.check()?, cfg.check()?)))
 }
 
-/// The admissibility screen (Eqs. 1–2): passed, violations and every quantity (a dict).
+/// The admissibility screen (Eqs. 1–2): passed, violations and every quantity, a
+/// [`ScreenResult`].
 #[pyfunction]
 #[pyo3(signature = (spec, config=None))]
-fn screen<'py>(
-    py: Python<'py>,
-    spec: &Bound<'py, PyAny>,
-    config: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyDict>> {
+fn screen(
+    py: Python<'_>,
+    spec: &Bound<'_, PyAny>,
+    config: Option<&Bound<'_, PyAny>>,
+) -> PyResult<ScreenResult> {
     let (spec, cfg) = parse(py, spec, config)?;
     let out = boundary::call_ok(py, "screen", move || {
         arena_core::generate::screen::screen(&spec, &cfg)
     })?;
-    to_dict(py, &out)
+    ScreenResult::from_core(py, out)
 }
 
 /// Lengths derived from a spec (m), read-only: r_min and pitch p (Eq. 1), L_max, the

@@ -5,6 +5,8 @@
 use crate::boundary;
 use crate::convert::{grid_to_py, points_from_py, MapTuple};
 use crate::domain::Wrap;
+use crate::mirror::FromCore;
+use crate::reports::MapMeta;
 use arena_core::grid::mapfile::{self, ImageFormat};
 use arena_core::grid::OccupancyGrid;
 use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -39,22 +41,18 @@ pub(crate) fn grid_from_py(
     })
 }
 
-/// `(data, resolution, origin, meta)` as returned to Python (meta a dict).
-type LoadedMap<'py> = (
-    Bound<'py, PyArray2<u8>>,
-    f64,
-    (f64, f64, f64),
-    Bound<'py, pyo3::types::PyDict>,
-);
+/// `(data, resolution, origin, meta)` as returned to Python.
+type LoadedMap<'py> = (Bound<'py, PyArray2<u8>>, f64, (f64, f64, f64), MapMeta);
 
 /// Load a ROS map YAML and its image (nav2 rules for mode, negate and thresholds).
-/// Returns ``(data uint8 (H, W), resolution, origin (x, y, yaw), meta)``, meta a dict.
+/// Returns ``(data uint8 (H, W), resolution, origin (x, y, yaw), meta)``, meta a
+/// [`MapMeta`].
 #[pyfunction]
 fn load_map<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<LoadedMap<'py>> {
     let (g, meta) = boundary::call(py, "load_map", move || mapfile::load_map(&path))?;
     let res = g.resolution;
     let (data, origin) = grid_to_py(py, g);
-    Ok((data, res, origin, crate::convert::to_dict(py, &meta)?))
+    Ok((data, res, origin, MapMeta::from_core(py, meta)?))
 }
 
 /// Write a trinary map: ``STEM.png|pgm`` beside ``yaml_path``, then the YAML (atomically).

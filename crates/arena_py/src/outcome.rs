@@ -9,9 +9,10 @@ use arena_core::generate::construct::{Candidate, Outcome};
 use arena_core::generate::deadline::{Failure, Stop};
 use numpy::PyArray2;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::convert::{grid_to_py, line_to_py, to_dict};
+use crate::convert::{grid_to_py, line_to_py};
+use crate::mirror::FromCore;
+use crate::reports::{ScreenResult, ValidationReport};
 
 /// A map as ``(data (H, W) uint8, origin (x, y, yaw))``.
 type MapObject = (Py<PyArray2<u8>>, (f64, f64, f64));
@@ -25,10 +26,10 @@ pub struct LatticeOutcome {
     tried: u32,
     map: Option<MapObject>,
     centreline: Option<Py<PyArray2<f64>>>,
-    report: Option<Py<PyDict>>,
+    report: Option<Py<ValidationReport>>,
     candidate_index: Option<u32>,
     pitch_m: Option<f64>,
-    screen: Option<Py<PyDict>>,
+    screen: Option<Py<ScreenResult>>,
     reasons: BTreeMap<String, u32>,
     stopped: Option<&'static str>,
 }
@@ -87,14 +88,14 @@ impl LatticeOutcome {
                 LatticeOutcome {
                     map: Some((data.unbind(), origin)),
                     centreline: Some(line_to_py(py, &candidate.centreline).unbind()),
-                    report: Some(to_dict(py, &*report)?.unbind()),
+                    report: Some(FromCore::from_core(py, *report)?),
                     candidate_index: Some(candidate_index),
                     pitch_m: Some(candidate.pitch_m),
                     ..Self::empty("accepted", tried)
                 }
             }
             Outcome::Rejected(sr) => LatticeOutcome {
-                screen: Some(to_dict(py, &sr)?.unbind()),
+                screen: Some(FromCore::from_core(py, sr)?),
                 ..Self::empty("rejected", 0)
             },
             Outcome::Failed {

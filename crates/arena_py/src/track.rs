@@ -6,6 +6,8 @@
 use crate::boundary;
 use crate::convert::{from_py, line_to_py, points_from_py, to_dict};
 use crate::generate::parse;
+use crate::mirror::FromCore;
+use crate::reports::{CurveAnalysis, ValidationReport};
 use arena_core::geometry::mesh::TriMesh;
 use arena_core::track::build;
 use arena_core::track::metrics;
@@ -220,7 +222,7 @@ fn measure_map<'py>(
 }
 
 /// Validate an occupancy grid against a spec, measuring the raster only. Returns
-/// ``(report (a dict), measured centreline (N, 2) in the driving direction)``.
+/// ``(report (a [`ValidationReport`]), measured centreline (N, 2) in the driving direction)``.
 #[pyfunction]
 #[pyo3(signature = (data, resolution, origin, spec, config=None))]
 fn validate_map<'py>(
@@ -230,7 +232,7 @@ fn validate_map<'py>(
     origin: (f64, f64, f64),
     spec: &Bound<'py, PyAny>,
     config: Option<&Bound<'py, PyAny>>,
-) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyArray2<f64>>)> {
+) -> PyResult<(ValidationReport, Bound<'py, PyArray2<f64>>)> {
     let (spec, cfg) = parse(py, spec, config)?;
     boundary::call(py, "validate_map", || {
         validate::check_frame(resolution, [origin.0, origin.1, origin.2])
@@ -239,24 +241,26 @@ fn validate_map<'py>(
     let report = boundary::call_ok(py, "validate_map", move || {
         validate::validate_map(&grid, &spec, &cfg)
     })?;
-    Ok((to_dict(py, &report)?, line_to_py(py, &report.centreline)))
+    let line = line_to_py(py, &report.centreline);
+    Ok((ValidationReport::from_core(py, report)?, line))
 }
 
 /// Curvature analysis of a closed curve (driving direction): turns, features, minimum
-/// radius, longest straight, total turn; plus its self-clearance outside `exclude_m`.
+/// radius, longest straight, total turn; plus its self-clearance outside `exclude_m`: a
+/// [`CurveAnalysis`].
 #[pyfunction]
 #[pyo3(signature = (xy, corner_radius, exclude_m))]
-fn analyse_curve<'py>(
-    py: Python<'py>,
-    xy: PyReadonlyArray2<'py, f64>,
+fn analyse_curve(
+    py: Python<'_>,
+    xy: PyReadonlyArray2<'_, f64>,
     corner_radius: f64,
     exclude_m: f64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<CurveAnalysis> {
     let pts = points_from_py(&xy, "xy")?;
     let out = boundary::call(py, "analyse_curve", move || {
         features::analyse_curve(&pts, corner_radius, exclude_m)
     })?;
-    to_dict(py, &out)
+    CurveAnalysis::from_core(py, out)
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -38,7 +38,7 @@ def check_timeout(timeout: object, what: str = "timeout") -> float | None:
 
 def screen(spec: TrackSpec, config: ConstructorConfig | None = None) -> ScreenResult:
     """The admissibility screen (Eqs. 1–2): ``passed``, ``violations`` and every quantity."""
-    return ScreenResult.model_validate(_core.screen(spec, config))
+    return ScreenResult.model_validate(_core.screen(spec, config), from_attributes=True)
 
 
 def derived_geometry(spec: TrackSpec, config: ConstructorConfig | None = None) -> DerivedGeometry:
@@ -57,7 +57,7 @@ def validate_map(
         spec,
         config,
     )
-    return ValidationReport.model_validate(report), line
+    return ValidationReport.model_validate(report, from_attributes=True), line
 
 
 def rasterise(centreline: np.ndarray, spec: TrackSpec, config: ConstructorConfig) -> OccupancyMap:
@@ -111,7 +111,7 @@ def generate_track(
     if constructor == "lattice":
         out = _core.generate_lattice(spec, config, seed, timeout)  # screens once, first
         if out.kind == "rejected":
-            sr = ScreenResult.model_validate(out.screen)
+            sr = ScreenResult.model_validate(out.screen, from_attributes=True)
             return Rejection(spec, list(sr.violations), sr, time.perf_counter() - t0)
         if out.kind == "accepted":
             if out.map is None or out.centreline is None or out.report is None:  # set with every acceptance
@@ -121,7 +121,7 @@ def generate_track(
                 spec,
                 OccupancyMap(data, config.resolution_m, origin),
                 out.centreline,
-                ValidationReport.model_validate(out.report),
+                ValidationReport.model_validate(out.report, from_attributes=True),
                 constructor,
                 seed,
                 out.tried,

@@ -1,7 +1,9 @@
 """Typed results of the generator's core calls: the raster validator's report, the
-admissibility screen and the derived geometry. The core sends them as JSON; these frozen
-models parse it with ``extra="forbid"``, so a field the core adds, drops or renames
-fails loudly here instead of drifting (``tests/generate/test_report_models.py``)."""
+admissibility screen, the curve analysis and the derived geometry. The core returns them
+as read-only objects mirroring its structs (``_core.ValidationReport``, ...); these frozen
+models are built from their attributes (``from_attributes``) with ``extra="forbid"`` and
+add what code and the JSON outputs use (``Check.line``, ``failed``, tuples, ``model_dump``).
+``tests/generate/test_report_models.py`` holds each model's fields to its core object's."""
 
 from __future__ import annotations
 
@@ -114,9 +116,7 @@ class CurveAnalysis(_Result):
     def of(cls, xy: npt.ArrayLike, corner_radius: float, exclude_m: float) -> CurveAnalysis:
         """Analyse the closed curve ``xy`` (N, 2) with the core."""
         raw = _core.analyse_curve(np.ascontiguousarray(xy, np.float64), corner_radius, exclude_m)
-        if raw["self_clearance_m"] < 0:  # the core's "no non-local pass"
-            raw["self_clearance_m"] = None
-        return cls.model_validate(raw)
+        return cls.model_validate(raw, from_attributes=True)
 
 
 class DerivedGeometry(_Result):

@@ -113,7 +113,7 @@ def _generated_entry(d: Path, spec: Any, rep: Any) -> TrackEntry:
         width_min_m=round(meas["width_min_m"], 3),
         min_radius_m=round(meas["min_radius_m"], 2),
         raster=Raster(width_px=w, height_px=h),
-        sha256=sha256_file(Path(m.meta["image_path"])),
+        sha256=sha256_file(m.image_path),
         map=f"generated/{d.name}/map.yaml",
         centreline=f"generated/{d.name}/centreline.csv",
         spec=f"generated/{d.name}/spec.json",

@@ -179,7 +179,7 @@ def recorded_entry(sources: Path, r: RecordedMap) -> TrackEntry:
     """The catalog entry of a usable recorded map (before directions and verify)."""
     prov = provenance(sources, r.source_dir)
     yaml_path = sources / r.source_path
-    img_path = Path(load_map(yaml_path).meta["image_path"])
+    img_path = load_map(yaml_path).image_path
     notes = [f"corridor checked with {r.corridor_check}"]
     if (r.infields or 1) > 1:
         notes.append(f"{r.infields} enclosed regions (obstacles or islands in the corridor)")

@@ -46,7 +46,7 @@ def check_load(entry: TrackEntry, yaml_path: Path) -> tuple[Check, OccupancyMap 
         m = load_map(yaml_path)
     except (ArenaError, OSError) as e:
         return Check(status=FAIL, detail=f"does not load: {e}"), None
-    digest = sha256_file(Path(m.meta["image_path"]))
+    digest = sha256_file(m.image_path)
     if digest != entry.sha256:  # (the loader refuses an entry without a 64-hex-digit checksum)
         return Check(status=FAIL, detail=f"image checksum {digest[:12]} != catalog {entry.sha256[:12]}"), m
     h, w = np.asarray(m.data).shape

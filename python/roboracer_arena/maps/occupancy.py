@@ -16,9 +16,9 @@ percentages become unknown).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal
+from typing import Literal
 
 import numpy as np
 import numpy.typing as npt
@@ -42,7 +42,8 @@ class OccupancyMap:
         resolution: metres per cell.
         origin: ``(x, y, yaw)`` of the lower-left corner of the lower-left cell.
         path: the YAML it was loaded from (``None`` for maps made in memory).
-        meta: what the file said besides the grid: ``image_path``, ``image_format``,
+        meta: what the file said besides the grid (``None`` for maps made in memory), a
+            read-only ``_core.MapMeta``: ``image_path``, ``image_format``,
             ``image_channels``, ``image_bit_depth``, ``mode``, ``negate``, the thresholds
             and ``defaulted`` (optional keys that were absent).
     """
@@ -51,7 +52,7 @@ class OccupancyMap:
     resolution: float
     origin: tuple[float, float, float]
     path: Path | None = None
-    meta: dict[str, Any] = field(default_factory=dict)
+    meta: _core.MapMeta | None = None
 
     def __post_init__(self) -> None:
         data = np.ascontiguousarray(self.data, dtype=np.uint8)
@@ -71,6 +72,13 @@ class OccupancyMap:
     def shape(self) -> tuple[int, int]:
         """``(height, width)`` in cells."""
         return (int(self.data.shape[0]), int(self.data.shape[1]))
+
+    @property
+    def image_path(self) -> Path:
+        """The image a loaded map was read from (``InvalidArgumentError`` for a map made in memory)."""
+        if self.meta is None:
+            raise InvalidArgumentError("a map made in memory has no image file; save it first")
+        return Path(self.meta.image_path)
 
     @property
     def megapixels(self) -> float:

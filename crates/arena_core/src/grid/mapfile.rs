@@ -17,21 +17,20 @@ use super::{pgm, png_io, OccupancyGrid, FREE, OCCUPIED, UNKNOWN};
 use crate::error::{ArenaError, Result};
 use crate::fileio::{atomic_write, read_regular};
 use crate::limits;
-use serde::Serialize;
 use serde_yaml::Value;
 use std::path::{Path, PathBuf};
 
-/// What a map file said besides the grid itself (exposed to Python as JSON).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// What a map file said besides the grid itself (a typed, read-only object in Python).
+#[derive(Debug, Clone, PartialEq)]
 pub struct MapMeta {
     pub yaml_path: String,
     pub image_path: String,
-    /// "png" or "pgm".
-    pub image_format: String,
+    /// The image's encoding, found from its bytes (not its name).
+    pub image_format: ImageFormat,
     /// Channels of the decoded image (1 grey, 2 grey+alpha, 3 RGB, 4 RGBA).
     pub image_channels: usize,
     pub image_bit_depth: u8,
-    pub mode: String,
+    pub mode: MapMode,
     pub negate: bool,
     pub occupied_thresh: f64,
     pub free_thresh: f64,
@@ -56,7 +55,8 @@ impl ImageFormat {
             ))),
         }
     }
-    fn extension(self) -> &'static str {
+    /// The format's name, also the image file's extension.
+    pub fn name(self) -> &'static str {
         match self {
             ImageFormat::Png => "png",
             ImageFormat::Pgm => "pgm",
@@ -273,16 +273,16 @@ fn missing_image_hint(yaml: &Path) -> String {
 }
 
 /// Decode an image file by its content (PNG signature or P2/P5 magic).
-pub fn read_image(path: &Path) -> Result<(PixelImage, &'static str)> {
+pub fn read_image(path: &Path) -> Result<(PixelImage, ImageFormat)> {
     let bytes = read_regular(path, "map image", max_image_bytes()?)?;
     let bad = |m: String| ArenaError::map_format(path, m);
     if bytes.is_empty() {
         return Err(bad("map image is empty (0 bytes)".into()));
     }
     if bytes.starts_with(b"\x89PNG") {
-        Ok((png_io::decode(&bytes).map_err(bad)?, "png"))
+        Ok((png_io::decode(&bytes).map_err(bad)?, ImageFormat::Png))
     } else if bytes.first() == Some(&b'P') {
-        Ok((pgm::decode(&bytes).map_err(bad)?, "pgm"))
+        Ok((pgm::decode(&bytes).map_err(bad)?, ImageFormat::Pgm))
     } else {
         Err(bad(
             "unsupported or corrupt map image: neither PNG nor PGM (P2/P5)".into(),
@@ -326,10 +326,10 @@ pub fn load_map(yaml_path: impl AsRef<Path>) -> Result<(OccupancyGrid, MapMeta)>
     let meta = MapMeta {
         yaml_path: yaml_path.display().to_string(),
         image_path: image_path.display().to_string(),
-        image_format: format.into(),
+        image_format: format,
         image_channels: img.channels,
         image_bit_depth: img.bit_depth(),
-        mode: y.thresholds.mode.as_str().into(),
+        mode: y.thresholds.mode,
         negate: y.thresholds.negate,
         occupied_thresh: y.thresholds.occupied_thresh,
         free_thresh: y.thresholds.free_thresh,
@@ -385,7 +385,7 @@ pub fn save_map(
         .ok_or_else(|| ArenaError::io(yaml_path, "not a file path"))?
         .to_string_lossy()
         .to_string();
-    let image_name = format!("{stem}.{}", format.extension());
+    let image_name = format!("{stem}.{}", format.name());
     let image_path = yaml_path.with_file_name(&image_name);
     let bytes = match format {
         ImageFormat::Png => png_io::encode(&grid.data, grid.width, grid.height)

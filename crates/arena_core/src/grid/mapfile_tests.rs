@@ -90,7 +90,7 @@ fn every_png_layout_and_depth_loads_like_nav2() {
                 (
                     meta.image_channels,
                     meta.image_bit_depth,
-                    meta.image_format.as_str()
+                    meta.image_format.name()
                 ),
                 (channels, if sixteen { 16 } else { 8 }, "png")
             );
@@ -112,7 +112,7 @@ fn pgm_p2_p5_eight_and_sixteen_bit() {
         let y = d.write("m.yaml", yaml(name, "").as_bytes());
         let (g, meta) = load_map(&y).unwrap();
         assert_eq!(g.data, vec![FREE, OCCUPIED, UNKNOWN, OCCUPIED], "{name}");
-        assert_eq!(meta.image_format, "pgm");
+        assert_eq!(meta.image_format, ImageFormat::Pgm);
         assert_eq!(
             meta.defaulted,
             vec!["occupied_thresh", "free_thresh", "negate", "mode"]

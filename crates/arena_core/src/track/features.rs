@@ -353,9 +353,9 @@ pub const CLEARANCE_STEP_M: f64 = 0.1;
 pub struct CurveReport {
     #[serde(flatten)]
     pub analysis: CurveAnalysis,
-    /// Self-clearance (m); -1 when no two points are more than `exclude_m` apart along
-    /// the curve (no non-local pass), so the value stays a finite JSON number.
-    pub self_clearance_m: f64,
+    /// Self-clearance (m); `None` when no two points are more than `exclude_m` apart
+    /// along the curve (no non-local pass).
+    pub self_clearance_m: Option<f64>,
 }
 
 /// The curve analysis of a closed curve from outside (the door [`check_curve_args`]
@@ -369,11 +369,7 @@ pub fn analyse_curve(
     let clearance = self_clearance(points, exclude_m, CLEARANCE_STEP_M);
     Ok(CurveReport {
         analysis: analyse_closed_curve(points, corner_radius),
-        self_clearance_m: if clearance.is_finite() {
-            clearance
-        } else {
-            -1.0
-        },
+        self_clearance_m: clearance.is_finite().then_some(clearance),
     })
 }
 
