@@ -1,7 +1,7 @@
 //! Conversions between Python objects and the core's plain types, shared by the binding
 //! files (no logic: shapes in, shapes out). Arrays go through numpy; the core's serde
-//! types (specs, configs, reports) cross as Python objects through `pythonize`, never as
-//! JSON text.
+//! types (specs, configs) cross as Python objects through `pythonize`, never as JSON
+//! text. Reports cross as typed mirrors (`mirror.rs`, `reports.rs`).
 
 use arena_core::ArenaError;
 use numpy::{PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
