@@ -2,7 +2,7 @@
 
 import os
 from collections.abc import Mapping, Sequence
-from typing import Any, Literal, Protocol, TypeAlias, TypedDict, final, overload, type_check_only
+from typing import Literal, Protocol, TypeAlias, TypedDict, final, overload, type_check_only
 
 import numpy as np
 import numpy.typing as npt
@@ -90,7 +90,6 @@ class _Dumps(Protocol):
     def model_dump(self) -> Mapping[str, object]: ...
 
 _Doc: TypeAlias = Mapping[str, object] | _Dumps
-_Result: TypeAlias = dict[str, Any]
 
 # Closed domains, converted to the core's enums at the signature (InvalidArgumentError
 # naming the allowed values for any other value); save_map also takes them in any case.
