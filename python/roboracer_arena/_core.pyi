@@ -73,6 +73,7 @@ __all__ = [
     "EVENT_VEHICLE",
     "EVENT_LAP",
     "EVENT_FAULT",
+    "ObservationNormaliser",
     "StartGrid",
     "StartSpec",
 ]
@@ -1042,6 +1043,60 @@ EVENT_WALL: int
 EVENT_VEHICLE: int
 EVENT_LAP: int
 EVENT_FAULT: int
+
+@final
+class ObservationNormaliser:
+    """Normalised observations (``ObservationConfig(normalise=True)``), written by the core
+    straight into float32 observation buffers: x, y relative to the start pose in its
+    frame / ``position_scale`` (not clipped); yaw as sin and cos relative to the start
+    heading; vx, vy, speed / ``max_speed``, yaw_rate / 2 pi, steer / ``max_steer``
+    (clipped to ±1); scan ranges times 1 / min(``horizon``, ``range_max``) in float32,
+    clipped to 1. Computed in float64 as the former numpy code did, cast at the end.
+    ``odometry`` names state fields among x, y, yaw, vx, vy, yaw_rate, steer, speed
+    (converted to the core's enum at the call); ``InvalidArgumentError`` for another, ``ConfigError`` for a repeated field or
+    a scale that is not finite and > 0 (``horizon`` may be inf)."""
+
+    def __new__(
+        cls,
+        odometry: Sequence[str],
+        *,
+        position_scale: float,
+        horizon: float,
+        range_max: float,
+        max_speed: float,
+        max_steer: float,
+    ) -> ObservationNormaliser: ...
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """Names of the output columns (yaw gives ``yaw_sin``, ``yaw_cos``)."""
+    @property
+    def column_scales(self) -> tuple[float, ...]:
+        """What each output column is divided by (1 for yaw's sin and cos)."""
+    @property
+    def column_bounds(self) -> tuple[float, ...]:
+        """Where each output column is clipped (±bound; inf for x and y)."""
+    @property
+    def scan_scale(self) -> float:
+        """The scans' factor, 1 / min(horizon, range_max) rounded to float32."""
+    def odometry(
+        self,
+        state: npt.NDArray[np.float64],
+        start_poses: npt.NDArray[np.float64],
+        out: npt.NDArray[np.float32],
+        env_mask: npt.NDArray[np.bool_] | None = None,
+    ) -> None:
+        """Write the odometry of ``state`` ((E, V, S), C-contiguous) and ``start_poses``
+        ((E, V, 3)) into the newest frame of ``out`` ((E, V, K) or (E, V, k, K) float32,
+        C-contiguous): of every env, or only of those where ``env_mask`` is True."""
+    def scan(
+        self,
+        scans: npt.NDArray[np.float32],
+        out: npt.NDArray[np.float32],
+        env_mask: npt.NDArray[np.bool_] | None = None,
+    ) -> None:
+        """Write the normalised ``scans`` ((E, V, B) metres, C-contiguous) into the newest
+        frame of ``out`` ((E, V, B) or (E, V, k, B) float32, C-contiguous): of every env,
+        or only of those where ``env_mask`` is True."""
 
 @final
 class StartSpec:

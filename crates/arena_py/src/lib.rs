@@ -15,6 +15,7 @@ mod geometry;
 mod grid;
 mod mirror;
 mod nearest;
+mod observation;
 mod outcome;
 mod progress;
 mod reports;
@@ -37,6 +38,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     sim::register(m)?;
     progress::register(m)?;
     episode::register(m)?;
+    observation::register(m)?;
     start_grid::register(m)?;
     Ok(())
 }

@@ -24,7 +24,7 @@ use crate::start_grid::StartSpec;
 /// (vertices (V, 3) float32, triangles (T, 3) uint32) of a mesh.
 type MeshArrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
 
-fn invalid(msg: impl Into<String>) -> PyErr {
+pub(crate) fn invalid(msg: impl Into<String>) -> PyErr {
     to_py(CoreError::invalid(msg))
 }
 
@@ -47,7 +47,7 @@ fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f64; 2]>> {
     })
 }
 
-fn check_shape(name: &str, got: &[usize], want: &[usize]) -> PyResult<()> {
+pub(crate) fn check_shape(name: &str, got: &[usize], want: &[usize]) -> PyResult<()> {
     if got == want {
         Ok(())
     } else {
@@ -74,7 +74,7 @@ fn read_f64<const N: usize>(
 }
 
 /// A numpy bool array of shape (num_envs,) as a Vec.
-fn read_mask(obj: &Bound<'_, PyAny>, num_envs: usize) -> PyResult<Vec<bool>> {
+pub(crate) fn read_mask(obj: &Bound<'_, PyAny>, num_envs: usize) -> PyResult<Vec<bool>> {
     let mask = obj.cast::<PyArray1<bool>>().map_err(|_| {
         invalid(format!(
             "env_mask must be a numpy bool array of shape ({num_envs},)"

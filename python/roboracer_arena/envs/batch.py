@@ -311,7 +311,7 @@ class SimBatch:
         # read reward 0, not ended, progress 0, no wrong way, elapsed 0.
         scans = self.scans if self.config.observation.scan else None
         self.sim.observe(scans, self.state, self.events, mask, self.episode)
-        self.obs.refresh(self, idx, fill=True)
+        self.obs.refresh(self, mask)
 
     def _scan_due(self) -> bool:
         """Whether the scanner produces a new scan at the end of this step."""
@@ -331,7 +331,7 @@ class SimBatch:
         scans = self._every_step_scans if self._scan_every_step else (self.scans if self._scan_due() else None)
         actions = self.delay.apply(self.actions) if self.delay.active else self.actions
         self.sim.step(actions, self.substeps, scans, self.state, self.events, self.episode)
-        self.obs.refresh(self, slice(None))
+        self.obs.refresh(self)
         ep = self.episode
         return ep.reward, ep.terminated, ep.truncated
 

@@ -1,7 +1,9 @@
 """Observation assembly for the batch engine: raw or normalised frames (see
 :class:`~roboracer_arena.envs.env_config.ObservationConfig`), frame stacking and the
-previous action. Observation randomisation (lidar noise and dropout) is drawn natively
-with the scan, from each env's own stream (see :mod:`.batch`).
+previous action. Normalised frames are the core's (``_core.ObservationNormaliser``,
+``arena_core::sim::observation``): it writes them straight into the observation buffers,
+so no Python arithmetic runs per step. Observation randomisation (lidar noise and
+dropout) is drawn natively with the scan, from each env's own stream (see :mod:`.batch`).
 
 A *frame* is computed once per env step (and at reset), so repeated reads of the same
 step's observation (``obs`` and ``final_obs``) agree, noise included.
@@ -9,12 +11,12 @@ step's observation (``obs`` and ``final_obs``) agree, noise included.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 from gymnasium import spaces
 
+from .._core import ObservationNormaliser
 from .env_config import EnvConfig
 
 
@@ -34,23 +36,26 @@ class ObservationAssembler:
         # are read as a slice: a view, copied once into the observation (no gather).
         run = bool(cols) and cols == list(range(cols[0], cols[0] + len(cols)))
         self.cols: slice | np.ndarray = slice(cols[0], cols[0] + len(cols)) if run else np.array(cols, np.intp)
-        self._xy = (field_index["x"], field_index["y"], field_index["yaw"])
-        #: Names of the columns of obs["odometry"] (yaw becomes yaw_sin, yaw_cos when normalised).
-        self.columns: tuple[str, ...] = tuple(
-            c for f in self.fields for c in ((f"{f}_sin", f"{f}_cos") if cfg.normalise and f == "yaw" else (f,))
-        )
         veh, lid = config.sim.vehicle, config.sim.lidar
+        #: The core's normaliser (None for raw frames): it owns the scales and the columns.
+        self.norm = (
+            ObservationNormaliser(
+                self.fields,
+                position_scale=cfg.position_scale,
+                horizon=cfg.horizon,
+                range_max=lid.range_max,
+                max_speed=veh.max_speed,
+                max_steer=veh.max_steer,
+            )
+            if cfg.normalise
+            else None
+        )
+        #: Names of the columns of obs["odometry"] (yaw becomes yaw_sin, yaw_cos when normalised).
+        self.columns: tuple[str, ...] = self.fields if self.norm is None else self.norm.columns
+        #: What each normalised column was divided by (for :meth:`odometry_raw`).
+        self._column_scale = {} if self.norm is None else dict(zip(self.columns, self.norm.column_scales))
         self.range_max = float(lid.range_max)
         self.scan_high = 1.0 if cfg.normalise else self.range_max
-        self._scan_scale = np.float32(1.0 / min(cfg.horizon, self.range_max))
-        self._scale = {
-            "vx": veh.max_speed,
-            "vy": veh.max_speed,
-            "speed": veh.max_speed,
-            "yaw_rate": 2 * math.pi,
-            "steer": veh.max_steer,
-        }
-        self._max_steer, self._lo_speed, self._hi_speed = veh.max_steer, veh.min_speed, veh.max_speed
         K = len(self.columns)
         stack = (self.k,) if self.k > 1 else ()
         self.buf: dict[str, np.ndarray] = {}
@@ -95,29 +100,29 @@ class ObservationAssembler:
         return spaces.Dict(out)
 
     def _odometry_high(self) -> np.ndarray:
-        """Per-column bound: 1 for normalised columns except the (unbounded) position."""
-        if not self.cfg.normalise:
+        """Per-column bound: the core's clip (1, the position unbounded) when normalised."""
+        if self.norm is None:
             return np.full(len(self.columns), np.inf)
-        return np.array([np.inf if c in ("x", "y") else 1.0 for c in self.columns])
+        return np.array(self.norm.column_bounds)
 
     # ------------------------------------------------------------------ per episode / per step
-    def refresh(self, batch: Any, envs: Any, fill: bool = False) -> None:
-        """Compute the current frame of ``envs`` from the batch buffers; push it into the
-        history (``fill``: the whole history, as at reset)."""
-        if self._copies is not None and not fill and isinstance(envs, slice) and envs == slice(None):
+    def refresh(self, batch: Any, mask: np.ndarray | None = None) -> None:
+        """Compute the current frame from the batch buffers: of every env, pushed into its
+        history (a step: ``mask`` None), or of the envs where ``mask`` is True, filling
+        their whole history (a reset)."""
+        if mask is None and self._copies is not None:
             # Raw single frames of every env (each step): straight copies between views.
             for dst, src in self._copies:
                 np.copyto(dst, src, casting="same_kind")
             return
-        for key, value in self._frame(batch, envs, reset=fill).items():
-            buf = self.buf[key]
-            if self.k == 1:
-                buf[envs] = value
-            elif fill:
-                buf[envs] = value[:, :, None]
-            else:
-                buf[envs, :, :-1] = buf[envs, :, 1:]
-                buf[envs, :, -1] = value
+        envs = slice(None) if mask is None else np.flatnonzero(mask)
+        if mask is None and self.k > 1:  # age the history: the newest frame slot is rewritten below
+            for buf in self.buf.values():
+                buf[:, :, :-1] = buf[:, :, 1:]
+        self._write_frame(batch, envs, mask)
+        if mask is not None and self.k > 1:  # a reset's history is its first frame, repeated
+            for buf in self.buf.values():
+                buf[envs, :, :-1] = buf[envs, :, -1:]
 
     def bind(self, state: np.ndarray) -> None:
         """Use ``state`` (the batch's (E, V, S) state buffer, fixed for its lifetime) for
@@ -135,48 +140,27 @@ class ObservationAssembler:
         """Fresh copies of the observation of ``envs``, shapes (e, V, ...)."""
         return {k: v[envs].copy() for k, v in self.buf.items()}
 
-    def _frame(self, batch: Any, envs: Any, reset: bool) -> dict[str, np.ndarray]:
-        cfg = self.cfg
-        out: dict[str, np.ndarray] = {}
+    def _write_frame(self, batch: Any, envs: Any, mask: np.ndarray | None) -> None:
+        """Write the current frame of ``envs`` (the envs where ``mask`` is True, or all
+        when it is None) into the newest frame slot of each buffer."""
+        cfg, norm = self.cfg, self.norm
+        newest = (envs, slice(None), -1) if self.k > 1 else (envs,)
         if cfg.scan and not self.shares_scan:  # (a shared scan is already in place)
-            scan = batch.scans[envs]  # the simulator clamps to [range_min, range_max]
-            if cfg.normalise:  # a new array: batch.scans stays in metres
-                scan = scan * self._scan_scale
-                np.minimum(scan, 1.0, out=scan)
-            out["scan"] = scan
-        if self.fields:
-            out["odometry"] = self._odometry(batch.state[envs], batch.start_pose[envs])
-        if cfg.previous_action:
-            act = batch.from_ackermann(batch.actions[envs])
-            out["previous_action"] = np.zeros_like(act) if reset else act
-        return out
-
-    def _odometry(self, state: np.ndarray, start: np.ndarray) -> np.ndarray:
-        """(e, V, K) odometry columns from state (e, V, S) and start poses (e, V, 3); raw
-        columns stay float64 (a view when they are a run): the observation buffer's
-        assignment converts them to float32 in one copy."""
-        raw = state[..., self.cols]
-        if not self.cfg.normalise:
-            return raw
-        ix, iy, iyaw = self._xy
-        dx, dy = state[..., ix] - start[..., 0], state[..., iy] - start[..., 1]
-        c0, s0 = np.cos(start[..., 2]), np.sin(start[..., 2])
-        rel_yaw = state[..., iyaw] - start[..., 2]
-        parts = []
-        for j, f in enumerate(self.fields):
-            if f == "x":
-                parts.append((dx * c0 + dy * s0) / self.cfg.position_scale)
-            elif f == "y":
-                parts.append((-dx * s0 + dy * c0) / self.cfg.position_scale)
-            elif f == "yaw":
-                parts += [np.sin(rel_yaw), np.cos(rel_yaw)]
+            if norm is not None:  # batch.scans stays in metres
+                norm.scan(batch.scans, self.buf["scan"], mask)
             else:
-                parts.append(raw[..., j] / self._scale[f])
-        high = self._odometry_high()
-        return np.clip(np.stack(parts, axis=-1), -high, high).astype(np.float32)
+                self.buf["scan"][newest] = batch.scans[envs]
+        if self.fields:
+            if norm is not None:
+                norm.odometry(batch.state, batch.start_pose, self.buf["odometry"], mask)
+            else:  # (a view when the columns are a run: one float64 -> float32 copy)
+                self.buf["odometry"][newest] = batch.state[envs][..., self.cols]
+        if cfg.previous_action:
+            reset = mask is not None
+            self.buf["previous_action"][newest] = 0.0 if reset else batch.from_ackermann(batch.actions[envs])
 
     def odometry_raw(self, odo: np.ndarray, start: np.ndarray) -> np.ndarray:
-        """Invert :meth:`_odometry` for the newest frame: (..., V, K) SI columns, map frame.
+        """Invert the normalisation for the newest frame: (..., V, K) SI columns, map frame.
         ``odo`` is (V, [k,] K') or (E, V, [k,] K'); ``start`` the matching start poses."""
         if self.k > 1:
             odo = odo[..., -1, :]
@@ -195,5 +179,5 @@ class ObservationAssembler:
                 yaw = np.arctan2(col["yaw_sin"], col["yaw_cos"]) + start[..., 2]
                 out.append(np.arctan2(np.sin(yaw), np.cos(yaw)))
             else:
-                out.append(col[f] * self._scale[f])
+                out.append(col[f] * self._column_scale[f])
         return np.stack(out, axis=-1)

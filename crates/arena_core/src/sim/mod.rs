@@ -12,6 +12,7 @@
 //! * [`progress`]: arc length along the centreline and lap counting
 //! * [`world`]: one rapier world per environment
 //! * [`episode`]: progress since reset, reward terms, wrong-way, termination, truncation
+//! * [`observation`]: normalised odometry and scans, written into the observation buffers
 //! * [`batch`]: N worlds stepped with rayon, deterministic for any N and thread count
 //! * [`budget`]: the size budget of a simulator, checked before allocation
 
@@ -19,6 +20,7 @@ pub mod batch;
 pub mod budget;
 pub mod episode;
 pub mod lidar;
+pub mod observation;
 pub mod params;
 pub mod progress;
 pub mod segment_scan;
@@ -40,6 +42,7 @@ mod tests_resets;
 pub use batch::{ResetGiven, ResetOut, Simulator, MAX_ABS_YAW, POSE_MARGIN};
 pub use budget::{check_size, MAX_SCAN_VALUES, MAX_VEHICLES};
 pub use episode::{EpisodeOut, EpisodeParams, Episodes, BACKWARDS_EPS};
+pub use observation::{Frames, ObservationNormaliser, ObservationScales, OdometryField};
 pub use params::{LateralTyre, LidarParams, PhysicsParams, SimParams, VehicleParams};
 pub use progress::ProgressTracker;
 pub use shared_track::{Centreline, Track};
