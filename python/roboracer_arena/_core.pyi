@@ -1044,6 +1044,8 @@ EVENT_VEHICLE: int
 EVENT_LAP: int
 EVENT_FAULT: int
 
+_OdometryField: TypeAlias = Literal["x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed"]
+
 @final
 class ObservationNormaliser:
     """Normalised observations (``ObservationConfig(normalise=True)``), written by the core
@@ -1052,13 +1054,13 @@ class ObservationNormaliser:
     heading; vx, vy, speed / ``max_speed``, yaw_rate / 2 pi, steer / ``max_steer``
     (clipped to ±1); scan ranges times 1 / min(``horizon``, ``range_max``) in float32,
     clipped to 1. Computed in float64 as the former numpy code did, cast at the end.
-    ``odometry`` names state fields among x, y, yaw, vx, vy, yaw_rate, steer, speed
-    (converted to the core's enum at the call); ``InvalidArgumentError`` for another, ``ConfigError`` for a repeated field or
+    ``odometry`` names state fields (converted to the core's ``OdometryField`` at the
+    call); ``InvalidArgumentError`` for another name, ``ConfigError`` for a repeated field or
     a scale that is not finite and > 0 (``horizon`` may be inf)."""
 
     def __new__(
         cls,
-        odometry: Sequence[str],
+        odometry: Sequence[_OdometryField],
         *,
         position_scale: float,
         horizon: float,

@@ -110,6 +110,8 @@ def test_bad_fields_shapes_and_scales_are_refused():
     ok = dict(position_scale=20.0, horizon=10.0, range_max=30.0, max_speed=7.0, max_steer=0.5)
     with pytest.raises(InvalidArgumentError, match="progress_s"):
         ObservationNormaliser(["x", "progress_s"], **ok)
+    with pytest.raises(InvalidArgumentError, match="must be a str"):
+        ObservationNormaliser(["x", 3], **ok)  # type: ignore[list-item]
     with pytest.raises(ConfigError, match="repeats"):
         ObservationNormaliser(["x", "x"], **ok)
     with pytest.raises(ConfigError, match="position_scale"):

@@ -9,7 +9,7 @@ can also be passed as a keyword to ``gymnasium.make``/``make_vec``; unknown keys
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
@@ -24,8 +24,10 @@ if TYPE_CHECKING:
 
 _FROZEN = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
-#: Odometry columns an observation may contain (a subset of the simulator's state fields).
-ODOMETRY_FIELDS = ("x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed")
+#: An odometry column: one of the simulator's state fields (the core's ``OdometryField``).
+OdometryField = Literal["x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed"]
+#: Odometry columns an observation may contain, in state order.
+ODOMETRY_FIELDS: tuple[OdometryField, ...] = get_args(OdometryField)
 
 
 class ObservationConfig(NumbersAreNumbers):
@@ -56,7 +58,7 @@ class ObservationConfig(NumbersAreNumbers):
         description="Include the lidar scan ('scan' key, (B,) or (V, B)), computed at the end of every env step "
         "(so at control_rate_hz, whatever LidarConfig.rate_hz says); False skips the scan entirely.",
     )
-    odometry: tuple[str, ...] = Field(
+    odometry: tuple[OdometryField, ...] = Field(
         ("x", "y", "yaw", "vx", "vy", "yaw_rate", "steer"),
         description=f"Odometry columns ('odometry' key) in this order; any of {ODOMETRY_FIELDS}.",
     )
@@ -72,9 +74,6 @@ class ObservationConfig(NumbersAreNumbers):
 
     @model_validator(mode="after")
     def _check(self) -> ObservationConfig:
-        bad = [f for f in self.odometry if f not in ODOMETRY_FIELDS]
-        if bad:
-            raise ValueError(f"unknown odometry fields {bad}; choose from {ODOMETRY_FIELDS}")
         if len(set(self.odometry)) != len(self.odometry):
             raise ValueError("odometry fields must not repeat")
         if not self.scan and not self.odometry:
