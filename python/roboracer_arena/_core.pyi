@@ -1045,6 +1045,7 @@ EVENT_LAP: int
 EVENT_FAULT: int
 
 _OdometryField: TypeAlias = Literal["x", "y", "yaw", "vx", "vy", "yaw_rate", "steer", "speed"]
+_OdometryColumn: TypeAlias = Literal["x", "y", "yaw_sin", "yaw_cos", "vx", "vy", "yaw_rate", "steer", "speed"]
 
 @final
 class ObservationNormaliser:
@@ -1069,7 +1070,7 @@ class ObservationNormaliser:
         max_steer: float,
     ) -> ObservationNormaliser: ...
     @property
-    def columns(self) -> tuple[str, ...]:
+    def columns(self) -> tuple[_OdometryColumn, ...]:
         """Names of the output columns (yaw gives ``yaw_sin``, ``yaw_cos``)."""
     @property
     def column_scales(self) -> tuple[float, ...]:

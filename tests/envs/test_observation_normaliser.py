@@ -165,3 +165,13 @@ def test_a_vector_env_observes_the_reference_through_steps_stacks_and_masked_res
         else:
             assert np.array_equal(obs["scan"][:, :-1], prev["scan"][:, 1:])  # shifted by one
     env.close()
+
+
+def test_the_config_literal_names_the_fields_the_core_accepts():
+    """``ObservationConfig.odometry``'s literal and the core's ``OdometryField`` agree: the
+    first state fields, in state order; yaw gives two columns."""
+    assert STATE_FIELDS[: len(ODOMETRY_FIELDS)] == ODOMETRY_FIELDS
+    n = ObservationNormaliser(
+        ODOMETRY_FIELDS, position_scale=20.0, horizon=10.0, range_max=30.0, max_speed=7.0, max_steer=0.5
+    )
+    assert n.columns == ("x", "y", "yaw_sin", "yaw_cos", *ODOMETRY_FIELDS[3:])
