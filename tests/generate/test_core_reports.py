@@ -1,7 +1,8 @@
 """The core's reports cross as typed, read-only objects (issue 37): ``screen``,
-``validate_map``, ``analyse_curve`` and the lattice outcome's ``report`` / ``screen`` are
-frozen mirrors of the core's structs (nested ones too), with exactly the pydantic models'
-fields; the models built from their attributes write the same JSON as the objects hold."""
+``derived_geometry``, ``validate_map``, ``analyse_curve`` and the lattice outcome's
+``report`` / ``screen`` are frozen mirrors of the core's structs (nested ones too), with
+exactly the pydantic models' fields; the models built from their attributes write the
+same JSON as the objects hold."""
 
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from roboracer_arena.generate.outcomes import Acceptance
 from roboracer_arena.generate.report import (
     Check,
     CurveAnalysis,
+    DerivedGeometry,
     FeatureAt,
     Measurements,
     ScreenResult,
@@ -33,6 +35,7 @@ IMPOSSIBLE = TrackSpec(lap_length_m=400, hall_x_m=10, hall_y_m=10)
 
 PAIRS = [
     (_core.ScreenResult, ScreenResult),
+    (_core.Derived, DerivedGeometry),
     (_core.ValidationReport, ValidationReport),
     (_core.Check, Check),
     (_core.Measurements, Measurements),
@@ -70,6 +73,7 @@ def reports() -> dict[str, Any]:
         "report": acc.report,
         "validated": validated,
         "curve": curve,
+        "derived": d,
     }
 
 
@@ -144,6 +148,7 @@ def test_reports_pickle_to_equal_objects(reports):
         ("report", ValidationReport),
         ("validated", ValidationReport),
         ("curve", CurveAnalysis),
+        ("derived", DerivedGeometry),
     ],
 )
 def test_the_models_write_exactly_what_the_core_objects_hold(reports, name, model):

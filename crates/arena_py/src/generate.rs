@@ -11,7 +11,7 @@ use crate::convert::from_py;
 use crate::mirror::FromCore;
 use crate::nearest::NearestFound;
 use crate::outcome::{Construction, LatticeOutcome};
-use crate::reports::ScreenResult;
+use crate::reports::{Derived, ScreenResult};
 use arena_core::generate::construct;
 use arena_core::generate::deadline::Failure;
 use arena_core::generate::nearest::{self, NearestReport};
@@ -47,17 +47,6 @@ fn screen(
     ScreenResult::from_core(py, out)
 }
 
-/// Lengths derived from a spec (m), read-only: r_min and pitch p (Eq. 1), L_max, the
-/// lattice pitch bound s_min = max(p, 2 r_min) and the corner radius r_c = s_min / 2.
-#[pyclass(frozen, get_all, module = "roboracer_arena._core")]
-pub struct Derived {
-    r_min: f64,
-    pitch: f64,
-    l_max: f64,
-    s_min: f64,
-    corner_radius: f64,
-}
-
 /// Derived geometry (r_min, pitch, L_max, s_min, corner radius), a [`Derived`].
 #[pyfunction]
 #[pyo3(signature = (spec, config=None))]
@@ -70,13 +59,7 @@ fn derived_geometry(
     let d = boundary::call_ok(py, "derived_geometry", move || {
         arena_core::generate::spec::derive(&spec, &cfg)
     })?;
-    Ok(Derived {
-        r_min: d.r_min,
-        pitch: d.pitch,
-        l_max: d.l_max,
-        s_min: d.s_min,
-        corner_radius: d.corner_radius,
-    })
+    Derived::from_core(py, d)
 }
 
 /// Algorithm 1 (lattice and ring constructors), screen included (once, in the core):
@@ -147,7 +130,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate_lattice, m)?)?;
     m.add_class::<LatticeOutcome>()?;
     m.add_class::<Construction>()?;
-    m.add_class::<Derived>()?;
     m.add_class::<NearestFound>()?;
     m.add_class::<crate::nearest::NearestSuggestion>()?;
     m.add_function(wrap_pyfunction!(construct_lattice, m)?)?;

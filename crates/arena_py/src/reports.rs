@@ -1,9 +1,11 @@
 //! The core's reports as typed, read-only Python objects (issue 37): the admissibility
-//! screen, the raster validator's report, the curve analysis and a map file's metadata.
+//! screen, the derived geometry, the raster validator's report, the curve analysis and a
+//! map file's metadata.
 //! Each is a [`mirror!`] of its core struct (exhaustive, so they cannot drift); the
 //! package's pydantic models (`generate/report.py`) are built from their attributes.
 
 use arena_core::generate::screen::ScreenResult as CoreScreen;
+use arena_core::generate::spec::Derived as CoreDerived;
 use arena_core::grid::mapfile::MapMeta as CoreMapMeta;
 use arena_core::track::features::{
     CurveAnalysis as CoreCurve, CurveReport, Feature as CoreFeature, Turn as CoreTurn,
@@ -29,6 +31,18 @@ mirror!(
         feature_length_m: f64,
         feature_budget_m: f64,
     } from CoreScreen
+);
+
+mirror!(
+    /// Lengths derived from a spec (m), read-only: r_min and pitch p (Eq. 1), L_max, the
+    /// lattice pitch bound s_min = max(p, 2 r_min) and the corner radius r_c = s_min / 2.
+    Derived {
+        r_min: f64,
+        pitch: f64,
+        l_max: f64,
+        s_min: f64,
+        corner_radius: f64,
+    } from CoreDerived
 );
 
 mirror!(
@@ -137,6 +151,7 @@ mirror!(
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<ScreenResult>()?;
+    m.add_class::<Derived>()?;
     m.add_class::<ValidationReport>()?;
     m.add_class::<Check>()?;
     m.add_class::<Measurements>()?;
