@@ -654,7 +654,34 @@ def engines_block(doc: Doc, name: str = "engines") -> str:
                 f"{p['rms_yaw_rate']:.3f} | {p['rms_steer_rad']:.4f} | {p['rms_lateral_offset_m']:.3f} | "
                 f"{p.get('start_gap_m', 0.0):.2f} |"
             )
+        lines += ["", _laps_summary(r["laps"])]
     return "\n".join(lines) + "\n"
+
+
+#: The paired-trace RMS columns of a closed-loop run, with their units.
+_TRACE_RMS = (
+    ("rms_speed_m_s", "speed", "m/s", ".3f"),
+    ("rms_yaw_rate", "yaw rate", "rad/s", ".3f"),
+    ("rms_steer_rad", "steer", "rad", ".4f"),
+    ("rms_lateral_offset_m", "offset", "m", ".3f"),
+)
+
+
+def _laps_summary(laps: list[dict[str, Any]]) -> str:
+    """How many runs lap in both engines within 5 %, and the largest paired-trace RMS over
+    every run and over the runs off the friction limit (all but the mu 0.4 condition)."""
+
+    def largest(rows: list[dict[str, Any]]) -> str:
+        return ", ".join(f"{what} {max(p[k] for p in rows):{fmt}} {unit}" for k, what, unit, fmt in _TRACE_RMS)
+
+    both = [p for p in laps if p["lap_diff"] is not None]
+    within = sum(p["lap_diff"] <= 0.05 for p in both)
+    off_limit = [p for p in laps if p["condition"] != "mu 0.4"]
+    return (
+        f"Lap times within 5 %: **{within} of {len(laps)}** runs ({len(both)} lap in both engines). "
+        f"Largest RMS difference over every run: {largest(laps)}; over the {len(off_limit)} runs off the friction "
+        f"limit (all but mu 0.4): {largest(off_limit)}."
+    )
 
 
 def engines_deterministic(doc: Doc) -> Any:
